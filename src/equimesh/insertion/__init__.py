@@ -1,0 +1,35 @@
+"""Farthest-point (Voronoi) insertion under visibility distance.
+
+One engine serves both problems of the paper:
+
+* Problem 1 (Algorithm INCREMENT, Steps 3-5): the region is the convex polygon
+  P, its resampled boundary the only constraint; every point sees every other,
+  and the constrained Delaunay triangulation is the Delaunay triangulation.
+* Problem 2 (Section 3): the region is the boundary strip R = P minus the kept
+  lattice triangles; the constraints are the boundary of P and of the lattice
+  part, and a point hidden behind a constraint is infinitely far (the paper's
+  visibility distance ``d~``).
+
+Engines are chosen by name from :data:`ENGINES`; every engine has the
+signature ``engine(region, l) -> Insertion``.
+"""
+
+from ._region import Insertion, Region
+from .reference import run as _reference
+
+#: Available insertion engines, by name.
+ENGINES = {"reference": _reference}
+
+
+def insert(region, l, engine="reference"):
+    """Run farthest-point insertion in ``region`` with minimum distance ``l``."""
+    try:
+        run = ENGINES[engine]
+    except KeyError:
+        from ..errors import EquimeshError
+
+        raise EquimeshError(f"unknown insertion engine {engine!r}; choose from {sorted(ENGINES)}") from None
+    return run(region, l)
+
+
+__all__ = ["ENGINES", "Insertion", "Region", "insert"]

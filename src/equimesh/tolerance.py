@@ -1,0 +1,30 @@
+"""The single relative tolerance used by every comparison with the target length l.
+
+Farthest-point insertion (Step 4 of Algorithm INCREMENT) accepts a candidate
+point ``p*`` when ``d(p*, S) >= (1 - REL_TOL) * l``.  Lattices and regular
+polygons put many candidates at *exactly* distance ``l`` (up to rounding), so an
+exact comparison would make the output depend on the last bit of a square
+root.  With the tolerance the guarantees read
+
+* every pair of mutually visible output points is at least ``(1 - REL_TOL) l``
+  apart, hence every edge is at least ``(1 - REL_TOL) l`` long;
+* every edge is at most ``2 l`` long (Theorems 1 and 3), because at termination
+  every candidate is strictly below ``(1 - REL_TOL) l``.
+
+The tolerance is relative, so scaling the input by a power of two scales the
+output exactly (tested).  Input validation (edges >= l, point separation) uses
+the same tolerance so that a boundary resampled from an edge of length exactly
+``k l`` is accepted.
+"""
+
+REL_TOL = 1e-9
+
+
+def at_least(value, l):
+    """``value >= l`` up to :data:`REL_TOL` (vectorised)."""
+    return value >= (1.0 - REL_TOL) * l
+
+
+def at_most(value, l):
+    """``value <= l`` up to :data:`REL_TOL` (vectorised)."""
+    return value <= (1.0 + REL_TOL) * l
