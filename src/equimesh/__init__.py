@@ -5,6 +5,8 @@ Public verbs
 increment(vertices, l)            Problem 1, Algorithm INCREMENT (Section 2)
 node_lower_bound(vertices, l)     lower bound on the optimum of Problem 1 (Theorem 2)
 packing_upper_bound(vertices, l)  Oler's bound on l-separated point sets
+uniform_triangulation(vertices, l) Problem 2: lattice + boundary strip (Section 3)
+best_lattice_placement(vertices, l) lattice angle/offset maximising G1 (beyond the paper)
 """
 
 from .bounds import node_lower_bound, packing_upper_bound
@@ -17,6 +19,8 @@ from .errors import (
 )
 from .increment import increment
 from .mesh import G1, OTHER, PlanarMesh
+from .placement import Placement, best_lattice_placement
+from .uniform import uniform_triangulation
 from .tolerance import REL_TOL
 
 __version__ = "0.1.0"
@@ -31,7 +35,10 @@ __all__ = [
     "InvalidSurfaceError",
     "MeshTooLargeError",
     "PlanarMesh",
+    "Placement",
+    "best_lattice_placement",
     "increment",
     "node_lower_bound",
     "packing_upper_bound",
+    "uniform_triangulation",
 ]

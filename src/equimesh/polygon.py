@@ -191,14 +191,20 @@ class Boundary:
         return np.column_stack([np.arange(m), (np.arange(m) + 1) % m])
 
 
-def resample_boundary(poly, l):
+def resample_boundary(poly, l, spacing=2.0):
     """Step 2: place points V' on the boundary so consecutive points are between l and 2l apart.
 
-    Each edge of length ``L`` is split into ``k = ceil(L / 2l)`` equal parts
-    (``k = 1`` when ``L <= 2l`` up to REL_TOL).  A part has length ``L / k``:
-    at most ``2l`` by the choice of ``k``, and at least ``l`` because ``L >= l``
-    when ``k = 1`` and ``L > 2l (k - 1)`` gives ``L / k > 2l (k - 1) / k >= l``
-    when ``k >= 2``.
+    Each edge of length ``L`` is split into ``k`` equal parts, the smallest
+    number making a part at most ``spacing * l`` long, kept within
+    ``[ceil(L / 2l), floor(L / l)]`` (ranges taken up to REL_TOL).  With the
+    default ``spacing = 2`` this is ``k = ceil(L / 2l)``, the fewest boundary
+    points (Problem 1 minimises the node count).  A part has length ``L / k``:
+    at most ``2l`` as ``k >= L / 2l``, at least ``l`` as ``k <= L / l``; the
+    range is never empty because ``L >= l`` (for ``L <= 2l`` it contains 1, for
+    ``L > 2l`` it has length ``L / 2l > 1``).  Problem 2 uses a spacing below
+    2 (see :func:`equimesh.uniform.uniform_triangulation`): a boundary part of
+    exactly ``2l`` leaves its midpoint at distance exactly ``l``, and the
+    farthest-point insertion then places a point a hair inside it, a sliver.
 
     Why all boundary points are pairwise at least ``l`` apart in a convex
     polygon with inner angles of at least 90 degrees:
@@ -225,7 +231,9 @@ def resample_boundary(poly, l):
     """
     v = poly.vertices
     lengths = poly.edge_lengths
-    parts = np.maximum(1, np.ceil(lengths / (2.0 * l) * (1.0 - REL_TOL))).astype(int)
+    fewest = np.maximum(1, np.ceil(lengths / (2.0 * l) * (1.0 - REL_TOL)))
+    most = np.floor(lengths / l * (1.0 + REL_TOL))
+    parts = np.clip(np.ceil(lengths / (spacing * l) * (1.0 - REL_TOL)), fewest, most).astype(int)
     points, is_vertex, edge = [], [], []
     for i, (a, b, k) in enumerate(zip(v, np.roll(v, -1, axis=0), parts)):
         j = np.arange(k)[:, None]

@@ -1,0 +1,162 @@
+"""Problem 2 (Section 3 of the paper): a triangulation with most edges exactly l.
+
+1. Step 2 of Algorithm INCREMENT on the boundary of P (any simple polygon).
+2. The lattice part K (the paper's H', :mod:`equimesh.lattice`).
+3. The boundary strip R = P \\ K is filled by farthest-point insertion under
+   the visibility distance ``d~`` (:mod:`equimesh.insertion`), the
+   constraints being the boundary of P and the boundary of K.
+4. Output: the constrained Delaunay triangulation of R plus the lattice
+   triangles of K, one conforming triangulation of P.
+
+Theorem 3 (every edge in [l, 2l]).  Edges of K have length l.  In R every
+edge joins two points that see each other, all of them pairwise at least
+``(1 - REL_TOL) l`` apart (boundary points by the validation of Lemma 3 (1),
+lattice vertices by the clearance, inserted points by Step 4).  A triangle of
+R whose circumcentre is visible from it had that circumcentre as a candidate,
+so its circumradius is below ``(1 - REL_TOL) l`` and its edges below ``2l``
+(Lemma 4, the counterpart of Lemma 1).  A triangle whose circumcentre c is
+hidden behind a constraint ``e = ab`` (the first one crossed from the
+triangle towards c) has ``a`` and ``b`` outside its circumcircle (a constraint
+endpoint inside the circle would give a vertex visible from the triangle
+inside the circle, against the CDT property), so the circle meets the line of
+``e`` in a chord contained in ``e``; the triangle lies in the cap cut off by
+that chord on the side away from c, whose diameter is the chord: its edges
+are at most ``|e| <= 2l`` (Lemma 5, the counterpart of Lemma 2).
+"""
+
+import numpy as np
+
+from .insertion import Region, insert
+from .increment import boundary_ring
+from .lattice import lattice_adjacent, lattice_part
+from .mesh import PlanarMesh, unique_edges
+from .polygon import as_polygon, check_boundary_separation, check_edges_at_least, check_length, resample_boundary
+from .errors import EquimeshError
+
+#: Default Step 2 spacing for Problem 2, in units of l.  Below 2 so that no
+#: boundary part is 2l long: a farthest point then sits at least
+#: ``l sqrt(1 - 0.9^2) = 0.44 l`` inside the boundary (no sliver triangles), and
+#: it gave the largest G1 share among 1.0, 1.2, 1.5, 1.8 and 2.0 on the
+#: polygons of ``experiments/problem2.py``.
+BOUNDARY_SPACING = 1.8
+
+
+def uniform_triangulation(
+    vertices, l, *, angle=0.0, offset=(0.0, 0.0), clearance=1.0, boundary_spacing=BOUNDARY_SPACING, engine="reference"
+):
+    """Triangulate a simple polygon with most edges exactly ``l`` and all in [l, 2l] (Problem 2).
+
+    Parameters
+    ----------
+    vertices : (n, 2) array_like
+        A simple polygon, convex or not, either orientation; every edge at
+        least ``l`` long (longer than ``2l`` is resampled as in Step 2), and
+        mutually visible boundary points at least ``l`` apart.
+    l : float
+        Lattice spacing and minimum edge length.
+    angle : float
+        Direction of the first lattice vector, in degrees.
+    offset : (2,) array_like
+        Position of the lattice vertex (0, 0).
+    clearance : float
+        Lattice vertices closer than ``clearance * l`` to the boundary of P
+        are removed; at least 1 (Lemma 3).
+    boundary_spacing : float
+        Target length, in units of l, of the parts long boundary edges are
+        split into (Step 2); kept within [l, 2l].
+    engine : str
+        Insertion engine for the boundary strip.
+
+    Returns
+    -------
+    PlanarMesh
+        Points: the boundary of P (counter-clockwise from vertex 0, with any
+        point inserted on it), then the rest; ``edge_groups`` marks the
+        lattice edges (length exactly l) as G1.
+    """
+    l = check_length(l)
+    clearance = _check_clearance(clearance)
+    offset = _check_pair(offset, "offset")
+    angle = _check_scalar(angle, "angle")
+    poly = as_polygon(vertices)
+    check_edges_at_least(poly, l)
+    boundary = resample_boundary(poly, l, _check_spacing(boundary_spacing))
+    check_boundary_separation(poly, boundary, l)
+    lat = lattice_part(poly, l, angle, offset, clearance)
+
+    nb = len(boundary.points)
+    lat_boundary = lat.boundary_vertices
+    lat_index = np.full(len(lat.points), -1, dtype=np.int64)
+    lat_index[lat_boundary] = nb + np.arange(len(lat_boundary))
+    region = Region(
+        np.vstack([boundary.points, lat.points[lat_boundary]]),
+        np.vstack([boundary.segments, lat_index[lat.boundary_edges]]).astype(np.int64),
+        lat.holes,
+    )
+    strip = insert(region, l, engine=engine)
+
+    interior = np.flatnonzero(lat_index < 0)
+    lat_index[interior] = len(strip.points) + np.arange(len(interior))
+    points = np.vstack([strip.points, lat.points[interior]])
+    triangles = np.vstack([strip.triangles, lat_index[lat.triangles]])
+    ij = np.full((len(points), 2), np.iinfo(np.int64).min, dtype=np.int64)
+    ij[lat_index] = lat.ij
+    is_lattice = np.zeros(len(points), dtype=bool)
+    is_lattice[lat_index] = True
+
+    ring = boundary_ring(strip.segments, start=0)
+    order = np.concatenate([ring, np.setdiff1d(np.arange(len(points)), ring)])
+    inverse = np.empty_like(order)
+    inverse[order] = np.arange(len(order))
+    mesh_edges = unique_edges(triangles)
+    both = is_lattice[mesh_edges[:, 0]] & is_lattice[mesh_edges[:, 1]]
+    g1 = mesh_edges[both][lattice_adjacent(ij[mesh_edges[both, 0]], ij[mesh_edges[both, 1]])]
+    return PlanarMesh.build(
+        points[order],
+        inverse[triangles],
+        l,
+        len(ring),
+        g1_edges=inverse[g1],
+        info={
+            "n_lattice_vertices": len(lat.points),
+            "n_lattice_triangles": len(lat.triangles),
+            "n_inserted": len(strip.points) - strip.n_initial,
+            "angle": angle,
+            "offset": tuple(offset),
+            "clearance": clearance,
+        },
+    )
+
+
+def _check_scalar(value, name):
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise EquimeshError(f"{name} must be a number, got {value!r}") from None
+    if not np.isfinite(v):
+        raise EquimeshError(f"{name} must be finite, got {v!r}")
+    return v
+
+
+def _check_pair(value, name):
+    try:
+        v = np.asarray(value, dtype=float).reshape(-1)
+    except (TypeError, ValueError):
+        raise EquimeshError(f"{name} must be a pair of numbers, got {value!r}") from None
+    if v.shape != (2,) or not np.all(np.isfinite(v)):
+        raise EquimeshError(f"{name} must be a pair of finite numbers, got {value!r}")
+    return v
+
+
+def _check_clearance(value):
+    c = _check_scalar(value, "clearance")
+    if c < 1.0:
+        raise EquimeshError(f"clearance must be at least 1 (Lemma 3 needs lattice vertices l from the boundary), got {c}")
+    return c
+
+
+def _check_spacing(value):
+    s = _check_scalar(value, "boundary_spacing")
+    if not 1.0 <= s <= 2.0:
+        raise EquimeshError(f"boundary_spacing must be between 1 and 2 (units of l, Step 2), got {s}")
+    return s
