@@ -231,9 +231,7 @@ def resample_boundary(poly, l, spacing=2.0):
     """
     v = poly.vertices
     lengths = poly.edge_lengths
-    fewest = np.maximum(1, np.ceil(lengths / (2.0 * l) * (1.0 - REL_TOL)))
-    most = np.floor(lengths / l * (1.0 + REL_TOL))
-    parts = np.clip(np.ceil(lengths / (spacing * l) * (1.0 - REL_TOL)), fewest, most).astype(int)
+    parts = split_counts(lengths, l, spacing)
     points, is_vertex, edge = [], [], []
     for i, (a, b, k) in enumerate(zip(v, np.roll(v, -1, axis=0), parts)):
         j = np.arange(k)[:, None]
@@ -241,6 +239,17 @@ def resample_boundary(poly, l, spacing=2.0):
         is_vertex.append(np.arange(k) == 0)
         edge.append(np.full(k, i))
     return Boundary(np.vstack(points), np.concatenate(is_vertex), np.concatenate(edge))
+
+
+def split_counts(lengths, l, spacing=2.0):
+    """Number of equal parts for each length: ``ceil(L / (spacing l))`` kept in ``[ceil(L / 2l), floor(L / l)]``.
+
+    See :func:`resample_boundary`; the range is non-empty for ``L >= l``.
+    """
+    lengths = np.asarray(lengths, dtype=float)
+    fewest = np.maximum(1, np.ceil(lengths / (2.0 * l) * (1.0 - REL_TOL)))
+    most = np.floor(lengths / l * (1.0 + REL_TOL))
+    return np.clip(np.ceil(lengths / (spacing * l) * (1.0 - REL_TOL)), fewest, most).astype(int)
 
 
 def check_boundary_separation(poly, boundary, l):

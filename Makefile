@@ -1,0 +1,82 @@
+# equimesh: the README's two commands are `make reproduce` and `make test`.
+#
+# Both create .venv with `$(PYTHON) -m venv` on first use (Python >= 3.11) and
+# install the project into it with `pip install -e '.[test,bench]'`; later runs
+# reuse it and reinstall only when pyproject.toml is newer than the stamp file.
+# Nothing outside .venv is installed, so a machine with Python 3.11+ and make
+# is enough.
+
+SHELL := /bin/bash
+
+PYTHON ?= python3
+VENV := .venv
+PY := $(VENV)/bin/python
+STAMP := $(VENV)/.equimesh-installed
+
+# Every experiment script, in the order `make reproduce` runs them.  Each one
+# has `main(argv)`, prints its progress and writes results/ (and, for figure
+# scripts, paper_figs/).  Add a new experiment by appending it here.
+EXPERIMENTS := \
+	experiments/ratio_sweep.py
+
+# The hypothesis profile comes from EQUIMESH_HYPOTHESIS_PROFILE (tests/conftest.py;
+# quick "ci" when unset); `make test-thorough` selects the thorough one.
+
+# Figures are drawn headless.
+export MPLBACKEND ?= Agg
+
+PYTEST_ARGS ?= -n 2 -q
+# Extra arguments for `asv run`, e.g. `make bench ASV_ARGS=--quick`.
+ASV_ARGS ?=
+
+.PHONY: test test-thorough reproduce bench bench-publish venv clean-venv
+
+test: $(STAMP)
+	$(PY) -m pytest $(PYTEST_ARGS)
+
+test-thorough: $(STAMP)
+	EQUIMESH_HYPOTHESIS_PROFILE=thorough $(PY) -m pytest $(PYTEST_ARGS)
+
+reproduce: $(STAMP)
+	@set -e; for script in $(EXPERIMENTS); do \
+		if [ ! -f "$$script" ]; then echo "make reproduce: $$script is missing" >&2; exit 1; fi; \
+		echo "==> $(PY) $$script"; \
+		$(PY) "$$script"; \
+	done; \
+	echo "==> make reproduce: all experiments done"
+
+# asv runs in this project's own .venv (environment "existing") and writes
+# only under the gitignored .asv/ (see benchmarks/asv.conf.json).  Results
+# are recorded against HEAD; uncommitted changes are measured as they are.
+bench: $(STAMP)
+	@commit=$$(git rev-parse HEAD) || { echo "make bench: needs a git checkout (asv records results per commit)" >&2; exit 1; }; \
+	set -ex; cd benchmarks; \
+	../$(VENV)/bin/asv machine --yes >/dev/null; \
+	../$(VENV)/bin/asv run --environment existing:../$(PY) --set-commit-hash $$commit --show-stderr $(ASV_ARGS)
+
+bench-publish: $(STAMP)
+	cd benchmarks && ../$(VENV)/bin/asv publish
+	@echo "==> open .asv/html/index.html (or: cd benchmarks && ../$(VENV)/bin/asv preview)"
+
+venv: $(STAMP)
+
+# Install (again) only when pyproject.toml changed since the last install.
+$(STAMP): pyproject.toml | $(PY)
+	$(PY) -m pip install -e '.[test,bench]'
+	touch $(STAMP)
+
+$(PY):
+	@$(PYTHON) -c 'import sys; sys.exit(sys.version_info < (3, 11))' 2>/dev/null || { \
+		echo "equimesh needs Python >= 3.11, but '$(PYTHON)' is" \
+			"$$($(PYTHON) --version 2>/dev/null || echo 'not found')." >&2; \
+		echo "Run again with e.g. 'make PYTHON=python3.11 ...'." >&2; \
+		exit 1; }
+	@echo "==> creating $(VENV) with $$($(PYTHON) --version)"
+	@{ $(PYTHON) -m venv $(VENV) && $(PY) -m pip --version >/dev/null 2>&1; } || { \
+		rm -rf $(VENV); \
+		echo "'$(PYTHON) -m venv' could not make a virtual environment with pip" \
+			"(on Debian/Ubuntu: apt install python3-venv)." >&2; \
+		exit 1; }
+
+clean-venv:
+	rm -rf $(VENV)

@@ -1,0 +1,89 @@
+"""Section 4, step 3: the boundary of the flattened auxiliary triangulation as a polygon.
+
+The boundary of the flattened auxiliary triangulation is a closed polyline
+through the images of the boundary nodes of [0, 1]^2, generally not convex
+(paper, Fig. 2).  Its four sides (between the images of the corners of the
+parameter square) are resampled into polygon edges between l and 2l, the
+input of Problem 2 (:func:`equimesh.uniform_triangulation`):
+
+* a side of arc length ``L`` gets ``k`` parts by the rule of Step 2
+  (:func:`equimesh.polygon.split_counts`), placed at equal arc length; a part's
+  chord is at most its arc, so at most ``2l``; where curvature makes a chord
+  shorter than ``l``, ``k`` is lowered for that side;
+* every polygon vertex lies on the flattened polyline, with the boundary
+  segment and fraction it sits at, so its (u, v) is known exactly and lies on
+  the boundary of the parameter square (paper, eq. (3) on a boundary edge).
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .errors import EquimeshError
+from .polygon import split_counts
+from .tolerance import at_least
+
+
+@dataclass(frozen=True)
+class Outline:
+    """The resampled boundary polygon and where its vertices sit in (u, v).
+
+    Attributes
+    ----------
+    vertices : (n, 2) plane coordinates, counter-clockwise.
+    uv : (n, 2) parameter coordinates, on the boundary of [0, 1]^2.
+    side : (n,) the side of the parameter square each polygon edge (i, i+1)
+        runs along (index into the auxiliary grid's corner-to-corner sides).
+    """
+
+    vertices: np.ndarray
+    uv: np.ndarray
+    side: np.ndarray
+
+
+class SurfaceTooSmallError(EquimeshError):
+    """A side of the surface is shorter than l on the plane."""
+
+
+def resample_outline(plane, uv, loop, corners, l, spacing):
+    """Resample the flattened boundary ``plane[loop]`` side by side into a polygon.
+
+    ``loop`` is the counter-clockwise boundary node loop of the auxiliary grid,
+    ``corners`` the positions in ``loop`` of the four corners (increasing).
+    """
+    vertices, params, sides = [], [], []
+    for s, (c0, c1) in enumerate(zip(corners, np.roll(corners, -1))):
+        chain = loop[c0 : c1 + 1] if c1 > c0 else np.r_[loop[c0:], loop[: c1 + 1]]
+        pts, prm = _resample_side(plane[chain], uv[chain], l, spacing, s)
+        vertices.append(pts[:-1])
+        params.append(prm[:-1])
+        sides.append(np.full(len(pts) - 1, s))
+    return Outline(np.vstack(vertices), np.vstack(params), np.concatenate(sides))
+
+
+def _resample_side(xy, uv, l, spacing, side):
+    seg = np.linalg.norm(np.diff(xy, axis=0), axis=1)
+    arc = np.concatenate([[0.0], np.cumsum(seg)])
+    k = int(split_counts([arc[-1]], l, spacing)[0])
+    while k >= 1:
+        s = arc[-1] * np.arange(k + 1) / k
+        s[-1] = arc[-1]
+        pts, prm = _at_arc(xy, uv, arc, s)
+        if np.all(at_least(np.linalg.norm(np.diff(pts, axis=0), axis=1), l)):
+            return pts, prm
+        k -= 1
+    raise SurfaceTooSmallError(
+        f"side {side} of the surface is {arc[-1]:.6g} long on the plane, shorter than l = {l:.6g}"
+    )
+
+
+def _at_arc(xy, uv, arc, s):
+    """Points and (u, v) at arc lengths ``s`` along the polyline ``xy``, endpoints exact."""
+    idx = np.clip(np.searchsorted(arc, s, side="right") - 1, 0, len(arc) - 2)
+    t = (s - arc[idx]) / (arc[idx + 1] - arc[idx])
+    t[0], t[-1] = 0.0, 1.0
+    idx[-1] = len(arc) - 2
+    pts = xy[idx] + t[:, None] * (xy[idx + 1] - xy[idx])
+    prm = uv[idx] + t[:, None] * (uv[idx + 1] - uv[idx])
+    pts[0], prm[0], pts[-1], prm[-1] = xy[0], uv[0], xy[-1], uv[-1]
+    return pts, prm
