@@ -5,6 +5,7 @@ Public verbs
 increment(vertices, l)            Problem 1, Algorithm INCREMENT (Section 2)
 node_lower_bound(vertices, l)     lower bound on the optimum of Problem 1 (Theorem 2)
 packing_upper_bound(vertices, l)  Oler's bound on l-separated point sets
+mesh_surface(surface, l)          Section 4: uniform mesh of a parametric surface
 uniform_triangulation(vertices, l) Problem 2: lattice + boundary strip (Section 3)
 best_lattice_placement(vertices, l) lattice angle/offset maximising G1 (beyond the paper)
 """
@@ -19,7 +20,9 @@ from .errors import (
 )
 from .increment import increment
 from .mesh import G1, OTHER, PlanarMesh
+from .pipeline import SurfaceMesh, mesh_surface
 from .placement import Placement, best_lattice_placement
+from .surface import BezierSurface
 from .uniform import uniform_triangulation
 from .tolerance import REL_TOL
 
@@ -29,6 +32,7 @@ __all__ = [
     "G1",
     "OTHER",
     "REL_TOL",
+    "BezierSurface",
     "EquimeshError",
     "InvalidLengthError",
     "InvalidPolygonError",
@@ -36,8 +40,10 @@ __all__ = [
     "MeshTooLargeError",
     "PlanarMesh",
     "Placement",
+    "SurfaceMesh",
     "best_lattice_placement",
     "increment",
+    "mesh_surface",
     "node_lower_bound",
     "packing_upper_bound",
     "uniform_triangulation",

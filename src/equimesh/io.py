@@ -59,12 +59,15 @@ def check_output_path(path, formats):
 def write_mesh(path, points, triangles):
     """Write a triangle mesh to ``path`` (format by extension, see :data:`MESH_FORMATS`), atomically."""
     fmt = check_output_path(path, MESH_FORMATS)
-    mesh = meshio.Mesh(np.asarray(points, dtype=float), [("triangle", np.asarray(triangles, dtype=np.int64))])
+    cells = np.asarray(triangles, dtype=np.int32)
+    cell_data = {}
+    if fmt == "gmsh":
+        fmt = "gmsh22"
+        zeros = [np.zeros(len(cells), dtype=np.int32)]
+        cell_data = {"gmsh:physical": zeros, "gmsh:geometrical": zeros}
+    mesh = meshio.Mesh(np.asarray(points, dtype=float), [("triangle", cells)], cell_data=cell_data)
     with atomic_path(path) as tmp:
-        if fmt == "gmsh":
-            mesh.write(tmp, file_format="gmsh22", binary=False)
-        else:
-            mesh.write(tmp, file_format=fmt)
+        mesh.write(tmp, file_format=fmt)
 
 
 def member_schedule(points, edges, groups, l):

@@ -16,6 +16,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ._geometry import orient
 from .auxiliary import auxiliary_grid
 from .errors import EquimeshError, InvalidSurfaceError, MeshTooLargeError
 from .flatten import flatten
@@ -225,7 +226,7 @@ def _evaluate(surface, uv):
 def _check_size(plane_points, triangles, l, max_nodes):
     """Estimate the node count (lattice density plus boundary) and refuse it above ``max_nodes``."""
     p = plane_points[triangles]
-    area = 0.5 * np.abs(np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0])).sum()
+    area = 0.5 * np.abs(orient(p[:, 0], p[:, 1], p[:, 2])).sum()
     estimate = int(area / (np.sqrt(3.0) / 2.0 * l * l))
     if estimate > max_nodes:
         raise MeshTooLargeError(

@@ -1,0 +1,127 @@
+"""The ``equimesh`` command line.
+
+``equimesh mesh SURFACE.json --length L -o OUT`` meshes a surface and writes
+the mesh (format by OUT's extension) and optionally a member schedule;
+``equimesh table1`` and ``equimesh figures`` regenerate the paper's Table 1
+and figures (they run the scripts in the source checkout's ``experiments/``).
+
+Bad input ends with one line on standard error and exit code 2, and leaves
+no output file behind.
+"""
+
+import argparse
+import importlib.util
+import sys
+from pathlib import Path
+
+from .errors import EquimeshError
+from .io import MESH_FORMATS, check_output_path, load_surface, write_members, write_mesh
+from .optimize import OBJECTIVES
+from .pipeline import MAX_NODES, PLACEMENTS, mesh_surface
+
+EXIT_USAGE = 2
+EXPERIMENTS = Path(__file__).resolve().parents[2] / "experiments"
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse with one-line errors (no usage dump) and exit code 2."""
+
+    def error(self, message):
+        self.exit(EXIT_USAGE, f"{self.prog}: error: {message}\n")
+
+
+def build_parser():
+    parser = _Parser(
+        prog="equimesh",
+        description=(
+            "Uniform (equal-edge-length) triangle meshes of curved surfaces, after Katoh, Ohsaki and Xu, "
+            "'A uniform triangle mesh generation of curved surfaces'."
+        ),
+    )
+    sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser, metavar="COMMAND")
+
+    mesh = sub.add_parser(
+        "mesh",
+        help="mesh a surface given as JSON and write the mesh",
+        description=(
+            "Mesh a surface: flatten its auxiliary triangulation (eq. 1), triangulate the plane with a lattice of "
+            "spacing L plus a boundary strip (Problem 2), map back to the surface (eqs. 2-3) and, with "
+            "--optimize paper, optimise the inner nodes so the equal-length members stay equal. "
+            'SURFACE.json: {"type": "bezier", "control_points": [[[x, y, z], ...], ...]} with rows over u and '
+            "columns over v."
+        ),
+    )
+    mesh.add_argument("surface", metavar="SURFACE.json", help="surface description (JSON)")
+    mesh.add_argument("--length", "-l", type=float, required=True, metavar="L", help="target member length")
+    mesh.add_argument("--grid", type=int, nargs=2, default=(15, 15), metavar=("NU", "NV"),
+                      help="auxiliary grid cells along u and v (default: 15 15)")
+    mesh.add_argument("--optimize", choices=["none", *OBJECTIVES], default="paper",
+                      help="final optimisation of the inner nodes (default: paper)")
+    mesh.add_argument("--placement", choices=PLACEMENTS, default="best",
+                      help="lattice placement: searched for the most equal members, or angle 0 at the origin "
+                           "(default: best)")
+    mesh.add_argument("--max-nodes", type=int, default=MAX_NODES, metavar="N",
+                      help=f"refuse meshes estimated to need more than N nodes (default: {MAX_NODES})")
+    mesh.add_argument("-o", "--output", required=True, metavar="OUT",
+                      help=f"mesh file; format from the extension: {', '.join(sorted(MESH_FORMATS))}")
+    mesh.add_argument("--members", metavar="CSV",
+                      help="also write a member schedule: member id, node ids, length, group, deviation from L")
+    mesh.add_argument("--quiet", "-q", action="store_true", help="no progress lines")
+    mesh.set_defaults(run=_run_mesh)
+
+    for name, text in (("table1", "regenerate Table 1 (results/table1.*)"),
+                       ("figures", "regenerate Figs 1-5 (paper_figs/)")):
+        exp = sub.add_parser(name, help=text, description=f"{text}; options are passed to experiments/{name}.py "
+                                                          f"(see 'equimesh {name} -- --help').")
+        exp.add_argument("args", nargs=argparse.REMAINDER, help="arguments for the experiment script")
+        exp.set_defaults(run=_run_experiment, experiment=name)
+    return parser
+
+
+def main(argv=None):
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    try:
+        return args.run(args) or 0
+    except EquimeshError as exc:
+        print(f"equimesh: error: {exc}", file=sys.stderr)
+        return EXIT_USAGE
+
+
+def _run_mesh(args):
+    check_output_path(args.output, MESH_FORMATS)
+    if args.members:
+        check_output_path(args.members, {".csv": "csv"})
+    if args.max_nodes <= 0:
+        raise EquimeshError(f"--max-nodes must be positive, got {args.max_nodes}")
+    surface = load_surface(args.surface)
+
+    def progress(stage, seconds):
+        if not args.quiet:
+            print(f"  {stage}: {seconds:.2f} s", file=sys.stderr)
+
+    mesh = mesh_surface(surface, args.length, grid=tuple(args.grid), optimize=args.optimize,
+                        placement=args.placement, max_nodes=args.max_nodes, progress=progress)
+    write_mesh(args.output, mesh.points, mesh.triangles)
+    if args.members:
+        write_members(args.members, mesh.points, mesh.edges, mesh.edge_groups, mesh.length)
+    if not args.quiet:
+        n_g1 = int(mesh.g1_mask.sum())
+        print(f"wrote {args.output}: {len(mesh.points)} nodes, {len(mesh.edges)} members "
+              f"({n_g1} in the equal-length group G1), {len(mesh.triangles)} triangles", file=sys.stderr)
+    return 0
+
+
+def _run_experiment(args):
+    script = EXPERIMENTS / f"{args.experiment}.py"
+    if not script.is_file():
+        raise EquimeshError(f"'equimesh {args.experiment}' needs a source checkout: {script} not found")
+    spec = importlib.util.spec_from_file_location(f"equimesh_experiment_{args.experiment}", script)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    rest = args.args[1:] if args.args[:1] == ["--"] else args.args
+    return module.main(rest)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
