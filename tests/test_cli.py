@@ -18,7 +18,10 @@ SADDLE = SURFACES / "saddle.json"
 
 
 def run(args, capsys):
-    code = main([str(a) for a in args])
+    try:
+        code = main([str(a) for a in args])
+    except SystemExit as exc:  # argparse usage errors
+        code = exc.code
     return code, capsys.readouterr()
 
 
