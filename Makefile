@@ -23,6 +23,8 @@ EXPERIMENTS := \
 # quick "ci" when unset); `make test-thorough` selects the thorough one.
 
 # Figures are drawn headless.
+export OPENBLAS_NUM_THREADS ?= 1
+export OMP_NUM_THREADS ?= 1
 export MPLBACKEND ?= Agg
 
 PYTEST_ARGS ?= -n 2 -q

@@ -1,0 +1,89 @@
+"""Sparse Jacobians of per-element residuals, and the fold-over barrier, for Section 4.
+
+Both least-squares problems of Section 4 (eq. (1) and the final (u, v)
+optimisation) have residuals that each depend on the coordinates of a few
+nodes only: one per edge ``(a, b)``, or one per triangle ``(a, b, c)`` for the
+fold-over barrier.  :class:`ElementJacobian` fixes the CSR structure once; each
+call only fills in the values.
+"""
+
+import numpy as np
+import scipy.sparse
+
+from ._geometry import orient
+
+
+class ElementJacobian:
+    """CSR assembly of ``d r_j / d x`` for residuals ``r_j`` of the nodes of element ``j``.
+
+    Parameters
+    ----------
+    elements : (E, k) int array
+        One row of node indices per residual (k = 2 for edges, 3 for triangles).
+    n_nodes : int
+    dim : int
+        Coordinates per node (2 for plane points and for (u, v)).
+    free : (dim * n_nodes,) bool array, optional
+        Which entries of ``x.ravel()`` (node-major) are variables, i.e.
+        Jacobian columns, in order; all by default.  Derivatives with respect
+        to fixed entries are dropped.
+    """
+
+    def __init__(self, elements, n_nodes, dim, free=None):
+        e = np.asarray(elements, dtype=np.int64)
+        free = np.ones(dim * n_nodes, dtype=bool) if free is None else np.asarray(free, dtype=bool)
+        column = np.full(dim * n_nodes, -1, dtype=np.int64)
+        column[free] = np.arange(int(free.sum()))
+        cols = column[(dim * e[:, :, None] + np.arange(dim)).reshape(len(e), e.shape[1] * dim)]
+        self._keep = cols >= 0
+        self._indices = cols[self._keep]
+        self._indptr = np.concatenate([[0], np.cumsum(self._keep.sum(axis=1))])
+        self.shape = (len(e), int(free.sum()))
+
+    def __call__(self, *grads):
+        """The Jacobian from ``grads[c] = d r / d x_{corner c}``, each (E, dim)."""
+        data = np.concatenate(grads, axis=1)[self._keep]
+        return scipy.sparse.csr_matrix((data, self._indices, self._indptr), shape=self.shape)
+
+
+def signed_areas(points, triangles):
+    """Signed areas of ``triangles`` over 2D ``points`` (> 0 counter-clockwise)."""
+    return 0.5 * orient(*(points[triangles[:, k]] for k in range(3)))
+
+
+class AreaBarrier:
+    """Fold-over barrier: residuals ``w * max(0, 1 - A / (tau A0))`` per triangle.
+
+    ``A`` is a triangle's signed area in a 2D coordinate array (the plane in
+    eq. (1), (u, v) in the final optimisation), ``A0 > 0`` its area at the
+    start and ``tau`` the ``fraction``.  The residual is zero, and the
+    objective it is appended to unchanged, while the triangle keeps at least
+    ``tau`` of its start area; it grows linearly as the triangle shrinks
+    further.  A folded triangle (``A <= 0``) contributes at least ``w^2 / 2``
+    to the cost.  With ``w^2 / 2`` above the start's cost a solver that only
+    accepts cost-decreasing steps (``trf``) can therefore never end on a
+    fold-over.  Triangles without positive area at the start are ignored.
+    """
+
+    def __init__(self, triangles, start, fraction, weight, free=None):
+        start = np.asarray(start, dtype=float)
+        tri = np.asarray(triangles, dtype=np.int64).reshape(-1, 3)
+        area = signed_areas(start, tri)
+        self.triangles = tri[area > 0]
+        self._floor = fraction * area[area > 0]
+        self._weight = float(weight)
+        self._assemble = ElementJacobian(self.triangles, len(start), 2, free)
+
+    def residuals(self, points):
+        return self._weight * np.maximum(0.0, 1.0 - signed_areas(points, self.triangles) / self._floor)
+
+    def jacobian(self, points):
+        """``dA/dp_k = 1/2 perp(p_{k+2} - p_{k+1})`` for each corner, scaled where the barrier is active."""
+        p = [points[self.triangles[:, k]] for k in range(3)]
+        active = signed_areas(points, self.triangles) < self._floor
+        scale = np.where(active, -self._weight / self._floor, 0.0)[:, None]
+        grads = []
+        for k in range(3):
+            d = p[(k + 2) % 3] - p[(k + 1) % 3]
+            grads.append(0.5 * scale * np.column_stack([-d[:, 1], d[:, 0]]))
+        return self._assemble(*grads)

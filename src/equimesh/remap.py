@@ -1,0 +1,187 @@
+"""Remapping plane nodes to the surface (Section 4, step 4, eqs. (2)-(3)).
+
+A plane node X_i^p inside the flattened auxiliary triangle (q, r, s) is written
+
+    X_i^p = X_q^p0 + alpha (X_r^p0 - X_q^p0) + beta (X_s^p0 - X_q^p0)      (2)
+
+and the same alpha, beta interpolate its parameters
+
+    u_i = u_q^0 + alpha (u_r^0 - u_q^0) + beta (u_s^0 - u_q^0)              (3)
+
+before X_i = X^s(u_i, v_i).  Point location uses matplotlib's trapezoid map
+(vectorised, O(log M) per query).
+
+Boundary.  A node that is on the boundary of the plane polygon (given by the
+caller), within ``snap_tol`` of it, or found in no triangle at all (rounding
+put it just outside) is projected onto the nearest point of the nearest
+*boundary segment* of the flattened auxiliary triangulation, and (u, v) is
+interpolated along that segment.  Both ends of a boundary segment share the
+side coordinate (exactly 0.0 or 1.0), which is then set explicitly: such nodes
+land exactly on the boundary of [0, 1]^2.  No node ever fails to map.
+"""
+
+from dataclasses import dataclass
+
+import matplotlib.tri
+import numpy as np
+
+
+@dataclass(frozen=True)
+class Remap:
+    """Result of :func:`locate` / :func:`remap`.
+
+    Attributes
+    ----------
+    uv : (K, 2) float array
+        The parameters u_i of eq. (3), inside [0, 1]^2.
+    triangle : (K,) int array
+        The auxiliary triangle k of eq. (2), or -1 for a node projected onto
+        the boundary.
+    alpha, beta : (K,) float arrays
+        The coefficients of eq. (2); ``nan`` for projected nodes.
+    on_boundary : (K,) bool array
+        Node mapped by boundary projection; its u or v is exactly 0 or 1.
+    segment, t : (K,) arrays
+        For projected nodes, the boundary segment ``k`` (from
+        ``grid.boundary[k]`` to ``grid.boundary[k + 1]``) and the position
+        ``t`` in [0, 1] along it; -1 and ``nan`` otherwise.
+    points : (K, 3) float array or None
+        X^s(u_i, v_i) (filled by :func:`remap`).
+    """
+
+    uv: np.ndarray
+    triangle: np.ndarray
+    alpha: np.ndarray
+    beta: np.ndarray
+    on_boundary: np.ndarray
+    segment: np.ndarray
+    t: np.ndarray
+    points: np.ndarray | None = None
+
+
+def remap(surface, plane_points, flat_points, grid, *, on_boundary=None, snap_tol=None):
+    """Step 4: plane nodes -> (u_i, v_i) by eqs. (2)-(3) -> X_i = X^s(u_i, v_i).
+
+    Parameters
+    ----------
+    surface : ParametricSurface
+    plane_points : (K, 2) array_like
+        The nodes X_i^p of the plane triangulation (step 3).
+    flat_points : (N, 2) array_like
+        The flattened auxiliary nodes X_i^p0 (step 2).
+    grid : AuxiliaryGrid
+        The auxiliary triangulation (step 1): ``uv``, ``triangles``,
+        ``boundary`` and ``boundary_sides`` are used.
+    on_boundary : array_like of int or bool, optional
+        Nodes known to lie on the boundary of the plane polygon (e.g. the
+        leading ``n_boundary`` nodes of a :class:`~equimesh.mesh.PlanarMesh`);
+        they take the exact boundary path.
+    snap_tol : float, optional
+        Nodes within this distance of the flattened boundary also take the
+        boundary path; default ``1e-9`` times the diameter of the flattened
+        triangulation.
+
+    Returns
+    -------
+    Remap
+        With ``points`` set.
+    """
+    loc = locate(plane_points, flat_points, grid, on_boundary=on_boundary, snap_tol=snap_tol)
+    points = np.asarray(surface.evaluate(loc.uv[:, 0], loc.uv[:, 1]), dtype=float).reshape(-1, 3)
+    return Remap(loc.uv, loc.triangle, loc.alpha, loc.beta, loc.on_boundary, loc.segment, loc.t, points)
+
+
+def locate(plane_points, flat_points, grid, *, on_boundary=None, snap_tol=None):
+    """Eqs. (2)-(3) without the surface: parameters (u_i, v_i) of plane nodes.
+
+    See :func:`remap` for the parameters; ``points`` of the result is None.
+    """
+    x = np.asarray(plane_points, dtype=float).reshape(-1, 2)
+    flat = np.asarray(flat_points, dtype=float)
+    tri = np.asarray(grid.triangles)
+    k = len(x)
+    boundary_path = np.zeros(k, dtype=bool)
+    if on_boundary is not None:
+        ob = np.asarray(on_boundary)
+        boundary_path[ob if ob.dtype != bool else np.flatnonzero(ob)] = True
+
+    triangulation = matplotlib.tri.Triangulation(flat[:, 0], flat[:, 1], tri)
+    found = np.asarray(matplotlib.tri.TrapezoidMapTriFinder(triangulation)(x[:, 0], x[:, 1]), dtype=np.int64)
+    boundary_path |= found < 0
+
+    seg_a = flat[grid.boundary]
+    seg_b = flat[np.roll(grid.boundary, -1)]
+    if snap_tol is None:
+        snap_tol = 1e-9 * float(np.linalg.norm(flat.max(axis=0) - flat.min(axis=0)))
+    if snap_tol > 0:
+        near = ~boundary_path
+        if np.any(near):
+            dist = _nearest_segment(x[near], seg_a, seg_b)[2]
+            boundary_path[np.flatnonzero(near)[dist <= snap_tol]] = True
+
+    uv = np.empty((k, 2))
+    alpha = np.full(k, np.nan)
+    beta = np.full(k, np.nan)
+    segment = np.full(k, -1, dtype=np.int64)
+    t = np.full(k, np.nan)
+    triangle = np.where(boundary_path, -1, found)
+
+    inside = ~boundary_path
+    if np.any(inside):
+        a, b = barycentric(x[inside], flat[tri[found[inside]]])
+        alpha[inside], beta[inside] = a, b
+        q, r, s = (grid.uv[tri[found[inside], j]] for j in range(3))
+        uv[inside] = q + a[:, None] * (r - q) + b[:, None] * (s - q)  # eq. (3)
+
+    if np.any(boundary_path):
+        seg, tt, _ = _nearest_segment(x[boundary_path], seg_a, seg_b)
+        segment[boundary_path], t[boundary_path] = seg, tt
+        ua = grid.uv[grid.boundary[seg]]
+        ub = grid.uv[np.roll(grid.boundary, -1)[seg]]
+        uvb = ua + tt[:, None] * (ub - ua)
+        side = grid.boundary_segment_side[seg]  # index into SIDES = (u=0, u=1, v=0, v=1)
+        uvb[np.arange(len(seg)), side // 2] = (side % 2).astype(float)
+        uv[boundary_path] = uvb
+    np.clip(uv, 0.0, 1.0, out=uv)
+    return Remap(uv, triangle, alpha, beta, boundary_path, segment, t)
+
+
+def barycentric(x, corners):
+    """Coefficients (alpha, beta) of eq. (2) for points ``x`` (K, 2) in triangles ``corners`` (K, 3, 2).
+
+    Solved by Cramer's rule and clamped to the closed triangle (``alpha,
+    beta >= 0``, ``alpha + beta <= 1``), which only moves a point that
+    rounding placed a hair outside the triangle reported by point location.
+    """
+    q, r, s = corners[:, 0], corners[:, 1], corners[:, 2]
+    e1, e2, d = r - q, s - q, x - q
+    det = e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0]
+    a = (d[:, 0] * e2[:, 1] - d[:, 1] * e2[:, 0]) / det
+    b = (e1[:, 0] * d[:, 1] - e1[:, 1] * d[:, 0]) / det
+    a, b = np.maximum(a, 0.0), np.maximum(b, 0.0)
+    over = a + b > 1.0
+    total = a[over] + b[over]
+    a[over], b[over] = a[over] / total, b[over] / total
+    return a, b
+
+
+def _nearest_segment(x, a, b, chunk=4096):
+    """Nearest segment index, parameter t in [0, 1] and distance for each point (vectorised, chunked)."""
+    ab = b - a
+    denom = np.maximum(np.sum(ab * ab, axis=1), np.finfo(float).tiny)
+    index = np.empty(len(x), dtype=np.int64)
+    tt = np.empty(len(x))
+    dist = np.empty(len(x))
+    for start in range(0, len(x), chunk):
+        p = x[start : start + chunk, None, :]
+        t = np.clip(np.sum((p - a) * ab, axis=2) / denom, 0.0, 1.0)
+        d = np.linalg.norm(a + t[..., None] * ab - p, axis=2)
+        j = np.argmin(d, axis=1)
+        rows = np.arange(len(j))
+        index[start : start + chunk] = j
+        tt[start : start + chunk] = t[rows, j]
+        dist[start : start + chunk] = d[rows, j]
+    return index, tt, dist
+
+
+__all__ = ["Remap", "barycentric", "locate", "remap"]

@@ -1,0 +1,197 @@
+"""Parametric surfaces X^s(u, v) on [0, 1]^2 (Section 4, step 1 of the paper).
+
+Every stage of Section 4 talks to a surface through two vectorised methods
+only (:class:`ParametricSurface`): ``evaluate(u, v)`` for X^s and
+``derivatives(u, v)`` for its first partials (X^s_u, X^s_v), the latter feeding
+the analytic Jacobian of the final optimisation.  :class:`BezierSurface` is the
+paper's example, a tensor-product Bezier surface of any degree.
+"""
+
+import math
+from numbers import Real
+from typing import Protocol, runtime_checkable
+
+import numpy as np
+
+from .errors import InvalidSurfaceError
+
+
+@runtime_checkable
+class ParametricSurface(Protocol):
+    """A map X^s : [0, 1]^2 -> R^3 with first derivatives.
+
+    Both methods broadcast ``u`` and ``v`` against each other and return arrays
+    of shape ``broadcast(u, v).shape + (3,)``.
+    """
+
+    def evaluate(self, u, v) -> np.ndarray:
+        """Points X^s(u, v)."""
+
+    def derivatives(self, u, v) -> tuple[np.ndarray, np.ndarray]:
+        """First partial derivatives (dX^s/du, dX^s/dv)."""
+
+
+def bernstein(degree, t):
+    """Bernstein basis polynomials ``B_i^degree(t)``, shape ``t.shape + (degree + 1,)``.
+
+    ``B_i^n(t) = C(n, i) t^i (1 - t)^(n - i)``; ``0**0 == 1`` so the basis is
+    exact at ``t = 0`` and ``t = 1``.
+    """
+    t = np.asarray(t, dtype=float)[..., None]
+    i = np.arange(degree + 1)
+    binom = np.array([math.comb(degree, k) for k in i], dtype=float)
+    return binom * t**i * (1.0 - t) ** (degree - i)
+
+
+class BezierSurface:
+    """Tensor-product Bezier surface ``X^s(u, v) = sum_ij B_i^m(u) B_j^n(v) P_ij``.
+
+    Parameters
+    ----------
+    control_points : (m + 1, n + 1, 3) array_like
+        The control net; the first axis runs over ``u`` (rows), the second over
+        ``v`` (columns).  Degrees ``m, n >= 1``; every coordinate finite.
+
+    Raises
+    ------
+    InvalidSurfaceError
+        If the net has the wrong shape, fewer than 2 x 2 points, or a
+        non-finite coordinate.
+    """
+
+    def __init__(self, control_points):
+        self.control_points = _validate_net(control_points)
+        self.control_points.setflags(write=False)
+
+    @property
+    def degree(self):
+        """``(m, n)``: the degrees in ``u`` and in ``v``."""
+        rows, cols, _ = self.control_points.shape
+        return rows - 1, cols - 1
+
+    def __repr__(self):
+        m, n = self.degree
+        return f"BezierSurface(degree=({m}, {n}))"
+
+    def evaluate(self, u, v):
+        """Points ``X^s(u, v)``, shape ``broadcast(u, v).shape + (3,)`` (vectorised Bernstein sum)."""
+        return _tensor_sum(self.control_points, u, v)
+
+    def derivatives(self, u, v):
+        """Analytic partials ``(X^s_u, X^s_v)``.
+
+        ``X^s_u = m sum_ij B_i^{m-1}(u) B_j^n(v) (P_{i+1,j} - P_ij)`` and the
+        same in ``v``: a Bezier surface of the difference net.
+        """
+        m, n = self.degree
+        p = self.control_points
+        su = _tensor_sum(m * np.diff(p, axis=0), u, v)
+        sv = _tensor_sum(n * np.diff(p, axis=1), u, v)
+        return su, sv
+
+    @classmethod
+    def from_json_dict(cls, d):
+        """Build a surface from ``{"type": "bezier", "control_points": [[[x, y, z], ...], ...]}``.
+
+        An optional ``"description"`` string is allowed and ignored.
+
+        Rows of ``control_points`` run over ``u``, the entries of a row over
+        ``v``.  Every field is checked; the first problem found is raised as an
+        :class:`InvalidSurfaceError` naming the field and index at fault.
+        """
+        if not isinstance(d, dict):
+            raise InvalidSurfaceError(f"surface must be a JSON object, got {_json_type(d)}")
+        if "type" not in d:
+            raise InvalidSurfaceError('surface is missing the field "type" (expected "bezier")')
+        if d["type"] != "bezier":
+            raise InvalidSurfaceError(f'surface "type" must be "bezier", got {d["type"]!r}')
+        extra = sorted(set(d) - {"type", "control_points", "description"})
+        if extra:
+            raise InvalidSurfaceError(f"surface has unknown field {extra[0]!r}")
+        if not isinstance(d.get("description", ""), str):
+            raise InvalidSurfaceError(f'surface "description" must be a string, got {_json_type(d["description"])}')
+        if "control_points" not in d:
+            raise InvalidSurfaceError('surface is missing the field "control_points"')
+        rows = d["control_points"]
+        if not isinstance(rows, list):
+            raise InvalidSurfaceError(f'"control_points" must be a list of rows, got {_json_type(rows)}')
+        if len(rows) < 2:
+            raise InvalidSurfaceError(f'"control_points" needs at least 2 rows, got {len(rows)}')
+        width = None
+        for i, row in enumerate(rows):
+            if not isinstance(row, list):
+                raise InvalidSurfaceError(f"control_points[{i}] must be a list of points, got {_json_type(row)}")
+            if width is None:
+                width = len(row)
+                if width < 2:
+                    raise InvalidSurfaceError(f"control_points[{i}] needs at least 2 points, got {width}")
+            elif len(row) != width:
+                raise InvalidSurfaceError(
+                    f"control_points[{i}] has {len(row)} points, but control_points[0] has {width}"
+                )
+            for j, point in enumerate(row):
+                where = f"control_points[{i}][{j}]"
+                if not isinstance(point, list) or len(point) != 3:
+                    raise InvalidSurfaceError(f"{where} must be a list [x, y, z] of 3 numbers, got {point!r:.60}")
+                for k, x in enumerate(point):
+                    if isinstance(x, bool) or not isinstance(x, Real):
+                        raise InvalidSurfaceError(f"{where}[{k}] must be a number, got {_json_type(x)} {x!r:.40}")
+                    try:
+                        finite = math.isfinite(x)
+                    except OverflowError:  # an integer beyond the float range
+                        finite = False
+                    if not finite:
+                        raise InvalidSurfaceError(f"{where}[{k}] is not a finite number: {x!r:.40}")
+        return cls(rows)
+
+    def to_json_dict(self):
+        """The inverse of :meth:`from_json_dict`."""
+        return {"type": "bezier", "control_points": self.control_points.tolist()}
+
+
+def _tensor_sum(net, u, v):
+    """``sum_ij B_i(u) B_j(v) net_ij`` for a net of shape (a, b, 3), vectorised over ``u, v``."""
+    u, v = np.broadcast_arrays(np.asarray(u, dtype=float), np.asarray(v, dtype=float))
+    a, b, _ = net.shape
+    bu = bernstein(a - 1, u)  # (..., a)
+    bv = bernstein(b - 1, v)  # (..., b)
+    rows = (bu @ net.reshape(a, b * 3)).reshape(u.shape + (b, 3))  # sum over i first
+    return np.einsum("...j,...jk->...k", bv, rows)
+
+
+def _validate_net(control_points):
+    try:
+        p = np.array(control_points, dtype=float)
+    except (TypeError, ValueError):
+        raise InvalidSurfaceError(
+            "control points must form an (m+1, n+1, 3) array of numbers with equal row lengths"
+        ) from None
+    if p.ndim != 3 or p.shape[2] != 3:
+        raise InvalidSurfaceError(f"control net must have shape (m+1, n+1, 3), got {p.shape}")
+    if p.shape[0] < 2 or p.shape[1] < 2:
+        raise InvalidSurfaceError(f"control net needs at least 2 x 2 points, got {p.shape[0]} x {p.shape[1]}")
+    bad = np.argwhere(~np.isfinite(p))
+    if len(bad):
+        i, j, k = (int(x) for x in bad[0])
+        raise InvalidSurfaceError(f"control point [{i}][{j}] has a non-finite coordinate {p[i, j, k]!r}")
+    return p
+
+
+def _json_type(x):
+    names = {dict: "object", list: "list", str: "string", bool: "boolean", type(None): "null"}
+    return names.get(type(x), "number" if isinstance(x, Real) else type(x).__name__)
+
+
+def de_casteljau(control_points, u, v):
+    """Reference evaluator: repeated linear interpolation of the control net.
+
+    Scalar ``u, v``; reads like the textbook construction and serves as the
+    oracle for :meth:`BezierSurface.evaluate` in the tests.
+    """
+    p = np.array(control_points, dtype=float)
+    while p.shape[0] > 1:  # collapse rows (u)
+        p = (1.0 - u) * p[:-1] + u * p[1:]
+    q = p[0]
+    while q.shape[0] > 1:  # collapse the remaining row (v)
+        q = (1.0 - v) * q[:-1] + v * q[1:]
+    return q[0]

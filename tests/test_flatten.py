@@ -1,0 +1,200 @@
+"""Flattening the auxiliary triangulation, eq. (1) (Section 4, step 2)."""
+
+import time
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from section4_standin import CircularVault, dome, flat_patch, parabolic_vault
+
+from equimesh import InvalidSurfaceError
+from equimesh._geometry import orient
+from equimesh.auxiliary import auxiliary_grid
+from equimesh._jacobian import AreaBarrier
+from equimesh.flatten import _Preconditioner, energy_terms, flatten
+from equimesh.metrics import edge_lengths
+from equimesh.surface import BezierSurface
+
+
+def run(surface, n_u=15, n_v=15, **kw):
+    g = auxiliary_grid(n_u, n_v)
+    x = surface.evaluate(g.uv[:, 0], g.uv[:, 1])
+    return g, x, flatten(x, g.triangles, uv=g.uv, edges=g.edges, **kw)
+
+
+def orientations(points, triangles):
+    return orient(*(points[triangles[:, k]] for k in range(3)))
+
+
+@pytest.mark.parametrize("shear", [0.0, 25.0])
+def test_flat_surface_is_flattened_exactly(shear):
+    g, x, f = run(flat_patch(shear=shear), 9, 13)
+    assert f.energy < 1e-24
+    np.testing.assert_allclose(f.plane_lengths, f.surface_lengths, rtol=1e-12)
+    # congruent to the input plane: same pairwise distances from node 0
+    d3 = np.linalg.norm(x - x[0], axis=1)
+    d2 = np.linalg.norm(f.points - f.points[0], axis=1)
+    np.testing.assert_allclose(d2, d3, atol=1e-9)
+
+
+def test_developable_vault_has_zero_energy():
+    g, x, f = run(parabolic_vault(), 15, 15)
+    assert f.energy < 1e-10
+    assert np.all(orientations(f.points, g.triangles) > 0)
+    # the developed vault is a rectangle: depth by the length of the arch's chord polygon
+    chord = np.sum(np.linalg.norm(np.diff(x[g.node(np.arange(16), 0)], axis=0), axis=1))
+    extent = sorted(np.ptp(f.points, axis=0))
+    np.testing.assert_allclose(extent, sorted([50.0, chord]), rtol=1e-9)
+
+
+def test_circular_vault_has_zero_energy():
+    """An exact circular cylinder (a non-Bezier surface through the same interface) is developable too."""
+    g, x, f = run(CircularVault(), 15, 15)
+    assert f.energy < 1e-10
+
+
+@settings(max_examples=8, deadline=None)
+@given(
+    rise=st.floats(min_value=1.0, max_value=30.0),
+    width=st.floats(min_value=20.0, max_value=80.0),
+    n_u=st.integers(min_value=3, max_value=20),
+    n_v=st.integers(min_value=3, max_value=20),
+)
+def test_developable_vaults_property(rise, width, n_u, n_v):
+    """Theorem of the test: a developable surface has a flattening with E = 0, and the solver finds it."""
+    g, _, f = run(parabolic_vault(width=width, rise=rise), n_u, n_v)
+    assert f.energy < 1e-10
+    assert np.all(orientations(f.points, g.triangles) > 0)
+
+
+def test_gauge_and_result_fields():
+    g, x, f = run(dome(), 10, 12)
+    a, b = f.gauge
+    assert np.array_equal(f.points[a], [0.0, 0.0])
+    assert f.points[b, 1] == 0.0 and f.points[b, 0] > 0
+    assert f.energy == pytest.approx(0.5 * np.sum(f.relative_errors**2))
+    np.testing.assert_allclose(f.plane_lengths, edge_lengths(f.points, g.edges))
+    assert f.start == "metric"
+    assert 0 < f.energy < 1.0  # doubly curved: not developable, but nearly isometric
+
+
+def test_result_is_stationary():
+    """A minimiser of eq. (1): the gradient J^T r vanishes."""
+    g, x, f = run(dome(rise=20.0), 12, 12)
+    n = len(x)
+    residuals, jacobian = energy_terms(f.edges, f.surface_lengths, n)
+    grad = jacobian(f.points).T @ residuals(f.points)
+    assert np.abs(grad).max() < 1e-7
+
+
+@settings(max_examples=10, deadline=None)
+@given(seed=st.integers(0, 2**32 - 1))
+def test_analytic_jacobian_matches_finite_differences(seed):
+    rng = np.random.default_rng(seed)
+    g = auxiliary_grid(3, 4)
+    x = np.column_stack([g.uv, 0.3 * rng.standard_normal(len(g.uv))]) * 10
+    ls = edge_lengths(x, g.edges)
+    free = rng.random(2 * len(x)) < 0.8
+    residuals, jacobian = energy_terms(g.edges, ls, len(x), free)
+    p = g.uv * 10 + 0.5 * rng.standard_normal(g.uv.shape)
+    jac = jacobian(p).toarray()
+    h = 1e-6
+    fd = np.empty_like(jac)
+    for col, k in enumerate(np.flatnonzero(free)):
+        d = np.zeros(p.size)
+        d[k] = h
+        fd[:, col] = (residuals(p + d.reshape(p.shape)) - residuals(p - d.reshape(p.shape))) / (2 * h)
+    np.testing.assert_allclose(jac, fd, atol=1e-8)
+
+
+def test_preconditioner_is_a_right_inverse_factor():
+    """``T = R^{-1}`` with ``R^T R = J0^T J0``: ``J0 T`` has orthonormal columns."""
+    g, x, f = run(dome(), 6, 5)
+    free = np.ones(2 * len(x), dtype=bool)
+    free[[2 * f.gauge[0], 2 * f.gauge[0] + 1, 2 * f.gauge[1] + 1]] = False
+    _, jacobian = energy_terms(f.edges, f.surface_lengths, len(x), free)
+    j0 = jacobian(f.points)
+    pre = _Preconditioner(j0)
+    t = np.column_stack([pre.apply(c) for c in np.eye(j0.shape[1])])
+    jt = j0 @ t
+    np.testing.assert_allclose(jt.T @ jt, np.eye(j0.shape[1]), atol=1e-9)
+    tt = np.column_stack([pre.apply_transpose(c) for c in np.eye(j0.shape[1])])
+    np.testing.assert_allclose(tt, t.T, atol=1e-12)
+
+
+def test_folded_start_is_detected_and_recovered():
+    """A mirrored start converges to a mirrored (folded) flattening: detected, retried from the default."""
+    g, x, _ = run(dome(), 10, 10)
+    mirrored = g.uv * [-60.0, 60.0]
+    f = flatten(x, g.triangles, uv=g.uv, x0=mirrored)
+    assert f.start == "metric"
+    assert np.all(orientations(f.points, g.triangles) > 0)
+    # without a fallback the mirrored start would have folded every triangle
+    f2 = flatten(x, g.triangles, x0=g.uv * [60.0, 60.0])
+    assert f2.start == "given"
+
+
+def test_strongly_curved_patch_folds_without_barrier_and_not_with_it():
+    """A near-hemisphere: eq. (1) alone wrinkles the rim (detected and refused); the barrier prevents it."""
+    g = auxiliary_grid(15, 15)
+    x = dome(rise=60.0).evaluate(g.uv[:, 0], g.uv[:, 1])
+    with pytest.raises(InvalidSurfaceError, match="folds .* auxiliary triangles"):
+        flatten(x, g.triangles, uv=g.uv, area_floor=0.0)
+    f = flatten(x, g.triangles, uv=g.uv)
+    assert np.all(orientations(f.points, g.triangles) > 0)
+
+
+def test_barrier_is_inactive_on_mild_surfaces():
+    g, x, f = run(dome(), 12, 12)
+    f0 = flatten(x, g.triangles, uv=g.uv, area_floor=0.0)
+    np.testing.assert_allclose(f.points, f0.points, atol=1e-8)
+
+
+@settings(max_examples=10, deadline=None)
+@given(seed=st.integers(0, 2**32 - 1))
+def test_barrier_jacobian_matches_finite_differences(seed):
+    rng = np.random.default_rng(seed)
+    g = auxiliary_grid(3, 3)
+    start = g.uv * 10
+    free = rng.random(start.size) < 0.8
+    barrier = AreaBarrier(g.triangles, start, 0.9, 2.5, free)
+    p = start + 1.5 * rng.standard_normal(start.shape)  # some triangles squeezed, some folded
+    assert np.any(barrier.residuals(p) > 0)
+    jac = barrier.jacobian(p).toarray()
+    h = 1e-7
+    fd = np.empty_like(jac)
+    for col, k in enumerate(np.flatnonzero(free)):
+        d = np.zeros(p.size)
+        d[k] = h
+        fd[:, col] = (barrier.residuals(p + d.reshape(p.shape)) - barrier.residuals(p - d.reshape(p.shape))) / (2 * h)
+    np.testing.assert_allclose(jac, fd, atol=1e-5)
+
+
+def test_without_uv_projection_start():
+    g, x, f0 = run(dome(), 10, 10)
+    f = flatten(x, g.triangles)
+    assert f.start == "plane"
+    assert f.energy == pytest.approx(f0.energy, rel=1e-6)
+    assert np.all(orientations(f.points, g.triangles) > 0)
+
+
+def test_degenerate_surface_is_rejected():
+    net = np.zeros((2, 2, 3))
+    net[1, :, 0] = 1.0  # the v = 0 and v = 1 edges coincide: every v-edge has zero length
+    g = auxiliary_grid(4, 4)
+    x = BezierSurface(net).evaluate(g.uv[:, 0], g.uv[:, 1])
+    with pytest.raises(InvalidSurfaceError, match="zero length"):
+        flatten(x, g.triangles, uv=g.uv)
+
+
+def test_fine_grid_100_by_100_completes():
+    """A 100 x 100 auxiliary grid (10 201 nodes, 30 100 edges); the time is printed, not asserted."""
+    g = auxiliary_grid(100, 100)
+    x = dome().evaluate(g.uv[:, 0], g.uv[:, 1])
+    start = time.perf_counter()
+    f = flatten(x, g.triangles, uv=g.uv, edges=g.edges)
+    elapsed = time.perf_counter() - start
+    print(f"\n100 x 100 flattening: {elapsed:.2f} s, E = {f.energy:.4g}, nfev = {f.nfev}")
+    assert np.isfinite(f.energy)
+    assert np.all(orientations(f.points, g.triangles) > 0)

@@ -1,0 +1,154 @@
+"""The final (u, v) optimisation of the inner nodes (Section 4, last paragraph)."""
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from section4_standin import CircularVault, dome, flat_patch, parabolic_vault, standin_pipeline
+
+from equimesh import EquimeshError
+from equimesh.metrics import edge_lengths
+from equimesh.optimize import (
+    OBJECTIVES,
+    Objective,
+    UVProblem,
+    _with_barrier,
+    edge_length_terms,
+    flipped_triangles,
+    optimize_uv,
+    paper_objective,
+)
+
+
+def run(surface, l, **kw):
+    g, flat, mesh, r = standin_pipeline(surface, l)
+    fixed = np.arange(mesh.n_boundary)
+    opt = optimize_uv(surface, r.uv, mesh.edges, mesh.edge_groups, l, fixed=fixed, triangles=mesh.triangles, **kw)
+    return mesh, r, opt
+
+
+def problem_for(surface, l, seed, spread=0.01):
+    g, flat, mesh, r = standin_pipeline(surface, l, grid=(8, 8))
+    free = np.ones(mesh.n_nodes, dtype=bool)
+    free[: mesh.n_boundary] = False
+    rng = np.random.default_rng(seed)
+    uv = r.uv.copy()
+    uv[free] = np.clip(uv[free] + spread * rng.standard_normal(uv[free].shape), 0.0, 1.0)
+    return mesh, UVProblem(surface, uv, mesh.edges, mesh.edge_groups, l, free)
+
+
+def finite_difference(fun, x, h=1e-7):
+    cols = []
+    for k in range(len(x)):
+        d = np.zeros_like(x)
+        d[k] = h
+        cols.append((fun(x + d) - fun(x - d)) / (2 * h))
+    return np.column_stack(cols)
+
+
+@settings(max_examples=6, deadline=None)
+@given(seed=st.integers(0, 2**32 - 1))
+def test_edge_length_jacobian_matches_finite_differences(seed):
+    mesh, problem = problem_for(dome(rise=15.0), 12.0, seed)
+    lengths, jacobian = edge_length_terms(problem, mesh.edges)
+    x = problem.x0
+    got_lengths, jac = jacobian(x)
+    np.testing.assert_allclose(got_lengths, lengths(x))
+    np.testing.assert_allclose(jac.toarray(), finite_difference(lengths, x), atol=1e-5 * lengths(x).max())
+
+
+def test_paper_objective_and_barrier_jacobians_match_finite_differences():
+    mesh, problem = problem_for(dome(rise=15.0), 12.0, 1)
+    obj = paper_objective(problem)
+    x = problem.x0
+    np.testing.assert_allclose(obj.jacobian(x).toarray(), finite_difference(obj.residuals, x), atol=1e-6)
+    barrier = _with_barrier(problem, obj, mesh.triangles, weight=2.0, fraction=0.9)
+    squeezed = x + 0.03 * np.random.default_rng(2).standard_normal(x.shape)  # some triangles below the floor
+    assert np.any(barrier.residuals(squeezed)[len(obj.residuals(x)) :] > 0)
+    np.testing.assert_allclose(
+        barrier.jacobian(squeezed).toarray(), finite_difference(barrier.residuals, squeezed), atol=1e-5
+    )
+
+
+def check_invariants(mesh, r, opt):
+    nb = mesh.n_boundary
+    assert opt.cost_after <= opt.cost_before
+    assert np.array_equal(opt.uv[:nb], r.uv[:nb])  # boundary nodes bit-identical
+    assert not len(flipped_triangles(r.uv, opt.uv, mesh.triangles))
+    assert np.all((opt.uv >= 0) & (opt.uv <= 1))
+
+
+@settings(max_examples=5, deadline=None)
+@given(
+    rise=st.floats(min_value=0.0, max_value=20.0),
+    seed=st.integers(0, 2**32 - 1),
+    l=st.floats(min_value=5.0, max_value=9.0),
+)
+def test_invariants_on_mild_domes(rise, seed, l):
+    """G1 deviation after <= before, boundary fixed, no fold-over in (u, v)."""
+    surface = dome(rise=rise, seed=seed, jitter=2.0)
+    mesh, r, opt = run(surface, l)
+    check_invariants(mesh, r, opt)
+    before = edge_lengths(r.points, mesh.edges)[mesh.g1_mask]
+    after = edge_lengths(surface.evaluate(opt.uv[:, 0], opt.uv[:, 1]), mesh.edges)[mesh.g1_mask]
+    assert np.sum((after - l) ** 2) <= np.sum((before - l) ** 2) * (1 + 1e-12)
+
+
+def test_developable_vault_reaches_target_length():
+    surface = parabolic_vault()
+    mesh, r, opt = run(surface, 5.0)
+    check_invariants(mesh, r, opt)
+    g1 = edge_lengths(surface.evaluate(opt.uv[:, 0], opt.uv[:, 1]), mesh.edges)[mesh.g1_mask]
+    before = edge_lengths(r.points, mesh.edges)[mesh.g1_mask]
+    assert np.abs(before / 5.0 - 1).max() > 1e-4  # remapping alone is not exact
+    assert np.abs(g1 / 5.0 - 1).max() < 1e-3
+
+
+def test_any_parametric_surface_works_circular_vault():
+    """A non-Bezier surface with the same two methods goes through every stage; a circle is developable."""
+    surface = CircularVault()
+    g, flat, mesh, r = standin_pipeline(surface, 5.0)
+    fixed = np.arange(mesh.n_boundary)
+    opt = optimize_uv(surface, r.uv, mesh.edges, mesh.edge_groups, 5.0, fixed=fixed, triangles=mesh.triangles)
+    check_invariants(mesh, r, opt)
+    g1 = edge_lengths(surface.evaluate(opt.uv[:, 0], opt.uv[:, 1]), mesh.edges)[mesh.g1_mask]
+    assert np.abs(g1 / 5.0 - 1).max() < 1e-3
+
+
+def test_flat_surface_is_already_optimal():
+    surface = flat_patch()
+    mesh, r, opt = run(surface, 3.0)
+    assert opt.cost_before < 1e-20 and opt.cost_after <= opt.cost_before
+    np.testing.assert_allclose(opt.uv, r.uv, atol=1e-12)
+
+
+def test_backtracking_guard_without_barrier():
+    mesh, r, opt = run(dome(rise=20.0), 5.0, area_floor=0.0)
+    check_invariants(mesh, r, opt)
+    assert 0.0 <= opt.step_fraction <= 1.0
+
+
+def test_objective_table_is_the_seam(monkeypatch):
+    """A new objective with the same signature is picked up by name."""
+    calls = []
+
+    def all_edges(problem):
+        calls.append(problem)
+        lengths, jacobian = edge_length_terms(problem, problem.edges)
+        return Objective(lambda x: lengths(x) / problem.length - 1.0, lambda x: jacobian(x)[1] / problem.length)
+
+    monkeypatch.setitem(OBJECTIVES, "all", all_edges)
+    mesh, r, opt = run(dome(), 8.0, objective="all")
+    assert calls and opt.objective == "all"
+    check_invariants(mesh, r, opt)
+
+
+def test_unknown_objective():
+    with pytest.raises(EquimeshError, match="unknown objective 'nope'"):
+        optimize_uv(dome(), np.zeros((3, 2)), np.array([[0, 1]]), np.array([1]), 1.0, fixed=[0], objective="nope")
+
+
+def test_no_free_nodes_is_a_no_op():
+    uv = np.array([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]])
+    opt = optimize_uv(dome(), uv, np.array([[0, 1], [1, 2], [0, 2]]), np.array([1, 1, 1]), 5.0, fixed=[0, 1, 2])
+    assert np.array_equal(opt.uv, uv) and opt.cost_after == opt.cost_before and opt.nfev == 0

@@ -1,0 +1,149 @@
+"""Tensor-product Bezier surfaces: evaluation, derivatives, validation (Section 4, step 1)."""
+
+import json
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from equimesh import InvalidSurfaceError
+from equimesh.surface import BezierSurface, ParametricSurface, bernstein, de_casteljau
+
+degrees = st.integers(min_value=1, max_value=5)
+seeds = st.integers(min_value=0, max_value=2**32 - 1)
+
+
+def random_net(m, n, seed):
+    return np.random.default_rng(seed).uniform(-10.0, 10.0, size=(m + 1, n + 1, 3))
+
+
+@settings(max_examples=40, deadline=None)
+@given(m=degrees, n=degrees, seed=seeds)
+def test_evaluate_matches_de_casteljau(m, n, seed):
+    """Bernstein evaluation equals repeated linear interpolation for every degree 1..5."""
+    net = random_net(m, n, seed)
+    surface = BezierSurface(net)
+    uv = np.random.default_rng(seed + 1).uniform(0.0, 1.0, size=(7, 2))
+    got = surface.evaluate(uv[:, 0], uv[:, 1])
+    want = np.array([de_casteljau(net, u, v) for u, v in uv])
+    np.testing.assert_allclose(got, want, rtol=0, atol=1e-11 * np.abs(net).max())
+
+
+@settings(max_examples=40, deadline=None)
+@given(m=degrees, n=degrees, seed=seeds)
+def test_derivatives_match_finite_differences(m, n, seed):
+    surface = BezierSurface(random_net(m, n, seed))
+    uv = np.random.default_rng(seed + 2).uniform(0.05, 0.95, size=(5, 2))
+    u, v = uv[:, 0], uv[:, 1]
+    su, sv = surface.derivatives(u, v)
+    h = 1e-6
+    fu = (surface.evaluate(u + h, v) - surface.evaluate(u - h, v)) / (2 * h)
+    fv = (surface.evaluate(u, v + h) - surface.evaluate(u, v - h)) / (2 * h)
+    scale = np.abs(surface.control_points).max() * max(m, n)
+    np.testing.assert_allclose(su, fu, rtol=0, atol=1e-6 * scale)
+    np.testing.assert_allclose(sv, fv, rtol=0, atol=1e-6 * scale)
+
+
+def test_corners_interpolate_control_net_exactly():
+    net = random_net(3, 2, 7)
+    s = BezierSurface(net)
+    for (u, v), (i, j) in {(0, 0): (0, 0), (1, 0): (-1, 0), (0, 1): (0, -1), (1, 1): (-1, -1)}.items():
+        assert np.array_equal(s.evaluate(u, v), net[i, j])
+
+
+def test_evaluation_broadcasts_and_keeps_shape():
+    s = BezierSurface(random_net(2, 3, 1))
+    u = np.linspace(0, 1, 12).reshape(3, 4)
+    assert s.evaluate(u, u.T.T).shape == (3, 4, 3)
+    assert s.evaluate(0.3, np.linspace(0, 1, 5)).shape == (5, 3)
+    su, sv = s.derivatives(np.zeros((2, 2)), 0.5)
+    assert su.shape == sv.shape == (2, 2, 3)
+    assert s.evaluate(0.5, 0.5).shape == (3,)
+
+
+def test_bernstein_partition_of_unity():
+    t = np.linspace(0, 1, 11)
+    for degree in range(1, 7):
+        np.testing.assert_allclose(bernstein(degree, t).sum(axis=-1), 1.0, rtol=0, atol=1e-14)
+
+
+def test_bilinear_patch_is_bilinear():
+    net = np.array([[[0, 0, 0], [0, 2, 1]], [[3, 0, 2], [3, 2, 5]]], dtype=float)
+    s = BezierSurface(net)
+    u, v = 0.25, 0.6
+    want = (1 - u) * (1 - v) * net[0, 0] + u * (1 - v) * net[1, 0] + (1 - u) * v * net[0, 1] + u * v * net[1, 1]
+    np.testing.assert_allclose(s.evaluate(u, v), want, atol=1e-14)
+
+
+def test_satisfies_protocol_and_round_trips_json():
+    s = BezierSurface(random_net(3, 3, 5))
+    assert isinstance(s, ParametricSurface)
+    assert s.degree == (3, 3)
+    again = BezierSurface.from_json_dict(json.loads(json.dumps(s.to_json_dict())))
+    assert np.array_equal(again.control_points, s.control_points)
+
+
+def good_dict():
+    return {"type": "bezier", "control_points": [[[0, 0, 0], [0, 1, 0]], [[1, 0, 0], [1, 1, 1]]]}
+
+
+@pytest.mark.parametrize(
+    "mutate, fragment",
+    [
+        (lambda d: [d], "must be a JSON object"),
+        (lambda d: {"control_points": d["control_points"]}, 'missing the field "type"'),
+        (lambda d: {**d, "type": "nurbs"}, "must be \"bezier\", got 'nurbs'"),
+        (lambda d: {"type": "bezier"}, 'missing the field "control_points"'),
+        (lambda d: {**d, "colour": 1}, "unknown field 'colour'"),
+        (lambda d: {**d, "control_points": "abc"}, "must be a list of rows, got string"),
+        (lambda d: {**d, "control_points": d["control_points"][:1]}, "at least 2 rows, got 1"),
+        (lambda d: {**d, "control_points": [[[0, 0, 0]], [[1, 0, 0]]]}, "control_points[0] needs at least 2 points"),
+        (lambda d: {**d, "control_points": [d["control_points"][0], {"x": 1}]}, "control_points[1] must be a list"),
+        (
+            lambda d: {**d, "control_points": [d["control_points"][0], d["control_points"][1] + [[2, 2, 2]]]},
+            "control_points[1] has 3 points, but control_points[0] has 2",
+        ),
+        (lambda d: {**d, "control_points": [[[0, 0], [0, 1, 0]], [[1, 0, 0], [1, 1, 1]]]}, "control_points[0][0] must be"),
+        (
+            lambda d: {**d, "control_points": [[[0, 0, 0], [0, 1, "z"]], [[1, 0, 0], [1, 1, 1]]]},
+            "control_points[0][1][2] must be a number, got string",
+        ),
+        (
+            lambda d: {**d, "control_points": [[[0, 0, 0], [0, 1, True]], [[1, 0, 0], [1, 1, 1]]]},
+            "control_points[0][1][2] must be a number, got boolean",
+        ),
+        (
+            lambda d: {**d, "control_points": [[[0, 0, 0], [0, 1, 0]], [[1, 0, float("nan")], [1, 1, 1]]]},
+            "control_points[1][0][2] is not a finite number",
+        ),
+        (
+            lambda d: {**d, "control_points": [[[0, 0, 0], [0, 1, 0]], [[1, 0, 0], [1, 10**400, 1]]]},
+            "control_points[1][1][1] is not a finite number",
+        ),
+    ],
+)
+def test_json_validation_messages(mutate, fragment):
+    with pytest.raises(InvalidSurfaceError) as err:
+        BezierSurface.from_json_dict(mutate(good_dict()))
+    message = str(err.value)
+    assert fragment in message
+    assert "\n" not in message
+
+
+@pytest.mark.parametrize(
+    "net, fragment",
+    [
+        (np.zeros((3, 3)), "shape (m+1, n+1, 3), got (3, 3)"),
+        (np.zeros((3, 3, 2)), "got (3, 3, 2)"),
+        (np.zeros((1, 4, 3)), "at least 2 x 2 points, got 1 x 4"),
+        (np.full((2, 2, 3), np.inf), "control point [0][0] has a non-finite coordinate"),
+        ([[[0, 0, 0], [1, 1, 1]], [[0, 0, 0]]], "equal row lengths"),
+        ([[["a", 0, 0], [1, 1, 1]], [[0, 0, 0], [1, 1, 1]]], "array of numbers"),
+    ],
+)
+def test_constructor_validation_messages(net, fragment):
+    with pytest.raises(InvalidSurfaceError) as err:
+        BezierSurface(net)
+    assert fragment in str(err.value)
+    assert isinstance(err.value, ValueError)
