@@ -17,7 +17,9 @@ STAMP := $(VENV)/.equimesh-installed
 # has `main(argv)`, prints its progress and writes results/ (and, for figure
 # scripts, paper_figs/).  Add a new experiment by appending it here.
 EXPERIMENTS := \
-	experiments/ratio_sweep.py
+	experiments/ratio_sweep.py \
+	experiments/table1.py \
+	experiments/figures.py
 
 # The hypothesis profile comes from EQUIMESH_HYPOTHESIS_PROFILE (tests/conftest.py;
 # quick "ci" when unset); `make test-thorough` selects the thorough one.

@@ -12,7 +12,9 @@ change in numpy's random streams nor one in equimesh's own polygon generators
 can move them.
 """
 
+import json
 import math
+from pathlib import Path
 
 import numpy as np
 
@@ -75,3 +77,20 @@ def polygon(shape, area):
     if shape == "random_convex":
         return math.sqrt(area) * RANDOM_CONVEX_7GON
     raise ValueError(f"unknown benchmark shape {shape!r}; expected one of {SHAPES}")
+
+
+# --- Section 4 (Table 1) --------------------------------------------------------
+
+#: The repository root (this file is benchmarks/benchmarks/common.py).
+REPO = Path(__file__).resolve().parents[2]
+
+#: The reference surface of Table 1 (bicubic Bezier dome, see its "description"),
+#: relative to the repository, and the paper's parameters for it.
+REFERENCE_SURFACE_JSON = REPO / "experiments" / "surfaces" / "reference_dome.json"
+SURFACE_LENGTH = 5.0
+SURFACE_GRID = (15, 15)
+
+
+def reference_surface_json():
+    """The parsed reference surface JSON (``{"type": "bezier", "control_points": ...}``)."""
+    return json.loads(REFERENCE_SURFACE_JSON.read_text(encoding="utf-8"))

@@ -8,6 +8,11 @@ packing_upper_bound(vertices, l)  Oler's bound on l-separated point sets
 mesh_surface(surface, l)          Section 4: uniform mesh of a parametric surface
 uniform_triangulation(vertices, l) Problem 2: lattice + boundary strip (Section 3)
 best_lattice_placement(vertices, l) lattice angle/offset maximising G1 (beyond the paper)
+
+Section 4 stages (what mesh_surface chains; public so that they can be timed and reused)
+flatten(points3d, triangles)      step 2: eq. (1) flattening of the auxiliary triangulation
+remap(surface, plane_points, flat_points, grid)  step 4: eqs. (2)-(3), plane -> (u, v) -> surface
+optimize_uv(surface, uv, edges, groups, l, fixed=...)  final step: (u, v) of the inner nodes
 """
 
 from .bounds import node_lower_bound, packing_upper_bound
@@ -18,10 +23,13 @@ from .errors import (
     InvalidSurfaceError,
     MeshTooLargeError,
 )
+from .flatten import flatten
 from .increment import increment
 from .mesh import G1, OTHER, PlanarMesh
 from .pipeline import SurfaceMesh, mesh_surface
+from .optimize import optimize_uv
 from .placement import Placement, best_lattice_placement
+from .remap import remap
 from .surface import BezierSurface
 from .uniform import uniform_triangulation
 from .tolerance import REL_TOL
@@ -42,9 +50,12 @@ __all__ = [
     "Placement",
     "SurfaceMesh",
     "best_lattice_placement",
+    "flatten",
     "increment",
     "mesh_surface",
     "node_lower_bound",
+    "optimize_uv",
     "packing_upper_bound",
+    "remap",
     "uniform_triangulation",
 ]

@@ -5,6 +5,8 @@ arrays.  They are floating-point predicates: callers that need robustness near
 degeneracy keep a margin of :data:`equimesh.tolerance.REL_TOL` times ``l``.
 """
 
+from fractions import Fraction
+
 import numpy as np
 
 
@@ -18,21 +20,49 @@ def orient(a, b, c):
     return cross(b - a, c - a)
 
 
+#: Shewchuk's bound on the relative error of the floating-point orientation
+#: determinant ("ccwerrboundA", Adaptive Precision Floating-Point Arithmetic and
+#: Fast Robust Geometric Predicates, 1997).
+_ORIENT_ERRBOUND = (3.0 + 16.0 * np.finfo(float).eps) * np.finfo(float).eps
+
+
+def orient_sign(a, b, c):
+    """Exact sign (-1, 0, 1) of ``orient(a, b, c)`` (vectorised).
+
+    Floating-point first; where the result is within Shewchuk's error bound
+    of zero, it is recomputed exactly in rational arithmetic from the same
+    floats.  Used where a wrong sign would be a wrong answer (collinear
+    polygon edges, lattice points exactly on a line).
+    """
+    a, b, c = np.broadcast_arrays(*(np.asarray(x, dtype=float) for x in (a, b, c)))
+    left = (a[..., 0] - c[..., 0]) * (b[..., 1] - c[..., 1])
+    right = (a[..., 1] - c[..., 1]) * (b[..., 0] - c[..., 0])
+    det = left - right
+    sign = np.sign(det)
+    unsure = np.abs(det) <= _ORIENT_ERRBOUND * (np.abs(left) + np.abs(right))
+    for idx in zip(*np.nonzero(unsure)):
+        (ax, ay), (bx, by), (cx, cy) = (map(Fraction, p[idx]) for p in (a, b, c))
+        exact = (ax - cx) * (by - cy) - (ay - cy) * (bx - cx)
+        sign[idx] = (exact > 0) - (exact < 0)
+    return sign
+
+
 def signed_area(ring):
     """Signed area of a closed polygon given as an ``(n, 2)`` vertex ring."""
     return 0.5 * float(np.sum(cross(ring, np.roll(ring, -1, axis=0))))
 
 
 def segments_intersect(p, q, a, b):
-    """Whether closed segments ``pq`` and ``ab`` share a point (vectorised).
+    """Whether closed segments ``pq`` and ``ab`` share a point (vectorised, exact).
 
     Collinear overlapping segments and touching endpoints count as
-    intersecting.
+    intersecting.  Orientation signs are exact (:func:`orient_sign`), so the
+    answer is right for the given floating-point coordinates.
     """
-    d1 = orient(a, b, p)
-    d2 = orient(a, b, q)
-    d3 = orient(p, q, a)
-    d4 = orient(p, q, b)
+    d1 = orient_sign(a, b, p)
+    d2 = orient_sign(a, b, q)
+    d3 = orient_sign(p, q, a)
+    d4 = orient_sign(p, q, b)
     proper = (d1 * d2 < 0) & (d3 * d4 < 0)
 
     def on_segment(s, t, r, d):

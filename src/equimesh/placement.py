@@ -46,8 +46,14 @@ class Placement:
 
     @property
     def gain(self):
-        """Relative gain in lattice edges over the default placement."""
-        return self.lattice_edges / max(self.default_lattice_edges, 1) - 1.0
+        """Relative gain in lattice edges over the default placement.
+
+        0 when neither placement has a lattice edge, ``inf`` when only the
+        default has none.
+        """
+        if self.default_lattice_edges == 0:
+            return 0.0 if self.lattice_edges == 0 else float("inf")
+        return self.lattice_edges / self.default_lattice_edges - 1.0
 
 
 def lattice_edge_count(poly, l, angle, offset, clearance=1.0):

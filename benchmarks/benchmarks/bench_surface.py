@@ -1,0 +1,176 @@
+"""Section 4 of the paper: the surface pipeline stage by stage, and Table 1 / Figs 1-5.
+
+Uses only equimesh's public API (``equimesh.mesh_surface``, ``equimesh.flatten``,
+``equimesh.best_lattice_placement``, ``equimesh.uniform_triangulation``,
+``equimesh.remap``, ``equimesh.optimize_uv``) and the experiment scripts
+``experiments/table1.py`` and ``experiments/figures.py`` (loaded from their paths).
+
+Input: the reference surface ``experiments/surfaces/reference_dome.json``
+(a bicubic Bezier dome over 80 x 80), l = 5, a 15 x 15 auxiliary grid: the
+paper's parameters.  Output size: 256 auxiliary nodes, about 350 mesh nodes
+and 1000 members.
+"""
+
+import contextlib
+import importlib.util
+import io
+import shutil
+import tempfile
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+import equimesh
+
+from .common import REPO, REFERENCE_SURFACE_JSON, SURFACE_GRID, SURFACE_LENGTH, reference_surface_json
+
+
+def _surface():
+    return equimesh.BezierSurface.from_json_dict(reference_surface_json())
+
+
+def _experiment(name):
+    """``experiments/<name>.py`` as a module (it is a script, not part of the package)."""
+    path = REPO / "experiments" / f"{name}.py"
+    spec = importlib.util.spec_from_file_location(f"_equimesh_bench_experiment_{name}", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def _quietly(function, *args):
+    with contextlib.redirect_stdout(io.StringIO()):
+        return function(*args)
+
+
+class SurfaceStages:
+    """Each stage of ``equimesh.mesh_surface`` alone, on the reference surface (l = 5, 15 x 15 grid).
+
+    ``setup_cache`` runs the pipeline once without the optimisation (about
+    0.4 s) and keeps every stage; each ``time_`` method then repeats exactly one
+    stage from the previous stage's output: flattening by eq. (1) (256 nodes,
+    705 edges), the planar triangulation of Problem 2 with the lattice placement
+    search (a 40-vertex polygon, about 350 nodes), remapping by eqs. (2)-(3)
+    (about 310 inner and 40 boundary nodes), and the optimisation of the inner
+    nodes' (u, v) (about 620 variables, the slowest stage).
+    """
+
+    number = 1
+    repeat = (1, 5, 60.0)
+    timeout = 300.0
+
+    def setup_cache(self):
+        surface = _surface()
+        mesh = equimesh.mesh_surface(surface, SURFACE_LENGTH, grid=SURFACE_GRID, optimize="none")
+        return surface, mesh
+
+    def time_flattening(self, cache):
+        """Step 2: minimise E of eq. (1) over the plane coordinates of the auxiliary nodes."""
+        _, mesh = cache
+        st = mesh.stages
+        equimesh.flatten(st.auxiliary_points, st.grid.triangles, uv=st.grid.uv)
+
+    def time_planar_triangulation(self, cache):
+        """Step 3: lattice placement search plus Problem 2 on the flattened boundary polygon."""
+        _, mesh = cache
+        outline = mesh.stages.outline.vertices
+        place = equimesh.best_lattice_placement(outline, SURFACE_LENGTH)
+        equimesh.uniform_triangulation(outline, SURFACE_LENGTH, angle=place.angle, offset=place.offset)
+
+    def time_remapping(self, cache):
+        """Step 4: locate every plane node in the flattened auxiliary mesh, eqs. (2)-(3), evaluate."""
+        surface, mesh = cache
+        st = mesh.stages
+        plane = st.plane
+        equimesh.remap(surface, plane.points, st.flattening.points, st.grid, on_boundary=np.arange(plane.n_boundary))
+
+    def time_optimisation(self, cache):
+        """Final step: least squares on the inner nodes' (u, v), G1 deviation from l (paper objective)."""
+        surface, mesh = cache
+        st = mesh.stages
+        plane = st.plane
+        equimesh.optimize_uv(
+            surface,
+            st.remapped_uv,
+            plane.edges,
+            plane.edge_groups,
+            SURFACE_LENGTH,
+            fixed=np.arange(plane.n_boundary),
+            triangles=plane.triangles,
+            objective="paper",
+        )
+
+
+class Table1:
+    """``experiments/table1.py`` and ``experiments/figures.py`` end to end, and the Table 1 figures.
+
+    ``setup_cache`` runs table1.py once (about 6 s) into a temporary folder
+    and keeps its CSV and mesh data in memory; ``time_table1`` runs it again
+    (pipeline, statistics, CSV/Markdown/npz/provenance writing),
+    ``time_figures`` draws Figs 1-5 (PNG and PDF) from the kept data, and the
+    ``track_`` methods report Table 1's numbers for the reference surface, so
+    that their history across commits shows in ``asv publish``.
+    """
+
+    number = 1
+    repeat = (1, 3, 60.0)
+    timeout = 300.0
+
+    def setup_cache(self):
+        table1 = _experiment("table1")
+        folder = Path(tempfile.mkdtemp(prefix="equimesh-bench-table1-"))
+        try:
+            _quietly(table1.main, ["--surface", str(REFERENCE_SURFACE_JSON), "--out-dir", str(folder)])
+            csv = (folder / "table1.csv").read_text(encoding="utf-8")
+            npz = (folder / "table1_mesh.npz").read_bytes()
+        finally:
+            shutil.rmtree(folder, ignore_errors=True)
+        return {"csv": csv, "npz": npz}
+
+    def setup(self, cache):
+        self.folder = Path(tempfile.mkdtemp(prefix="equimesh-bench-"))
+        self.npz = self.folder / "table1_mesh.npz"
+        self.npz.write_bytes(cache["npz"])
+        self.table1 = _experiment("table1")
+        self.figures = _experiment("figures")
+
+    def teardown(self, cache):
+        shutil.rmtree(self.folder, ignore_errors=True)
+
+    def time_table1(self, cache):
+        """python experiments/table1.py: mesh, Table 1 rows, extras, all files written."""
+        _quietly(self.table1.main, ["--surface", str(REFERENCE_SURFACE_JSON), "--out-dir", str(self.folder / "out")])
+
+    def time_figures(self, cache):
+        """python experiments/figures.py: Figs 1-5 from the mesh data, PNG and PDF, with hidden-line removal."""
+        _quietly(self.figures.main, ["--data", str(self.npz), "--fig-dir", str(self.folder / "figs")])
+
+    @staticmethod
+    def _value(cache, row, column):
+        df = pd.read_csv(io.StringIO(cache["csv"]))
+        return float(df[(df["row"] == row) & (df["source"] == "equimesh")][column].iloc[0])
+
+    def track_g1_members(self, cache):
+        """Table 1, plane (G1): number of members of length l on the plane (the paper: 774)."""
+        return int(self._value(cache, "plane (G1)", "no. of members"))
+
+    track_g1_members.unit = "members"
+
+    def track_g1_std_before_optimisation(self, cache):
+        """Table 1, final surf. (G1): std. dev. of the G1 lengths after remapping (the paper: 0.2780)."""
+        return self._value(cache, "final surf. (G1)", "std. dev.")
+
+    track_g1_std_before_optimisation.unit = "length"
+
+    def track_g1_std_after_optimisation(self, cache):
+        """Table 1, final opt. (G1): std. dev. of the G1 lengths after the optimisation (the paper: 0.1915)."""
+        return self._value(cache, "final opt. (G1)", "std. dev.")
+
+    track_g1_std_after_optimisation.unit = "length"
+
+    def track_total_max_after_optimisation(self, cache):
+        """Table 1, final opt (total): the longest member after the optimisation (the paper: 13.3777)."""
+        return self._value(cache, "final opt (total)", "max.")
+
+    track_total_max_after_optimisation.unit = "length"

@@ -1,0 +1,116 @@
+"""Non-convex inputs of Problem 2: orthogonal, letter, star and flattened-square polygons.
+
+Shared by the property tests (``tests/strategies_simple.py``) and
+``experiments/problem2.py``; convex polygons come from
+:mod:`equimesh.generators`.  All constructors are deterministic and return
+``(n, 2)`` float arrays, counter-clockwise.  Conditions under which each is a
+valid input of :func:`equimesh.uniform_triangulation` for ``l = 1``:
+
+* :func:`column_polygon` scaled by ``u >= 1`` (each axis): every two distinct
+  x (and y) coordinates of vertices differ by at least ``u``, so two edges
+  that do not touch are at least ``u`` apart and the corners are 90 or 270
+  degrees: all Step 2 points that see each other are at least 1 apart.
+* :func:`star_polygon` with ``inner sin(pi / k) >= half_width >= 1/2`` and
+  ``outer - inner >= 1``: the arms narrow outwards to a tip ``2 half_width``
+  wide, every tip angle is above 90 degrees, the valleys are reflex.
+* :func:`flattened_square` with ``L = max(a ky, b kx) < 1`` and spacing
+  ``n / parts >= 1.2 / (1 - L)``: ``F - id`` is ``L``-Lipschitz, so ``F`` is
+  injective, edges are at least ``(1 - L) n / parts >= 1.2`` long and corner
+  angles are within ``2 atan(L)`` of 90 degrees (keep ``L <= 0.25``).
+"""
+
+import math
+
+import numpy as np
+
+from .generators import rotate
+
+
+def remove_collinear(vertices):
+    """Drop vertices where the boundary goes straight on (exact for integer input)."""
+    v = np.asarray(vertices, dtype=float)
+    prev, nxt = np.roll(v, 1, axis=0), np.roll(v, -1, axis=0)
+    turn = (v[:, 0] - prev[:, 0]) * (nxt[:, 1] - v[:, 1]) - (v[:, 1] - prev[:, 1]) * (nxt[:, 0] - v[:, 0])
+    return v[turn != 0]
+
+
+def column_polygon(intervals):
+    """Orthogonal polygon, the union of unit columns ``[i, i+1] x [lo_i, hi_i]`` (integer grid).
+
+    Consecutive intervals must overlap in at least one unit, so the union is a
+    simple x-monotone polygon without holes.  Integer-valued vertices,
+    collinear vertices removed.
+    """
+    iv = [(int(lo), int(hi)) for lo, hi in intervals]
+    for (a0, a1), (b0, b1) in zip(iv, iv[1:]):
+        if min(a1, b1) - max(a0, b0) < 1:
+            raise ValueError(f"columns {(a0, a1)} and {(b0, b1)} do not overlap in a whole unit")
+    lower = [p for i, (lo, _) in enumerate(iv) for p in ((i, lo), (i + 1, lo))]
+    upper = [p for i in range(len(iv) - 1, -1, -1) for p in ((i + 1, iv[i][1]), (i, iv[i][1]))]
+    ring = lower + upper
+    return remove_collinear([p for k, p in enumerate(ring) if p != ring[k - 1]])
+
+
+def letter_polygon(kind, arm, length):
+    """``"L"``, ``"U"``, ``"T"`` or ``"plus"`` on the integer grid: arms ``arm`` wide and ``length`` long (units)."""
+    w, a = int(arm), int(length)
+    columns = {
+        "L": [(0, w + a)] * w + [(0, w)] * a,
+        "U": [(0, w + a)] * w + [(0, w)] * a + [(0, w + a)] * w,
+        "T": [(a, a + w)] * a + [(0, a + w)] * w + [(a, a + w)] * a,
+        "plus": [(a, a + w)] * a + [(0, 2 * a + w)] * w + [(a, a + w)] * a,
+    }
+    if kind not in columns:
+        raise ValueError(f"unknown letter {kind!r}; choose from {sorted(columns)}")
+    return column_polygon(columns[kind])
+
+
+def dumbbell_polygon(left, right, corridor_length, shift=0):
+    """Two square blobs ``left`` and ``right`` units wide joined by a corridor one unit wide (integer grid)."""
+    lo = max(left, right) // 2 + shift
+    lo = min(max(lo, 1), min(left, right) - 2)
+    return column_polygon([(0, left)] * left + [(lo, lo + 1)] * corridor_length + [(0, right)] * right)
+
+
+def star_polygon(k, half_width, inner, outer):
+    """Star with ``k`` arms of half-width ``half_width`` ending at radius ``outer``; valleys at radius ``inner``."""
+    out = []
+    for i in range(k):
+        phi = 2.0 * math.pi * i / k
+        u = np.array([math.cos(phi), math.sin(phi)])
+        n = np.array([-u[1], u[0]])
+        psi = phi + math.pi / k
+        out += [outer * u - half_width * n, outer * u + half_width * n, inner * np.array([math.cos(psi), math.sin(psi)])]
+    return np.array(out)
+
+
+def flattened_square(n, parts, a, b, ky, kx, p=0.0, q=0.0):
+    """Boundary of ``[0, n]^2``, ``parts`` equal parts per side, mapped by ``F(x, y) = (x + a sin(ky y + p), y + b sin(kx x + q))``.
+
+    A stand-in for the flattened boundary of a surface patch (paper, Fig. 3):
+    smooth, wavy, generally not convex.
+    """
+    t = np.arange(parts) / parts * n
+    z = np.zeros(parts)
+    ring = np.vstack(
+        [np.column_stack([t, z]), np.column_stack([z + n, t]), np.column_stack([n - t, z + n]), np.column_stack([z, n - t])]
+    )
+    x, y = ring[:, 0], ring[:, 1]
+    return np.column_stack([x + a * np.sin(ky * y + p), y + b * np.sin(kx * x + q)])
+
+
+def place(vertices, angle, shift):
+    """Rotate by ``angle`` radians about the mean of the vertices, which then moves to ``shift``."""
+    v = np.asarray(vertices, dtype=float)
+    return rotate(v - v.mean(axis=0), angle) + np.asarray(shift, dtype=float)
+
+
+__all__ = [
+    "column_polygon",
+    "dumbbell_polygon",
+    "flattened_square",
+    "letter_polygon",
+    "place",
+    "remove_collinear",
+    "star_polygon",
+]

@@ -1,0 +1,182 @@
+"""Valid inputs of Problem 2 by construction: simple polygons, convex or not.
+
+Problem 2 (Section 3 of the paper) takes any simple polygon whose edges are
+at least l long and whose mutually visible boundary points (after the Step 2
+resampling) are at least l apart (Lemma 3 (1)).  Every strategy here builds
+such a polygon directly, in units of ``l = 1``, and :func:`cases` scales it to
+a drawn ``l``; none of them filters.  Why each family is valid:
+
+* **convex** (:func:`equimesh.generators.random_convex_polygon`, regular
+  k-gons, equilateral triangles): every inner angle is at least 60 degrees and
+  every edge at least 1, so Step 2 points on adjacent edges are at least one
+  part (>= 1) apart, and a convex polygon with inner angles >= 90 degrees
+  needs nothing more (:func:`equimesh.polygon.resample_boundary`).
+* **orthogonal** (columns on a grid, L, U, T, plus, dumbbells): all edges are
+  axis-parallel and every two distinct x coordinates (and every two distinct
+  y coordinates) of the vertices differ by at least ``u >= 1.2``.  Then two
+  edges that do not touch are at least ``u`` apart (their gap is a
+  difference of two such coordinates), and points on two edges meeting at a
+  convex (90 degree) corner are at least one part apart.  Necks (corridor
+  widths) are ``u`` times a whole number, so at least 1.2.
+* **stars with wide arms**: k arms of half-width ``w >= 0.6`` whose two sides
+  diverge towards the centre (``r sin(pi / k) >= w``), so every inner angle
+  at a tip is above 90 degrees, the narrowest part of an arm is its tip
+  (``2 w >= 1.2``) and the reflex valleys face the exterior.
+* **flattened surface boundaries**: the boundary of ``[0, n]^2`` sampled at
+  spacing ``h`` and mapped by ``F(x, y) = (x + a sin(ky y + p), y + b sin(kx x + q))``
+  with Lipschitz constant ``L = max(a ky, b kx) <= 0.25`` of ``F - id``, so
+  ``F`` is injective, every edge is at least ``(1 - L) h >= 1.2`` long and
+  every corner angle is within ``2 atan(L) < 29`` degrees of 90 (points on
+  the two edges at a corner are then at least ``2 sin(30.5 deg) 1.2 > 1``
+  apart).  ``a`` is large enough to make the boundary wavy, i.e. non-convex.
+
+A final random rotation and translation is applied to every polygon (the
+construction facts above are invariant, up to rounding that stays far below
+:data:`equimesh.REL_TOL`).  The constructors live in :mod:`equimesh.shapes`,
+shared with ``experiments/problem2.py``.
+"""
+
+import math
+
+import numpy as np
+from hypothesis import strategies as st
+
+from equimesh.generators import random_convex_polygon, regular_polygon
+from equimesh.shapes import column_polygon, dumbbell_polygon, flattened_square, letter_polygon, place, star_polygon
+
+#: Smallest grid unit, corridor and arm width, in units of l.
+MIN_FEATURE = 1.2
+
+
+# --------------------------------------------------------------------------- strategies
+
+seeds = st.integers(0, 2**32 - 1)
+angles = st.floats(0.0, 2.0 * math.pi, allow_nan=False)
+shifts = st.tuples(st.floats(-50.0, 50.0), st.floats(-50.0, 50.0))
+units = st.floats(MIN_FEATURE, 3.0)
+
+
+@st.composite
+def convex_polygons(draw, max_area=400.0):
+    """Convex polygons: random (inner angles >= 90), regular k-gons, equilateral triangles."""
+    kind = draw(st.sampled_from(["random", "random", "regular", "triangle"]))
+    if kind == "random":
+        rng = np.random.default_rng(draw(seeds))
+        area = draw(st.floats(4.0, max_area))
+        v = random_convex_polygon(
+            rng,
+            area=area,
+            min_edge=1.0,
+            elongation=draw(st.sampled_from([1.0, 1.0, 3.0])),
+            min_turn=draw(st.sampled_from([0.0, 0.5])),
+        )
+    elif kind == "regular":
+        k = draw(st.integers(4, 12))
+        edge_max = math.sqrt(max_area * 4.0 * math.tan(math.pi / k) / k)
+        v = regular_polygon(k, draw(st.floats(1.0, max(1.0, edge_max))))
+    else:
+        v = regular_polygon(3, draw(st.floats(1.0, max(1.0, math.sqrt(4.0 * max_area / math.sqrt(3.0))))))
+    return place(v, draw(angles), draw(shifts))
+
+
+@st.composite
+def column_polygons(draw, max_area=400.0):
+    """Random orthogonal x-monotone polygons on a grid of unit ``u >= 1.2`` (reflex corners, notches)."""
+    ux, uy = draw(units), draw(units)
+    n = draw(st.integers(2, 8))
+    rng = np.random.default_rng(draw(seeds))
+    height = int(rng.integers(2, 8))
+    intervals = [(0, height)]
+    for _ in range(n - 1):
+        lo, hi = intervals[-1]
+        # The next interval overlaps [lo, hi] in at least one unit.
+        new_lo = int(rng.integers(lo - 3, hi))
+        base = max(lo, new_lo)
+        new_hi = int(rng.integers(base + 1, base + 7))
+        intervals.append((new_lo, new_hi))
+    v = column_polygon(intervals) * np.array([ux, uy])
+    v = _fit(v, max_area, min(ux, uy))
+    return place(v, draw(angles), draw(shifts))
+
+
+@st.composite
+def letter_polygons(draw, max_area=400.0):
+    """L, U, T and plus shapes with arms at least 1.2 wide (reflex corners)."""
+    kind = draw(st.sampled_from(["L", "U", "T", "plus"]))
+    u = draw(units)
+    arm = draw(st.integers(1, 4))
+    length = draw(st.integers(1, 6))
+    v = letter_polygon(kind, arm, length) * u
+    return place(_fit(v, max_area, u), draw(angles), draw(shifts))
+
+
+@st.composite
+def dumbbells(draw, max_area=600.0):
+    """Two square blobs joined by a corridor 1.2 to 3 wide (a thin neck; the lattice part may split)."""
+    u = draw(units)
+    left, right = draw(st.integers(3, 8)), draw(st.integers(3, 8))
+    v = dumbbell_polygon(left, right, draw(st.integers(1, 5)), draw(st.integers(-1, 1))) * u
+    return place(_fit(v, max_area, u), draw(angles), draw(shifts))
+
+
+@st.composite
+def stars(draw, max_area=400.0):
+    """Stars with 3 to 7 wide arms (reflex valleys, acute exterior gaps)."""
+    k = draw(st.integers(3, 7))
+    w = draw(st.floats(0.6, 1.5))
+    inner = w / math.sin(math.pi / k) * draw(st.floats(1.05, 2.0))
+    outer = inner + draw(st.floats(1.5, 8.0))
+    v = star_polygon(k, w, inner, outer)
+    return place(v, draw(angles), draw(shifts))
+
+
+@st.composite
+def flattened_boundaries(draw, max_area=400.0):
+    """A wavy, non-convex image of the boundary of a square, as a flattened surface boundary."""
+    n = draw(st.floats(4.0, max(4.0, math.sqrt(max_area) * 0.95)))
+    lip = draw(st.floats(0.1, 0.25))
+    spacing_min = 1.2 / (1.0 - lip)
+    parts = max(2, int(n / draw(st.floats(spacing_min, 2.0 * spacing_min))))
+    parts = min(parts, max(2, int(n / spacing_min)))
+    wavelength_y, wavelength_x = draw(st.floats(3.0, 12.0)), draw(st.floats(3.0, 12.0))
+    ky, kx = 2.0 * math.pi / wavelength_y, 2.0 * math.pi / wavelength_x
+    a = lip / ky * draw(st.floats(0.5, 1.0))
+    b = lip / kx * draw(st.floats(0.0, 1.0))
+    v = flattened_square(n, parts, a, b, ky, kx, draw(angles), draw(angles))
+    return place(v, draw(angles), draw(shifts))
+
+
+FAMILIES = {
+    "convex": convex_polygons,
+    "columns": column_polygons,
+    "letters": letter_polygons,
+    "dumbbell": dumbbells,
+    "star": stars,
+    "flattened": flattened_boundaries,
+}
+
+
+def simple_polygons(max_area=400.0, families=None):
+    """Any of the families above (units of l = 1)."""
+    names = sorted(FAMILIES) if families is None else list(families)
+    return st.one_of([FAMILIES[name](max_area=max_area) for name in names])
+
+
+@st.composite
+def cases(draw, max_area=400.0, families=None):
+    """``(vertices, l)``: a polygon of :func:`simple_polygons` scaled to a drawn ``l``."""
+    l = draw(st.sampled_from([1.0, 0.5, 3.7]))
+    return draw(simple_polygons(max_area, families)) * l, l
+
+
+def _area(v):
+    x, y = v[:, 0], v[:, 1]
+    return 0.5 * float(np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y))
+
+
+def _fit(v, max_area, unit):
+    """Shrink ``v`` towards ``max_area`` but never its grid unit below :data:`MIN_FEATURE`."""
+    area = _area(v)
+    if area <= max_area:
+        return v
+    return v * max(math.sqrt(max_area / area), MIN_FEATURE / unit)

@@ -1,0 +1,86 @@
+"""Beyond the paper: :func:`equimesh.best_lattice_placement` (issue 3).
+
+The search maximises the number of edges of the kept lattice part K over the
+lattice angle and offset.  What must hold: it is deterministic, it never
+returns a placement worse than the default (angle 0, offset (0, 0)) in its
+objective, the objective is a lower bound on the G1 count of the mesh built
+with the returned placement, and it is fast enough for the surface pipeline
+(the time on a ~1,000-edge mesh is printed, not asserted).
+"""
+
+import time
+
+import numpy as np
+from hypothesis import given
+
+import equimesh
+from equimesh import G1
+from equimesh.generators import rectangle
+from equimesh.placement import lattice_edge_count
+from equimesh.polygon import as_polygon
+
+import invariants_uniform as inv
+import strategies_simple as ss
+
+#: Polygons of the property tests: the search costs ~250 lattice evaluations.
+MAX_AREA = 400.0
+
+
+def lattice_part_edges(mesh):
+    """Edges of the lattice part K of a mesh (edges of its all-G1 triangles)."""
+    tri = mesh.triangles[inv.lattice_mask(mesh)]
+    if not len(tri):
+        return 0
+    return len(np.unique(np.sort(np.concatenate([tri[:, [0, 1]], tri[:, [1, 2]], tri[:, [2, 0]]]), axis=1), axis=0))
+
+
+@given(ss.cases(MAX_AREA))
+def test_placement_deterministic_and_never_worse(case):
+    """Same input, same placement; its objective is at least the default placement's, which it reports exactly."""
+    vertices, l = case
+    a = equimesh.best_lattice_placement(vertices, l)
+    b = equimesh.best_lattice_placement(vertices.copy(), l)
+    assert a == b
+    assert a.lattice_edges >= a.default_lattice_edges
+    assert a.gain >= 0.0
+    poly = as_polygon(vertices)
+    assert a.default_lattice_edges == lattice_edge_count(poly, l, 0.0, (0.0, 0.0))
+    assert a.lattice_edges == lattice_edge_count(poly, l, a.angle, a.offset)
+    assert 0.0 <= a.angle < 60.0
+
+
+@given(ss.cases(MAX_AREA))
+def test_placement_objective_is_a_lower_bound_on_g1(case):
+    """The objective (edges of K) equals the edges of K in the mesh and is at most its G1 count; the mesh is valid."""
+    vertices, l = case
+    p = equimesh.best_lattice_placement(vertices, l)
+    mesh = equimesh.uniform_triangulation(vertices, l, angle=p.angle, offset=p.offset)
+    assert p.lattice_edges == lattice_part_edges(mesh)
+    assert p.lattice_edges <= int(np.count_nonzero(mesh.edge_groups == G1))
+    inv.check_theorem3(mesh, l)
+    inv.check_triangulation(mesh, vertices, l)
+
+
+def test_placement_runtime_on_a_1000_edge_mesh(record_property):
+    """Runtime of the search on a polygon whose mesh has ~1,000 edges (printed, not asserted)."""
+    vertices = rectangle(18.0, 18.0)
+    start = time.perf_counter()
+    p = equimesh.best_lattice_placement(vertices, 1.0)
+    seconds = time.perf_counter() - start
+    default = equimesh.uniform_triangulation(vertices, 1.0)
+    best = equimesh.uniform_triangulation(vertices, 1.0, angle=p.angle, offset=p.offset)
+    g1_default, g1_best = (int(np.count_nonzero(m.edge_groups == G1)) for m in (default, best))
+    record_property("placement_seconds", seconds)
+    print(
+        f"best_lattice_placement on an 18x18 square ({len(default.edges)} mesh edges): {seconds:.3f} s, "
+        f"{p.evaluations} placements, G1 {g1_default} -> {g1_best} (gain {p.gain:+.1%} in lattice edges)"
+    )
+    assert 800 <= len(default.edges) <= 1300
+    assert g1_best >= p.lattice_edges >= p.default_lattice_edges
+
+
+def test_gain_when_no_lattice_triangle_fits():
+    """A polygon too small for any lattice triangle: the reported gain is 0, not -100%."""
+    p = equimesh.best_lattice_placement(rectangle(1.5, 1.5), 1.0)
+    assert p.lattice_edges == p.default_lattice_edges == 0
+    assert p.gain == 0.0

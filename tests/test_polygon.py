@@ -1,0 +1,134 @@
+"""Input validation and Step 2 (boundary resampling) of Algorithm INCREMENT.
+
+Problem 1 assumes a convex polygon with every inner angle >= 90 degrees and
+every edge >= l, and a positive finite l.  Each violated assumption must raise
+an :class:`equimesh.EquimeshError` (a ``ValueError``) naming the vertex or
+edge at fault.
+"""
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+from scipy.spatial.distance import pdist
+
+import equimesh
+from equimesh import REL_TOL, EquimeshError, InvalidLengthError, InvalidPolygonError
+from equimesh.generators import random_convex_polygon, rectangle, regular_polygon
+from equimesh.increment import validate_problem1
+from equimesh.polygon import as_polygon, resample_boundary
+from strategies import problems, seeds
+
+SQUARE = rectangle(4.0, 4.0)
+
+
+def test_errors_are_value_errors():
+    """The error family: both input errors are EquimeshError and ValueError."""
+    for error in (InvalidPolygonError, InvalidLengthError):
+        assert issubclass(error, EquimeshError) and issubclass(error, ValueError)
+
+
+# One case per validation rule: (vertices, l, error type, regex the message must match).
+BAD_INPUTS = {
+    "not an (n, 2) array": ([[0, 0, 0], [1, 0, 0], [1, 1, 0]], 1.0, InvalidPolygonError, r"\(n, 2\) array"),
+    "flat list": ([0.0, 0.0, 4.0, 0.0, 4.0, 4.0], 1.0, InvalidPolygonError, r"\(n, 2\) array"),
+    "not numbers": ([["a", 0], [4, 0], [4, 4]], 1.0, InvalidPolygonError, r"array of numbers"),
+    "nan coordinate": ([[0, 0], [4, 0], [4, np.nan], [0, 4]], 1.0, InvalidPolygonError, r"vertex 2 .*non-finite"),
+    "inf coordinate": ([[0, 0], [np.inf, 0], [4, 4], [0, 4]], 1.0, InvalidPolygonError, r"vertex 1 .*non-finite"),
+    "fewer than 3 distinct vertices": ([[0, 0], [4, 0], [0, 0], [4, 0]], 1.0, InvalidPolygonError, r"at least 3 distinct"),
+    "two vertices only": ([[0, 0], [4, 0]], 1.0, InvalidPolygonError, r"at least 3 distinct"),
+    "repeated vertex": ([[0, 0], [4, 0], [4, 4], [4, 0], [0, 4]], 1.0, InvalidPolygonError, r"vertices 1 and 3 coincide"),
+    "self-intersecting bow-tie": ([[0, 0], [6, 4], [6, 0], [0, 6]], 1.0, InvalidPolygonError, r"not simple: edge \(0, 1\) intersects edge \(2, 3\)"),
+    "zero area, collinear": ([[0, 0], [2, 0], [4, 0], [6, 0]], 1.0, InvalidPolygonError, r"zero area"),
+    "non-convex": ([[0, 0], [8, 0], [8, 8], [4, 3], [0, 8]], 1.0, InvalidPolygonError, r"not convex: reflex angle at vertex 3"),
+    "inner angle below 90": ([[0, 0], [8, 0], [0, 8]], 1.0, InvalidPolygonError, r"inner angle 45 degrees at vertex [12] .*below 90"),
+    "inner angle 89 degrees": (
+        [[0, 0], [4, 0], [4 + 4 * math.cos(math.radians(91)), 4 * math.sin(math.radians(91))], [0, 4]],
+        1.0, InvalidPolygonError, r"at vertex 1 .*below 90",
+    ),
+    "edge shorter than l": ([[0, 0], [4, 0], [4, 0.5], [0, 0.5]], 1.0, InvalidPolygonError, r"edge \(1, 2\) has length 0.5, shorter than l"),
+    "l zero": (SQUARE, 0.0, InvalidLengthError, r"positive and finite"),
+    "l negative": (SQUARE, -1.0, InvalidLengthError, r"positive and finite"),
+    "l nan": (SQUARE, float("nan"), InvalidLengthError, r"positive and finite"),
+    "l inf": (SQUARE, float("inf"), InvalidLengthError, r"positive and finite"),
+    "l not a number": (SQUARE, "one", InvalidLengthError, r"must be a number"),
+    "l None": (SQUARE, None, InvalidLengthError, r"must be a number"),
+}
+
+
+@pytest.mark.parametrize("name", sorted(BAD_INPUTS))
+def test_each_invalid_input_raises_a_named_error(name):
+    """Every validation rule of Problem 1 raises its own error naming the vertex or edge at fault."""
+    vertices, l, error, message = BAD_INPUTS[name]
+    with pytest.raises(error, match=message):
+        equimesh.increment(vertices, l)
+    with pytest.raises(error, match=message):
+        equimesh.node_lower_bound(vertices, l)
+
+
+def test_error_names_vertex_in_caller_order_for_clockwise_input():
+    """Vertex indices in messages count in the caller's order, also when the input is clockwise."""
+    cw = np.array([[0, 0], [0, 8], [4, 3], [8, 8], [8, 0]], float)  # reflex vertex 2, clockwise
+    with pytest.raises(InvalidPolygonError, match=r"reflex angle at vertex 2 at \(4, 3\)"):
+        equimesh.increment(cw, 1.0)
+
+
+def test_closing_copy_of_first_vertex_is_accepted():
+    """A ring given closed (last vertex = first) is the same polygon."""
+    closed = np.vstack([SQUARE, SQUARE[:1]])
+    assert np.array_equal(equimesh.increment(closed, 1.0).points, equimesh.increment(SQUARE, 1.0).points)
+
+
+def test_exact_right_angles_and_edges_of_exactly_l_are_accepted():
+    """The boundary cases of the assumptions (90 degrees, edge = l) are valid, also after rounding."""
+    validate_problem1(rectangle(1.0, 1.0), 1.0)
+    validate_problem1(regular_polygon(4, 1.0, rotation=0.1), 1.0)
+    validate_problem1(rectangle(0.1 * 3, 0.1 * 7), 0.3)
+
+
+@given(problems)
+def test_orientation_is_normalised_to_counter_clockwise(problem):
+    """Validation orients the polygon counter-clockwise whatever the input orientation."""
+    vertices, l = problem
+    for v in (vertices, vertices[::-1]):
+        poly = as_polygon(v)
+        assert poly.area > 0
+        assert np.array_equal(v[poly.input_index], poly.vertices)
+
+
+@given(problems)
+def test_step2_boundary_points_are_between_l_and_2l(problem):
+    """Step 2: consecutive boundary points are in [l, 2l], all boundary points pairwise >= l.
+
+    The pairwise bound is the docstring argument of ``resample_boundary``
+    (convexity and inner angles >= 90 degrees).
+    """
+    vertices, l = problem
+    poly, l = validate_problem1(vertices, l)
+    boundary = resample_boundary(poly, l)
+    pts = boundary.points
+    steps = np.linalg.norm(np.roll(pts, -1, axis=0) - pts, axis=1)
+    assert steps.min() >= (1.0 - REL_TOL) * l
+    assert steps.max() <= 2.0 * l * (1.0 + REL_TOL)
+    assert pdist(pts).min() >= (1.0 - REL_TOL) * l
+    assert np.array_equal(pts[boundary.is_vertex], poly.vertices)
+
+
+@given(
+    seeds,
+    st.integers(4, 16),
+    st.floats(1.0, 1000.0),
+    st.floats(1.0, 100.0),
+    st.sampled_from([0.0, 0.5, 0.99]),
+)
+def test_generator_builds_valid_problem1_polygons(seed, k, area, elongation, min_turn):
+    """``random_convex_polygon`` gives a valid input by construction, of at least the target area."""
+    rng = np.random.default_rng(seed)
+    v = random_convex_polygon(rng, n_vertices=k, area=area, elongation=elongation, min_turn=min_turn)
+    poly, _ = validate_problem1(v, 1.0)
+    assert len(poly.vertices) == k
+    assert poly.area >= area * (1.0 - 1e-12)
+    capped = random_convex_polygon(np.random.default_rng(seed), n_vertices=k, area=area, elongation=elongation, max_area=60.0)
+    assert validate_problem1(capped, 1.0)[0].area <= 60.0 * (1.0 + 1e-12)

@@ -1,0 +1,40 @@
+"""Provenance records and atomic writes (every result file is complete or absent)."""
+
+import json
+
+import pytest
+
+from equimesh._atomic import atomic_path, atomic_write_text
+from equimesh.provenance import git_state, provenance, provenance_path, write_provenance
+
+
+def test_provenance_records_code_platform_versions_and_parameters():
+    record = provenance({"seed": 1, "n": 2})
+    assert record["parameters"] == {"seed": 1, "n": 2}
+    assert set(record["git"]) == {"commit", "dirty"}
+    assert record["date"].endswith("+00:00")
+    for name in ("equimesh", "numpy", "scipy", "shapely", "triangle", "pandas", "matplotlib"):
+        assert name in record["versions"]
+    json.dumps(record)
+
+
+def test_git_state_outside_a_repository_is_none(tmp_path):
+    assert git_state(tmp_path) == {"commit": None, "dirty": None}
+
+
+def test_write_provenance_beside_the_result(tmp_path):
+    path = provenance_path(tmp_path / "sub" / "sweep.csv")
+    assert path.name == "sweep.provenance.json"
+    write_provenance(path, {"a": 1})
+    assert json.loads(path.read_text())["parameters"] == {"a": 1}
+    assert [p.name for p in path.parent.iterdir()] == [path.name]
+
+
+def test_atomic_write_leaves_the_old_file_on_error(tmp_path):
+    target = tmp_path / "x.txt"
+    atomic_write_text(target, "old")
+    with pytest.raises(RuntimeError), atomic_path(target) as tmp:
+        tmp.write_text("half")
+        raise RuntimeError("interrupted")
+    assert target.read_text() == "old"
+    assert [p.name for p in tmp_path.iterdir()] == ["x.txt"]
