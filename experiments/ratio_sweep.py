@@ -130,14 +130,11 @@ def sweep(n_polygons, seed, jobs, options, progress=print):
     tasks = [(i, child, options) for i, child in enumerate(children)]
     start = time.perf_counter()
     every = max(1, n_polygons // 10)
-    rows = []
     if jobs <= 1:
-        results = map(measure, tasks)
-        rows = _collect(results, n_polygons, every, start, progress)
+        rows = _collect(map(measure, tasks), n_polygons, every, start, progress)
     else:
         with ProcessPoolExecutor(max_workers=jobs) as pool:
-            results = pool.map(measure, tasks, chunksize=4)
-            rows = _collect(results, n_polygons, every, start, progress)
+            rows = _collect(pool.map(measure, tasks, chunksize=4), n_polygons, every, start, progress)
     return pd.DataFrame(rows, columns=COLUMNS)
 
 

@@ -7,10 +7,15 @@
 
 No deadline in either: the reference engine re-triangulates after every
 inserted point, so the time of one example grows with the polygon's area.
+
+Fixture ``load_experiment``: import ``experiments/<name>.py`` for a smoke test.
 """
 
+import importlib
 import os
+from pathlib import Path
 
+import pytest
 from hypothesis import HealthCheck, settings
 
 settings.register_profile(
@@ -29,3 +34,17 @@ settings.register_profile(
     suppress_health_check=[HealthCheck.too_slow],
 )
 settings.load_profile(os.environ.get("EQUIMESH_HYPOTHESIS_PROFILE", "ci"))
+
+
+EXPERIMENTS = Path(__file__).resolve().parent.parent / "experiments"
+
+
+@pytest.fixture
+def load_experiment(monkeypatch):
+    """``load_experiment(name)`` imports ``experiments/<name>.py``.
+
+    The folder goes on ``sys.path`` (not just a module spec) so that worker
+    processes started by the experiment can import it by name too.
+    """
+    monkeypatch.syspath_prepend(str(EXPERIMENTS))
+    return importlib.import_module

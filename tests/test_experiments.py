@@ -1,19 +1,14 @@
 """Smoke tests of the experiment scripts: they run end to end on a tiny input and write every output."""
 
-import importlib
 import json
-from pathlib import Path
 
 import pandas as pd
 import pytest
 
-EXPERIMENTS = Path(__file__).resolve().parent.parent / "experiments"
-
 
 @pytest.fixture
-def ratio_sweep(monkeypatch):
-    monkeypatch.syspath_prepend(str(EXPERIMENTS))
-    return importlib.import_module("ratio_sweep")
+def ratio_sweep(load_experiment):
+    return load_experiment("ratio_sweep")
 
 
 def test_ratio_sweep_writes_data_summary_figure_and_provenance(ratio_sweep, tmp_path):

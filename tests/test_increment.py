@@ -8,7 +8,7 @@ import math
 
 import numpy as np
 import pytest
-from hypothesis import given
+from hypothesis import assume, given
 from hypothesis import strategies as st
 
 import equimesh
@@ -71,8 +71,15 @@ def test_power_of_two_scaling_scales_the_mesh_exactly(problem, k):
 
     Multiplying by a power of two is exact in IEEE arithmetic, so any
     absolute tolerance hidden in the code would show up as a difference.
+    Exact only while no intermediate result underflows: a coordinate such as
+    1e-281 next to coordinates near 1 makes the degree-4 products inside
+    Triangle's exact incircle predicate underflow, and a cocircular square
+    is then split along different diagonals at different scales.  Such
+    inputs (nonzero coordinates below 2^-60 l) are excluded here only.
     """
     vertices, l = problem
+    tiny = (vertices != 0) & (np.abs(vertices) < 2.0**-60 * l)
+    assume(not tiny.any())
     base = equimesh.increment(vertices, l)
     scaled = equimesh.increment(vertices * 2.0**k, l * 2.0**k)
     assert np.array_equal(scaled.points, base.points * 2.0**k)
@@ -87,7 +94,13 @@ def _as_sets(mesh):
 
 @given(problems)
 def test_clockwise_input_gives_the_same_mesh(problem):
-    """Orientation is normalised: the clockwise input gives the same points and triangles."""
+    """Orientation is normalised: the clockwise input gives the same points and triangles.
+
+    Only the reversed list is promised to match: starting the ring at another
+    vertex renumbers the points, the circumcentres of tied candidates (equal
+    up to rounding) then differ in their last bits, and the tie-break may pick
+    another, equally valid, mesh.
+    """
     vertices, l = problem
     ccw = equimesh.increment(vertices, l)
     cw = equimesh.increment(vertices[::-1], l)
@@ -116,6 +129,10 @@ REGRESSION_CASES = {
     "square 3l, every boundary lattice point a vertex": np.array(
         [[0, 0], [1, 0], [2, 0], [3, 0], [3, 1], [3, 2], [3, 3], [2, 3], [1, 3], [0, 3], [0, 2], [0, 1]], float
     ),
+    # Near-cocircular: a circumcentre ~1e-9 l inside a boundary part of exactly 2l
+    # (it was inserted, leaving a sliver of altitude 4e-9 l, before SLIVER_GAP).
+    "rectangle 4l x (4 - 2^-12) l": rectangle(4.0, 4.0 - 2.0**-12),
+    "rectangle 6l x (2 + 2^-12) l": rectangle(6.0, 2.0 + 2.0**-12),
     # Almost straight angle: 179.9 degrees at the vertex pushed out of the bottom edge.
     "rectangle with a 179.9 degree vertex": np.array(
         [[0.0, 0.0], [2.0, -2.0 * math.tan(math.radians(0.05))], [4.0, 0.0], [4.0, 3.0], [0.0, 3.0]]

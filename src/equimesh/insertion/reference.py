@@ -17,7 +17,14 @@ closed region R, i.e. the vertices of the bounded Voronoi diagram):
    ``d~(c, S)`` is exactly the circumradius.  Visibility is tested on the
    segment from the centroid of ``t`` to ``c``; a circumcentre closer than
    ``REL_TOL l`` to a constraint is left to candidate 2 (it would otherwise
-   create a sliver next to the constraint);
+   create a sliver next to the constraint).  So is one closer than
+   ``SLIVER_GAP l`` whose value is ``l`` up to REL_TOL (at most
+   ``(1 + REL_TOL) l``): near-cocircular inputs (a rectangle 4l x (4 - 2^-12) l)
+   put such a circumcentre a hair inside a boundary part of length 2l, and
+   inserting it would leave a triangle of altitude ~1e-9 l.  Leaving it out
+   keeps every guarantee: it is within ``(1 + REL_TOL) l`` of every point, so
+   the covering radius stays at most ``(1 + REL_TOL) l`` and the edges of its
+   triangle at most ``2 (1 + REL_TOL) l`` (Lemma 1);
 2. the midpoint ``m`` of every constraint segment ``ab`` (the boundary of P or
    of the lattice part): along ``ab``, ``d~(x, S) <= min(|xa|, |xb|) <= |ab|/2``
    with equality only at ``m``; its value is ``min(|ab|/2, |m - apex|)`` where
@@ -37,8 +44,14 @@ always gives the same bits.
 import numpy as np
 
 from .._geometry import circumcenters, point_segment_distance, segments_intersect
-from ..tolerance import REL_TOL, at_least
+from ..tolerance import REL_TOL, at_least, at_most
 from ._region import Insertion, constrained_delaunay
+
+
+#: Circumcentres this close to a constraint (relative to l) whose value is l up
+#: to REL_TOL are not candidates (see the module docstring): inserting one
+#: would make a triangle flatter than 179.9 degrees next to the constraint.
+SLIVER_GAP = 1e-3
 
 
 def run(region, l):
@@ -89,7 +102,8 @@ def circle_candidates(points, triangles, segments, l):
     centers, radii = centers[live], radii[live]
     centroids = (a[live] + b[live] + c[live]) / 3.0
     sa, sb = points[segments[:, 0]], points[segments[:, 1]]
-    near = point_segment_distance(centers[:, None, :], sa[None], sb[None]).min(axis=1) <= REL_TOL * l
+    gap = point_segment_distance(centers[:, None, :], sa[None], sb[None]).min(axis=1)
+    near = (gap <= REL_TOL * l) | ((gap <= SLIVER_GAP * l) & at_most(radii, l))
     hidden = segments_intersect(centroids[:, None, :], centers[:, None, :], sa[None], sb[None]).any(axis=1)
     ok = ~near & ~hidden
     return centers[ok], radii[ok]
