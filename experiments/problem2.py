@@ -30,7 +30,6 @@ Usage::
 """
 
 import argparse
-import json
 import math
 import sys
 import time
@@ -46,7 +45,7 @@ from equimesh._atomic import atomic_path, atomic_write_text
 from equimesh.generators import rectangle, regular_polygon
 from equimesh.lattice import lattice_basis
 from equimesh.polygon import as_polygon
-from equimesh.provenance import provenance_path, write_provenance
+from equimesh.provenance import provenance_markdown, provenance_path, write_provenance
 from equimesh.shapes import flattened_square, letter_polygon
 from equimesh.uniform import BOUNDARY_SPACING
 
@@ -308,29 +307,13 @@ def summarize(df, record):
             + ", ".join(f"{s} {w}" for s, w in winners.items())
             + ".",
         ]
-    lines += ["", *_provenance_block(record)]
+    lines += ["", *provenance_markdown(record)]
     return "\n".join(lines) + "\n"
 
 
 def _args(record):
     p = record["parameters"]
     return ", ".join(f"{k} = {v}" for k, v in p.items() if k not in ("out_dir", "fig_dir"))
-
-
-def _provenance_block(record):
-    git = record["git"]
-    commit = git["commit"] or "unknown (not a git checkout)"
-    dirty = " (uncommitted changes)" if git["dirty"] else ""
-    versions = ", ".join(f"{k} {v}" for k, v in record["versions"].items())
-    return [
-        "## Provenance",
-        "",
-        f"- commit: `{commit}`{dirty}",
-        f"- date (UTC): {record['date']}",
-        f"- parameters: `{json.dumps(record['parameters'], sort_keys=True)}`",
-        f"- Python {record['python']} on {record['platform']}",
-        f"- libraries: {versions}",
-    ]
 
 
 # --------------------------------------------------------------------------- figures

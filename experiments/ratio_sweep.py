@@ -43,7 +43,7 @@ from equimesh import REL_TOL
 from equimesh._atomic import atomic_path, atomic_write_text
 from equimesh.generators import random_convex_polygon
 from equimesh.increment import validate_problem1
-from equimesh.provenance import provenance_path, write_provenance
+from equimesh.provenance import provenance_markdown, provenance_path, write_provenance
 
 NAME = "ratio_sweep"
 THEOREM2 = 16.0 / 3.0
@@ -152,12 +152,8 @@ def summarize(df, record):
     worst = df.loc[df["ratio"].idxmax()]
     within = int((3 * df["n_nodes"] <= 16 * df["lower_bound"]).sum())
     packed = int((df["n_nodes"] <= df["packing_upper_bound"]).sum())
-    git = record["git"]
-    commit = git["commit"] or "unknown (not a git checkout)"
-    dirty = " (uncommitted changes)" if git["dirty"] else ""
     params = record["parameters"]
     args = " ".join(f"--{k.replace('_', '-')} {v}" for k, v in params.items() if k not in ("out_dir", "fig_dir"))
-    versions = ", ".join(f"{k} {v}" for k, v in record["versions"].items())
     vertices = json.loads(worst["vertices"])
     return "\n".join(
         [
@@ -184,13 +180,7 @@ def summarize(df, record):
             json.dumps(vertices),
             "```",
             "",
-            "## Provenance",
-            "",
-            f"- commit: `{commit}`{dirty}",
-            f"- date (UTC): {record['date']}",
-            f"- parameters: `{json.dumps(params, sort_keys=True)}`",
-            f"- Python {record['python']} on {record['platform']}",
-            f"- libraries: {versions}",
+            *provenance_markdown(record),
             "",
         ]
     )

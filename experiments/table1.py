@@ -33,7 +33,6 @@ Usage::
 
 import argparse
 import io
-import json
 import math
 import sys
 import time
@@ -55,7 +54,7 @@ from equimesh.metrics import (
     share_within,
 )
 from equimesh.pipeline import mesh_surface
-from equimesh.provenance import provenance_path, write_provenance
+from equimesh.provenance import provenance_markdown, provenance_path, write_provenance
 
 NAME = "table1"
 REPO = Path(__file__).resolve().parents[1]
@@ -437,10 +436,6 @@ def _fmt(x, decimals=4):
 
 def markdown(df, quality, run, record, command):
     """The Markdown report: Table 1 beside the paper's, extras, run summary, comparison, provenance."""
-    git = record["git"]
-    commit = git["commit"] or "unknown (not a git checkout)"
-    dirty = " (uncommitted changes)" if git["dirty"] else ""
-    versions = ", ".join(f"{k} {v}" for k, v in record["versions"].items())
     l = run["length"]
     lines = [
         "# Table 1: member lengths of the surface mesh, stage by stage",
@@ -519,13 +514,7 @@ def markdown(df, quality, run, record, command):
         "",
         "Timings are wall-clock seconds of this run and vary from machine to machine.",
         "",
-        "## Provenance",
-        "",
-        f"- commit: `{commit}`{dirty}",
-        f"- date (UTC): {record['date']}",
-        f"- parameters: `{json.dumps(record['parameters'], sort_keys=True)}`",
-        f"- Python {record['python']} on {record['platform']}",
-        f"- libraries: {versions}",
+        *provenance_markdown(record),
         "",
     ]
     return "\n".join(lines)

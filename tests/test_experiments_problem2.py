@@ -1,20 +1,14 @@
 """Smoke test of experiments/problem2.py: it runs end to end on its --quick configuration and writes every output."""
 
-import importlib
 import json
-from pathlib import Path
 
 import numpy as np
 import pandas as pd
 import pytest
 
-EXPERIMENTS = Path(__file__).resolve().parent.parent / "experiments"
-
-
 @pytest.fixture
-def problem2(monkeypatch):
-    monkeypatch.syspath_prepend(str(EXPERIMENTS))
-    return importlib.import_module("problem2")
+def problem2(load_experiment):
+    return load_experiment("problem2")
 
 
 def test_problem2_quick_writes_data_summary_figures_and_provenance(problem2, tmp_path):

@@ -83,3 +83,20 @@ def write_provenance(path, parameters):
     record = provenance(parameters)
     atomic_write_text(path, json.dumps(record, indent=2, sort_keys=True, default=str) + "\n")
     return record
+
+
+def provenance_markdown(record):
+    """The "Provenance" section of a Markdown report, as a list of lines (commit, date, parameters, versions)."""
+    git = record["git"]
+    commit = git["commit"] or "unknown (not a git checkout)"
+    dirty = " (uncommitted changes)" if git["dirty"] else ""
+    versions = ", ".join(f"{k} {v}" for k, v in record["versions"].items())
+    return [
+        "## Provenance",
+        "",
+        f"- commit: `{commit}`{dirty}",
+        f"- date (UTC): {record['date']}",
+        f"- parameters: `{json.dumps(record['parameters'], sort_keys=True)}`",
+        f"- Python {record['python']} on {record['platform']}",
+        f"- libraries: {versions}",
+    ]
