@@ -70,17 +70,20 @@ def build_parser():
     mesh.set_defaults(run=_run_mesh)
 
     for name, text in (("table1", "regenerate Table 1 (results/table1.*)"),
-                       ("figures", "regenerate Figs 1-5 (paper_figs/)")):
-        exp = sub.add_parser(name, help=text, description=f"{text}; options are passed to experiments/{name}.py "
-                                                          f"(see 'equimesh {name} -- --help').")
-        exp.add_argument("args", nargs=argparse.REMAINDER, help="arguments for the experiment script")
+                       ("figures", "regenerate Figs 1-5 (paper_figs/) from results/table1_mesh.npz")):
+        # No options of its own: everything, --help included, goes to experiments/<name>.py.
+        exp = sub.add_parser(name, help=text, add_help=False)
         exp.set_defaults(run=_run_experiment, experiment=name)
     return parser
 
 
 def main(argv=None):
     parser = build_parser()
-    args = parser.parse_args(argv)
+    args, extra = parser.parse_known_args(argv)
+    if args.run is _run_experiment:
+        args.args = extra
+    elif extra:
+        parser.error(f"unrecognized arguments: {' '.join(extra)}")
     try:
         return args.run(args) or 0
     except EquimeshError as exc:
@@ -119,8 +122,11 @@ def _run_experiment(args):
     spec = importlib.util.spec_from_file_location(f"equimesh_experiment_{args.experiment}", script)
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
-    rest = args.args[1:] if args.args[:1] == ["--"] else args.args
-    return module.main(rest)
+    argv0, sys.argv[0] = sys.argv[0], f"equimesh {args.experiment}"  # the script's usage line names the subcommand
+    try:
+        return module.main(args.args)
+    finally:
+        sys.argv[0] = argv0
 
 
 if __name__ == "__main__":
