@@ -466,9 +466,9 @@ def markdown(df, quality, run, record, command):
         "",
         "## Beyond Table 1",
         "",
-        f"Share of members within 1 % and 5 % of l, the number of distinct member lengths needed at a "
-        f"+/-1 % (of l) fabrication tolerance, and the range of triangle angles (degrees; whole-mesh rows "
-        f"only). Ours only: the paper reports none of these.",
+        "Share of members within 1 % and 5 % of l, the number of distinct member lengths needed at a "
+        "+/-1 % (of l) fabrication tolerance, and the range of triangle angles (degrees; whole-mesh rows "
+        "only). Ours only: the paper reports none of these.",
         "",
         "| | within 1 % of l | within 5 % of l | distinct lengths (+/-1 %) | min. angle | max. angle |",
         "|---|---:|---:|---:|---:|---:|",

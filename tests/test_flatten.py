@@ -13,7 +13,7 @@ from equimesh._geometry import orient
 from equimesh.auxiliary import auxiliary_grid
 from equimesh._jacobian import AreaBarrier
 from equimesh.flatten import _Preconditioner, energy_terms, flatten
-from equimesh.metrics import edge_lengths
+from equimesh.mesh import edge_lengths
 from equimesh.surface import BezierSurface
 
 

@@ -7,7 +7,7 @@ from hypothesis import strategies as st
 from section4_standin import CircularVault, dome, flat_patch, parabolic_vault, standin_pipeline
 
 from equimesh import EquimeshError
-from equimesh.metrics import edge_lengths
+from equimesh.mesh import edge_lengths
 from equimesh.optimize import (
     OBJECTIVES,
     Objective,

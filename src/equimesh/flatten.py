@@ -54,8 +54,7 @@ import scipy.sparse.linalg
 from ._jacobian import AreaBarrier, ElementJacobian
 from ._geometry import orient
 from .errors import InvalidSurfaceError
-from .mesh import unique_edges
-from .metrics import edge_lengths
+from .mesh import edge_lengths, unique_edges
 
 
 @dataclass(frozen=True)

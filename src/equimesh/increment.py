@@ -16,7 +16,7 @@ Theorem 2: the node count is at most 16/3 of the optimum (checked against
 import numpy as np
 
 from .insertion import Region, insert
-from .mesh import PlanarMesh
+from .mesh import PlanarMesh, boundary_first
 from .polygon import (
     as_polygon,
     check_boundary_separation,
@@ -65,24 +65,11 @@ def increment(vertices, l, *, engine="reference"):
     check_boundary_separation(poly, boundary, l)
     region = Region(boundary.points, boundary.segments, np.empty((0, 2)))
     result = insert(region, l, engine=engine)
-    ring = boundary_ring(result.segments, start=0)
-    rest = np.setdiff1d(np.arange(len(result.points)), ring)
-    order = np.concatenate([ring, rest])
-    inverse = np.empty_like(order)
-    inverse[order] = np.arange(len(order))
+    order, inverse, n_ring = boundary_first(result.segments, len(result.points))
     return PlanarMesh.build(
         result.points[order],
         inverse[result.triangles],
         l,
-        len(ring),
+        n_ring,
         info={"n_inserted": len(result.points) - result.n_initial},
     )
-
-
-def boundary_ring(segments, start):
-    """Walk oriented constraint segments forming one closed ring, from vertex ``start``."""
-    successor = dict(zip(segments[:, 0].tolist(), segments[:, 1].tolist()))
-    ring = [start]
-    while (nxt := successor[ring[-1]]) != start:
-        ring.append(nxt)
-    return np.array(ring, dtype=np.int64)

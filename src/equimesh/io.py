@@ -19,6 +19,7 @@ import pandas as pd
 
 from ._atomic import atomic_path
 from .errors import EquimeshError, InvalidSurfaceError
+from .mesh import edge_lengths
 from .surface import BezierSurface
 
 #: Output formats by extension (meshio format names).
@@ -72,9 +73,8 @@ def write_mesh(path, points, triangles):
 
 def member_schedule(points, edges, groups, l):
     """The member schedule: one row per edge with its nodes, length, group and deviation from l."""
-    p = np.asarray(points, dtype=float)
     e = np.asarray(edges)
-    length = np.linalg.norm(p[e[:, 1]] - p[e[:, 0]], axis=1)
+    length = edge_lengths(points, e)
     return pd.DataFrame(
         {
             "member": np.arange(len(e)),

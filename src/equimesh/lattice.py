@@ -36,6 +36,7 @@ import shapely
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 
+from .mesh import half_edges
 from .tolerance import at_least
 
 #: Lattice steps (di, dj) between neighbouring vertices, in the basis
@@ -137,7 +138,7 @@ def lattice_part(poly, l, angle=0.0, offset=(0.0, 0.0), clearance=1.0):
 
 def _single_edges(tri):
     """Directed edges of ``tri`` that belong to exactly one triangle."""
-    directed = np.concatenate([tri[:, [0, 1]], tri[:, [1, 2]], tri[:, [2, 0]]])
+    directed = half_edges(tri)
     undirected = np.sort(directed, axis=1)
     _, inverse, counts = np.unique(undirected, axis=0, return_inverse=True, return_counts=True)
     return directed[counts[inverse.ravel()] == 1]
@@ -148,7 +149,7 @@ def _component_seeds(points, tri):
     if not len(tri):
         return np.empty((0, 2))
     n = len(tri)
-    undirected = np.sort(np.concatenate([tri[:, [0, 1]], tri[:, [1, 2]], tri[:, [2, 0]]]), axis=1)
+    undirected = np.sort(half_edges(tri), axis=1)
     owner = np.tile(np.arange(n), 3)
     order = np.lexsort((undirected[:, 1], undirected[:, 0]))
     u, o = undirected[order], owner[order]

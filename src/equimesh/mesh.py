@@ -12,11 +12,44 @@ OTHER = 0
 G1 = 1
 
 
+def half_edges(triangles):
+    """Directed edges ``(3M, 2)`` of a triangle array: all (0, 1) sides, then (1, 2), then (2, 0)."""
+    t = np.asarray(triangles, dtype=np.int64).reshape(-1, 3)
+    return np.concatenate([t[:, [0, 1]], t[:, [1, 2]], t[:, [2, 0]]])
+
+
 def unique_edges(triangles):
     """Sorted unique undirected edges ``(E, 2)`` of a triangle array."""
-    t = np.asarray(triangles, dtype=np.int64)
-    e = np.sort(np.concatenate([t[:, [0, 1]], t[:, [1, 2]], t[:, [2, 0]]]), axis=1)
-    return np.unique(e, axis=0)
+    return np.unique(np.sort(half_edges(triangles), axis=1), axis=0)
+
+
+def edge_lengths(points, edges):
+    """Euclidean lengths of ``edges`` (E, 2) between rows of ``points`` (N, d), d = 2 or 3."""
+    points = np.asarray(points, dtype=float)
+    edges = np.asarray(edges, dtype=np.int64).reshape(-1, 2)
+    return np.linalg.norm(points[edges[:, 1]] - points[edges[:, 0]], axis=1)
+
+
+def boundary_ring(segments, start):
+    """Walk oriented constraint segments forming one closed ring, from vertex ``start``."""
+    successor = dict(zip(segments[:, 0].tolist(), segments[:, 1].tolist()))
+    ring = [start]
+    while (nxt := successor[ring[-1]]) != start:
+        ring.append(nxt)
+    return np.array(ring, dtype=np.int64)
+
+
+def boundary_first(segments, n_points):
+    """Renumbering that puts the boundary ring through vertex 0 first, then the other points in order.
+
+    Returns ``(order, inverse, n_ring)``: new point ``k`` is old point
+    ``order[k]``, old point ``i`` becomes ``inverse[i]``.
+    """
+    ring = boundary_ring(segments, start=0)
+    order = np.concatenate([ring, np.setdiff1d(np.arange(n_points), ring)])
+    inverse = np.empty_like(order)
+    inverse[order] = np.arange(len(order))
+    return order, inverse, len(ring)
 
 
 def counter_clockwise(points, triangles):
@@ -67,8 +100,7 @@ class PlanarMesh:
         return len(self.points)
 
     def edge_lengths(self):
-        d = self.points[self.edges[:, 1]] - self.points[self.edges[:, 0]]
-        return np.hypot(d[:, 0], d[:, 1])
+        return edge_lengths(self.points, self.edges)
 
     @property
     def g1_mask(self):

@@ -13,6 +13,8 @@ tolerance (:func:`distinct_lengths`) and the range of triangle angles.
 
 import numpy as np
 
+from .mesh import edge_lengths
+
 #: Keys of :func:`length_stats`, in the column order of Table 1.
 TABLE1_COLUMNS = ("members", "mean", "min", "max", "std")
 
@@ -24,13 +26,6 @@ TABLE1_HEADINGS = {
     "max": "max.",
     "std": "std. dev.",
 }
-
-
-def edge_lengths(points, edges):
-    """Euclidean lengths of ``edges`` (E, 2) between rows of ``points`` (N, d), d = 2 or 3."""
-    points = np.asarray(points, dtype=float)
-    edges = np.asarray(edges, dtype=np.int64).reshape(-1, 2)
-    return np.linalg.norm(points[edges[:, 1]] - points[edges[:, 0]], axis=1)
 
 
 def length_stats(lengths):

@@ -20,6 +20,7 @@ from ._geometry import orient
 from .auxiliary import auxiliary_grid
 from .errors import EquimeshError, InvalidSurfaceError, MeshTooLargeError
 from .flatten import flatten
+from .mesh import edge_lengths
 from .optimize import OBJECTIVES, optimize_uv
 from .outline import resample_outline
 from .placement import best_lattice_placement
@@ -90,8 +91,7 @@ class SurfaceMesh:
     stages: Stages
 
     def edge_lengths(self):
-        d = self.points[self.edges[:, 1]] - self.points[self.edges[:, 0]]
-        return np.linalg.norm(d, axis=1)
+        return edge_lengths(self.points, self.edges)
 
     @property
     def g1_mask(self):

@@ -27,9 +27,8 @@ are at most ``|e| <= 2l`` (Lemma 5, the counterpart of Lemma 2).
 import numpy as np
 
 from .insertion import Region, insert
-from .increment import boundary_ring
 from .lattice import lattice_adjacent, lattice_part
-from .mesh import PlanarMesh, unique_edges
+from .mesh import PlanarMesh, boundary_first, unique_edges
 from .polygon import as_polygon, check_boundary_separation, check_edges_at_least, check_length, resample_boundary
 from .errors import EquimeshError
 
@@ -107,10 +106,7 @@ def uniform_triangulation(
     is_lattice = np.zeros(len(points), dtype=bool)
     is_lattice[lat_index] = True
 
-    ring = boundary_ring(strip.segments, start=0)
-    order = np.concatenate([ring, np.setdiff1d(np.arange(len(points)), ring)])
-    inverse = np.empty_like(order)
-    inverse[order] = np.arange(len(order))
+    order, inverse, n_ring = boundary_first(strip.segments, len(points))
     mesh_edges = unique_edges(triangles)
     both = is_lattice[mesh_edges[:, 0]] & is_lattice[mesh_edges[:, 1]]
     g1 = mesh_edges[both][lattice_adjacent(ij[mesh_edges[both, 0]], ij[mesh_edges[both, 1]])]
@@ -118,7 +114,7 @@ def uniform_triangulation(
         points[order],
         inverse[triangles],
         l,
-        len(ring),
+        n_ring,
         g1_edges=inverse[g1],
         info={
             "n_lattice_vertices": len(lat.points),

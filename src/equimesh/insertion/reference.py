@@ -44,6 +44,7 @@ always gives the same bits.
 import numpy as np
 
 from .._geometry import circumcenters, point_segment_distance, segments_intersect
+from ..mesh import half_edges
 from ..tolerance import REL_TOL, at_least, at_most
 from ._region import Insertion, constrained_delaunay
 
@@ -128,9 +129,8 @@ def _apex(triangles, pairs):
     """Third vertex of the triangle that has edge ``pairs[i]``, or -1 (vectorised)."""
     t = np.asarray(triangles)
     n = int(max(t.max(initial=0), pairs.max(initial=0))) + 1
-    edges = np.concatenate([t[:, [0, 1]], t[:, [1, 2]], t[:, [2, 0]]])
+    edges = np.sort(half_edges(t), axis=1)
     third = np.concatenate([t[:, 2], t[:, 0], t[:, 1]])
-    edges = np.sort(edges, axis=1)
     keys = edges[:, 0] * n + edges[:, 1]
     order = np.argsort(keys, kind="stable")
     keys, third = keys[order], third[order]
