@@ -15,6 +15,10 @@ from pathlib import Path
 
 from ._atomic import atomic_write_text
 
+#: Output folders: changes there do not make the code "dirty" (a
+#: ``make reproduce`` run rewrites them while later experiments still run).
+OUTPUT_DIRS = ("results", "paper_figs")
+
 #: Distributions whose versions are recorded.
 LIBRARIES = ("equimesh", "numpy", "scipy", "shapely", "triangle", "pandas", "matplotlib")
 
@@ -34,13 +38,17 @@ def git_state(cwd=None):
 
     ``cwd`` defaults to the folder of this source file, so that the commit of
     the code that ran is recorded wherever the script is started from.
-    Outside a git checkout (an installed wheel, no ``git``) both are None.
+    ``dirty`` says whether anything but the outputs (:data:`OUTPUT_DIRS`)
+    differs from the commit.  Outside a git checkout (an installed wheel, no
+    ``git``) both are None.
     """
     cwd = Path(__file__).resolve().parent if cwd is None else Path(cwd)
     commit = _git("rev-parse", "HEAD", cwd=cwd)
     if not commit:
         return {"commit": None, "dirty": None}
-    status = _git("status", "--porcelain", cwd=cwd)
+    top = _git("rev-parse", "--show-toplevel", cwd=cwd)
+    outputs = [f":(exclude,top){name}" for name in OUTPUT_DIRS]
+    status = _git("-C", top, "status", "--porcelain", "--", ".", *outputs, cwd=cwd) if top else None
     return {"commit": commit, "dirty": None if status is None else bool(status)}
 
 
