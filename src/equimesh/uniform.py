@@ -38,8 +38,8 @@ from .errors import EquimeshError
 #: boundary, a sliver.  With parts of at most 1.5 l a point inserted against a
 #: boundary part is at least ``l sqrt(1 - 0.75^2) = 0.66 l`` inside it.  Among
 #: the spacings 1.0, 1.2, 1.5, 1.8 and 2.0 compared by ``experiments/problem2.py``
-#: (results/problem2.md), 1.5 and 1.8 give the same mean G1 share within the
-#: spread between lattice placements, and 1.5 the larger smallest angle.
+#: (results/problem2.md), 1.8 gives a mean G1 share up to 0.9 points larger and
+#: 1.5 the larger smallest angle; we take the angle (docs/decisions.md, item 9).
 BOUNDARY_SPACING = 1.5
 
 
