@@ -34,8 +34,8 @@ from matplotlib.lines import Line2D
 from mpl_toolkits.mplot3d.art3d import Line3DCollection
 from scipy.spatial import ConvexHull
 
-from equimesh._atomic import atomic_path
-from equimesh.provenance import provenance_path, write_provenance
+from equimesh.io._atomic import atomic_path
+from equimesh.io.provenance import provenance_path, write_provenance
 
 NAME = "figures"
 DEFAULT_DATA = Path("results") / "table1_mesh.npz"

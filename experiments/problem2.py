@@ -41,13 +41,13 @@ import pandas as pd
 
 import equimesh
 from equimesh import G1
-from equimesh._atomic import atomic_path, atomic_write_text
-from equimesh.generators import rectangle, regular_polygon
-from equimesh.lattice import lattice_basis
-from equimesh.polygon import as_polygon
-from equimesh.provenance import provenance_markdown, provenance_path, write_provenance
-from equimesh.shapes import flattened_square, letter_polygon
-from equimesh.uniform import BOUNDARY_SPACING
+from equimesh.io._atomic import atomic_path, atomic_write_text
+from equimesh.testing.generators import rectangle, regular_polygon
+from equimesh.planar.lattice import lattice_basis
+from equimesh.planar.polygon import as_polygon
+from equimesh.io.provenance import provenance_markdown, provenance_path, write_provenance
+from equimesh.testing.shapes import flattened_square, letter_polygon
+from equimesh.planar.strip import BOUNDARY_SPACING
 
 NAME = "problem2"
 L = 1.0

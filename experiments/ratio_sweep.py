@@ -1,7 +1,7 @@
 """Theorem 2 in practice: the distribution of n' / LB over random convex polygons.
 
 For each of ``--n-polygons`` seeded random convex polygons (every inner angle
->= 90 degrees, every edge >= l = 1, :func:`equimesh.generators.random_convex_polygon`)
+>= 90 degrees, every edge >= l = 1, :func:`equimesh.testing.generators.random_convex_polygon`)
 run Algorithm INCREMENT and compare its node count n' with the proven lower
 bound LB <= n* (:func:`equimesh.node_lower_bound`); Theorem 2 promises
 n' <= 16/3 n*, the sweep checks the stronger n' <= 16/3 LB.
@@ -40,10 +40,10 @@ import pandas as pd
 
 import equimesh
 from equimesh import REL_TOL
-from equimesh._atomic import atomic_path, atomic_write_text
-from equimesh.generators import random_convex_polygon
-from equimesh.increment import validate_problem1
-from equimesh.provenance import provenance_markdown, provenance_path, write_provenance
+from equimesh.io._atomic import atomic_path, atomic_write_text
+from equimesh.testing.generators import random_convex_polygon
+from equimesh.planar.increment import validate_problem1
+from equimesh.io.provenance import provenance_markdown, provenance_path, write_provenance
 
 NAME = "ratio_sweep"
 THEOREM2 = 16.0 / 3.0

@@ -1,6 +1,6 @@
 """Table 1 of the paper (Section 4): member lengths of a surface mesh, stage by stage.
 
-Meshes the reference surface with :func:`equimesh.pipeline.mesh_surface`
+Meshes the reference surface with :func:`equimesh.surface.pipeline.mesh_surface`
 (auxiliary grid, flattening by eq. (1), Problem 2 on the plane, remapping by
 eqs. (2)-(3), optimisation of the inner nodes) and tabulates the paper's seven
 rows with the paper's five columns, the paper's own values beside ours:
@@ -42,8 +42,8 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from equimesh._atomic import atomic_path, atomic_write_text
-from equimesh.io import load_surface
+from equimesh.io._atomic import atomic_path, atomic_write_text
+from equimesh.io._meshes import load_surface
 from equimesh.metrics import (
     TABLE1_COLUMNS,
     TABLE1_HEADINGS,
@@ -53,8 +53,8 @@ from equimesh.metrics import (
     length_stats,
     share_within,
 )
-from equimesh.pipeline import mesh_surface
-from equimesh.provenance import provenance_markdown, provenance_path, write_provenance
+from equimesh.surface.pipeline import mesh_surface
+from equimesh.io.provenance import provenance_markdown, provenance_path, write_provenance
 
 NAME = "table1"
 REPO = Path(__file__).resolve().parents[1]

@@ -15,7 +15,7 @@ from scipy.spatial import Voronoi, cKDTree
 import equimesh
 from equimesh import REL_TOL
 from equimesh._geometry import circumcenters, cross, orient, point_segment_distance
-from equimesh.polygon import as_polygon
+from equimesh.planar.polygon import as_polygon
 
 #: Theorem 2 of the paper: the node count is at most 16/3 of the optimum.
 THEOREM2_FACTOR = 16.0 / 3.0

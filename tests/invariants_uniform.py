@@ -20,7 +20,7 @@ from scipy.spatial import cKDTree
 from equimesh import G1, REL_TOL
 from equimesh._geometry import circumcenters, point_segment_distance
 from equimesh.mesh import unique_edges
-from equimesh.polygon import as_polygon
+from equimesh.planar.polygon import as_polygon
 from invariants import check_edge_lengths
 
 #: G1 edges are lattice edges: length l up to this relative error.

@@ -12,7 +12,7 @@ import shapely
 import triangle
 
 from equimesh.mesh import PlanarMesh
-from equimesh.surface import BezierSurface
+from equimesh.surface.bezier import BezierSurface
 
 
 def parabolic_vault(width=60.0, depth=50.0, rise=15.0):
@@ -111,9 +111,9 @@ def standin_pipeline(surface, l, grid=(15, 15)):
 
     Returns ``(grid, flat_points, planar_mesh, remap_result)``.
     """
-    from equimesh.auxiliary import auxiliary_grid
-    from equimesh.flatten import flatten
-    from equimesh.remap import remap
+    from equimesh.surface.auxiliary import auxiliary_grid
+    from equimesh.surface.flatten import flatten
+    from equimesh.surface.remap import remap
 
     g = auxiliary_grid(*grid)
     x = surface.evaluate(g.uv[:, 0], g.uv[:, 1])

@@ -3,7 +3,7 @@
 A valid input is a convex polygon with every inner angle >= 90 degrees and
 every edge >= l (up to :data:`equimesh.REL_TOL`), with a positive finite l.
 Nothing here filters: each family is constructed to be valid (see
-:mod:`equimesh.generators` for the random family), then scaled by l, rotated
+:mod:`equimesh.testing.generators` for the random family), then scaled by l, rotated
 and translated.  Randomness beyond hypothesis' own draws comes from
 ``np.random.default_rng(seed)`` with a drawn seed, never from global state.
 
@@ -26,7 +26,7 @@ import math
 import numpy as np
 from hypothesis import strategies as st
 
-from equimesh.generators import random_convex_polygon, rectangle, regular_polygon, rotate
+from equimesh.testing.generators import random_convex_polygon, rectangle, regular_polygon, rotate
 
 #: Largest polygon area, in units of l^2 (the reference engine needs ~1 s at 600).
 MAX_AREA = 600.0
@@ -72,7 +72,7 @@ def regular_polygons(draw):
 
 @st.composite
 def random_polygons(draw):
-    """Random convex polygons with inner angles >= 90 (:func:`equimesh.generators.random_convex_polygon`)."""
+    """Random convex polygons with inner angles >= 90 (:func:`equimesh.testing.generators.random_convex_polygon`)."""
     rng = np.random.default_rng(draw(seeds))
     return random_convex_polygon(
         rng,

@@ -6,11 +6,11 @@ resampling) are at least l apart (Lemma 3 (1)).  Every strategy here builds
 such a polygon directly, in units of ``l = 1``, and :func:`cases` scales it to
 a drawn ``l``; none of them filters.  Why each family is valid:
 
-* **convex** (:func:`equimesh.generators.random_convex_polygon`, regular
+* **convex** (:func:`equimesh.testing.generators.random_convex_polygon`, regular
   k-gons, equilateral triangles): every inner angle is at least 60 degrees and
   every edge at least 1, so Step 2 points on adjacent edges are at least one
   part (>= 1) apart, and a convex polygon with inner angles >= 90 degrees
-  needs nothing more (:func:`equimesh.polygon.resample_boundary`).
+  needs nothing more (:func:`equimesh.planar.polygon.resample_boundary`).
 * **orthogonal** (columns on a grid, L, U, T, plus, dumbbells): all edges are
   axis-parallel and every two distinct x coordinates (and every two distinct
   y coordinates) of the vertices differ by at least ``u >= 1.2``.  Then two
@@ -32,7 +32,7 @@ a drawn ``l``; none of them filters.  Why each family is valid:
 
 A final random rotation and translation is applied to every polygon (the
 construction facts above are invariant, up to rounding that stays far below
-:data:`equimesh.REL_TOL`).  The constructors live in :mod:`equimesh.shapes`,
+:data:`equimesh.REL_TOL`).  The constructors live in :mod:`equimesh.testing.shapes`,
 shared with ``experiments/problem2.py``.
 """
 
@@ -41,8 +41,8 @@ import math
 import numpy as np
 from hypothesis import strategies as st
 
-from equimesh.generators import random_convex_polygon, regular_polygon
-from equimesh.shapes import column_polygon, dumbbell_polygon, flattened_square, letter_polygon, place, star_polygon
+from equimesh.testing.generators import random_convex_polygon, regular_polygon
+from equimesh.testing.shapes import column_polygon, dumbbell_polygon, flattened_square, letter_polygon, place, star_polygon
 
 #: Smallest grid unit, corridor and arm width, in units of l.
 MIN_FEATURE = 1.2

@@ -7,7 +7,7 @@ from hypothesis import strategies as st
 
 from equimesh import EquimeshError
 from equimesh._geometry import orient, signed_area
-from equimesh.auxiliary import SIDES, auxiliary_grid
+from equimesh.surface.auxiliary import SIDES, auxiliary_grid
 
 sizes = st.integers(min_value=1, max_value=12)
 

@@ -14,7 +14,7 @@ from hypothesis import event, given, target
 
 import equimesh
 from equimesh import REL_TOL
-from equimesh.generators import rectangle, regular_polygon
+from equimesh.testing.generators import rectangle, regular_polygon
 from invariants import check_edge_lengths, check_node_bounds
 from strategies import problems
 

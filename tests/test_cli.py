@@ -11,7 +11,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from equimesh.cli import main
+from equimesh._cli import main
 
 SURFACES = Path(__file__).resolve().parents[1] / "experiments" / "surfaces"
 SADDLE = SURFACES / "saddle.json"

@@ -10,11 +10,11 @@ from section4_standin import CircularVault, dome, flat_patch, parabolic_vault
 
 from equimesh import InvalidSurfaceError
 from equimesh._geometry import orient
-from equimesh.auxiliary import auxiliary_grid
-from equimesh._jacobian import AreaBarrier
-from equimesh.flatten import _Preconditioner, energy_terms, flatten
+from equimesh.surface.auxiliary import auxiliary_grid
+from equimesh.surface._jacobian import AreaBarrier
+from equimesh.surface.flatten import _Preconditioner, energy_terms, flatten
 from equimesh.mesh import edge_lengths
-from equimesh.surface import BezierSurface
+from equimesh.surface.bezier import BezierSurface
 
 
 def run(surface, n_u=15, n_v=15, **kw):

@@ -12,7 +12,7 @@ from hypothesis import assume, given
 from hypothesis import strategies as st
 
 import equimesh
-from equimesh.generators import rectangle, regular_polygon
+from equimesh.testing.generators import rectangle, regular_polygon
 from invariants import (
     assert_problem1_invariants,
     check_covering,

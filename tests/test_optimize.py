@@ -8,7 +8,7 @@ from section4_standin import CircularVault, dome, flat_patch, parabolic_vault, s
 
 from equimesh import EquimeshError
 from equimesh.mesh import edge_lengths
-from equimesh.optimize import (
+from equimesh.surface.optimize import (
     OBJECTIVES,
     Objective,
     UVProblem,

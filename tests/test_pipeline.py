@@ -8,7 +8,7 @@ from hypothesis import strategies as st
 import equimesh
 from equimesh._geometry import orient
 from equimesh.metrics import length_stats
-from equimesh.surface import BezierSurface
+from equimesh.surface.bezier import BezierSurface
 
 
 def _vault(span=40.0, rise=8.0, width=30.0):

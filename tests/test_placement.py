@@ -15,9 +15,9 @@ from hypothesis import given
 
 import equimesh
 from equimesh import G1
-from equimesh.generators import rectangle
-from equimesh.placement import lattice_edge_count
-from equimesh.polygon import as_polygon
+from equimesh.testing.generators import rectangle
+from equimesh.planar.placement import lattice_edge_count
+from equimesh.planar.polygon import as_polygon
 
 import invariants_uniform as inv
 import strategies_simple as ss

@@ -16,9 +16,9 @@ from scipy.spatial.distance import pdist
 
 import equimesh
 from equimesh import REL_TOL, EquimeshError, InvalidLengthError, InvalidPolygonError
-from equimesh.generators import random_convex_polygon, rectangle, regular_polygon
-from equimesh.increment import validate_problem1
-from equimesh.polygon import as_polygon, resample_boundary
+from equimesh.testing.generators import random_convex_polygon, rectangle, regular_polygon
+from equimesh.planar.increment import validate_problem1
+from equimesh.planar.polygon import as_polygon, resample_boundary
 from strategies import problems, seeds
 
 SQUARE = rectangle(4.0, 4.0)

@@ -5,8 +5,8 @@ import subprocess
 
 import pytest
 
-from equimesh._atomic import atomic_path, atomic_write_text
-from equimesh.provenance import git_state, provenance, provenance_path, write_provenance
+from equimesh.io._atomic import atomic_path, atomic_write_text
+from equimesh.io.provenance import git_state, provenance, provenance_path, write_provenance
 
 
 def test_provenance_records_code_platform_versions_and_parameters():

@@ -6,9 +6,9 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from section4_standin import dome, parabolic_vault
 
-from equimesh.auxiliary import auxiliary_grid
-from equimesh.flatten import flatten
-from equimesh.remap import barycentric, locate, remap
+from equimesh.surface.auxiliary import auxiliary_grid
+from equimesh.surface.flatten import flatten
+from equimesh.surface.remap import barycentric, locate, remap
 
 seeds = st.integers(min_value=0, max_value=2**32 - 1)
 

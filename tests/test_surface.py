@@ -8,7 +8,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from equimesh import InvalidSurfaceError
-from equimesh.surface import BezierSurface, ParametricSurface, bernstein, de_casteljau
+from equimesh.surface.bezier import BezierSurface, ParametricSurface, bernstein, de_casteljau
 
 degrees = st.integers(min_value=1, max_value=5)
 seeds = st.integers(min_value=0, max_value=2**32 - 1)

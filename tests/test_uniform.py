@@ -16,13 +16,13 @@ from scipy.sparse.csgraph import connected_components
 from scipy.spatial import cKDTree
 
 import equimesh
-import equimesh.polygon
+import equimesh.planar.polygon
 from equimesh import G1, REL_TOL, EquimeshError
-from equimesh.generators import random_convex_polygon, rectangle, regular_polygon
+from equimesh.testing.generators import random_convex_polygon, rectangle, regular_polygon
 from equimesh._geometry import orient
-from equimesh.insertion._region import constrained_delaunay
+from equimesh.planar.insertion._region import constrained_delaunay
 from equimesh.mesh import PlanarMesh
-from equimesh.shapes import flattened_square, letter_polygon, place
+from equimesh.testing.shapes import flattened_square, letter_polygon, place
 
 import invariants_uniform as inv
 import strategies_simple as ss
@@ -79,7 +79,7 @@ def test_conforming_constrained_delaunay(case):
 #
 # (i)   R lies within (c + 1) of the boundary of P: a point at depth >= c + 1
 #       lies in a lattice triangle whose vertices are within 1 of it, hence at
-#       depth >= c and kept (equimesh.lattice).  The vertices of the strip
+#       depth >= c and kept (equimesh.planar.lattice).  The vertices of the strip
 #       triangulation (boundary points, vertices of the boundary of K,
 #       inserted points) lie in the closure of R, at depth <= c + 1.
 # (ii)  Hypothesis H, checked on the output: those vertices are pairwise at
@@ -300,7 +300,7 @@ def _g1_share(mesh):
 def test_acceptance_g1_share(name, placement, record_property):
     """Issue 3: on a convex polygon of area ~400 l^2 and perimeter < 85 l the G1 share is at least 75%."""
     vertices = ACCEPTANCE[name]
-    assert 380.0 <= equimesh.polygon.as_polygon(vertices).area <= 420.0 and perimeter(vertices) < 85.0
+    assert 380.0 <= equimesh.planar.polygon.as_polygon(vertices).area <= 420.0 and perimeter(vertices) < 85.0
     kwargs = {}
     if placement == "best":
         p = equimesh.best_lattice_placement(vertices, 1.0)

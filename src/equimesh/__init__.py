@@ -15,7 +15,7 @@ remap(surface, plane_points, flat_points, grid)  step 4: eqs. (2)-(3), plane -> 
 optimize_uv(surface, uv, edges, groups, l, fixed=...)  final step: (u, v) of the inner nodes
 """
 
-from .bounds import node_lower_bound, packing_upper_bound
+from .planar.bounds import node_lower_bound, packing_upper_bound
 from .errors import (
     EquimeshError,
     InvalidLengthError,
@@ -23,15 +23,15 @@ from .errors import (
     InvalidSurfaceError,
     MeshTooLargeError,
 )
-from .flatten import flatten
-from .increment import increment
+from .surface.flatten import flatten
+from .planar.increment import increment
 from .mesh import G1, OTHER, PlanarMesh
-from .pipeline import SurfaceMesh, mesh_surface
-from .optimize import optimize_uv
-from .placement import Placement, best_lattice_placement
-from .remap import remap
-from .surface import BezierSurface
-from .uniform import uniform_triangulation
+from .surface.pipeline import SurfaceMesh, mesh_surface
+from .surface.optimize import optimize_uv
+from .planar.placement import Placement, best_lattice_placement
+from .surface.remap import remap
+from .surface.bezier import BezierSurface
+from .planar.strip import uniform_triangulation
 from .tolerance import REL_TOL
 
 __version__ = "0.1.0"

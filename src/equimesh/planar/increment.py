@@ -2,21 +2,21 @@
 
 Step 1  S := {}.
 Step 2  resample the boundary so consecutive points are between l and 2l apart
-        (:func:`equimesh.polygon.resample_boundary`).
+        (:func:`equimesh.planar.polygon.resample_boundary`).
 Step 3  find the point p* of P farthest from the current points
-        (:mod:`equimesh.insertion`).
+        (:mod:`equimesh.planar.insertion`).
 Step 4  insert p* while d(p*, S u V u V') >= l, up to REL_TOL.
 Step 5  output the Delaunay triangulation of S u V' u V.
 
 Theorem 1: every edge of the output lies in [l, 2l] (up to REL_TOL).
 Theorem 2: the node count is at most 16/3 of the optimum (checked against
-:func:`equimesh.bounds.node_lower_bound`).
+:func:`equimesh.planar.bounds.node_lower_bound`).
 """
 
 import numpy as np
 
 from .insertion import Region, insert
-from .mesh import PlanarMesh, boundary_first
+from ..mesh import PlanarMesh, boundary_first
 from .polygon import (
     as_polygon,
     check_boundary_separation,
@@ -51,7 +51,7 @@ def increment(vertices, l, *, engine="reference"):
     l : float
         The minimum edge length.
     engine : str
-        Name of the insertion engine (see :data:`equimesh.insertion.ENGINES`).
+        Name of the insertion engine (see :data:`equimesh.planar.insertion.ENGINES`).
 
     Returns
     -------

@@ -2,7 +2,7 @@
 
 Shared by the property tests (``tests/strategies_simple.py``) and
 ``experiments/problem2.py``; convex polygons come from
-:mod:`equimesh.generators`.  All constructors are deterministic and return
+:mod:`equimesh.testing.generators`.  All constructors are deterministic and return
 ``(n, 2)`` float arrays, counter-clockwise.  Conditions under which each is a
 valid input of :func:`equimesh.uniform_triangulation` for ``l = 1``:
 

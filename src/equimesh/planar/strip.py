@@ -1,9 +1,9 @@
 """Problem 2 (Section 3 of the paper): a triangulation with most edges exactly l.
 
 1. Step 2 of Algorithm INCREMENT on the boundary of P (any simple polygon).
-2. The lattice part K (the paper's H', :mod:`equimesh.lattice`).
+2. The lattice part K (the paper's H', :mod:`equimesh.planar.lattice`).
 3. The boundary strip R = P \\ K is filled by farthest-point insertion under
-   the visibility distance ``d~`` (:mod:`equimesh.insertion`), the
+   the visibility distance ``d~`` (:mod:`equimesh.planar.insertion`), the
    constraints being the boundary of P and the boundary of K.
 4. Output: the constrained Delaunay triangulation of R plus the lattice
    triangles of K, one conforming triangulation of P.
@@ -28,9 +28,9 @@ import numpy as np
 
 from .insertion import Region, insert
 from .lattice import lattice_adjacent, lattice_part
-from .mesh import PlanarMesh, boundary_first, unique_edges
+from ..mesh import PlanarMesh, boundary_first, unique_edges
 from .polygon import as_polygon, check_boundary_separation, check_edges_at_least, check_length, resample_boundary
-from .errors import EquimeshError
+from ..errors import EquimeshError
 
 #: Default Step 2 spacing for Problem 2, in units of l.  Below 2 so that no
 #: boundary part is 2l long: a part of exactly 2l leaves its midpoint at

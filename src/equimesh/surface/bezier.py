@@ -13,7 +13,7 @@ from typing import Protocol, runtime_checkable
 
 import numpy as np
 
-from .errors import InvalidSurfaceError
+from ..errors import InvalidSurfaceError
 
 
 @runtime_checkable

@@ -18,9 +18,9 @@ import numpy as np
 import pandas as pd
 
 from ._atomic import atomic_path
-from .errors import EquimeshError, InvalidSurfaceError
-from .mesh import edge_lengths
-from .surface import BezierSurface
+from ..errors import EquimeshError, InvalidSurfaceError
+from ..mesh import edge_lengths
+from ..surface.bezier import BezierSurface
 
 #: Output formats by extension (meshio format names).
 MESH_FORMATS = {".obj": "obj", ".vtk": "vtk", ".vtu": "vtu", ".stl": "stl", ".ply": "ply", ".msh": "gmsh"}

@@ -29,7 +29,7 @@ Fold-over.  E depends only on lengths, so its minimiser can flip triangles:
 a strongly doubly curved patch (say a near-hemisphere) has more surface near
 its rim than a plane disk, and eq. (1) alone then wrinkles it.  Two guards:
 
-* a barrier (:class:`~equimesh._jacobian.AreaBarrier`), zero while every
+* a barrier (:class:`~equimesh.surface._jacobian.AreaBarrier`), zero while every
   triangle keeps at least ``area_floor`` (default 0.1) of its plane area at
   the start and heavy enough that ``trf`` can never accept a folded state;
   for the mild surfaces of the paper it never acts and E is minimised as
@@ -52,9 +52,9 @@ import scipy.sparse
 import scipy.sparse.linalg
 
 from ._jacobian import AreaBarrier, ElementJacobian
-from ._geometry import orient
-from .errors import InvalidSurfaceError
-from .mesh import edge_lengths, unique_edges
+from .._geometry import orient
+from ..errors import InvalidSurfaceError
+from ..mesh import edge_lengths, unique_edges
 
 
 @dataclass(frozen=True)

@@ -43,9 +43,9 @@ always gives the same bits.
 
 import numpy as np
 
-from .._geometry import circumcenters, point_segment_distance, segments_intersect
-from ..mesh import half_edges
-from ..tolerance import REL_TOL, at_least, at_most
+from ..._geometry import circumcenters, point_segment_distance, segments_intersect
+from ...mesh import half_edges
+from ...tolerance import REL_TOL, at_least, at_most
 from ._region import Insertion, constrained_delaunay
 
 

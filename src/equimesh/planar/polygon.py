@@ -14,9 +14,9 @@ import shapely
 import shapely.prepared
 from scipy.spatial import cKDTree
 
-from ._geometry import cross, segments_intersect, signed_area
-from .errors import InvalidLengthError, InvalidPolygonError
-from .tolerance import REL_TOL, at_least
+from .._geometry import cross, segments_intersect, signed_area
+from ..errors import InvalidLengthError, InvalidPolygonError
+from ..tolerance import REL_TOL, at_least
 
 
 def check_length(l):
@@ -202,7 +202,7 @@ def resample_boundary(poly, l, spacing=2.0):
     at most ``2l`` as ``k >= L / 2l``, at least ``l`` as ``k <= L / l``; the
     range is never empty because ``L >= l`` (for ``L <= 2l`` it contains 1, for
     ``L > 2l`` it has length ``L / 2l > 1``).  Problem 2 uses a spacing below
-    2 (see :func:`equimesh.uniform.uniform_triangulation`): a boundary part of
+    2 (see :func:`equimesh.planar.strip.uniform_triangulation`): a boundary part of
     exactly ``2l`` leaves its midpoint at distance exactly ``l``, and the
     farthest-point insertion then places a point a hair inside it, a sliver.
 

@@ -10,8 +10,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .errors import EquimeshError
-from .mesh import unique_edges
+from ..errors import EquimeshError
+from ..mesh import unique_edges
 
 #: Column order of :attr:`AuxiliaryGrid.boundary_sides`.
 SIDES = ("u=0", "u=1", "v=0", "v=1")

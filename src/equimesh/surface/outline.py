@@ -7,7 +7,7 @@ parameter square) are resampled into polygon edges between l and 2l, the
 input of Problem 2 (:func:`equimesh.uniform_triangulation`):
 
 * a side of arc length ``L`` gets ``k`` parts by the rule of Step 2
-  (:func:`equimesh.polygon.split_counts`), placed at equal arc length; a part's
+  (:func:`equimesh.planar.polygon.split_counts`), placed at equal arc length; a part's
   chord is at most its arc, so at most ``2l``; where curvature makes a chord
   shorter than ``l``, ``k`` is lowered for that side;
 * every polygon vertex lies on the flattened polyline, with the boundary
@@ -19,9 +19,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .errors import EquimeshError
-from .polygon import split_counts
-from .tolerance import at_least
+from ..errors import EquimeshError
+from ..planar.polygon import split_counts
+from ..tolerance import at_least
 
 
 @dataclass(frozen=True)

@@ -10,7 +10,7 @@ call only fills in the values.
 import numpy as np
 import scipy.sparse
 
-from ._geometry import orient
+from .._geometry import orient
 
 
 class ElementJacobian:

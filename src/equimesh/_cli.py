@@ -15,9 +15,9 @@ import sys
 from pathlib import Path
 
 from .errors import EquimeshError
-from .io import MESH_FORMATS, check_output_path, load_surface, write_members, write_mesh
-from .optimize import OBJECTIVES
-from .pipeline import MAX_NODES, PLACEMENTS, mesh_surface
+from .io._meshes import MESH_FORMATS, check_output_path, load_surface, write_members, write_mesh
+from .surface.optimize import OBJECTIVES
+from .surface.pipeline import MAX_NODES, PLACEMENTS, mesh_surface
 
 EXIT_USAGE = 2
 EXPERIMENTS = Path(__file__).resolve().parents[2] / "experiments"

@@ -26,7 +26,7 @@ def insert(region, l, engine="reference"):
     try:
         run = ENGINES[engine]
     except KeyError:
-        from ..errors import EquimeshError
+        from ...errors import EquimeshError
 
         raise EquimeshError(f"unknown insertion engine {engine!r}; choose from {sorted(ENGINES)}") from None
     return run(region, l)

@@ -1,12 +1,12 @@
 """Section 4 end to end: a uniform triangle mesh of a parametric surface.
 
-1. auxiliary triangulation of the parameter square (:mod:`equimesh.auxiliary`);
-2. flattening by eq. (1) (:mod:`equimesh.flatten`);
-3. the flattened boundary as a polygon (:mod:`equimesh.outline`) triangulated
+1. auxiliary triangulation of the parameter square (:mod:`equimesh.surface.auxiliary`);
+2. flattening by eq. (1) (:mod:`equimesh.surface.flatten`);
+3. the flattened boundary as a polygon (:mod:`equimesh.surface.outline`) triangulated
    by Problem 2 (:func:`equimesh.uniform_triangulation`), with the lattice
    placement chosen by :func:`equimesh.best_lattice_placement` by default;
-4. remapping to (u, v) by eqs. (2)-(3) and to the surface (:mod:`equimesh.remap`);
-5. optimisation of the (u, v) of the inner nodes (:mod:`equimesh.optimize`).
+4. remapping to (u, v) by eqs. (2)-(3) and to the surface (:mod:`equimesh.surface.remap`);
+5. optimisation of the (u, v) of the inner nodes (:mod:`equimesh.surface.optimize`).
 
 Every stage is kept in :class:`SurfaceMesh.stages` for tables and figures.
 """
@@ -16,17 +16,17 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ._geometry import orient
+from .._geometry import orient
 from .auxiliary import auxiliary_grid
-from .errors import EquimeshError, InvalidSurfaceError, MeshTooLargeError
+from ..errors import EquimeshError, InvalidSurfaceError, MeshTooLargeError
 from .flatten import flatten
-from .mesh import edge_lengths
+from ..mesh import edge_lengths
 from .optimize import OBJECTIVES, optimize_uv
 from .outline import resample_outline
-from .placement import best_lattice_placement
-from .polygon import check_length
+from ..planar.placement import best_lattice_placement
+from ..planar.polygon import check_length
 from .remap import locate
-from .uniform import BOUNDARY_SPACING, uniform_triangulation
+from ..planar.strip import BOUNDARY_SPACING, uniform_triangulation
 
 #: Default limit on the node count of a surface mesh; :func:`mesh_surface`
 #: refuses (before any expensive work) a request estimated to exceed it.
@@ -121,7 +121,7 @@ def mesh_surface(
         Auxiliary grid n_u x n_v (step 1).
     optimize : "paper" or "none"
         Final optimisation of the inner nodes' (u, v) (see
-        :data:`equimesh.optimize.OBJECTIVES`), or none.
+        :data:`equimesh.surface.optimize.OBJECTIVES`), or none.
     placement : "best" or "default"
         Lattice placement of Problem 2.
     boundary_spacing : float

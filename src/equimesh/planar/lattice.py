@@ -4,7 +4,7 @@ A triangular lattice G of spacing l is overlaid on the polygon P.  Its
 vertices too close to the boundary of P are removed; the lattice triangles
 whose three vertices survive form the lattice part K (the paper's H'), whose
 edges all have length exactly l (group G1).  The rest of P, the boundary strip
-R = P \\ K, is filled by :mod:`equimesh.strip`.
+R = P \\ K, is filled by :mod:`equimesh.planar.strip`.
 
 Reading of the paper.  The paper removes the lattice vertices within distance
 1 (= l) of the *vertices* V(P).  That breaks Lemma 3 and Theorem 3: a lattice
@@ -36,8 +36,8 @@ import shapely
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 
-from .mesh import half_edges
-from .tolerance import at_least
+from ..mesh import half_edges
+from ..tolerance import at_least
 
 #: Lattice steps (di, dj) between neighbouring vertices, in the basis
 #: a1 = l (cos t, sin t), a2 = l (cos(t + 60), sin(t + 60)).

@@ -20,7 +20,7 @@ triangles between the lattice and the boundary at all: minimising the G1
 deviation alone lets the lattice slide over the fixed boundary nodes and flips
 boundary-strip triangles (observed on doubly curved patches).  Two guards:
 
-* a barrier (:class:`~equimesh._jacobian.AreaBarrier`), zero unless a triangle's (u, v) area
+* a barrier (:class:`~equimesh.surface._jacobian.AreaBarrier`), zero unless a triangle's (u, v) area
   falls below ``area_floor`` (default 0.5) of its start area, heavy enough
   that a folded triangle costs more than the whole start, so that ``trf``,
   which only accepts cost-decreasing steps, can never end on a fold-over;
@@ -40,8 +40,8 @@ import scipy.optimize
 import scipy.sparse
 
 from ._jacobian import AreaBarrier, ElementJacobian, signed_areas
-from .errors import EquimeshError
-from .mesh import G1
+from ..errors import EquimeshError
+from ..mesh import G1
 
 
 @dataclass(frozen=True)
@@ -217,7 +217,7 @@ def optimize_uv(
     area_floor : float
         Fold-over barrier threshold ``tau`` in [0, 1): a triangle is penalised
         once its (u, v) area falls below ``tau`` times its start area (see
-        :class:`~equimesh._jacobian.AreaBarrier`).  0 disables the barrier (the backtracking
+        :class:`~equimesh.surface._jacobian.AreaBarrier`).  0 disables the barrier (the backtracking
         guard still applies).  The default 0.5 keeps the strip between the
         lattice and the boundary well shaped at a negligible cost in the G1
         deviation.
@@ -286,7 +286,7 @@ def optimize_uv(
 
 
 def _with_barrier(problem, obj, triangles, weight, fraction):
-    """Append the fold-over barrier (:class:`~equimesh._jacobian.AreaBarrier`) on (u, v) areas."""
+    """Append the fold-over barrier (:class:`~equimesh.surface._jacobian.AreaBarrier`) on (u, v) areas."""
     barrier = AreaBarrier(triangles, problem.uv, fraction, weight, problem.variables)
 
     def residuals(x):

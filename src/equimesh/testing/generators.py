@@ -28,7 +28,7 @@ import math
 
 import numpy as np
 
-from ._geometry import cross, signed_area
+from .._geometry import cross, signed_area
 
 
 def rectangle(width, height, origin=(0.0, 0.0)):

@@ -1,0 +1,16 @@
+"""Section 4 of the paper: a uniform triangle mesh of a parametric surface.
+
+Modules, in the order of the pipeline:
+
+* :mod:`.bezier`     the tensor-product Bezier surface (geometry only; its JSON form is in
+                     :mod:`equimesh.io`);
+* :mod:`.auxiliary`  step 1, the auxiliary triangulation of the parameter square;
+* :mod:`.flatten`    step 2, eq. (1): flattening the auxiliary triangulation to the plane;
+* :mod:`.outline`    step 3, the flattened boundary resampled into the polygon of Problem 2;
+* :mod:`.remap`      step 4, eqs. (2)-(3): plane nodes to (u, v) and to the surface;
+* :mod:`.optimize`   final step, the (u, v) of the inner nodes (objective table ``OBJECTIVES``);
+* :mod:`.pipeline`   :func:`mesh_surface`, the stages chained;
+* :mod:`._jacobian`  sparse least-squares helpers shared by flattening and optimisation.
+
+The public verbs are re-exported by :mod:`equimesh`.
+"""
