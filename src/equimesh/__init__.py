@@ -18,10 +18,13 @@ optimize_uv(surface, uv, edges, groups, l, fixed=...)  final step: (u, v) of the
 from .planar.bounds import node_lower_bound, packing_upper_bound
 from .errors import (
     EquimeshError,
+    InternalError,
     InvalidLengthError,
     InvalidPolygonError,
     InvalidSurfaceError,
     MeshTooLargeError,
+    OutputPathError,
+    SurfaceTooSmallError,
 )
 from .surface.flatten import flatten
 from .planar.increment import increment
@@ -42,13 +45,16 @@ __all__ = [
     "REL_TOL",
     "BezierSurface",
     "EquimeshError",
+    "InternalError",
     "InvalidLengthError",
     "InvalidPolygonError",
     "InvalidSurfaceError",
     "MeshTooLargeError",
+    "OutputPathError",
     "PlanarMesh",
     "Placement",
     "SurfaceMesh",
+    "SurfaceTooSmallError",
     "best_lattice_placement",
     "flatten",
     "increment",

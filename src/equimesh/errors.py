@@ -1,9 +1,16 @@
-"""The one error family of equimesh.
+"""Every error class of equimesh, in one place.
 
-Every problem with the caller's input is raised as a subclass of
-:class:`EquimeshError`, itself a :class:`ValueError`, with a one-line message
-that names the vertex, edge or field at fault.  The command line turns these
-into a one-line message and exit code 2.
+Two families, never mixed:
+
+* :class:`EquimeshError` (a :class:`ValueError`): something is wrong with the
+  caller's input.  The message is one line and names the vertex, edge, field,
+  side or corner at fault in the caller's own terms.  The command line prints
+  it and exits with code 2, writing nothing.
+* :class:`InternalError` (a :class:`RuntimeError`): a guarantee the paper
+  proves (edges in [l, 2l], valid triangles) failed on an output we were about
+  to return.  It means a bug in equimesh, never a wrong input; the result is
+  withheld rather than returned.  The command line prints one line asking for a
+  report and exits with code 3.
 """
 
 
@@ -12,7 +19,7 @@ class EquimeshError(ValueError):
 
 
 class InvalidLengthError(EquimeshError):
-    """The target length l is not a positive finite number."""
+    """The target length l is not a positive finite number in the supported range."""
 
 
 class InvalidPolygonError(EquimeshError):
@@ -20,8 +27,20 @@ class InvalidPolygonError(EquimeshError):
 
 
 class InvalidSurfaceError(EquimeshError):
-    """A surface description (control net, JSON file) is malformed."""
+    """A surface description (control net, JSON file) is malformed, or the surface is singular or folds."""
+
+
+class SurfaceTooSmallError(InvalidSurfaceError):
+    """A side of the surface is shorter than l on the plane."""
 
 
 class MeshTooLargeError(EquimeshError):
     """The requested mesh would exceed the configured node limit."""
+
+
+class OutputPathError(EquimeshError):
+    """An output path cannot be written (missing or unwritable folder, unknown extension, name too long)."""
+
+
+class InternalError(RuntimeError):
+    """An output violated a proven guarantee (Theorem 1 or 3, a valid triangulation): a bug, not bad input."""

@@ -19,6 +19,14 @@ the same tolerance so that a boundary resampled from an edge of length exactly
 
 REL_TOL = 1e-9
 
+#: Beyond the paper (docs/decisions.md): a circumcentre closer than
+#: ``SLIVER_GAP * l`` to a constraint whose value is ``l`` up to REL_TOL is not
+#: a candidate of the farthest-point insertion, because inserting it would
+#: leave a triangle flatter than 179.9 degrees next to the constraint (see
+#: :mod:`equimesh.planar.insertion.reference`; test:
+#: the near-cocircular rectangles of ``tests/test_increment.py::test_regression_cases_satisfy_every_invariant``).
+SLIVER_GAP = 1e-3
+
 
 def at_least(value, l):
     """``value >= l`` up to :data:`REL_TOL` (vectorised)."""

@@ -18,16 +18,12 @@ import numpy as np
 import pandas as pd
 
 from ._atomic import atomic_path
-from ..errors import EquimeshError, InvalidSurfaceError
+from ..errors import EquimeshError, InvalidSurfaceError, OutputPathError
 from ..mesh import edge_lengths
 from ..surface.bezier import BezierSurface
 
 #: Output formats by extension (meshio format names).
 MESH_FORMATS = {".obj": "obj", ".vtk": "vtk", ".vtu": "vtu", ".stl": "stl", ".ply": "ply", ".msh": "gmsh"}
-
-
-class OutputPathError(EquimeshError):
-    """An output path cannot be written (missing folder, unknown extension)."""
 
 
 def load_surface(path):

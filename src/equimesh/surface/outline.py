@@ -19,7 +19,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import EquimeshError
+from ..errors import SurfaceTooSmallError
 from ..planar.polygon import split_counts
 from ..tolerance import at_least
 
@@ -39,10 +39,6 @@ class Outline:
     vertices: np.ndarray
     uv: np.ndarray
     side: np.ndarray
-
-
-class SurfaceTooSmallError(EquimeshError):
-    """A side of the surface is shorter than l on the plane."""
 
 
 def resample_outline(plane, uv, loop, corners, l, spacing):

@@ -45,14 +45,8 @@ import numpy as np
 
 from ..._geometry import circumcenters, point_segment_distance, segments_intersect
 from ...mesh import half_edges
-from ...tolerance import REL_TOL, at_least, at_most
+from ...tolerance import REL_TOL, SLIVER_GAP, at_least, at_most
 from ._region import Insertion, constrained_delaunay
-
-
-#: Circumcentres this close to a constraint (relative to l) whose value is l up
-#: to REL_TOL are not candidates (see the module docstring): inserting one
-#: would make a triangle flatter than 179.9 degrees next to the constraint.
-SLIVER_GAP = 1e-3
 
 
 def run(region, l):
