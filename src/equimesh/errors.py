@@ -23,7 +23,17 @@ class InvalidLengthError(EquimeshError):
 
 
 class InvalidPolygonError(EquimeshError):
-    """The polygon violates an assumption of Problem 1 or Problem 2."""
+    """The polygon violates an assumption of Problem 1 or Problem 2.
+
+    ``points`` (optional, ``(k, 2)`` float array in the caller's coordinates)
+    are the points at fault (the two boundary points that are too close, the
+    vertex whose angle is wrong), so that a caller that built the polygon (the
+    surface pipeline) can restate the problem in its own terms.
+    """
+
+    def __init__(self, message, *, points=None):
+        super().__init__(message)
+        self.points = None if points is None else [tuple(map(float, p)) for p in points]
 
 
 class InvalidSurfaceError(EquimeshError):
