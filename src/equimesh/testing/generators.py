@@ -1,7 +1,10 @@
 """Valid inputs of Problem 1 by construction: convex polygons with every inner angle >= 90 degrees.
 
-Shared by the tests (``tests/strategies.py``), the benchmarks and the
-experiments, so that all of them draw from the same family of polygons.
+Shared by the tests (``tests/strategies.py``, which feeds the constructive
+steps below with values hypothesis draws) and ``experiments/ratio_sweep.py``.
+The benchmarks deliberately do not use it: their inputs are frozen literals
+(``benchmarks/benchmarks/common.py``), so that a change here cannot move
+timings measured across commits.
 
 Construction of :func:`random_convex_polygon`.  A convex polygon is fixed by
 its edge directions and edge lengths.  Walking counter-clockwise, the edge
