@@ -20,7 +20,6 @@ Usage::
     python experiments/figures.py [--data results/table1_mesh.npz] [--fig-dir paper_figs]
 """
 
-import argparse
 import json
 import sys
 import time
@@ -34,8 +33,11 @@ from matplotlib.lines import Line2D
 from mpl_toolkits.mplot3d.art3d import Line3DCollection
 from scipy.spatial import ConvexHull
 
-from equimesh.io._atomic import atomic_path
-from equimesh.io.provenance import provenance_path, write_provenance
+from equimesh import G1
+from equimesh.io.provenance import provenance_path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))  # _common.py, also when loaded by file path
+import _common  # noqa: E402
 
 NAME = "figures"
 DEFAULT_DATA = Path("results") / "table1_mesh.npz"
@@ -49,11 +51,10 @@ VIEW = {"elev": 28.0, "azim": -58.0}
 
 
 def parse_args(argv=None):
-    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0], formatter_class=argparse.RawDescriptionHelpFormatter)
+    p = _common.parser(__doc__)
     p.add_argument("--data", type=Path, default=DEFAULT_DATA,
                    help="stage arrays written by experiments/table1.py (default results/table1_mesh.npz)")
-    p.add_argument("--fig-dir", type=Path, default=Path("paper_figs"), help="figure folder (default paper_figs)")
-    return p.parse_args(argv)
+    return _common.add_output_options(p, out_dir=False).parse_args(argv)
 
 
 class MissingDataError(RuntimeError):
@@ -178,24 +179,16 @@ def _boundary_edges(d):
     return np.column_stack([loop, np.roll(loop, -1)])
 
 
-def _save(fig, fig_dir, name, data_path, extra=None):
-    """Write ``name``.png and .pdf atomically and the provenance JSON beside them."""
-    fig_dir = Path(fig_dir)
-    outputs = []
-    for suffix, metadata in ((".png", {"Software": None}), (".pdf", {"CreationDate": None})):
-        out = fig_dir / f"{name}{suffix}"
-        with atomic_path(out) as tmp:
-            fig.savefig(tmp, dpi=200, metadata=metadata, bbox_inches="tight", pad_inches=0.08)
-        outputs.append(str(out))
-    parameters = {"script": "experiments/figures.py", "figure": name, "source": str(data_path), "outputs": outputs}
+def _save(fig, fig_dir, name, data_path):
+    """Write ``name``.png and .pdf and the provenance JSON beside them, naming the data's own provenance."""
+    parameters = {"script": "experiments/figures.py", "figure": name, "source": str(data_path)}
     source_record = provenance_path(Path(data_path).with_name("table1.csv"))
     if source_record.is_file():
         record = json.loads(source_record.read_text(encoding="utf-8"))
         parameters["source_provenance"] = {"file": str(source_record), "git": record.get("git"),
                                            "date": record.get("date"), "parameters": record.get("parameters")}
-    parameters.update(extra or {})
-    write_provenance(provenance_path(fig_dir / f"{name}.png"), parameters)
-    return outputs
+    return _common.save_figure(fig, Path(fig_dir) / f"{name}.png", parameters, dpi=200, bbox_inches="tight",
+                               pad_inches=0.08)
 
 
 def _grid_text(d):
@@ -258,13 +251,13 @@ def _max_gap_to_hull(loop, hull):
 
 def _group_collections(points, edges, groups, g1_width=0.9, other_width=1.1):
     seg = _segments(points, edges)
-    g1 = groups == 1
+    g1 = groups == G1
     return (LineCollection(seg[~g1], colors=OTHER_COLOUR, linewidths=other_width),
             LineCollection(seg[g1], colors=G1_COLOUR, linewidths=g1_width))
 
 
 def _group_legend(d, extra=()):
-    g1 = d["edge_groups"] == 1
+    g1 = d["edge_groups"] == G1
     l = float(d["length"])
     return [
         Line2D([], [], color=G1_COLOUR, lw=1.5, label=f"G1: {int(g1.sum())} members of length l = {l:g} on the plane"),
@@ -300,7 +293,7 @@ def fig4_remapped_surface(d):
     fig = Figure(figsize=(7.6, 5.4), layout="constrained")
     ax = _setup_3d(fig, p)
     _shade(ax, p, d["triangles"])
-    g1 = d["edge_groups"] == 1
+    g1 = d["edge_groups"] == G1
     _members(ax, p, d["triangles"], d["edges"][~g1], 1.1, colors=OTHER_COLOUR)
     _members(ax, p, d["triangles"], d["edges"][g1], 0.9, colors=G1_COLOUR)
     lengths = np.linalg.norm(np.diff(_segments(p, d["edges"]), axis=1)[:, 0], axis=1)
@@ -319,7 +312,7 @@ def fig5_optimised_deviation(d):
     seg = _segments(p, d["edges"])
     lengths = np.linalg.norm(seg[:, 1] - seg[:, 0], axis=1)
     dev = 100.0 * (lengths - l) / l
-    g1 = d["edge_groups"] == 1
+    g1 = d["edge_groups"] == G1
     # Colour scale: symmetric, set by the G1 members (the optimised ones); others beyond it saturate.
     lim = float(np.max(np.abs(dev[g1]))) if g1.any() else float(np.max(np.abs(dev)))
     lim = max(lim, 1e-6)

@@ -1,4 +1,6 @@
-"""Hypothesis profiles, chosen by the environment variable EQUIMESH_HYPOTHESIS_PROFILE.
+"""Hypothesis profiles, the experiment loader, and a note on conditional properties never exercised.
+
+Profiles, chosen by the environment variable EQUIMESH_HYPOTHESIS_PROFILE:
 
 * ``ci`` (default): 25 examples per property, derandomized so that every run
   of the suite checks the same examples; quick enough for ``make test``.
@@ -9,14 +11,28 @@ No deadline in either: the reference engine re-triangulates after every
 inserted point, so the time of one example grows with the polygon's area.
 
 Fixture ``load_experiment``: import ``experiments/<name>.py`` for a smoke test.
+
+Conditional properties.  A property that only says something when a
+condition holds (``assume(c)``, or ``if c: check(...)``) passes vacuously if
+the generated inputs never satisfy ``c``.  Such a test wraps the condition in
+:func:`exercised`::
+
+    from conftest import exercised
+
+    assume(exercised("strip vertices globally separated (hypothesis H)", separated))
+
+and the end of the run lists every condition that was reached but never held
+("conditional properties never exercised: ..."), also under ``pytest -n 2``.
 """
 
+import collections
 import importlib
 import os
+import sys
 from pathlib import Path
 
 import pytest
-from hypothesis import HealthCheck, settings
+from hypothesis import HealthCheck, currently_in_test_context, event, settings
 
 settings.register_profile(
     "ci",
@@ -39,12 +55,64 @@ settings.load_profile(os.environ.get("EQUIMESH_HYPOTHESIS_PROFILE", "ci"))
 EXPERIMENTS = Path(__file__).resolve().parent.parent / "experiments"
 
 
-@pytest.fixture
-def load_experiment(monkeypatch):
-    """``load_experiment(name)`` imports ``experiments/<name>.py``.
+@pytest.fixture(scope="session")
+def load_experiment():
+    """``load_experiment(name)`` imports ``experiments/<name>.py`` as the module ``name``.
 
     The folder goes on ``sys.path`` (not just a module spec) so that worker
-    processes started by the experiment can import it by name too.
+    processes started by the experiment can import it by name too, and so
+    that the scripts find ``experiments/_common.py``.
     """
-    monkeypatch.syspath_prepend(str(EXPERIMENTS))
-    return importlib.import_module
+    folder = str(EXPERIMENTS)
+    sys.path.insert(0, folder)
+    yield importlib.import_module
+    sys.path.remove(folder)
+
+
+# --------------------------------------------------------------------------- conditional properties
+
+#: Condition name -> [times reached, times held], in this process.
+_CONDITIONS = collections.defaultdict(lambda: [0, 0])
+_WORKER_KEY = "equimesh_exercised"
+
+
+def exercised(name, held):
+    """Record that the condition ``name`` was evaluated and whether it ``held``; returns ``held``.
+
+    Also a hypothesis ``event`` inside a property test (``--hypothesis-show-statistics``).
+    """
+    held = bool(held)
+    counts = _CONDITIONS[name]
+    counts[0] += 1
+    counts[1] += held
+    if currently_in_test_context():
+        event(f"{name}: {'held' if held else 'did not hold'}")
+    return held
+
+
+def never_exercised(conditions):
+    """Lines naming each condition of ``{name: (reached, held)}`` that was reached but never held."""
+    return [f"{name}: never held in {reached} evaluation(s)" for name, (reached, held) in sorted(conditions.items()) if not held]
+
+
+def pytest_sessionfinish(session):
+    """Under pytest-xdist a worker hands its counts to the controller."""
+    output = getattr(session.config, "workeroutput", None)
+    if output is not None:
+        output[_WORKER_KEY] = {name: tuple(counts) for name, counts in _CONDITIONS.items()}
+
+
+@pytest.hookimpl(optionalhook=True)
+def pytest_testnodedown(node, error):
+    """Controller side of :func:`pytest_sessionfinish`: add a finished worker's counts."""
+    for name, (reached, held) in getattr(node, "workeroutput", {}).get(_WORKER_KEY, {}).items():
+        _CONDITIONS[name][0] += reached
+        _CONDITIONS[name][1] += held
+
+
+def pytest_terminal_summary(terminalreporter):
+    lines = never_exercised(_CONDITIONS)
+    if lines:
+        terminalreporter.section("conditional properties never exercised", yellow=True)
+        for line in lines:
+            terminalreporter.write_line(line)

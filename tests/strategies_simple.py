@@ -3,11 +3,13 @@
 Problem 2 (Section 3 of the paper) takes any simple polygon whose edges are
 at least l long and whose mutually visible boundary points (after the Step 2
 resampling) are at least l apart (Lemma 3 (1)).  Every strategy here builds
-such a polygon directly, in units of ``l = 1``, and :func:`cases` scales it to
-a drawn ``l``; none of them filters.  Why each family is valid:
+such a polygon directly from drawn values, in units of ``l = 1``; none of them
+filters.  :func:`cases` places it as every property test does
+(:func:`strategies.placed`: rotate, translate, roll the start vertex, scale
+by a drawn ``l``).  Why each family is valid:
 
-* **convex** (:func:`equimesh.testing.generators.random_convex_polygon`, regular
-  k-gons, equilateral triangles): every inner angle is at least 60 degrees and
+* **convex** (:func:`strategies.random_polygons` with elongation at most 3,
+  regular k-gons, equilateral triangles): every inner angle is at least 60 degrees and
   every edge at least 1, so Step 2 points on adjacent edges are at least one
   part (>= 1) apart, and a convex polygon with inner angles >= 90 degrees
   needs nothing more (:func:`equimesh.planar.polygon.resample_boundary`).
@@ -30,10 +32,9 @@ a drawn ``l``; none of them filters.  Why each family is valid:
   the two edges at a corner are then at least ``2 sin(30.5 deg) 1.2 > 1``
   apart).  ``a`` is large enough to make the boundary wavy, i.e. non-convex.
 
-A final random rotation and translation is applied to every polygon (the
-construction facts above are invariant, up to rounding that stays far below
-:data:`equimesh.REL_TOL`).  The constructors live in :mod:`equimesh.testing.shapes`,
-shared with ``experiments/problem2.py``.
+The placement keeps the construction facts above (up to rounding that stays
+far below :data:`equimesh.REL_TOL`).  The constructors live in
+:mod:`equimesh.testing.shapes`, shared with ``experiments/problem2.py``.
 """
 
 import math
@@ -41,8 +42,9 @@ import math
 import numpy as np
 from hypothesis import strategies as st
 
-from equimesh.testing.generators import random_convex_polygon, regular_polygon
-from equimesh.testing.shapes import column_polygon, dumbbell_polygon, flattened_square, letter_polygon, place, star_polygon
+from equimesh.testing.generators import regular_polygon
+from equimesh.testing.shapes import column_polygon, dumbbell_polygon, flattened_square, letter_polygon, star_polygon
+from strategies import placed, random_polygons
 
 #: Smallest grid unit, corridor and arm width, in units of l.
 MIN_FEATURE = 1.2
@@ -50,13 +52,8 @@ MIN_FEATURE = 1.2
 
 # --------------------------------------------------------------------------- strategies
 
-seeds = st.integers(0, 2**32 - 1)
-angles = st.floats(0.0, 2.0 * math.pi, allow_nan=False)
-#: Multiples of 1/64 in [-50, 50]: never a tiny nonzero coordinate, whose
-#: products underflow in Triangle's exact predicates (see test_increment.py).
-sixty_fourths = st.integers(-3200, 3200).map(lambda i: i / 64.0)
-shifts = st.tuples(sixty_fourths, sixty_fourths)
 units = st.floats(MIN_FEATURE, 3.0)
+phases = st.floats(0.0, 2.0 * math.pi)
 
 
 @st.composite
@@ -64,22 +61,12 @@ def convex_polygons(draw, max_area=400.0):
     """Convex polygons: random (inner angles >= 90), regular k-gons, equilateral triangles."""
     kind = draw(st.sampled_from(["random", "random", "regular", "triangle"]))
     if kind == "random":
-        rng = np.random.default_rng(draw(seeds))
-        area = draw(st.floats(4.0, max_area))
-        v = random_convex_polygon(
-            rng,
-            area=area,
-            min_edge=1.0,
-            elongation=draw(st.sampled_from([1.0, 1.0, 3.0])),
-            min_turn=draw(st.sampled_from([0.0, 0.5])),
-        )
-    elif kind == "regular":
+        return draw(random_polygons(max_area, max_elongation=3.0))
+    if kind == "regular":
         k = draw(st.integers(4, 12))
         edge_max = math.sqrt(max_area * 4.0 * math.tan(math.pi / k) / k)
-        v = regular_polygon(k, draw(st.floats(1.0, max(1.0, edge_max))))
-    else:
-        v = regular_polygon(3, draw(st.floats(1.0, max(1.0, math.sqrt(4.0 * max_area / math.sqrt(3.0))))))
-    return place(v, draw(angles), draw(shifts))
+        return regular_polygon(k, draw(st.floats(1.0, max(1.0, edge_max))))
+    return regular_polygon(3, draw(st.floats(1.0, max(1.0, math.sqrt(4.0 * max_area / math.sqrt(3.0))))))
 
 
 @st.composite
@@ -87,19 +74,15 @@ def column_polygons(draw, max_area=400.0):
     """Random orthogonal x-monotone polygons on a grid of unit ``u >= 1.2`` (reflex corners, notches)."""
     ux, uy = draw(units), draw(units)
     n = draw(st.integers(2, 8))
-    rng = np.random.default_rng(draw(seeds))
-    height = int(rng.integers(2, 8))
-    intervals = [(0, height)]
+    intervals = [(0, draw(st.integers(2, 7)))]
     for _ in range(n - 1):
         lo, hi = intervals[-1]
         # The next interval overlaps [lo, hi] in at least one unit.
-        new_lo = int(rng.integers(lo - 3, hi))
+        new_lo = draw(st.integers(lo - 3, hi - 1))
         base = max(lo, new_lo)
-        new_hi = int(rng.integers(base + 1, base + 7))
-        intervals.append((new_lo, new_hi))
+        intervals.append((new_lo, draw(st.integers(base + 1, base + 6))))
     v = column_polygon(intervals) * np.array([ux, uy])
-    v = _fit(v, max_area, min(ux, uy))
-    return place(v, draw(angles), draw(shifts))
+    return _fit(v, max_area, min(ux, uy))
 
 
 @st.composite
@@ -109,8 +92,7 @@ def letter_polygons(draw, max_area=400.0):
     u = draw(units)
     arm = draw(st.integers(1, 4))
     length = draw(st.integers(1, 6))
-    v = letter_polygon(kind, arm, length) * u
-    return place(_fit(v, max_area, u), draw(angles), draw(shifts))
+    return _fit(letter_polygon(kind, arm, length) * u, max_area, u)
 
 
 @st.composite
@@ -119,7 +101,7 @@ def dumbbells(draw, max_area=600.0):
     u = draw(units)
     left, right = draw(st.integers(3, 8)), draw(st.integers(3, 8))
     v = dumbbell_polygon(left, right, draw(st.integers(1, 5)), draw(st.integers(-1, 1))) * u
-    return place(_fit(v, max_area, u), draw(angles), draw(shifts))
+    return _fit(v, max_area, u)
 
 
 @st.composite
@@ -129,8 +111,7 @@ def stars(draw, max_area=400.0):
     w = draw(st.floats(0.6, 1.5))
     inner = w / math.sin(math.pi / k) * draw(st.floats(1.05, 2.0))
     outer = inner + draw(st.floats(1.5, 8.0))
-    v = star_polygon(k, w, inner, outer)
-    return place(v, draw(angles), draw(shifts))
+    return star_polygon(k, w, inner, outer)
 
 
 @st.composite
@@ -145,8 +126,7 @@ def flattened_boundaries(draw, max_area=400.0):
     ky, kx = 2.0 * math.pi / wavelength_y, 2.0 * math.pi / wavelength_x
     a = lip / ky * draw(st.floats(0.5, 1.0))
     b = lip / kx * draw(st.floats(0.0, 1.0))
-    v = flattened_square(n, parts, a, b, ky, kx, draw(angles), draw(angles))
-    return place(v, draw(angles), draw(shifts))
+    return flattened_square(n, parts, a, b, ky, kx, draw(phases), draw(phases))
 
 
 FAMILIES = {
@@ -165,11 +145,9 @@ def simple_polygons(max_area=400.0, families=None):
     return st.one_of([FAMILIES[name](max_area=max_area) for name in names])
 
 
-@st.composite
-def cases(draw, max_area=400.0, families=None):
-    """``(vertices, l)``: a polygon of :func:`simple_polygons` scaled to a drawn ``l``."""
-    l = draw(st.sampled_from([1.0, 0.5, 3.7]))
-    return draw(simple_polygons(max_area, families)) * l, l
+def cases(max_area=400.0, families=None):
+    """``(vertices, l)``: a polygon of :func:`simple_polygons` placed by :func:`strategies.placed`."""
+    return placed(simple_polygons(max_area, families))
 
 
 def _area(v):

@@ -6,15 +6,12 @@ output file, the paper's rows and columns, the paper's values beside ours,
 and the optimisation not making the G1 lengths less uniform.
 """
 
-import importlib
 import json
-from pathlib import Path
 
 import numpy as np
 import pandas as pd
 import pytest
 
-EXPERIMENTS = Path(__file__).resolve().parent.parent / "experiments"
 COARSE = ["--grid", "6", "6", "--length", "10"]
 
 PAPER_ROWS = [
@@ -30,14 +27,8 @@ PAPER_COLUMNS = ["no. of members", "mean", "min.", "max.", "std. dev."]
 
 
 @pytest.fixture(scope="module")
-def experiments():
-    import sys
-
-    sys.path.insert(0, str(EXPERIMENTS))
-    try:
-        yield importlib.import_module("table1"), importlib.import_module("figures")
-    finally:
-        sys.path.remove(str(EXPERIMENTS))
+def experiments(load_experiment):
+    return load_experiment("table1"), load_experiment("figures")
 
 
 @pytest.fixture(scope="module")

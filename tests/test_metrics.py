@@ -6,11 +6,13 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from equimesh.metrics import (
+    FABRICATION_COLUMNS,
     TABLE1_COLUMNS,
     TABLE1_HEADINGS,
     angle_range,
     distinct_lengths,
     edge_lengths,
+    fabrication_figures,
     length_stats,
     quality_summary,
     share_within,
@@ -97,3 +99,12 @@ def test_quality_summary_keys_and_values():
     assert q["within_1pct"] == 1.0 and q["distinct_lengths_1pct"] == 1
     assert q["angle_min"] == pytest.approx(60.0) and q["angle_max"] == pytest.approx(60.0)
     np.testing.assert_allclose(edge_lengths(points, edges), 5.0)
+
+
+def test_fabrication_figures_of_a_group_without_triangles():
+    """A group such as G1 has no triangles of its own: its angle range is nan, the rest is computed."""
+    f = fabrication_figures([5.0, 5.04, 5.2], 5.0)
+    assert tuple(f) == FABRICATION_COLUMNS
+    assert f["within_1pct"] == pytest.approx(2 / 3) and f["within_5pct"] == 1.0
+    assert f["distinct_lengths_1pct"] == 2
+    assert np.isnan(f["angle_min"]) and np.isnan(f["angle_max"])

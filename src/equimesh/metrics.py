@@ -8,12 +8,14 @@ differ by well under 0.1 %.
 
 Beyond Table 1 the fabrication-oriented figures are: the share of members
 within 1 % and 5 % of l, the number of distinct member lengths at a +/-1 %
-tolerance (:func:`distinct_lengths`) and the range of triangle angles.
+tolerance (:func:`distinct_lengths`) and the range of triangle angles
+(:func:`fabrication_figures`).  ``experiments/table1.py`` builds its two
+tables from :func:`table1_row` and :func:`fabrication_figures`.
 """
 
 import numpy as np
 
-from .mesh import edge_lengths
+from .mesh import G1, edge_lengths
 
 #: Keys of :func:`length_stats`, in the column order of Table 1.
 TABLE1_COLUMNS = ("members", "mean", "min", "max", "std")
@@ -53,6 +55,10 @@ def length_stats(lengths):
 def table1_row(name, lengths):
     """One row of Table 1: ``{"row": name, **length_stats(lengths)}``."""
     return {"row": str(name), **length_stats(lengths)}
+
+
+#: Keys of :func:`fabrication_figures`, in the column order of ``results/table1_quality.csv``.
+FABRICATION_COLUMNS = ("within_1pct", "within_5pct", "distinct_lengths_1pct", "angle_min", "angle_max")
 
 
 def share_within(lengths, l, rel):
@@ -101,24 +107,34 @@ def angle_range(points, triangles):
     return float(a.min()), float(a.max())
 
 
-def quality_summary(points, triangles, edges, l, groups=None, g1=1):
+def fabrication_figures(lengths, l, points=None, triangles=None):
+    """The figures beyond Table 1 for one group of members, keyed by :data:`FABRICATION_COLUMNS`.
+
+    Shares of members within 1 % and 5 % of ``l``, distinct lengths at
+    +/-1 % of ``l``, and the angle range of ``triangles`` (``nan`` when no
+    triangles are given: a group such as G1 does not form whole triangles).
+    """
+    lo, hi = (np.nan, np.nan) if triangles is None else angle_range(points, triangles)
+    return {
+        "within_1pct": share_within(lengths, l, 0.01),
+        "within_5pct": share_within(lengths, l, 0.05),
+        "distinct_lengths_1pct": distinct_lengths(lengths, l, 0.01),
+        "angle_min": lo,
+        "angle_max": hi,
+    }
+
+
+def quality_summary(points, triangles, edges, l, groups=None):
     """Table 1 rows (G1 and total) and the fabrication figures of one mesh, as a flat dict.
 
     Keys: ``g1_<col>`` and ``total_<col>`` for each of :data:`TABLE1_COLUMNS`
-    (``g1_*`` only when ``groups`` is given), ``within_1pct``,
-    ``within_5pct``, ``distinct_lengths_1pct``, ``angle_min``, ``angle_max``.
+    (``g1_*`` only when ``groups``, the edge groups, are given) and
+    :data:`FABRICATION_COLUMNS` of all members.
     """
     lengths = edge_lengths(points, edges)
     out = {}
     if groups is not None:
-        out.update({f"g1_{k}": v for k, v in length_stats(lengths[np.asarray(groups) == g1]).items()})
+        out.update({f"g1_{k}": v for k, v in length_stats(lengths[np.asarray(groups) == G1]).items()})
     out.update({f"total_{k}": v for k, v in length_stats(lengths).items()})
-    lo, hi = angle_range(points, triangles)
-    out.update(
-        within_1pct=share_within(lengths, l, 0.01),
-        within_5pct=share_within(lengths, l, 0.05),
-        distinct_lengths_1pct=distinct_lengths(lengths, l, 0.01),
-        angle_min=lo,
-        angle_max=hi,
-    )
+    out.update(fabrication_figures(lengths, l, points, triangles))
     return out

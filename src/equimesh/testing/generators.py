@@ -1,7 +1,10 @@
 """Valid inputs of Problem 1 by construction: convex polygons with every inner angle >= 90 degrees.
 
-Shared by the tests (``tests/strategies.py``), the benchmarks and the
-experiments, so that all of them draw from the same family of polygons.
+Shared by the tests (``tests/strategies.py``, which feeds the constructive
+steps below with values hypothesis draws) and ``experiments/ratio_sweep.py``.
+The benchmarks deliberately do not use it: their inputs are frozen literals
+(``benchmarks/benchmarks/common.py``), so that a change here cannot move
+timings measured across commits.
 
 Construction of :func:`random_convex_polygon`.  A convex polygon is fixed by
 its edge directions and edge lengths.  Walking counter-clockwise, the edge
@@ -9,7 +12,7 @@ direction turns at each vertex by the *exterior* angle ``180 - inner``; the
 turns are positive (convexity), at most 90 degrees (inner angle >= 90) and sum
 to 360 degrees, so at least 4 vertices are needed.
 
-1. Turns: draw ``v_i`` uniform in (0, 1] and map them to ``t_i`` in (0, 1]
+1. Turns: draw ``v_i`` in (0, 1] and map them to ``t_i`` in (0, 1]
    with ``sum t_i = 4`` (turn ``90 t_i`` degrees): if ``sum v > 4`` scale
    ``v`` down, ``t = 4 v / sum v``; otherwise move every ``v_i`` towards 1,
    ``t_i = 1 - s (1 - v_i)`` with ``s = (k - 4) / sum(1 - v) in [0, 1]``.
@@ -59,14 +62,24 @@ def rotate(vertices, angle, center=(0.0, 0.0)):
 
 
 def right_angle_turns(rng, k, min_turn=0.0):
-    """Exterior turns (fractions of 90 degrees) in (0, 1], summing to 4 (step 1 of the module docstring).
-
-    ``min_turn`` in [0, 1) mixes the draw with uniform turns ``4 / k`` so that
-    no turn is below ``min_turn * 4 / k``.
-    """
+    """:func:`turns_from_fractions` of ``k`` uniform draws in (0, 1] from ``rng``."""
     if k < 4:
         raise ValueError(f"a convex polygon with inner angles >= 90 degrees has >= 4 vertices, got {k}")
-    v = 1.0 - rng.random(k)  # in (0, 1]
+    return turns_from_fractions(1.0 - rng.random(k), min_turn)
+
+
+def turns_from_fractions(fractions, min_turn=0.0):
+    """Exterior turns (fractions of 90 degrees) in (0, 1], summing to 4 (step 1 of the module docstring).
+
+    ``fractions`` are the raw values ``v_i`` in (0, 1], one per vertex (at
+    least 4); all equal give the regular polygon's turns ``4 / k``.
+    ``min_turn`` in [0, 1) mixes the result with uniform turns ``4 / k`` so
+    that no turn is below ``min_turn * 4 / k``.
+    """
+    v = np.asarray(fractions, dtype=float)
+    k = len(v)
+    if k < 4:
+        raise ValueError(f"a convex polygon with inner angles >= 90 degrees has >= 4 vertices, got {k}")
     total = v.sum()
     if total > 4.0:
         t = 4.0 * v / total
@@ -153,11 +166,26 @@ def random_convex_polygon(
     k = int(rng.integers(4, 13)) if n_vertices is None else int(n_vertices)
     turns = right_angle_turns(rng, k, min_turn)
     start = rng.uniform(0.0, 2.0 * math.pi)
-    directions = start + 0.5 * math.pi * np.concatenate([[0.0], np.cumsum(turns[:-1])])
     log_lengths = rng.uniform(0.0, math.log(length_spread), k)
     axis = rng.uniform(0.0, math.pi)
-    stretch = np.log1p((elongation - 1.0) * np.abs(np.cos(directions - axis)) ** 4)
     shift = rng.uniform(-100.0, 100.0, 2) * min_edge
+    vertices = convex_polygon(
+        turns, log_lengths, start=start, axis=axis, elongation=elongation, area=area, min_edge=min_edge, max_area=max_area
+    )
+    return vertices + shift
+
+
+def convex_polygon(turns, log_lengths, *, start=0.0, axis=0.0, elongation=1.0, area=None, min_edge=1.0, max_area=None):
+    """Steps 2-3 of the module docstring: the convex polygon with exterior ``turns`` and raw edge lengths.
+
+    ``turns`` (from :func:`turns_from_fractions`) are fractions of 90 degrees;
+    the first edge points in direction ``start`` (radians).  Raw edge lengths
+    are ``exp(log_lengths)``, those of edges nearly parallel to ``axis`` about
+    ``elongation`` times longer.  ``area``, ``min_edge`` and ``max_area`` are
+    as in :func:`random_convex_polygon`.  The first vertex is at the origin.
+    """
+    directions = start + 0.5 * math.pi * np.concatenate([[0.0], np.cumsum(turns[:-1])])
+    stretch = np.log1p((elongation - 1.0) * np.abs(np.cos(directions - axis)) ** 4)
     if max_area is not None:
         area = None if area is None else min(area, max_area)
     for power in [0.5**i for i in range(30)] + [0.0]:
@@ -166,7 +194,7 @@ def random_convex_polygon(
         vertices = fit_scale(vertices, area, min_edge)
         if max_area is None or signed_area(vertices) <= max_area:
             break
-    return vertices + shift
+    return vertices
 
 
 def fit_scale(vertices, area, min_edge):
@@ -182,6 +210,7 @@ def fit_scale(vertices, area, min_edge):
 
 __all__ = [
     "close_polygon",
+    "convex_polygon",
     "fit_scale",
     "polygon_from_edges",
     "random_convex_polygon",
@@ -189,4 +218,5 @@ __all__ = [
     "regular_polygon",
     "right_angle_turns",
     "rotate",
+    "turns_from_fractions",
 ]
