@@ -15,7 +15,9 @@ smaller, simpler polygon.  They aim at the places where Lemma 3 (1) is hard to
 check: narrow necks beside reflex corners, sharp tips, boundary points that
 rounding puts a hair outside the polygon.  The number of examples follows the
 hypothesis profile (``tests/conftest.py``): a few dozen per family in
-``make test``, thousands in the thorough profile.
+``make test``, thousands in the thorough profile.  Placement (rotation,
+translation, start vertex, scale by l) is the suite's one convention,
+:func:`strategies.placed`.
 """
 
 import math
@@ -23,6 +25,7 @@ import os
 
 import numpy as np
 import pytest
+from conftest import exercised
 from hypothesis import event, given, settings
 from hypothesis import strategies as st
 
@@ -31,15 +34,12 @@ from equimesh import EquimeshError
 
 import invariants as inv1
 import invariants_uniform as inv2
+from strategies import placed
 
 #: Examples per family: quick in CI, thousands in the thorough profile.
 EXAMPLES = {"thorough": 2000}.get(os.environ.get("EQUIMESH_HYPOTHESIS_PROFILE", "ci"), 30)
 
 fuzz = settings(max_examples=EXAMPLES)
-
-#: Target lengths: l = 1 (the issue's setting) or a continuous range, incl. non-dyadic values.
-lengths = st.one_of(st.just(1.0), st.floats(0.3, 3.0))
-
 
 @st.composite
 def stars(draw):
@@ -83,16 +83,6 @@ def spikes(draw):
     return np.array([[0.0, 0.0], [x, -r * math.sin(tip / 2)], [x + w, -h], [x + w, h], [x, r * math.sin(tip / 2)]])
 
 
-@st.composite
-def placed(draw, shapes):
-    """A shape scaled by l, rotated and moved up to 1e4 away from the origin (the precision of Theorem 3 is relative)."""
-    v, l = draw(shapes), draw(lengths)
-    angle = draw(st.floats(0.0, 2.0 * math.pi))
-    shift = np.array([draw(st.floats(-1e4, 1e4)), draw(st.floats(-1e4, 1e4))])
-    c, s = math.cos(angle), math.sin(angle)
-    return (v @ np.array([[c, s], [-s, c]])) * l + shift, l
-
-
 def _mesh_or_refusal(function, vertices, l):
     """Run ``function``; an error of ours is a fine answer (returns None), anything else propagates."""
     try:
@@ -113,8 +103,7 @@ def test_problem2_accepts_only_what_it_can_mesh(family):
     def check(problem):
         vertices, l = problem
         mesh = _mesh_or_refusal(equimesh.uniform_triangulation, vertices, l)
-        if mesh is not None:
-            event("accepted")
+        if exercised("fuzz: Problem 2 accepted a hostile polygon", mesh is not None):
             inv2.assert_problem2_invariants(mesh, vertices, l)
 
     check()
@@ -136,8 +125,7 @@ def test_problem1_accepts_only_what_it_can_mesh(problem):
     """Problem 1 on convex polygons that may break its preconditions: a valid mesh or a clean refusal."""
     vertices, l = problem
     mesh = _mesh_or_refusal(equimesh.increment, vertices, l)
-    if mesh is not None:
-        event("accepted")
+    if exercised("fuzz: Problem 1 accepted a convex hull", mesh is not None):
         inv1.assert_problem1_invariants(mesh, vertices, l)
 
 
