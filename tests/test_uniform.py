@@ -9,7 +9,7 @@ import math
 
 import numpy as np
 import pytest
-from hypothesis import given
+from hypothesis import assume, given
 from hypothesis import strategies as st
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
@@ -160,7 +160,7 @@ SCALES = (1, 2, 4, 8)
 
 @pytest.mark.parametrize("name", sorted(SCALED_SHAPES))
 def test_non_g1_edges_grow_linearly_with_perimeter(name):
-    """Non-G1 edges are O(perimeter / l), so the G1 share tends to 1 (issue 3, property 4).
+    """Non-G1 edges are O(perimeter / l), so the G1 share tends to 1 (property 4 above).
 
     Scaling a fixed polygon by 1, 2, 4, 8 with l fixed:
     (a) non-G1 <= the proven bound of the counting argument above
@@ -275,7 +275,7 @@ def test_rotated_plus_with_collinear_edges_is_simple():
     equimesh.uniform_triangulation(vertices, 1.0)
 
 
-# --------------------------------------------------------------------------- 6: the issue's acceptance check
+# --------------------------------------------------------------------------- 6: acceptance check (docs/decisions.md, item 9)
 
 
 def _convex_12gon_area(area):
@@ -298,7 +298,7 @@ def _g1_share(mesh):
 @pytest.mark.parametrize("placement", ["default", "best"])
 @pytest.mark.parametrize("name", sorted(ACCEPTANCE))
 def test_acceptance_g1_share(name, placement, record_property):
-    """Issue 3: on a convex polygon of area ~400 l^2 and perimeter < 85 l the G1 share is at least 75%."""
+    """Acceptance: on a convex polygon of area ~400 l^2 and perimeter < 85 l the G1 share is at least 75%."""
     vertices = ACCEPTANCE[name]
     assert 380.0 <= equimesh.planar.polygon.as_polygon(vertices).area <= 420.0 and perimeter(vertices) < 85.0
     kwargs = {}
@@ -313,10 +313,9 @@ def test_acceptance_g1_share(name, placement, record_property):
 
 @given(st.integers(0, 2**32 - 1), st.integers(6, 12), st.sampled_from(["default", "best"]))
 def test_acceptance_g1_share_random_convex(seed, k, placement):
-    """Issue 3 on random convex polygons of area 400 l^2 (perimeter < 85 l by construction): G1 share >= 75%."""
+    """The acceptance check on random convex polygons of area 400 l^2 (perimeter < 85 l): G1 share >= 75%."""
     vertices = random_convex_polygon(np.random.default_rng(seed), n_vertices=k, area=400.0, min_turn=0.6)
-    if perimeter(vertices) >= 85.0:  # never seen with min_turn = 0.6; kept as the issue's precondition
-        return
+    assume(perimeter(vertices) < 85.0)  # the acceptance check's precondition; never false with min_turn = 0.6
     kwargs = {}
     if placement == "best":
         p = equimesh.best_lattice_placement(vertices, 1.0)
@@ -460,22 +459,28 @@ def test_checks_catch_a_missing_triangle(square_mesh):
 def test_checks_catch_a_flipped_edge(square_mesh):
     """Flipping a non-lattice interior edge of a convex quadrilateral breaks the empty-circle property."""
     vertices, mesh = square_mesh
+    flip = next(_convex_flips(mesh), None)
+    assert flip is not None, "no flippable strip edge found"
+    a, b, new = flip
+    flipped = _with(mesh, triangles=np.vstack([np.delete(mesh.triangles, [a, b], axis=0), new]))
+    with pytest.raises(AssertionError):
+        inv.check_constrained_delaunay(flipped, vertices, 1.0)
+
+
+def _convex_flips(mesh):
+    """Yield pairs of strip triangles ``(a, b, flipped)`` sharing an edge of a convex quadrilateral, and their flip."""
     tri = mesh.triangles
-    lattice = inv.lattice_mask(mesh)
-    for a in np.flatnonzero(~lattice):
-        for b in np.flatnonzero(~lattice):
+    strip = np.flatnonzero(~inv.lattice_mask(mesh))
+    for a in strip:
+        for b in strip[strip > a]:
             shared = np.intersect1d(tri[a], tri[b])
-            if a >= b or len(shared) != 2:
+            if len(shared) != 2:
                 continue
             p, q = np.setdiff1d(tri[a], shared)[0], np.setdiff1d(tri[b], shared)[0]
             new = np.array([[p, q, shared[0]], [q, p, shared[1]]])
             o = orient(*(mesh.points[new[:, i]] for i in range(3)))
             if np.all(o > 1e-6) or np.all(o < -1e-6):  # convex quadrilateral: the flip is a triangulation
-                flipped = _with(mesh, triangles=np.vstack([np.delete(tri, [a, b], axis=0), new]))
-                with pytest.raises(AssertionError):
-                    inv.check_constrained_delaunay(flipped, vertices, 1.0)
-                return
-    pytest.fail("no flippable strip edge found")
+                yield a, b, new
 
 
 def test_checks_catch_a_missing_point(square_mesh):

@@ -5,6 +5,8 @@ arrays.  They are floating-point predicates: callers that need robustness near
 degeneracy keep a margin of :data:`equimesh.tolerance.REL_TOL` times ``l``.
 """
 
+import math
+from dataclasses import dataclass
 from fractions import Fraction
 
 import numpy as np
@@ -34,7 +36,8 @@ def orient_sign(a, b, c):
     floats.  Used where a wrong sign would be a wrong answer (collinear
     polygon edges, lattice points exactly on a line).
     """
-    a, b, c = np.broadcast_arrays(*(np.asarray(x, dtype=float) for x in (a, b, c)))
+    shape = np.broadcast_shapes(*(np.shape(x)[:-1] for x in (a, b, c)))
+    a, b, c = np.broadcast_arrays(*(np.atleast_2d(np.asarray(x, dtype=float)) for x in (a, b, c)))
     left = (a[..., 0] - c[..., 0]) * (b[..., 1] - c[..., 1])
     right = (a[..., 1] - c[..., 1]) * (b[..., 0] - c[..., 0])
     det = left - right
@@ -44,7 +47,7 @@ def orient_sign(a, b, c):
         (ax, ay), (bx, by), (cx, cy) = (map(Fraction, p[idx]) for p in (a, b, c))
         exact = (ax - cx) * (by - cy) - (ay - cy) * (bx - cx)
         sign[idx] = (exact > 0) - (exact < 0)
-    return sign
+    return sign.reshape(shape)
 
 
 def signed_area(ring):
@@ -105,3 +108,31 @@ def circumcenters(a, b, c):
         uy = (bb[..., 0] * c2 - cc[..., 0] * b2) / d
     u = np.stack([ux, uy], axis=-1)
     return a + u, np.hypot(ux, uy)
+
+
+def power_of_two_scale(length):
+    """The power of two ``s`` with ``length * s`` in ``[1, 2)`` (``length`` positive, finite, normal)."""
+    _, exponent = math.frexp(length)
+    return math.ldexp(1.0, 1 - exponent)
+
+
+@dataclass(frozen=True)
+class Frame:
+    """Local coordinates ``local = (caller - origin) * scale``, ``scale`` a power of two.
+
+    Validation, lattice, insertion and triangulation run in the local frame,
+    where the target length is in ``[1, 2)`` and coordinates are moderate:
+    every comparison with ``l`` is then free of the caller's offset.  Scaling
+    by a power of two is exact, so local lengths divided by ``scale`` are the
+    caller's lengths exactly; mapping points back costs one rounding of about
+    ``ulp(|origin|)``.
+    """
+
+    origin: np.ndarray
+    scale: float
+
+    def to_local(self, x):
+        return (np.asarray(x, dtype=float) - self.origin) * self.scale
+
+    def to_caller(self, x):
+        return np.asarray(x, dtype=float) / self.scale + self.origin

@@ -4,7 +4,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ._geometry import orient
+from ._geometry import Frame, orient
 
 #: Edge group labels.  ``G1`` is the paper's "group of edges that have the same
 #: length on the plane": lattice edges of length exactly l (Problem 2).
@@ -67,12 +67,19 @@ class PlanarMesh:
 
     Attributes
     ----------
-    points : (N, 2) float array.
+    points : (N, 2) float array, in the caller's coordinates.
     triangles : (M, 3) int array, each counter-clockwise.
     edges : (E, 2) int array, unique, each row sorted, rows sorted.
     edge_groups : (E,) int8 array, :data:`G1` or :data:`OTHER` per edge.
     length : the target length l the mesh was built for.
     n_boundary : number of leading points that lie on the polygon boundary.
+    frame : the :class:`~equimesh._geometry.Frame` the mesh was built in, or None.
+    local_points : (N, 2) float array, the points in ``frame`` (None without a frame).
+
+    Precision: the guarantees (Theorems 1 and 3) hold exactly, to REL_TOL, for
+    the local points; :meth:`edge_lengths` and :meth:`triangle_areas` are
+    computed from them (divided by the power-of-two scale, which is exact).
+    ``points`` carry one more rounding of about ``ulp(|frame.origin|)``.
     """
 
     points: np.ndarray
@@ -82,33 +89,59 @@ class PlanarMesh:
     length: float
     n_boundary: int
     info: dict = field(default_factory=dict, compare=False)
+    frame: Frame = field(default=None, compare=False)
+    local_points: np.ndarray = field(default=None, compare=False, repr=False)
 
     @classmethod
-    def build(cls, points, triangles, length, n_boundary, g1_edges=None, info=None):
-        """Assemble a mesh: orient triangles, extract edges, label ``g1_edges`` (pairs) as G1."""
-        points = np.asarray(points, dtype=float)
-        triangles = counter_clockwise(points, triangles)
+    def build(cls, points, triangles, length, n_boundary, g1_edges=None, info=None, frame=None, pinned=None):
+        """Assemble a mesh: orient triangles, extract edges, label ``g1_edges`` (pairs) as G1.
+
+        With a ``frame``, ``points`` are local coordinates in it; ``pinned``
+        (``(local_rows, caller_rows)``, e.g. the polygon's vertices) gives the
+        exact caller coordinates of the points equal to ``local_rows``, which
+        mapping back would round.
+        """
+        local = np.asarray(points, dtype=float)
+        triangles = counter_clockwise(local, triangles)
         edges = unique_edges(triangles)
         groups = np.full(len(edges), OTHER, dtype=np.int8)
         if g1_edges is not None and len(g1_edges):
             g1 = np.sort(np.asarray(g1_edges, dtype=np.int64), axis=1)
             groups[_rows_in(edges, g1)] = G1
-        return cls(points, triangles, edges, groups, float(length), int(n_boundary), info or {})
+        caller = local if frame is None else frame.to_caller(local)
+        if pinned is not None:
+            where = {row.tobytes(): k for k, row in enumerate(np.asarray(pinned[0], dtype=float))}
+            for i, row in enumerate(local):
+                k = where.get(row.tobytes())
+                if k is not None:
+                    caller[i] = pinned[1][k]
+        return cls(
+            caller, triangles, edges, groups, float(length), int(n_boundary), info or {},
+            frame, None if frame is None else local,
+        )
 
     @property
     def n_nodes(self):
         return len(self.points)
 
+    @property
+    def _local(self):
+        """``(points, scale)``: the points the guarantees hold for, and the scale from caller lengths to them."""
+        if self.frame is None:
+            return self.points, 1.0
+        return self.local_points, self.frame.scale
+
     def edge_lengths(self):
-        return edge_lengths(self.points, self.edges)
+        points, scale = self._local
+        return edge_lengths(points, self.edges) / scale
 
     @property
     def g1_mask(self):
         return self.edge_groups == G1
 
     def triangle_areas(self):
-        p, t = self.points, self.triangles
-        return 0.5 * orient(p[t[:, 0]], p[t[:, 1]], p[t[:, 2]])
+        (p, scale), t = self._local, self.triangles
+        return 0.5 * orient(p[t[:, 0]], p[t[:, 1]], p[t[:, 2]]) / scale**2
 
 
 def _rows_in(rows, table):

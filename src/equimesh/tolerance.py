@@ -36,3 +36,17 @@ def at_least(value, l):
 def at_most(value, l):
     """``value <= l`` up to :data:`REL_TOL` (vectorised)."""
     return value <= (1.0 + REL_TOL) * l
+
+#: Beyond the paper (docs/decisions.md, "Hardening of the planar core"): the
+#: supported range of the target length l.  ``l^2`` (areas, node estimates)
+#: stays a normal float inside it; outside it, :class:`~equimesh.errors.InvalidLengthError`.
+#: Test: ``tests/test_hardening_planar.py::test_lengths_outside_the_range_are_refused``.
+MIN_LENGTH = 1e-150
+MAX_LENGTH = 1e150
+
+#: Beyond the paper: the largest extent of a polygon (width or height of its
+#: bounding box), in units of l.  In the local frame (l in [1, 2)) coordinates
+#: then stay below 2^17, whose rounding unit 2^-35 = 2.9e-11 is 30 times below
+#: ``REL_TOL``, so the edge bounds [(1 - REL_TOL) l, 2 l] survive rounding.
+#: Test: ``tests/test_hardening_planar.py::test_polygon_wider_than_the_precision_range_is_refused``.
+MAX_EXTENT = 2.0**16

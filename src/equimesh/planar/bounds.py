@@ -9,6 +9,7 @@ Algorithm INCREMENT is one).
 import math
 
 from .increment import validate_problem1
+from .limits import node_estimate
 
 
 def node_lower_bound(vertices, l):
@@ -28,10 +29,14 @@ def node_lower_bound(vertices, l):
 
     Hence ``2n - h - 2 >= ceil(A / (sqrt(3) l^2))`` and, as ``n`` grows with
     ``h``, ``n >= ceil((ceil(A / (sqrt(3) l^2)) + h_min + 2) / 2)``.
+
+    Computed in the polygon's local frame (l in [1, 2)), so that neither a
+    tiny l nor large coordinates overflow.
     """
     poly, l = validate_problem1(vertices, l)
-    triangles = math.ceil(poly.area / (math.sqrt(3.0) * l * l) - 1e-12)
-    h_min = max(len(poly.vertices), math.ceil(poly.perimeter / (2.0 * l) - 1e-12))
+    lp = poly.local_length(l)
+    triangles = math.ceil(poly.local_area / (math.sqrt(3.0) * lp * lp) - 1e-12)
+    h_min = max(len(poly.vertices), math.ceil(poly.local_perimeter / (2.0 * lp) - 1e-12))
     return math.ceil((triangles + h_min + 2) / 2)
 
 
@@ -44,4 +49,4 @@ def packing_upper_bound(vertices, l):
     a convex set of area A are pairwise at least l apart.
     """
     poly, l = validate_problem1(vertices, l)
-    return math.floor(2.0 / math.sqrt(3.0) * poly.area / (l * l) + poly.perimeter / (2.0 * l) + 1.0)
+    return math.floor(node_estimate(poly.local_area, poly.local_perimeter, poly.local_length(l)))

@@ -15,8 +15,10 @@ Theorem 2: the node count is at most 16/3 of the optimum (checked against
 
 import numpy as np
 
-from .insertion import Region, insert
 from ..mesh import PlanarMesh, boundary_first
+from .guarantees import verify_planar
+from .insertion import Region, insert
+from .limits import MAX_NODES, check_max_nodes, check_size, node_estimate
 from .polygon import (
     as_polygon,
     check_boundary_separation,
@@ -31,16 +33,17 @@ def validate_problem1(vertices, l):
     """Validate the input of Problem 1 and return ``(polygon, l)``.
 
     The polygon must be simple, convex, with every inner angle at least 90
-    degrees and every edge at least ``l`` long; ``l`` positive and finite.
+    degrees and every edge at least ``l`` long; ``l`` positive, finite and in
+    the supported range.  The polygon's local frame scales ``l`` into [1, 2).
     """
     l = check_length(l)
-    poly = as_polygon(vertices)
+    poly = as_polygon(vertices, l)
     check_convex_right_angles(poly)
     check_edges_at_least(poly, l)
     return poly, l
 
 
-def increment(vertices, l, *, engine="reference"):
+def increment(vertices, l, *, engine="reference", max_nodes=MAX_NODES):
     """Triangulate a convex polygon with every edge in [l, 2l] (Algorithm INCREMENT).
 
     Parameters
@@ -52,24 +55,35 @@ def increment(vertices, l, *, engine="reference"):
         The minimum edge length.
     engine : str
         Name of the insertion engine (see :data:`equimesh.planar.insertion.ENGINES`).
+    max_nodes : int or None
+        Refuse, before any heavy work, a polygon whose estimated node count
+        (Oler's bound) exceeds this (:data:`equimesh.planar.limits.MAX_NODES`);
+        None for no limit.
 
     Returns
     -------
     PlanarMesh
         Points (boundary points first, counter-clockwise from the polygon's
         first vertex, then inserted points in insertion order), the Delaunay
-        triangulation and its edges.
+        triangulation and its edges.  Theorem 1 is checked on it before it is
+        returned (:func:`equimesh.planar.guarantees.verify_planar`).
     """
+    max_nodes = check_max_nodes(max_nodes)
     poly, l = validate_problem1(vertices, l)
+    lp = poly.local_length(l)
+    check_size("the polygon", node_estimate(poly.local_area, poly.local_perimeter, lp), max_nodes, l)
     boundary = resample_boundary(poly, l)
     check_boundary_separation(poly, boundary, l)
     region = Region(boundary.points, boundary.segments, np.empty((0, 2)))
-    result = insert(region, l, engine=engine)
+    result = insert(region, lp, engine=engine)
     order, inverse, n_ring = boundary_first(result.segments, len(result.points))
-    return PlanarMesh.build(
+    mesh = PlanarMesh.build(
         result.points[order],
         inverse[result.triangles],
         l,
         n_ring,
         info={"n_inserted": len(result.points) - result.n_initial},
+        frame=poly.frame,
+        pinned=(poly.local, poly.vertices),
     )
+    return verify_planar(mesh)

@@ -70,8 +70,13 @@ class LatticePart:
 
 
 def lattice_basis(l, angle):
-    """The two lattice vectors of length ``l`` at ``angle`` and ``angle + 60`` degrees."""
-    t = np.radians(angle)
+    """The two lattice vectors of length ``l`` at ``angle`` and ``angle + 60`` degrees.
+
+    The lattice is invariant under rotation by 60 degrees, so ``angle`` is
+    reduced modulo 60 first (exactly: ``fmod`` is exact): a huge angle such as
+    1e20 gives the same lattice as its remainder, at full precision.
+    """
+    t = np.radians(float(angle) % 60.0)
     return l * np.array([[np.cos(t), np.sin(t)], [np.cos(t + np.pi / 3), np.sin(t + np.pi / 3)]])
 
 
@@ -80,26 +85,48 @@ def lattice_points(ij, l, angle, offset):
     return np.asarray(offset, dtype=float) + np.asarray(ij, dtype=float) @ lattice_basis(l, angle)
 
 
-def kept_vertices(poly, l, angle=0.0, offset=(0.0, 0.0), clearance=1.0):
-    """Lattice vertices over the bounding box of P and which of them are kept.
+def local_offset(poly, l, angle, offset):
+    """The caller's ``offset`` (position of lattice vertex (0, 0)) in the polygon's local frame.
 
-    Returns ``(ii, jj, points, kept)``: index grids, coordinates ``(ni * nj, 2)``
-    and a boolean grid, True for vertices inside P at distance at least
-    ``clearance * l`` from its boundary.
+    Kept as is (exact for a moderate offset, so lattice vertices the caller
+    placed on exact coordinates stay there) while it lies within twice the
+    polygon's local extent plus one l of the local origin.  Farther away (an
+    offset of 0 for a polygon near 1e9) it is moved by a whole number of
+    lattice vectors next to the origin: the same lattice, whose vertices near
+    the polygon are then computed from small numbers, so G1 edges stay l to
+    rounding.
     """
-    basis = lattice_basis(l, angle)
+    lp = poly.local_length(l)
+    local = poly.frame.to_local(offset)
+    if np.max(np.abs(local)) <= 2.0 * float(np.max(poly.local)) + lp:
+        return local
+    basis = lattice_basis(lp, angle)
+    return local - np.round(local @ np.linalg.inv(basis)) @ basis
+
+
+def kept_vertices(poly, l, angle=0.0, offset=(0.0, 0.0), clearance=1.0):
+    """Lattice vertices over the bounding box of P and which of them are kept, in P's local frame.
+
+    ``l`` and ``offset`` are in the caller's units.  Returns
+    ``(ii, jj, points, kept)``: index grids, local coordinates
+    ``(ni * nj, 2)`` and a boolean grid, True for vertices inside P at
+    distance at least ``clearance * l`` from its boundary.
+    """
+    lp = poly.local_length(l)
+    offset = local_offset(poly, l, angle, offset)
+    basis = lattice_basis(lp, angle)
     inv = np.linalg.inv(basis)
-    lo, hi = poly.vertices.min(axis=0), poly.vertices.max(axis=0)
+    lo, hi = poly.local.min(axis=0), poly.local.max(axis=0)
     corners = np.array([[lo[0], lo[1]], [hi[0], lo[1]], [lo[0], hi[1]], [hi[0], hi[1]]])
-    coords = (corners - np.asarray(offset, dtype=float)) @ inv
+    coords = (corners - offset) @ inv
     i0, j0 = np.floor(coords.min(axis=0)).astype(int) - 1
     i1, j1 = np.ceil(coords.max(axis=0)).astype(int) + 1
     ii, jj = np.meshgrid(np.arange(i0, i1 + 1), np.arange(j0, j1 + 1), indexing="ij")
-    pts = lattice_points(np.column_stack([ii.ravel(), jj.ravel()]), l, angle, offset)
+    pts = lattice_points(np.column_stack([ii.ravel(), jj.ravel()]), lp, angle, offset)
     shape = poly.shapely()
     inside = shapely.contains_xy(shape, pts[:, 0], pts[:, 1])
     far = np.zeros(len(pts), dtype=bool)
-    far[inside] = at_least(shapely.distance(shapely.points(pts[inside]), shape.exterior), clearance * l)
+    far[inside] = at_least(shapely.distance(shapely.points(pts[inside]), shape.exterior), clearance * lp)
     return ii, jj, pts, far.reshape(ii.shape)
 
 
@@ -115,10 +142,10 @@ def lattice_triangle_masks(kept):
 
 
 def lattice_part(poly, l, angle=0.0, offset=(0.0, 0.0), clearance=1.0):
-    """Build the lattice part K of a validated polygon (the paper's H').
+    """Build the lattice part K of a validated polygon (the paper's H'), in its local frame.
 
-    ``offset`` is the position of the lattice vertex (0, 0); ``angle`` (degrees)
-    the direction of the first lattice vector.
+    ``offset`` is the position of the lattice vertex (0, 0) in the caller's
+    coordinates; ``angle`` (degrees) the direction of the first lattice vector.
     """
     ii, jj, pts, kept = kept_vertices(poly, l, angle, offset, clearance)
     up_kept, down_kept = lattice_triangle_masks(kept)

@@ -25,7 +25,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from .lattice import kept_vertices, lattice_basis, lattice_triangle_masks
+from .limits import MAX_NODES, check_count, check_max_nodes, check_size
 from .polygon import as_polygon, check_length
+from .strip import check_clearance, strip_estimate
 
 
 @dataclass(frozen=True)
@@ -67,7 +69,7 @@ def lattice_edge_count(poly, l, angle, offset, clearance=1.0):
     return int(np.count_nonzero(up | pad_j) + np.count_nonzero(up | pad_i) + np.count_nonzero(up | down))
 
 
-def best_lattice_placement(vertices, l, *, clearance=1.0, n_angles=12, n_offsets=4, refine=2):
+def best_lattice_placement(vertices, l, *, clearance=1.0, n_angles=12, n_offsets=4, refine=2, max_nodes=MAX_NODES):
     """Search the lattice angle and offset that maximise the number of G1 lattice edges.
 
     Parameters
@@ -79,7 +81,10 @@ def best_lattice_placement(vertices, l, *, clearance=1.0, n_angles=12, n_offsets
     clearance : float
         As in :func:`equimesh.uniform_triangulation`.
     n_angles, n_offsets, refine : int
-        Coarse grid size and number of refinement rounds.
+        Coarse grid size (positive) and number of refinement rounds (>= 0).
+    max_nodes : int or None
+        The size guard of :func:`equimesh.uniform_triangulation` (the lattice
+        grid each evaluation builds is bounded through it); None for no limit.
 
     Returns
     -------
@@ -87,7 +92,13 @@ def best_lattice_placement(vertices, l, *, clearance=1.0, n_angles=12, n_offsets
         Pass ``angle`` and ``offset`` to :func:`equimesh.uniform_triangulation`.
     """
     l = check_length(l)
-    poly = as_polygon(vertices)
+    clearance = check_clearance(clearance)
+    n_angles = check_count(n_angles, "n_angles", 1)
+    n_offsets = check_count(n_offsets, "n_offsets", 1)
+    refine = check_count(refine, "refine", 0)
+    max_nodes = check_max_nodes(max_nodes)
+    poly = as_polygon(vertices, l)
+    check_size("the boundary strip", strip_estimate(poly, l, clearance), max_nodes, l)
     evaluations = 0
 
     def score(angle, frac):
@@ -119,3 +130,4 @@ def best_lattice_placement(vertices, l, *, clearance=1.0, n_angles=12, n_offsets
     s, angle, frac = best
     offset = tuple(float(x) for x in np.asarray(frac) @ lattice_basis(l, angle))
     return Placement(angle, offset, s, default, evaluations)
+

@@ -26,11 +26,21 @@ are at most ``|e| <= 2l`` (Lemma 5, the counterpart of Lemma 2).
 
 import numpy as np
 
+from ..errors import EquimeshError
+from ..mesh import PlanarMesh, boundary_first, unique_edges
+from .guarantees import verify_planar
 from .insertion import Region, insert
 from .lattice import lattice_adjacent, lattice_part
-from ..mesh import PlanarMesh, boundary_first, unique_edges
-from .polygon import as_polygon, check_boundary_separation, check_edges_at_least, check_length, resample_boundary
-from ..errors import EquimeshError
+from .limits import MAX_NODES, check_max_nodes, check_size, node_estimate
+from .polygon import (
+    as_polygon,
+    check_boundary_separation,
+    check_edges_at_least,
+    check_length,
+    real_array,
+    real_number,
+    resample_boundary,
+)
 
 #: Default Step 2 spacing for Problem 2, in units of l.  Below 2 so that no
 #: boundary part is 2l long: a part of exactly 2l leaves its midpoint at
@@ -44,7 +54,15 @@ BOUNDARY_SPACING = 1.5
 
 
 def uniform_triangulation(
-    vertices, l, *, angle=0.0, offset=(0.0, 0.0), clearance=1.0, boundary_spacing=BOUNDARY_SPACING, engine="reference"
+    vertices,
+    l,
+    *,
+    angle=0.0,
+    offset=(0.0, 0.0),
+    clearance=1.0,
+    boundary_spacing=BOUNDARY_SPACING,
+    engine="reference",
+    max_nodes=MAX_NODES,
 ):
     """Triangulate a simple polygon with most edges exactly ``l`` and all in [l, 2l] (Problem 2).
 
@@ -57,7 +75,8 @@ def uniform_triangulation(
     l : float
         Lattice spacing and minimum edge length.
     angle : float
-        Direction of the first lattice vector, in degrees.
+        Direction of the first lattice vector, in degrees (taken modulo 60,
+        the lattice's symmetry).
     offset : (2,) array_like
         Position of the lattice vertex (0, 0).
     clearance : float
@@ -68,21 +87,29 @@ def uniform_triangulation(
         split into (Step 2); kept within [l, 2l].
     engine : str
         Insertion engine for the boundary strip.
+    max_nodes : int or None
+        Refuse, before any heavy work, a polygon whose boundary strip is
+        estimated to need more nodes than this
+        (:data:`equimesh.planar.limits.MAX_NODES`); None for no limit.
 
     Returns
     -------
     PlanarMesh
         Points: the boundary of P (counter-clockwise from vertex 0, with any
         point inserted on it), then the rest; ``edge_groups`` marks the
-        lattice edges (length exactly l) as G1.
+        lattice edges (length exactly l) as G1.  Theorem 3 is checked on it
+        before it is returned (:func:`equimesh.planar.guarantees.verify_planar`).
     """
     l = check_length(l)
-    clearance = _check_clearance(clearance)
+    clearance = check_clearance(clearance)
     offset = _check_pair(offset, "offset")
     angle = _check_scalar(angle, "angle")
-    poly = as_polygon(vertices)
+    spacing = _check_spacing(boundary_spacing)
+    max_nodes = check_max_nodes(max_nodes)
+    poly = as_polygon(vertices, l)
     check_edges_at_least(poly, l)
-    boundary = resample_boundary(poly, l, _check_spacing(boundary_spacing))
+    check_size("the boundary strip", strip_estimate(poly, l, clearance), max_nodes, l)
+    boundary = resample_boundary(poly, l, spacing)
     check_boundary_separation(poly, boundary, l)
     lat = lattice_part(poly, l, angle, offset, clearance)
 
@@ -95,7 +122,7 @@ def uniform_triangulation(
         np.vstack([boundary.segments, lat_index[lat.boundary_edges]]).astype(np.int64),
         lat.holes,
     )
-    strip = insert(region, l, engine=engine)
+    strip = insert(region, poly.local_length(l), engine=engine)
 
     interior = np.flatnonzero(lat_index < 0)
     lat_index[interior] = len(strip.points) + np.arange(len(interior))
@@ -110,7 +137,7 @@ def uniform_triangulation(
     mesh_edges = unique_edges(triangles)
     both = is_lattice[mesh_edges[:, 0]] & is_lattice[mesh_edges[:, 1]]
     g1 = mesh_edges[both][lattice_adjacent(ij[mesh_edges[both, 0]], ij[mesh_edges[both, 1]])]
-    return PlanarMesh.build(
+    mesh = PlanarMesh.build(
         points[order],
         inverse[triangles],
         l,
@@ -124,30 +151,41 @@ def uniform_triangulation(
             "offset": tuple(offset),
             "clearance": clearance,
         },
+        frame=poly.frame,
+        pinned=(poly.local, poly.vertices),
     )
+    return verify_planar(mesh)
+
+
+def strip_estimate(poly, l, clearance):
+    """Estimated node count of the boundary strip R (what the insertion engine pays for).
+
+    R lies within ``(clearance + 1) l`` of the boundary (:mod:`.lattice`), so
+    its area is at most ``min(A, (clearance + 1) l perimeter)``; Oler's bound
+    on that area, plus the lattice vertices on the boundary of K (about one
+    per l of perimeter).
+    """
+    lp, perimeter = poly.local_length(l), poly.local_perimeter
+    area = min(poly.local_area, (clearance + 1.0) * lp * perimeter)
+    return node_estimate(area, perimeter, lp) + perimeter / lp
 
 
 def _check_scalar(value, name):
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise EquimeshError(f"{name} must be a number, got {value!r}") from None
+    v = real_number(value, name, EquimeshError)
     if not np.isfinite(v):
         raise EquimeshError(f"{name} must be finite, got {v!r}")
     return v
 
 
 def _check_pair(value, name):
-    try:
-        v = np.asarray(value, dtype=float).reshape(-1)
-    except (TypeError, ValueError):
-        raise EquimeshError(f"{name} must be a pair of numbers, got {value!r}") from None
+    v = real_array(value, name, EquimeshError).reshape(-1)
     if v.shape != (2,) or not np.all(np.isfinite(v)):
         raise EquimeshError(f"{name} must be a pair of finite numbers, got {value!r}")
     return v
 
 
-def _check_clearance(value):
+def check_clearance(value):
+    """``clearance`` as a float, at least 1 (Lemma 3)."""
     c = _check_scalar(value, "clearance")
     if c < 1.0:
         raise EquimeshError(f"clearance must be at least 1 (Lemma 3 needs lattice vertices l from the boundary), got {c}")

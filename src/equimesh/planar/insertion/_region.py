@@ -1,9 +1,16 @@
 """Input and output of an insertion engine, and the constrained Delaunay triangulation."""
 
+import ctypes
+import os
+import sys
+import tempfile
+from contextlib import contextmanager
 from dataclasses import dataclass
 
 import numpy as np
 import triangle
+
+from ...errors import InternalError
 
 
 @dataclass(frozen=True)
@@ -52,9 +59,43 @@ def constrained_delaunay(points, segments, holes):
     data = {"vertices": np.asarray(points, dtype=float), "segments": np.asarray(segments, dtype=np.int32)}
     if len(holes):
         data["holes"] = np.asarray(holes, dtype=float)
-    out = triangle.triangulate(data, "pQ")
+    with _captured_stdout() as printed:
+        try:
+            out = triangle.triangulate(data, "pQ")
+        except RuntimeError:
+            out = None
+    if out is None:
+        said = printed().strip().splitlines()
+        raise InternalError(
+            "Triangle failed on a validated input" + (f" ({said[0]})" if said else "") + ": a bug in equimesh, please report it"
+        )
     if "triangles" not in out:
         return np.empty((0, 3), dtype=np.int64)
     if len(out["vertices"]) != len(points):
-        raise RuntimeError("constrained Delaunay triangulation added Steiner points: constraints intersect")
+        raise InternalError("constrained Delaunay triangulation added Steiner points (constraints intersect): a bug in equimesh")
     return np.asarray(out["triangles"], dtype=np.int64)
+
+
+_LIBC = ctypes.CDLL(None)
+
+
+@contextmanager
+def _captured_stdout():
+    """Redirect file descriptor 1 to a temporary file (Triangle prints its errors there, not to Python).
+
+    Yields a function returning what was printed.  The descriptor is restored
+    in ``finally``, so nothing Triangle prints reaches our standard output.
+    """
+    sys.stdout.flush()
+    saved = os.dup(1)
+    with tempfile.TemporaryFile(mode="w+b") as sink:
+        text = []
+        try:
+            os.dup2(sink.fileno(), 1)
+            yield lambda: "".join(text)
+        finally:
+            _LIBC.fflush(None)
+            os.dup2(saved, 1)
+            os.close(saved)
+            sink.seek(0)
+            text.append(sink.read().decode(errors="replace"))

@@ -1,0 +1,64 @@
+"""The structural guarantee: every planar mesh is checked before it is returned.
+
+Theorem 1 (Problem 1) and Theorem 3 (Problem 2) prove that every edge lies in
+``[l, 2l]``; with the tolerance of :mod:`equimesh.tolerance` the output
+satisfies ``(1 - REL_TOL) l <= |e| <= 2 (1 + REL_TOL) l``.  Step 5 and
+Section 3 output a triangulation of P.  :func:`verify_planar` checks both on
+the local points (O(n), vectorised) and raises
+:class:`~equimesh.errors.InternalError` instead of returning a mesh that
+breaks them: that would be a bug in equimesh, never a fault of the input.
+"""
+
+import numpy as np
+
+from .._geometry import orient, signed_area
+from ..errors import InternalError
+from ..mesh import edge_lengths
+from ..tolerance import REL_TOL, at_least, at_most
+
+_REPORT = "a bug in equimesh, please report it with the input"
+
+
+def verify_planar(mesh):
+    """Check Theorem 1/3 and the triangulation of ``mesh``; raise InternalError naming the first violation.
+
+    * every triangle index in range, every triangle counter-clockwise with
+      positive area;
+    * Euler's formula for a triangulated disc: ``2 n - h - 2`` triangles for
+      ``n`` points of which ``h`` on the boundary ring;
+    * the triangle areas sum to the area of the boundary ring (to REL_TOL);
+    * every edge in ``[(1 - REL_TOL) l, 2 (1 + REL_TOL) l]``.
+    """
+    points = mesh.points if mesh.local_points is None else mesh.local_points
+    scale = 1.0 if mesh.frame is None else mesh.frame.scale
+    l, lp = mesh.length, mesh.length * scale
+    n, h, t = len(points), mesh.n_boundary, mesh.triangles
+    if t.size and (t.min() < 0 or t.max() >= n):
+        k = int(np.flatnonzero(np.any((t < 0) | (t >= n), axis=1))[0])
+        raise InternalError(f"triangle {k} {tuple(map(int, t[k]))} refers to a point outside 0..{n - 1}: {_REPORT}")
+    area = 0.5 * orient(points[t[:, 0]], points[t[:, 1]], points[t[:, 2]])
+    flat = np.flatnonzero(~(area > 0))
+    if flat.size:
+        k = int(flat[0])
+        raise InternalError(
+            f"triangle {k} {tuple(map(int, t[k]))} is not counter-clockwise with positive area: {_REPORT}"
+        )
+    if len(t) != 2 * n - h - 2:
+        raise InternalError(
+            f"{len(t)} triangles on {n} points ({h} on the boundary), Euler's formula needs {2 * n - h - 2}: {_REPORT}"
+        )
+    ring = signed_area(points[:h])
+    if not abs(float(np.sum(area)) - ring) <= REL_TOL * ring:
+        raise InternalError(
+            f"triangle areas sum to {float(np.sum(area)) / scale**2!r}, the polygon's area is {ring / scale**2!r}: {_REPORT}"
+        )
+    lengths = edge_lengths(points, mesh.edges)
+    bad = np.flatnonzero(~(at_least(lengths, lp) & at_most(lengths, 2.0 * lp)))
+    if bad.size:
+        k = int(bad[0])
+        i, j = map(int, mesh.edges[k])
+        raise InternalError(
+            f"edge ({i}, {j}) has length {lengths[k] / scale!r}, outside [l, 2l] for l = {l!r} "
+            f"(Theorems 1 and 3): {_REPORT}"
+        )
+    return mesh
