@@ -26,7 +26,7 @@ import os
 import numpy as np
 import pytest
 from conftest import exercised
-from hypothesis import event, given, settings
+from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import equimesh
@@ -90,7 +90,6 @@ def _mesh_or_refusal(function, vertices, l):
     except EquimeshError as exc:
         message = str(exc)
         assert message and "\n" not in message, f"error message is not one line: {message!r}"
-        event(f"refused: {type(exc).__name__}")
         return None
 
 
