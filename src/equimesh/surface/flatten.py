@@ -39,9 +39,7 @@ its rim than a plane disk, and eq. (1) alone then wrinkles it.  Two guards:
   start; a failure from the default start raises
   :class:`~equimesh.errors.InvalidSurfaceError`.
 
-Speed.  LSMR does many small vector operations; a multi-threaded BLAS on a
-busy machine slows each of them by an order of magnitude, so run with
-``OPENBLAS_NUM_THREADS=1`` (or the like) for the timings quoted above.
+Speed: see docs/performance.md (BLAS threads) for the timings quoted above.
 """
 
 from dataclasses import dataclass

@@ -1,10 +1,14 @@
 """Section 4 end to end: a uniform triangle mesh of a parametric surface.
 
 1. auxiliary triangulation of the parameter square (:mod:`equimesh.surface.auxiliary`);
+   the surface is refused if it is not finite, singular or folds
+   (:mod:`equimesh.surface.regularity`), or if the mesh would be too large
+   (:data:`MAX_NODES`, :data:`MAX_OPTIMIZE_NODES`, :data:`MAX_GRID_CELLS`);
 2. flattening by eq. (1) (:mod:`equimesh.surface.flatten`);
 3. the flattened boundary as a polygon (:mod:`equimesh.surface.outline`) triangulated
    by Problem 2 (:func:`equimesh.uniform_triangulation`), with the lattice
-   placement chosen by :func:`equimesh.best_lattice_placement` by default;
+   placement chosen by :func:`equimesh.best_lattice_placement` by default; its
+   refusals are restated in the surface's terms (:mod:`equimesh.surface.restate`);
 4. remapping to (u, v) by eqs. (2)-(3) and to the surface (:mod:`equimesh.surface.remap`);
 5. optimisation of the (u, v) of the inner nodes (:mod:`equimesh.surface.optimize`).
 
@@ -34,16 +38,18 @@ from ..planar.strip import BOUNDARY_SPACING, uniform_triangulation
 #: Default limit on the node count of a surface mesh without the final
 #: optimisation (``optimize="none"``); :func:`mesh_surface` refuses, before any
 #: expensive work, a request estimated to exceed it.  The time goes into the
-#: lattice placement search (about n^1.6): on this project's 2-core machine
-#: the saddle took 20 s at 16,500 nodes and 70 s at 32,400 (docs/decisions.md).
-MAX_NODES = 40_000
+#: lattice placement search (about n^1.6): on this project's busy 2-core
+#: machine the saddle took 70 s at 32,400 nodes and 140 s at 39,900
+#: (docs/performance.md).
+MAX_NODES = 30_000
 
 #: Default node limit with the paper's optimisation (about n^2): the
-#: reference dome took 11 s at 1,000 nodes and 57 s at 2,300 (docs/decisions.md).
+#: reference dome took 57 s at 2,265 nodes and 105 s at 2,917 (docs/performance.md).
 MAX_OPTIMIZE_NODES = 3_000
 
 #: Limit on the auxiliary grid's cells n_u * n_v: flattening by eq. (1) took
-#: 9 s at 100 x 100 and 41 s (0.6 GB) at 200 x 200 (docs/decisions.md).
+#: 9 s at 100 x 100, 41 s (0.6 GB) at 200 x 200 and 251 s (1.3 GB) at
+#: 300 x 300 (docs/performance.md).
 MAX_GRID_CELLS = 40_000
 
 #: Lattice placements: "best" searches (beyond the paper), "default" is angle 0, offset (0, 0).
