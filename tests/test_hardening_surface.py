@@ -167,6 +167,19 @@ def test_size_is_checked_before_flattening():
     assert stages == []
 
 
+@pytest.mark.parametrize(
+    "kwargs, match",
+    [
+        ({"boundary_spacing": float("nan")}, "boundary_spacing must be finite"),
+        ({"boundary_spacing": "x"}, "boundary_spacing must be a number"),
+        ({"optimize": []}, "optimize must be"),
+        ({"grid": (np.float64(2.5), 3)}, r"n_u must be a positive integer, got 2\.5$"),
+    ],
+)
+def test_bad_keywords_are_refused_before_any_stage(kwargs, match):
+    refuse(equimesh.EquimeshError, plane_patch(), 3.0, match, **kwargs)
+
+
 @pytest.mark.parametrize("grid", [(1000, 1000), (pipeline.MAX_GRID_CELLS + 1, 1), (2**62, 2**62)])
 def test_grid_is_bounded(grid):
     refuse(equimesh.EquimeshError, plane_patch(), 3.0, f"more than the limit of {pipeline.MAX_GRID_CELLS}", grid=grid)

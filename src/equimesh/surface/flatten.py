@@ -53,6 +53,7 @@ from ._jacobian import AreaBarrier, ElementJacobian
 from .._geometry import orient
 from ..errors import InvalidSurfaceError
 from ..mesh import edge_lengths, unique_edges
+from ._places import at
 
 
 @dataclass(frozen=True)
@@ -140,8 +141,9 @@ def flatten(
     e = unique_edges(tri) if edges is None else np.asarray(edges, dtype=np.int64)
     ls = edge_lengths(x3, e)
     if not np.all(ls > 0):
-        j = int(np.flatnonzero(~(ls > 0))[0])
-        raise InvalidSurfaceError(f"auxiliary edge ({e[j, 0]}, {e[j, 1]}) has zero length on the surface")
+        a, b = e[int(np.flatnonzero(~(ls > 0))[0])]
+        where = f"at {at(uv[a])} and {at(uv[b])}" if uv is not None else f"of auxiliary nodes {a} and {b}"
+        raise InvalidSurfaceError(f"the surface points {where} coincide (a collapsed side or cell)")
     g0, g1 = int(e[0, 0]), int(e[0, 1])
     options = dict(ftol=ftol, xtol=xtol, gtol=gtol, max_nfev=max_nfev)
     floor = float(area_floor)

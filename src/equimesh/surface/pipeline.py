@@ -33,7 +33,7 @@ from ..planar.polygon import check_length
 from .regularity import check_regular, evaluate
 from .remap import remap
 from .restate import restate_polygon_error
-from ..planar.strip import BOUNDARY_SPACING, uniform_triangulation
+from ..planar.strip import BOUNDARY_SPACING, _check_spacing, uniform_triangulation
 
 #: Default limit on the node count of a surface mesh without the final
 #: optimisation (``optimize="none"``); :func:`mesh_surface` refuses, before any
@@ -170,10 +170,11 @@ def mesh_surface(
         The estimated node count exceeds ``max_nodes``.
     """
     l = check_length(l)
-    if optimize != "none" and optimize not in OBJECTIVES:
+    if not (isinstance(optimize, str) and (optimize == "none" or optimize in OBJECTIVES)):
         raise EquimeshError(f"optimize must be 'none' or one of {sorted(OBJECTIVES)}, got {optimize!r}")
     if placement not in PLACEMENTS:
         raise EquimeshError(f"placement must be one of {PLACEMENTS}, got {placement!r}")
+    boundary_spacing = _check_spacing(boundary_spacing)  # Problem 2's own check, needed by step 3 already
     limit = _node_limit(max_nodes, optimize)
     n_u, n_v = _grid_pair(grid)
     if not (hasattr(surface, "evaluate") and hasattr(surface, "derivatives")):
