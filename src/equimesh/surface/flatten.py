@@ -165,9 +165,10 @@ def flatten(
             return Flattening(points, energy, ls, lp, e, np.array([g0, g1]), nfev, start)
     if points is None:
         raise InvalidSurfaceError("flattening failed: the auxiliary triangulation is degenerate on the surface")
-    n_bad = int(np.sum(orient(*(points[tri[:, k]] for k in range(3))) <= 0))
+    bad = np.flatnonzero(orient(*(points[tri[:, k]] for k in range(3))) <= 0)
+    near = "" if uv is None else f", first near {at(np.asarray(uv, dtype=float)[tri[bad[0]]].mean(axis=0))}"
     raise InvalidSurfaceError(
-        f"flattening folds {n_bad} of {len(tri)} auxiliary triangles over; "
+        f"flattening folds {bad.size} of {len(tri)} auxiliary triangles over{near}; "
         "the surface is degenerate or too strongly curved for this grid"
     )
 
