@@ -141,3 +141,23 @@ def test_barycentric_clamps_rounding():
     a, b = barycentric(x, corners)
     np.testing.assert_allclose([a[0], b[0]], [0.25, 0.5])
     assert np.all(a >= 0) and np.all(b >= 0) and np.all(a + b <= 1.0)
+
+
+def test_mesh_surface_remaps_through_the_public_remap():
+    """One remapping path: mesh_surface's step 4 is equimesh.remap with the outline, bit for bit.
+
+    Boundary nodes on an outline vertex take its exact (u, v); every boundary node lies on a side of the square.
+    """
+    import equimesh
+
+    surface = dome()
+    mesh = equimesh.mesh_surface(surface, 6.0, grid=(8, 8), optimize="none")
+    st_ = mesh.stages
+    nb = st_.plane.n_boundary
+    r = remap(surface, st_.plane.points, st_.flattening.points, st_.grid, on_boundary=np.arange(nb), outline=st_.outline)
+    assert np.array_equal(r.uv, st_.remapped_uv) and np.array_equal(r.points, st_.remapped_points)
+    ring = st_.plane.points[:nb]
+    for vertex, uv in zip(st_.outline.vertices, st_.outline.uv):
+        hit = np.flatnonzero(np.all(ring == vertex, axis=1))
+        assert len(hit) == 1 and np.array_equal(r.uv[hit[0]], uv)
+    assert np.all(np.any((r.uv[:nb] == 0.0) | (r.uv[:nb] == 1.0), axis=1))

@@ -79,11 +79,18 @@ class SurfaceStages:
         equimesh.uniform_triangulation(outline, SURFACE_LENGTH, angle=place.angle, offset=place.offset)
 
     def time_remapping(self, cache):
-        """Step 4: locate every plane node in the flattened auxiliary mesh, eqs. (2)-(3), evaluate."""
+        """Step 4 exactly as mesh_surface calls it: eqs. (2)-(3) inside, the outline for the boundary nodes, evaluate."""
         surface, mesh = cache
         st = mesh.stages
         plane = st.plane
-        equimesh.remap(surface, plane.points, st.flattening.points, st.grid, on_boundary=np.arange(plane.n_boundary))
+        equimesh.remap(
+            surface,
+            plane.points,
+            st.flattening.points,
+            st.grid,
+            on_boundary=np.arange(plane.n_boundary),
+            outline=st.outline,
+        )
 
     def time_optimisation(self, cache):
         """Final step: least squares on the inner nodes' (u, v), G1 deviation from l (paper objective)."""

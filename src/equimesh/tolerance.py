@@ -37,6 +37,7 @@ def at_most(value, l):
     """``value <= l`` up to :data:`REL_TOL` (vectorised)."""
     return value <= (1.0 + REL_TOL) * l
 
+
 #: Beyond the paper (docs/decisions.md, "Hardening of the planar core"): the
 #: supported range of the target length l.  ``l^2`` (areas, node estimates)
 #: stays a normal float inside it; outside it, :class:`~equimesh.errors.InvalidLengthError`.
@@ -50,3 +51,15 @@ MAX_LENGTH = 1e150
 #: ``REL_TOL``, so the edge bounds [(1 - REL_TOL) l, 2 l] survive rounding.
 #: Test: ``tests/test_hardening_planar.py::test_polygon_wider_than_the_precision_range_is_refused``.
 MAX_EXTENT = 2.0**16
+
+#: Beyond the paper (docs/decisions.md, Section 4): a surface sample where
+#: ``|X_u x X_v| <= SINGULAR_SIN |X_u| |X_v|`` (X_u and X_v within about
+#: 2e-4 degrees of parallel) is singular and refused
+#: (:mod:`equimesh.surface.regularity`; test: tests/test_hardening_surface.py).
+SINGULAR_SIN = 1e-6
+
+#: Beyond the paper: a surface whose normal turns by this many degrees or more
+#: between an auxiliary triangle's centroid and one of its corners is refused
+#: as folded (:mod:`equimesh.surface.regularity`; test: the folding net of
+#: tests/test_hardening_surface.py).
+MAX_NORMAL_TURN = 90.0

@@ -48,7 +48,8 @@ def node_estimate(area, perimeter, l):
 def check_size(what, estimate, max_nodes, l):
     """Refuse a run whose ``estimate`` (nodes of ``what``) exceeds ``max_nodes`` (None: no limit)."""
     if max_nodes is not None and not estimate <= max_nodes:
+        about = f"about {estimate:.3g}" if math.isfinite(estimate) else "more than 1e308"
         raise MeshTooLargeError(
-            f"l = {l!r} would need about {estimate:.3g} nodes in {what}, more than max_nodes = {max_nodes}; "
-            "use a larger l or pass a larger max_nodes (None for no limit)"
+            f"l = {l!r} would need {about} nodes in {what}, more than max_nodes = {max_nodes}; "
+            "use a larger l or raise max_nodes (--max-nodes on the command line; None for no limit)"
         )

@@ -104,7 +104,7 @@ def uniform_triangulation(
     clearance = check_clearance(clearance)
     offset = _check_pair(offset, "offset")
     angle = _check_scalar(angle, "angle")
-    spacing = _check_spacing(boundary_spacing)
+    spacing = check_spacing(boundary_spacing)
     max_nodes = check_max_nodes(max_nodes)
     poly = as_polygon(vertices, l)
     check_edges_at_least(poly, l)
@@ -192,7 +192,8 @@ def check_clearance(value):
     return c
 
 
-def _check_spacing(value):
+def check_spacing(value):
+    """``boundary_spacing`` as a float in [1, 2] (units of l, Step 2)."""
     s = _check_scalar(value, "boundary_spacing")
     if not 1.0 <= s <= 2.0:
         raise EquimeshError(f"boundary_spacing must be between 1 and 2 (units of l, Step 2), got {s}")

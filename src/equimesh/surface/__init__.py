@@ -5,12 +5,15 @@ Modules, in the order of the pipeline:
 * :mod:`.bezier`     the tensor-product Bezier surface (geometry only; its JSON form is in
                      :mod:`equimesh.io`);
 * :mod:`.auxiliary`  step 1, the auxiliary triangulation of the parameter square;
+* :mod:`.regularity` after step 1, the surface refused if non-finite, singular or folding;
 * :mod:`.flatten`    step 2, eq. (1): flattening the auxiliary triangulation to the plane;
 * :mod:`.outline`    step 3, the flattened boundary resampled into the polygon of Problem 2;
+* :mod:`.restate`    step 3, Problem 2's refusals of that polygon restated for the surface;
 * :mod:`.remap`      step 4, eqs. (2)-(3): plane nodes to (u, v) and to the surface;
 * :mod:`.optimize`   final step, the (u, v) of the inner nodes (objective table ``OBJECTIVES``);
 * :mod:`.pipeline`   :func:`mesh_surface`, the stages chained;
-* :mod:`._jacobian`  sparse least-squares helpers shared by flattening and optimisation.
+* :mod:`._jacobian`  sparse least-squares helpers shared by flattening and optimisation;
+* :mod:`._places`    sides, corners and points of the patch named for error messages.
 
 The public verbs are re-exported by :mod:`equimesh`.
 """

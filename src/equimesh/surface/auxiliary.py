@@ -117,5 +117,6 @@ def auxiliary_grid(n_u, n_v):
 
 def _check_count(name, value):
     if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < 1:
-        raise EquimeshError(f"auxiliary grid size {name} must be a positive integer, got {value!r}")
+        shown = value.item() if isinstance(value, np.generic) else value
+        raise EquimeshError(f"auxiliary grid size {name} must be a positive integer, got {shown!r}")
     return int(value)

@@ -39,9 +39,7 @@ its rim than a plane disk, and eq. (1) alone then wrinkles it.  Two guards:
   start; a failure from the default start raises
   :class:`~equimesh.errors.InvalidSurfaceError`.
 
-Speed.  LSMR does many small vector operations; a multi-threaded BLAS on a
-busy machine slows each of them by an order of magnitude, so run with
-``OPENBLAS_NUM_THREADS=1`` (or the like) for the timings quoted above.
+Speed: see docs/performance.md (BLAS threads) for the timings quoted above.
 """
 
 from dataclasses import dataclass
@@ -55,6 +53,7 @@ from ._jacobian import AreaBarrier, ElementJacobian
 from .._geometry import orient
 from ..errors import InvalidSurfaceError
 from ..mesh import edge_lengths, unique_edges
+from ._places import at
 
 
 @dataclass(frozen=True)
@@ -142,8 +141,9 @@ def flatten(
     e = unique_edges(tri) if edges is None else np.asarray(edges, dtype=np.int64)
     ls = edge_lengths(x3, e)
     if not np.all(ls > 0):
-        j = int(np.flatnonzero(~(ls > 0))[0])
-        raise InvalidSurfaceError(f"auxiliary edge ({e[j, 0]}, {e[j, 1]}) has zero length on the surface")
+        a, b = e[int(np.flatnonzero(~(ls > 0))[0])]
+        where = f"at {at(uv[a])} and {at(uv[b])}" if uv is not None else f"of auxiliary nodes {a} and {b}"
+        raise InvalidSurfaceError(f"the surface points {where} coincide (a collapsed side or cell)")
     g0, g1 = int(e[0, 0]), int(e[0, 1])
     options = dict(ftol=ftol, xtol=xtol, gtol=gtol, max_nfev=max_nfev)
     floor = float(area_floor)
@@ -165,9 +165,10 @@ def flatten(
             return Flattening(points, energy, ls, lp, e, np.array([g0, g1]), nfev, start)
     if points is None:
         raise InvalidSurfaceError("flattening failed: the auxiliary triangulation is degenerate on the surface")
-    n_bad = int(np.sum(orient(*(points[tri[:, k]] for k in range(3))) <= 0))
+    bad = np.flatnonzero(orient(*(points[tri[:, k]] for k in range(3))) <= 0)
+    near = "" if uv is None else f", first near {at(np.asarray(uv, dtype=float)[tri[bad[0]]].mean(axis=0))}"
     raise InvalidSurfaceError(
-        f"flattening folds {n_bad} of {len(tri)} auxiliary triangles over; "
+        f"flattening folds {bad.size} of {len(tri)} auxiliary triangles over{near}; "
         "the surface is degenerate or too strongly curved for this grid"
     )
 

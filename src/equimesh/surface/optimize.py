@@ -42,6 +42,7 @@ import scipy.sparse
 from ._jacobian import AreaBarrier, ElementJacobian, signed_areas
 from ..errors import EquimeshError
 from ..mesh import G1
+from .regularity import derivatives, evaluate
 
 
 @dataclass(frozen=True)
@@ -112,14 +113,13 @@ def edge_length_terms(problem, edges):
     surface = problem.surface
 
     def lengths(x):
-        uv = problem.uv_of(x)
-        p = surface.evaluate(uv[:, 0], uv[:, 1])
+        p = evaluate(surface, problem.uv_of(x))
         return np.linalg.norm(p[e[:, 1]] - p[e[:, 0]], axis=1)
 
     def jacobian(x):
         uv = problem.uv_of(x)
-        p = surface.evaluate(uv[:, 0], uv[:, 1])
-        su, sv = surface.derivatives(uv[:, 0], uv[:, 1])
+        p = evaluate(surface, uv)
+        su, sv = derivatives(surface, uv)
         d = p[e[:, 1]] - p[e[:, 0]]
         length = np.linalg.norm(d, axis=1)
         unit = d / np.maximum(length, np.finfo(float).tiny)[:, None]

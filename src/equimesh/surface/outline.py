@@ -22,6 +22,7 @@ import numpy as np
 from ..errors import SurfaceTooSmallError
 from ..planar.polygon import split_counts
 from ..tolerance import at_least
+from ._places import corner_name, number, side_name
 
 
 @dataclass(frozen=True)
@@ -33,7 +34,7 @@ class Outline:
     vertices : (n, 2) plane coordinates, counter-clockwise.
     uv : (n, 2) parameter coordinates, on the boundary of [0, 1]^2.
     side : (n,) the side of the parameter square each polygon edge (i, i+1)
-        runs along (index into the auxiliary grid's corner-to-corner sides).
+        runs along (index into :data:`~equimesh.surface.auxiliary.SIDES`).
     """
 
     vertices: np.ndarray
@@ -46,18 +47,30 @@ def resample_outline(plane, uv, loop, corners, l, spacing):
 
     ``loop`` is the counter-clockwise boundary node loop of the auxiliary grid,
     ``corners`` the positions in ``loop`` of the four corners (increasing).
+
+    Raises
+    ------
+    SurfaceTooSmallError
+        A side whose corners are closer than ``l`` on the plane, named by its
+        side and corners of the parameter square.
     """
     vertices, params, sides = [], [], []
-    for s, (c0, c1) in enumerate(zip(corners, np.roll(corners, -1))):
+    for c0, c1 in zip(corners, np.roll(corners, -1)):
         chain = loop[c0 : c1 + 1] if c1 > c0 else np.r_[loop[c0:], loop[: c1 + 1]]
-        pts, prm = _resample_side(plane[chain], uv[chain], l, spacing, s)
+        pts, prm = _resample_side(plane[chain], uv[chain], l, spacing)
         vertices.append(pts[:-1])
         params.append(prm[:-1])
-        sides.append(np.full(len(pts) - 1, s))
+        sides.append(np.full(len(pts) - 1, side_index(prm[0], prm[-1])))
     return Outline(np.vstack(vertices), np.vstack(params), np.concatenate(sides))
 
 
-def _resample_side(xy, uv, l, spacing, side):
+def side_index(uv_a, uv_b):
+    """Index into :data:`~equimesh.surface.auxiliary.SIDES` of the side through two of its points."""
+    axis = 0 if uv_a[0] == uv_b[0] else 1
+    return 2 * axis + int(uv_a[axis] == 1.0)
+
+
+def _resample_side(xy, uv, l, spacing):
     seg = np.linalg.norm(np.diff(xy, axis=0), axis=1)
     arc = np.concatenate([[0.0], np.cumsum(seg)])
     k = int(split_counts([arc[-1]], l, spacing)[0])
@@ -68,9 +81,20 @@ def _resample_side(xy, uv, l, spacing, side):
         if np.all(at_least(np.linalg.norm(np.diff(pts, axis=0), axis=1), l)):
             return pts, prm
         k -= 1
+    chord = float(np.linalg.norm(xy[-1] - xy[0]))
     raise SurfaceTooSmallError(
-        f"side {side} of the surface is {arc[-1]:.6g} long on the plane, shorter than l = {l:.6g}"
+        f"{side_name(side_index(uv[0], uv[-1]))} of the surface, from {corner_name(uv[0])} to {corner_name(uv[-1])}, "
+        f"is {number(arc[-1])} long on the flattened surface (its corners {number(chord)} apart), "
+        f"shorter than l = {number(l)}; use l <= {number(round_down(chord))}"
     )
+
+
+def round_down(x, digits=4):
+    """``x`` rounded down to ``digits`` significant digits, so that a suggested bound ``l <= x`` is safe."""
+    if x <= 0:
+        return 0.0
+    scale = 10.0 ** (np.floor(np.log10(x)) - digits + 1)
+    return float(np.floor(x / scale) * scale)
 
 
 def _at_arc(xy, uv, arc, s):

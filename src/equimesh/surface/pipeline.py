@@ -1,10 +1,14 @@
 """Section 4 end to end: a uniform triangle mesh of a parametric surface.
 
 1. auxiliary triangulation of the parameter square (:mod:`equimesh.surface.auxiliary`);
+   the surface is refused if it is not finite, singular or folds
+   (:mod:`equimesh.surface.regularity`), or if the mesh would be too large
+   (:data:`MAX_NODES`, :data:`MAX_OPTIMIZE_NODES`, :data:`MAX_GRID_CELLS`);
 2. flattening by eq. (1) (:mod:`equimesh.surface.flatten`);
 3. the flattened boundary as a polygon (:mod:`equimesh.surface.outline`) triangulated
    by Problem 2 (:func:`equimesh.uniform_triangulation`), with the lattice
-   placement chosen by :func:`equimesh.best_lattice_placement` by default;
+   placement chosen by :func:`equimesh.best_lattice_placement` by default; its
+   refusals are restated in the surface's terms (:mod:`equimesh.surface.restate`);
 4. remapping to (u, v) by eqs. (2)-(3) and to the surface (:mod:`equimesh.surface.remap`);
 5. optimisation of the (u, v) of the inner nodes (:mod:`equimesh.surface.optimize`).
 
@@ -13,24 +17,41 @@ Every stage is kept in :class:`SurfaceMesh.stages` for tables and figures.
 
 import time
 from dataclasses import dataclass, field
+from numbers import Integral
 
 import numpy as np
 
-from .._geometry import orient
 from .auxiliary import auxiliary_grid
-from ..errors import EquimeshError, InvalidSurfaceError, MeshTooLargeError
+from ..errors import EquimeshError, InternalError, InvalidPolygonError, InvalidSurfaceError, MeshTooLargeError
 from .flatten import flatten
-from ..mesh import edge_lengths
+from ._jacobian import signed_areas
+from ..mesh import G1, edge_lengths
 from .optimize import OBJECTIVES, optimize_uv
 from .outline import resample_outline
+from ..planar.limits import check_max_nodes, check_size
 from ..planar.placement import best_lattice_placement
 from ..planar.polygon import check_length
-from .remap import locate
-from ..planar.strip import BOUNDARY_SPACING, uniform_triangulation
+from .regularity import check_regular, evaluate
+from .remap import remap
+from .restate import restate_polygon_error
+from ..planar.strip import BOUNDARY_SPACING, check_spacing, uniform_triangulation
 
-#: Default limit on the node count of a surface mesh; :func:`mesh_surface`
-#: refuses (before any expensive work) a request estimated to exceed it.
-MAX_NODES = 200_000
+#: Default limit on the node count of a surface mesh without the final
+#: optimisation (``optimize="none"``); :func:`mesh_surface` refuses, before any
+#: expensive work, a request estimated to exceed it.  The time goes into the
+#: lattice placement search (about n^1.6): on this project's busy 2-core
+#: machine the saddle took 70 s at 32,400 nodes and 140 s at 39,900
+#: (docs/performance.md).
+MAX_NODES = 30_000
+
+#: Default node limit with the paper's optimisation (about n^2): the
+#: reference dome took 57 s at 2,265 nodes and 105 s at 2,917 (docs/performance.md).
+MAX_OPTIMIZE_NODES = 3_000
+
+#: Limit on the auxiliary grid's cells n_u * n_v: flattening by eq. (1) took
+#: 9 s at 100 x 100, 41 s (0.6 GB) at 200 x 200 and 251 s (1.3 GB) at
+#: 300 x 300 (docs/performance.md).
+MAX_GRID_CELLS = 40_000
 
 #: Lattice placements: "best" searches (beyond the paper), "default" is angle 0, offset (0, 0).
 PLACEMENTS = ("best", "default")
@@ -95,7 +116,7 @@ class SurfaceMesh:
 
     @property
     def g1_mask(self):
-        return self.edge_groups == 1
+        return self.edge_groups == G1
 
 
 def mesh_surface(
@@ -106,7 +127,7 @@ def mesh_surface(
     optimize="paper",
     placement="best",
     boundary_spacing=BOUNDARY_SPACING,
-    max_nodes=MAX_NODES,
+    max_nodes="default",
     progress=None,
 ):
     """Mesh a parametric surface with members as equal as possible (Section 4).
@@ -118,7 +139,7 @@ def mesh_surface(
     l : float
         Target member length.
     grid : (int, int)
-        Auxiliary grid n_u x n_v (step 1).
+        Auxiliary grid n_u x n_v (step 1), at most :data:`MAX_GRID_CELLS` cells.
     optimize : "paper" or "none"
         Final optimisation of the inner nodes' (u, v) (see
         :data:`equimesh.surface.optimize.OBJECTIVES`), or none.
@@ -126,54 +147,74 @@ def mesh_surface(
         Lattice placement of Problem 2.
     boundary_spacing : float
         Step 2 spacing of the boundary, in units of l.
-    max_nodes : int
-        Refuse meshes estimated to need more nodes.
+    max_nodes : int, None or "default"
+        Refuse, before flattening, a mesh estimated (from the surface area of
+        the auxiliary triangulation and the lattice density ``2 / (sqrt(3) l^2)``)
+        to need more nodes; None means no limit.  "default" is
+        :data:`MAX_NODES`, or :data:`MAX_OPTIMIZE_NODES` with the paper's
+        optimisation: runs within the defaults take at most about two
+        minutes on a small machine.
     progress : callable, optional
         Called as ``progress(stage, seconds)`` after each stage.
 
     Returns
     -------
     SurfaceMesh
+
+    Raises
+    ------
+    InvalidSurfaceError
+        The surface is not finite, singular or folds over
+        (:mod:`equimesh.surface.regularity`), or it cannot be meshed with
+        this ``l``; the message names the side, corner or (u, v) at fault.
+    MeshTooLargeError
+        The estimated node count exceeds ``max_nodes``.
     """
     l = check_length(l)
-    if optimize != "none" and optimize not in OBJECTIVES:
+    if not (isinstance(optimize, str) and (optimize == "none" or optimize in OBJECTIVES)):
         raise EquimeshError(f"optimize must be 'none' or one of {sorted(OBJECTIVES)}, got {optimize!r}")
     if placement not in PLACEMENTS:
         raise EquimeshError(f"placement must be one of {PLACEMENTS}, got {placement!r}")
+    boundary_spacing = check_spacing(boundary_spacing)  # Problem 2's own check, needed by step 3 already
+    limit = _node_limit(max_nodes, optimize)
+    n_u, n_v = _grid_pair(grid)
     if not (hasattr(surface, "evaluate") and hasattr(surface, "derivatives")):
         raise InvalidSurfaceError("surface must provide evaluate(u, v) and derivatives(u, v)")
     seconds = {}
     clock = _Clock(seconds, progress)
 
-    aux = auxiliary_grid(*_grid_pair(grid))
-    x_s0 = np.asarray(surface.evaluate(aux.uv[:, 0], aux.uv[:, 1]), dtype=float).reshape(-1, 3)
-    if not np.all(np.isfinite(x_s0)):
-        raise InvalidSurfaceError("surface evaluates to non-finite points on the auxiliary grid")
+    aux = auxiliary_grid(n_u, n_v)
+    x_s0 = evaluate(surface, aux.uv)
+    check_regular(surface, aux)
+    _check_size(x_s0, aux.triangles, l, limit)
     clock("auxiliary triangulation")
 
     flat = flatten(x_s0, aux.triangles, uv=aux.uv)
     clock("flattening (eq. 1)")
 
-    _check_size(flat.points, aux.triangles, l, max_nodes)
     corners = np.flatnonzero(aux.boundary_corner)
     outline = resample_outline(flat.points, aux.uv, aux.boundary, corners, l, boundary_spacing)
-    chosen = best_lattice_placement(outline.vertices, l) if placement == "best" else None
-    angle, offset = (chosen.angle, chosen.offset) if chosen else (0.0, (0.0, 0.0))
-    plane = uniform_triangulation(outline.vertices, l, angle=angle, offset=offset, boundary_spacing=boundary_spacing)
+    try:
+        # The surface's own guard (_check_size, measured end to end) bounds the planar stage too.
+        chosen = best_lattice_placement(outline.vertices, l, max_nodes=None) if placement == "best" else None
+        angle, offset = (chosen.angle, chosen.offset) if chosen else (0.0, (0.0, 0.0))
+        plane = uniform_triangulation(
+            outline.vertices, l, angle=angle, offset=offset, boundary_spacing=boundary_spacing, max_nodes=None
+        )
+    except InvalidPolygonError as exc:
+        raise restate_polygon_error(exc, surface, flat.points, aux, outline, l) from None
     clock("planar triangulation (Problem 2)")
 
-    uv = np.empty((plane.n_nodes, 2))
-    uv[: plane.n_boundary] = _boundary_uv(plane.points[: plane.n_boundary], outline)
-    uv[plane.n_boundary :] = locate(plane.points[plane.n_boundary :], flat.points, aux).uv
-    remapped = _evaluate(surface, uv)
+    mapped = remap(surface, plane.points, flat.points, aux, on_boundary=np.arange(plane.n_boundary), outline=outline)
+    _check_orientation(mapped.uv, plane.triangles, "remapping (eqs. 2-3)")
     clock("remapping (eqs. 2-3)")
 
     result = None
-    final_uv = uv
+    final_uv, final_points = mapped.uv, mapped.points
     if optimize != "none":
         result = optimize_uv(
             surface,
-            uv,
+            mapped.uv,
             plane.edges,
             plane.edge_groups,
             l,
@@ -182,11 +223,13 @@ def mesh_surface(
             objective=optimize,
         )
         final_uv = result.uv
+        _check_orientation(final_uv, plane.triangles, "the optimisation")
+        final_points = evaluate(surface, final_uv)
         clock("optimisation of inner nodes")
 
-    stages = Stages(aux, x_s0, flat, outline, chosen, plane, uv, remapped, result, seconds)
+    stages = Stages(aux, x_s0, flat, outline, chosen, plane, mapped.uv, mapped.points, result, seconds)
     return SurfaceMesh(
-        remapped if result is None else _evaluate(surface, final_uv),
+        final_points,
         plane.triangles,
         plane.edges,
         plane.edge_groups,
@@ -212,44 +255,49 @@ class _Clock:
 
 
 def _grid_pair(grid):
+    """(n_u, n_v) from ``grid``, at most :data:`MAX_GRID_CELLS` cells (the counts are checked by ``auxiliary_grid``)."""
     try:
         n_u, n_v = grid
     except (TypeError, ValueError):
         raise EquimeshError(f"grid must be a pair (n_u, n_v), got {grid!r}") from None
+    if all(isinstance(n, Integral) and not isinstance(n, bool) for n in (n_u, n_v)) and n_u * n_v > MAX_GRID_CELLS:
+        raise EquimeshError(
+            f"auxiliary grid {n_u} x {n_v} has {n_u * n_v} cells, more than the limit of {MAX_GRID_CELLS} "
+            "(flattening time and memory grow with it); use a coarser grid"
+        )
     return n_u, n_v
 
 
-def _evaluate(surface, uv):
-    return np.asarray(surface.evaluate(uv[:, 0], uv[:, 1]), dtype=float).reshape(-1, 3)
+def _node_limit(max_nodes, optimize):
+    """The node limit: a positive int, None (no limit) or "default" (:data:`MAX_NODES` or :data:`MAX_OPTIMIZE_NODES`)."""
+    if isinstance(max_nodes, str) and max_nodes == "default":
+        return MAX_NODES if optimize == "none" else MAX_OPTIMIZE_NODES
+    if isinstance(max_nodes, str):
+        raise EquimeshError(f'max_nodes must be a positive integer, None (no limit) or "default", got {max_nodes!r}')
+    return check_max_nodes(max_nodes)
 
 
-def _check_size(plane_points, triangles, l, max_nodes):
-    """Estimate the node count (lattice density plus boundary) and refuse it above ``max_nodes``."""
-    p = plane_points[triangles]
-    area = 0.5 * np.abs(orient(p[:, 0], p[:, 1], p[:, 2])).sum()
-    estimate = int(area / (np.sqrt(3.0) / 2.0 * l * l))
-    if estimate > max_nodes:
-        raise MeshTooLargeError(
-            f"l = {l:.6g} would need about {estimate} nodes, more than the limit of {max_nodes}; "
-            "raise the limit (max_nodes / --max-nodes) or use a larger l"
-        )
+def _check_size(surface_points, triangles, l, max_nodes):
+    """Estimate the node count (surface area at the lattice density) and refuse it above ``max_nodes``.
 
-
-def _boundary_uv(ring, outline):
-    """(u, v) of the plane mesh's boundary nodes: exact at outline vertices, linear along outline edges.
-
-    Every outline edge runs along one side of the parameter square, so the
-    result lies exactly on the boundary of [0, 1]^2.
+    The estimate is computed in floating point, so a tiny ``l`` gives
+    ``inf`` rather than an overflow.
     """
-    index = {tuple(p): k for k, p in enumerate(outline.vertices)}
-    matched = np.array([index.get(tuple(p), -1) for p in ring])
-    known = np.flatnonzero(matched >= 0)
-    uv = np.empty((len(ring), 2))
-    uv[known] = outline.uv[matched[known]]
-    for i in np.flatnonzero(matched < 0):
-        a = known[known < i].max() if np.any(known < i) else known.max()
-        b = known[known > i].min() if np.any(known > i) else known.min()
-        pa, pb = outline.vertices[matched[a]], outline.vertices[matched[b]]
-        t = np.linalg.norm(ring[i] - pa) / np.linalg.norm(pb - pa)
-        uv[i] = outline.uv[matched[a]] + t * (outline.uv[matched[b]] - outline.uv[matched[a]])
-    return uv
+    if max_nodes is None:
+        return
+    p = surface_points[triangles]
+    area = 0.5 * float(np.linalg.norm(np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]), axis=1).sum())
+    with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
+        estimate = float(np.float64(area) / np.float64(l) / np.float64(l) / (np.sqrt(3.0) / 2.0))
+    check_size(f"this surface (area {area:.6g})", estimate, max_nodes, l)
+
+
+def _check_orientation(uv, triangles, stage):
+    """Every triangle counter-clockwise with positive area in (u, v), or our ``stage`` broke it."""
+    bad = np.flatnonzero(~(signed_areas(uv, triangles) > 0))
+    if bad.size:
+        k = int(bad[0])
+        raise InternalError(
+            f"{stage} inverted {bad.size} of {len(triangles)} triangles in (u, v) "
+            f"(first: {triangles[k].tolist()}); please report this surface"
+        )

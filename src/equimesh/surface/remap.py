@@ -14,16 +14,23 @@ before X_i = X^s(u_i, v_i).  Point location uses matplotlib's trapezoid map
 Boundary.  A node that is on the boundary of the plane polygon (given by the
 caller), within ``snap_tol`` of it, or found in no triangle at all (rounding
 put it just outside) is projected onto the nearest point of the nearest
-*boundary segment* of the flattened auxiliary triangulation, and (u, v) is
-interpolated along that segment.  Both ends of a boundary segment share the
-side coordinate (exactly 0.0 or 1.0), which is then set explicitly: such nodes
-land exactly on the boundary of [0, 1]^2.  No node ever fails to map.
+*boundary segment*, and (u, v) is interpolated along that segment.  The
+boundary is the flattened auxiliary triangulation's, or, for the nodes the
+caller names, the polygon actually triangulated in step 3 (the resampled
+:class:`~equimesh.surface.outline.Outline`, whose vertices carry their exact
+(u, v)): :func:`equimesh.mesh_surface` passes it, so that its boundary nodes
+take exactly the (u, v) of the outline vertices they sit on.  Both ends of a
+boundary segment share the side coordinate (exactly 0.0 or 1.0), which is
+then set explicitly: such nodes land exactly on the boundary of [0, 1]^2.
+No node ever fails to map.
 """
 
 from dataclasses import dataclass
 
 import matplotlib.tri
 import numpy as np
+
+from .regularity import evaluate
 
 
 @dataclass(frozen=True)
@@ -43,8 +50,9 @@ class Remap:
         Node mapped by boundary projection; its u or v is exactly 0 or 1.
     segment, t : (K,) arrays
         For projected nodes, the boundary segment ``k`` (from
-        ``grid.boundary[k]`` to ``grid.boundary[k + 1]``) and the position
-        ``t`` in [0, 1] along it; -1 and ``nan`` otherwise.
+        ``grid.boundary[k]`` to ``grid.boundary[k + 1]``, or from outline
+        vertex ``k`` to ``k + 1`` for the nodes placed on the outline) and the
+        position ``t`` in [0, 1] along it; -1 and ``nan`` otherwise.
     points : (K, 3) float array or None
         X^s(u_i, v_i) (filled by :func:`remap`).
     """
@@ -59,7 +67,7 @@ class Remap:
     points: np.ndarray | None = None
 
 
-def remap(surface, plane_points, flat_points, grid, *, on_boundary=None, snap_tol=None):
+def remap(surface, plane_points, flat_points, grid, *, on_boundary=None, outline=None, snap_tol=None):
     """Step 4: plane nodes -> (u_i, v_i) by eqs. (2)-(3) -> X_i = X^s(u_i, v_i).
 
     Parameters
@@ -76,6 +84,11 @@ def remap(surface, plane_points, flat_points, grid, *, on_boundary=None, snap_to
         Nodes known to lie on the boundary of the plane polygon (e.g. the
         leading ``n_boundary`` nodes of a :class:`~equimesh.mesh.PlanarMesh`);
         they take the exact boundary path.
+    outline : Outline, optional
+        The polygon of step 3 the plane triangulation was built on: the nodes
+        of ``on_boundary`` are then projected onto its edges, (u, v)
+        interpolated between the exact (u, v) of its vertices (a node on an
+        outline vertex takes that vertex's (u, v) bit for bit).
     snap_tol : float, optional
         Nodes within this distance of the flattened boundary also take the
         boundary path; default ``1e-9`` times the diameter of the flattened
@@ -85,13 +98,18 @@ def remap(surface, plane_points, flat_points, grid, *, on_boundary=None, snap_to
     -------
     Remap
         With ``points`` set.
+
+    Raises
+    ------
+    InvalidSurfaceError
+        If the surface is not finite at a remapped (u, v).
     """
-    loc = locate(plane_points, flat_points, grid, on_boundary=on_boundary, snap_tol=snap_tol)
-    points = np.asarray(surface.evaluate(loc.uv[:, 0], loc.uv[:, 1]), dtype=float).reshape(-1, 3)
+    loc = locate(plane_points, flat_points, grid, on_boundary=on_boundary, outline=outline, snap_tol=snap_tol)
+    points = evaluate(surface, loc.uv)
     return Remap(loc.uv, loc.triangle, loc.alpha, loc.beta, loc.on_boundary, loc.segment, loc.t, points)
 
 
-def locate(plane_points, flat_points, grid, *, on_boundary=None, snap_tol=None):
+def locate(plane_points, flat_points, grid, *, on_boundary=None, outline=None, snap_tol=None):
     """Eqs. (2)-(3) without the surface: parameters (u_i, v_i) of plane nodes.
 
     See :func:`remap` for the parameters; ``points`` of the result is None.
@@ -104,13 +122,14 @@ def locate(plane_points, flat_points, grid, *, on_boundary=None, snap_tol=None):
     if on_boundary is not None:
         ob = np.asarray(on_boundary)
         boundary_path[ob if ob.dtype != bool else np.flatnonzero(ob)] = True
+    on_outline = boundary_path.copy() if outline is not None else np.zeros(k, dtype=bool)
 
     triangulation = matplotlib.tri.Triangulation(flat[:, 0], flat[:, 1], tri)
     found = np.asarray(matplotlib.tri.TrapezoidMapTriFinder(triangulation)(x[:, 0], x[:, 1]), dtype=np.int64)
     boundary_path |= found < 0
 
-    seg_a = flat[grid.boundary]
-    seg_b = flat[np.roll(grid.boundary, -1)]
+    loop = Loop(flat[grid.boundary], grid.uv[grid.boundary], grid.boundary_segment_side)
+    seg_a, seg_b = loop.xy, np.roll(loop.xy, -1, axis=0)
     if snap_tol is None:
         snap_tol = 1e-9 * float(np.linalg.norm(flat.max(axis=0) - flat.min(axis=0)))
     if snap_tol > 0:
@@ -133,17 +152,40 @@ def locate(plane_points, flat_points, grid, *, on_boundary=None, snap_tol=None):
         q, r, s = (grid.uv[tri[found[inside], j]] for j in range(3))
         uv[inside] = q + a[:, None] * (r - q) + b[:, None] * (s - q)  # eq. (3)
 
-    if np.any(boundary_path):
-        seg, tt, _ = _nearest_segment(x[boundary_path], seg_a, seg_b)
-        segment[boundary_path], t[boundary_path] = seg, tt
-        ua = grid.uv[grid.boundary[seg]]
-        ub = grid.uv[np.roll(grid.boundary, -1)[seg]]
-        uvb = ua + tt[:, None] * (ub - ua)
-        side = grid.boundary_segment_side[seg]  # index into SIDES = (u=0, u=1, v=0, v=1)
-        uvb[np.arange(len(seg)), side // 2] = (side % 2).astype(float)
-        uv[boundary_path] = uvb
+    paths = [(boundary_path & ~on_outline, loop)]
+    if outline is not None:
+        paths.append((on_outline, Loop(outline.vertices, outline.uv, outline.side)))
+    for nodes, ring in paths:
+        if np.any(nodes):
+            segment[nodes], t[nodes], uv[nodes] = ring.project(x[nodes])
     np.clip(uv, 0.0, 1.0, out=uv)
     return Remap(uv, triangle, alpha, beta, boundary_path, segment, t)
+
+
+@dataclass(frozen=True)
+class Loop:
+    """A closed boundary polyline on the plane whose vertices carry their (u, v) on the square's boundary.
+
+    ``side[k]`` is the side (index into :data:`~equimesh.surface.auxiliary.SIDES`)
+    carried by the segment from vertex ``k`` to ``k + 1``.
+    """
+
+    xy: np.ndarray
+    uv: np.ndarray
+    side: np.ndarray
+
+    def project(self, x):
+        """Nearest segment, position ``t`` on it and (u, v) there (eq. (3) on a boundary edge) for points ``x``.
+
+        ``(1 - t) uv_a + t uv_b`` is exact at both ends; the side coordinate
+        is then set to exactly 0.0 or 1.0.
+        """
+        seg, tt, _ = _nearest_segment(x, self.xy, np.roll(self.xy, -1, axis=0))
+        ua, ub = self.uv[seg], np.roll(self.uv, -1, axis=0)[seg]
+        uv = (1.0 - tt)[:, None] * ua + tt[:, None] * ub
+        side = self.side[seg]  # index into SIDES = (u=0, u=1, v=0, v=1)
+        uv[np.arange(len(seg)), side // 2] = (side % 2).astype(float)
+        return seg, tt, uv
 
 
 def barycentric(x, corners):

@@ -1,0 +1,31 @@
+"""Places on a surface patch named in the caller's terms, for error messages.
+
+A refused surface is described by what the user gave: the parameter square
+[0, 1]^2 (its sides ``u = 0`` ... and corners ``(u, v) = (1, 0)`` ...) and the
+points in space, never by the internal outline polygon of step 3.
+"""
+
+from .auxiliary import SIDES
+
+
+def number(x):
+    """A float as plain text with enough digits: ``0.42``, ``1e-200``, ``13.37``."""
+    return f"{float(x):.6g}"
+
+
+def at(uv, point=None):
+    """``(u, v) = (0.42, 0.5), point (x, y, z) = (1, 2, 3)``."""
+    text = f"(u, v) = ({number(uv[0])}, {number(uv[1])})"
+    if point is not None:
+        text += f", point ({', '.join(number(c) for c in point)})"
+    return text
+
+
+def side_name(side):
+    """``side v = 0`` for an index into :data:`~equimesh.surface.auxiliary.SIDES`."""
+    return "side " + SIDES[side].replace("=", " = ")
+
+
+def corner_name(uv):
+    """``corner (u, v) = (1, 0)`` for a corner of the parameter square."""
+    return f"corner (u, v) = ({uv[0]:.0f}, {uv[1]:.0f})"
