@@ -43,7 +43,7 @@ import numpy as np
 import pandas as pd
 
 from equimesh.io._atomic import atomic_path, atomic_write_text
-from equimesh.io._meshes import load_surface
+from equimesh.io import load_surface
 from equimesh.metrics import (
     TABLE1_COLUMNS,
     TABLE1_HEADINGS,

@@ -21,13 +21,13 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-import equimesh
+import equimesh.io
 
 from .common import REPO, REFERENCE_SURFACE_JSON, SURFACE_GRID, SURFACE_LENGTH, reference_surface_json
 
 
 def _surface():
-    return equimesh.BezierSurface.from_json_dict(reference_surface_json())
+    return equimesh.io.surface_from_dict(reference_surface_json())
 
 
 def _experiment(name):
