@@ -25,7 +25,7 @@ import sys
 from pathlib import Path
 
 from .errors import EquimeshError
-from .io import MEMBER_FORMATS, MESH_FORMATS, check_output_path, load_surface, write_surface_mesh
+from .io import INPUT_FORMATS, MEMBER_FORMATS, MESH_FORMATS, check_output_path, load_surface, write_surface_mesh
 from .surface.optimize import OBJECTIVES
 from .surface.pipeline import MAX_NODES, PLACEMENTS, mesh_surface
 
@@ -65,7 +65,8 @@ def build_parser():
             "columns over v."
         ),
     )
-    mesh.add_argument("surface", metavar="SURFACE.json", help="surface description (JSON)")
+    mesh.add_argument("surface", metavar="SURFACE.json",
+                      help=f"surface description; format from the extension: {', '.join(sorted(INPUT_FORMATS))}")
     mesh.add_argument("--length", "-l", type=float, required=True, metavar="L", help="target member length")
     mesh.add_argument("--grid", type=int, nargs=2, default=(15, 15), metavar=("NU", "NV"),
                       help="auxiliary grid cells along u and v (default: 15 15); flattening time and memory grow "
@@ -152,7 +153,8 @@ def _run_mesh(args):
     write_surface_mesh(mesh, args.output, args.members)
     if not args.quiet:
         n_g1 = int(mesh.g1_mask.sum())
-        print(f"wrote {args.output}: {len(mesh.points)} nodes, {len(mesh.edges)} members "
+        also = f" and {args.members}" if args.members else ""
+        print(f"wrote {args.output}{also}: {len(mesh.points)} nodes, {len(mesh.edges)} members "
               f"({n_g1} in the equal-length group G1), {len(mesh.triangles)} triangles", file=sys.stderr)
     return 0
 
