@@ -10,6 +10,7 @@ import shutil
 import signal
 import subprocess
 import sys
+import warnings
 from pathlib import Path
 
 import meshio
@@ -215,6 +216,22 @@ def test_every_failure_is_one_line_with_its_exit_code(exc, code, message, tmp_pa
     assert got == code
     assert captured.err.count("\n") == 1 and captured.err.startswith(message), captured.err
     assert list(tmp_path.iterdir()) == []
+
+
+def test_library_noise_does_not_reach_the_terminal(tmp_path, capfd, monkeypatch):
+    """Triangle's C-level stdout and numpy's RuntimeWarnings are not printed: the one error line is."""
+    def noisy(*args, **kwargs):
+        os.write(1, b"Internal error in finddirection():\n")
+        np.array([1e300]) * 1e300  # overflow warning
+        raise RuntimeError("Triangulation failed")
+
+    monkeypatch.setattr(equimesh._cli, "mesh_surface", noisy)
+    with warnings.catch_warnings(record=True) as shown:
+        warnings.simplefilter("always")
+        code = main(["mesh", str(SADDLE), "--length", "5", "-o", str(tmp_path / "m.obj"), "-q"])
+    captured = capfd.readouterr()
+    assert code == 3 and captured.out == "" and captured.err.count("\n") == 1, captured
+    assert shown == []
 
 
 def test_traceback_option_reraises_internal_errors(tmp_path, monkeypatch):

@@ -20,8 +20,11 @@ Every run ends in one of four ways, always without a traceback:
 """
 
 import argparse
+import contextlib
 import importlib.util
+import os
 import sys
+import warnings
 from pathlib import Path
 
 from .errors import EquimeshError
@@ -148,8 +151,9 @@ def _run_mesh(args):
             print(f"  {stage}: {seconds:.2f} s", file=sys.stderr)
 
     limit = {"max_nodes": args.max_nodes} if "max_nodes" in args else {}
-    mesh = mesh_surface(surface, args.length, grid=tuple(args.grid), optimize=args.optimize,
-                        placement=args.placement, progress=progress, **limit)
+    with _library_quiet():
+        mesh = mesh_surface(surface, args.length, grid=tuple(args.grid), optimize=args.optimize,
+                            placement=args.placement, progress=progress, **limit)
     write_surface_mesh(mesh, args.output, args.members)
     if not args.quiet:
         n_g1 = int(mesh.g1_mask.sum())
@@ -157,6 +161,33 @@ def _run_mesh(args):
         print(f"wrote {args.output}{also}: {len(mesh.points)} nodes, {len(mesh.edges)} members "
               f"({n_g1} in the equal-length group G1), {len(mesh.triangles)} triangles", file=sys.stderr)
     return 0
+
+
+@contextlib.contextmanager
+def _library_quiet():
+    """Keep the run's outcome the only thing printed: no floating-point RuntimeWarnings, no C-level stdout.
+
+    The library checks its results (finite, every theorem) and raises one
+    error of its own; the warnings numpy emits on the way to that error, and
+    the messages Triangle's C code prints on file descriptor 1 before its
+    RuntimeError, would only add lines to it.
+    """
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)
+        try:
+            saved = os.dup(1)
+        except OSError:  # file descriptor 1 is closed: nothing to silence
+            yield
+            return
+        if sys.stdout is not None:
+            sys.stdout.flush()
+        try:
+            with open(os.devnull, "wb") as null:
+                os.dup2(null.fileno(), 1)
+            yield
+        finally:
+            os.dup2(saved, 1)
+            os.close(saved)
 
 
 def _run_experiment(args):
