@@ -21,13 +21,13 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-import equimesh.io
+import equimesh
 
 from .common import REPO, REFERENCE_SURFACE_JSON, SURFACE_GRID, SURFACE_LENGTH, reference_surface_json
 
 
 def _surface():
-    return equimesh.io.surface_from_dict(reference_surface_json())
+    return equimesh.surface_from_dict(reference_surface_json())
 
 
 def _experiment(name):
