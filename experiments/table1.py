@@ -41,8 +41,8 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from equimesh.io import load_surface
 from equimesh.io._atomic import atomic_path
-from equimesh.io._meshes import load_surface
 from equimesh.metrics import (
     FABRICATION_COLUMNS,
     TABLE1_COLUMNS,

@@ -1,9 +1,16 @@
-"""The command line: every output format, the member schedule, and every bad input (exit 2, no file)."""
+"""The command line: every output format, the member schedule, and every bad input (exit 2, no file).
+
+Exit codes: 0 written, 2 bad input or unwritable output (one line, nothing
+written), 3 internal error (one line asking for a report), 130 interrupted.
+"""
 
 import json
+import os
 import shutil
+import signal
 import subprocess
 import sys
+import warnings
 from pathlib import Path
 
 import meshio
@@ -11,7 +18,11 @@ import numpy as np
 import pandas as pd
 import pytest
 
+import equimesh._cli
+from equimesh import InternalError, InvalidLengthError
 from equimesh._cli import main
+
+from hostile_paths import fifo, name_max, unwritable_folder
 
 SURFACES = Path(__file__).resolve().parents[1] / "experiments" / "surfaces"
 SADDLE = SURFACES / "saddle.json"
@@ -57,7 +68,7 @@ def test_members_schedule(tmp_path, capsys):
 
 
 def _write(path, text):
-    path.write_text(text)
+    path.write_bytes(text if isinstance(text, bytes) else text.encode())
     return path
 
 
@@ -77,6 +88,18 @@ BAD = {
     "L nan": lambda d: (["mesh", SADDLE, "--length", "nan"], "finite"),
     "L too small": lambda d: (["mesh", SADDLE, "--length", 0.05], "max-nodes"),
     "L too large": lambda d: (["mesh", SADDLE, "--length", 500], "shorter than l"),
+    "L huge": lambda d: (["mesh", SADDLE, "--length", 1e300], "outside the supported range"),
+    "L longer than a side": lambda d: (["mesh", SADDLE, "--length", 1e6], "shorter than l"),
+    "L inf": lambda d: (["mesh", SADDLE, "--length", "inf"], "finite"),
+    "L not a number": lambda d: (["mesh", SADDLE, "--length", "five"], "--length"),
+    "5000-digit integer": lambda d: (["mesh", _write(d / "s.json", "[" + "9" * 5000 + "]"), "--length", 5], "digits"),
+    "nested 100000 deep": lambda d: (["mesh", _write(d / "s.json", "[" * 100_000), "--length", 5], "nested too deeply"),
+    "not UTF-8": lambda d: (["mesh", _write(d / "s.json", b'{"type": "b\xe9zier"}'), "--length", 5], "UTF-8"),
+    "input is a folder": lambda d: (["mesh", d, "--length", 5], "extension"),
+    "input folder named .json": lambda d: (["mesh", (d / "x.json").mkdir() or d / "x.json", "--length", 5],
+                                           "not a regular file"),
+    "input path too long": lambda d: (["mesh", d / ("a" * 5000 + ".json"), "--length", 5], "path too long"),
+    "max-nodes not a number": lambda d: (["mesh", SADDLE, "--length", 5, "--max-nodes", "2.5"], "whole number"),
     "bad grid": lambda d: (["mesh", SADDLE, "--length", 5, "--grid", 0, 4], "n_u"),
     "bad max-nodes": lambda d: (["mesh", SADDLE, "--length", 5, "--max-nodes", 0], "max-nodes"),
     "missing length": lambda d: (["mesh", SADDLE], "--length"),
@@ -112,3 +135,142 @@ def test_console_script_and_help():
         assert done.returncode == 0 and "usage" in done.stdout
     done = subprocess.run([exe, "mesh", str(SADDLE), "--length", "0", "-o", "x.obj"], capture_output=True, text=True)
     assert done.returncode == 2 and done.stderr.count("\n") == 1
+
+
+def test_tiny_length_is_refused_in_one_line(tmp_path, capsys):
+    code, captured = run(["mesh", SADDLE, "--length", 1e-300, "-o", tmp_path / "m.obj", "-q"], capsys)
+    assert code == 2 and captured.err.count("\n") == 1, captured.err
+    assert list(tmp_path.iterdir()) == []
+
+
+BAD_OUTPUTS = {
+    "output is a folder": lambda d: ["-o", (d / "m.obj").mkdir() or d / "m.obj"],
+    "output under a regular file": lambda d: ["-o", _write(d / "plain", "x") / "m.obj"],
+    "output a named pipe": lambda d: ["-o", fifo(d / "m.obj")],
+    "output name too long": lambda d: ["-o", d / ("a" * (name_max(d) - 3) + ".obj")],
+    "output folder unwritable": lambda d: ["-o", unwritable_folder(d) / "m.obj"],
+    "members folder unwritable": lambda d: ["-o", d / "m.obj", "--members", unwritable_folder(d) / "m.csv"],
+    "members extension": lambda d: ["-o", d / "m.obj", "--members", d / "m.txt"],
+}
+
+
+@pytest.mark.parametrize("case", sorted(BAD_OUTPUTS))
+def test_bad_outputs_are_refused_before_meshing(case, tmp_path, capsys, monkeypatch):
+    """Every output is checked before the mesh is computed: one line, exit 2, nothing written."""
+    monkeypatch.setattr(equimesh._cli, "mesh_surface", _never_called)
+    extra = BAD_OUTPUTS[case](tmp_path)
+    made = sorted(tmp_path.rglob("*"))
+    code, captured = run(["mesh", SADDLE, "--length", 5, "-q", *extra], capsys)
+    assert code == 2 and captured.err.count("\n") == 1, captured.err
+    assert sorted(tmp_path.rglob("*")) == made
+
+
+def test_longest_name_is_written(tmp_path, capsys):
+    """A file name of exactly NAME_MAX bytes works: the temporary name does not add to it."""
+    out = tmp_path / ("a" * (name_max(tmp_path) - 4) + ".stl")
+    code, captured = run(["mesh", SADDLE, "--length", 6, "--grid", 6, 6, "--optimize", "none", "-q", "-o", out], capsys)
+    assert code == 0, captured.err
+    assert [p.name for p in tmp_path.iterdir()] == [out.name]
+
+
+def test_members_write_failure_leaves_no_mesh(tmp_path, capsys, monkeypatch):
+    """The mesh and the member schedule are renamed together: a failing second write leaves neither."""
+    def disk_full(*args, **kwargs):
+        raise OSError(28, "No space left on device")
+
+    monkeypatch.setattr(pd.DataFrame, "to_csv", disk_full)
+    code, captured = run(["mesh", SADDLE, "--length", 6, "--grid", 6, 6, "--optimize", "none", "-q",
+                          "-o", tmp_path / "m.obj", "--members", tmp_path / "m.csv"], capsys)
+    assert code == 3 and "No space left on device" in captured.err and captured.err.count("\n") == 1
+    assert list(tmp_path.iterdir()) == []
+
+
+def _never_called(*args, **kwargs):
+    raise AssertionError("mesh_surface must not run")
+
+
+def _raising(exc):
+    def mesh_surface(*args, **kwargs):
+        raise exc
+
+    return mesh_surface
+
+
+@pytest.mark.parametrize(
+    "exc, code, message",
+    [
+        (InvalidLengthError("target length l must be positive"), 2, "equimesh: error: target length l must be positive"),
+        (InternalError("edge 3 is 2.5 long, more than 2l = 2.0"), 3,
+         "equimesh: internal error: InternalError: edge 3 is 2.5 long, more than 2l = 2.0 (please report this"),
+        (ZeroDivisionError("float division by zero"), 3, "equimesh: internal error: ZeroDivisionError: float division by zero"),
+        (RuntimeError("Triangle failed\nInternal error in finddirection()"), 3,
+         "equimesh: internal error: RuntimeError: Triangle failed Internal error in finddirection()"),
+        (MemoryError(), 2, "equimesh: error: out of memory"),
+        (KeyboardInterrupt(), 130, "equimesh: interrupted"),
+    ],
+)
+def test_every_failure_is_one_line_with_its_exit_code(exc, code, message, tmp_path, capsys, monkeypatch):
+    monkeypatch.setattr(equimesh._cli, "mesh_surface", _raising(exc))
+    got, captured = run(["mesh", SADDLE, "--length", 5, "-o", tmp_path / "m.obj", "-q"], capsys)
+    assert got == code
+    assert captured.err.count("\n") == 1 and captured.err.startswith(message), captured.err
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_library_noise_does_not_reach_the_terminal(tmp_path, capfd, monkeypatch):
+    """Triangle's C-level stdout and numpy's RuntimeWarnings are not printed: the one error line is."""
+    def noisy(*args, **kwargs):
+        os.write(1, b"Internal error in finddirection():\n")
+        np.array([1e300]) * 1e300  # overflow warning
+        raise RuntimeError("Triangulation failed")
+
+    monkeypatch.setattr(equimesh._cli, "mesh_surface", noisy)
+    with warnings.catch_warnings(record=True) as shown:
+        warnings.simplefilter("always")
+        code = main(["mesh", str(SADDLE), "--length", "5", "-o", str(tmp_path / "m.obj"), "-q"])
+    captured = capfd.readouterr()
+    assert code == 3 and captured.out == "" and captured.err.count("\n") == 1, captured
+    assert shown == []
+
+
+def test_traceback_option_reraises_internal_errors(tmp_path, monkeypatch):
+    monkeypatch.setattr(equimesh._cli, "mesh_surface", _raising(InternalError("broken")))
+    with pytest.raises(InternalError, match="broken"):
+        main(["--traceback", "mesh", str(SADDLE), "--length", "5", "-o", str(tmp_path / "m.obj")])
+
+
+@pytest.mark.parametrize("given, passed", [([], {}), (["--max-nodes", "none"], {"max_nodes": None}),
+                                           (["--max-nodes", "1000"], {"max_nodes": 1000})])
+def test_max_nodes_reaches_the_library(given, passed, tmp_path, capsys, monkeypatch):
+    """Not given: the library's default applies; 'none': no limit (None); a number: that limit."""
+    seen = {}
+
+    def mesh_surface(surface, l, **kwargs):
+        seen.update(kwargs)
+        raise InvalidLengthError("stop here")
+
+    monkeypatch.setattr(equimesh._cli, "mesh_surface", mesh_surface)
+    run(["mesh", SADDLE, "--length", 5, "-o", tmp_path / "m.obj", "-q", *given], capsys)
+    assert {k: v for k, v in seen.items() if k == "max_nodes"} == passed
+
+
+def test_sigint_prints_one_line_exits_130_and_writes_nothing(tmp_path):
+    """Ctrl-C in a long run: 'equimesh: interrupted', exit code 130, no output nor temporary file."""
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join(sys.path)}
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "equimesh._cli", "mesh", str(SADDLE), "--length", "1", "--optimize", "none",
+         "--max-nodes", "100000", "-o", str(tmp_path / "m.obj"), "--members", str(tmp_path / "m.csv")],
+        stderr=subprocess.PIPE, text=True, env=env,
+    )
+    try:
+        first = proc.stderr.readline()  # the first progress line: the run is under way
+        assert "auxiliary triangulation" in first, first
+        proc.send_signal(signal.SIGINT)
+        rest = proc.stderr.read()
+        code = proc.wait(timeout=60)
+    finally:
+        proc.kill()
+        proc.wait()
+    assert code == 130 and rest.strip().splitlines()[-1] == "equimesh: interrupted", rest
+    assert "Traceback" not in rest
+    assert list(tmp_path.iterdir()) == []

@@ -27,7 +27,7 @@ from .common import REPO, REFERENCE_SURFACE_JSON, SURFACE_GRID, SURFACE_LENGTH, 
 
 
 def _surface():
-    return equimesh.BezierSurface.from_json_dict(reference_surface_json())
+    return equimesh.surface_from_dict(reference_surface_json())
 
 
 def _experiment(name):

@@ -8,6 +8,8 @@ packing_upper_bound(vertices, l)  Oler's bound on l-separated point sets
 mesh_surface(surface, l)          Section 4: uniform mesh of a parametric surface
 uniform_triangulation(vertices, l) Problem 2: lattice + boundary strip (Section 3)
 best_lattice_placement(vertices, l) lattice angle/offset maximising G1 (beyond the paper)
+load_surface(path)                a surface from a file (format by extension; JSON "type" by equimesh.io.SURFACE_TYPES)
+surface_from_dict(d), surface_to_dict(surface)  the JSON description of a surface, both ways
 
 Section 4 stages (what mesh_surface chains; public so that they can be timed and reused)
 flatten(points3d, triangles)      step 2: eq. (1) flattening of the auxiliary triangulation
@@ -26,6 +28,7 @@ from .errors import (
     OutputPathError,
     SurfaceTooSmallError,
 )
+from .io import load_surface, surface_from_dict, surface_to_dict
 from .surface.flatten import flatten
 from .planar.increment import increment
 from .mesh import G1, OTHER, PlanarMesh
@@ -58,10 +61,13 @@ __all__ = [
     "best_lattice_placement",
     "flatten",
     "increment",
+    "load_surface",
     "mesh_surface",
     "node_lower_bound",
     "optimize_uv",
     "packing_upper_bound",
     "remap",
+    "surface_from_dict",
+    "surface_to_dict",
     "uniform_triangulation",
 ]

@@ -5,21 +5,36 @@ the mesh (format by OUT's extension) and optionally a member schedule;
 ``equimesh table1`` and ``equimesh figures`` regenerate the paper's Table 1
 and figures (they run the scripts in the source checkout's ``experiments/``).
 
-Bad input ends with one line on standard error and exit code 2, and leaves
-no output file behind.
+Every run ends in one of four ways, always without a traceback:
+
+* 0, the outputs written;
+* 2 (:data:`EXIT_USAGE`), bad input or an output that cannot be written: one
+  line on standard error, and no output file touched (paths are checked before
+  the mesh is computed; all outputs of a run are renamed into place together);
+  running out of memory ends here too, since the remedy is a smaller request;
+* 3 (:data:`EXIT_INTERNAL`), a bug (an :class:`equimesh.InternalError`, a
+  proven guarantee failing, or any other unexpected exception): one line
+  asking for a report; ``--traceback`` shows the details;
+* 130 (:data:`EXIT_INTERRUPTED`, 128 + SIGINT as shells count), Ctrl-C: one
+  line, temporary files removed, no output file touched.
 """
 
 import argparse
+import contextlib
 import importlib.util
+import os
 import sys
+import warnings
 from pathlib import Path
 
 from .errors import EquimeshError
-from .io._meshes import MESH_FORMATS, check_output_path, load_surface, write_members, write_mesh
+from .io import INPUT_FORMATS, MEMBER_FORMATS, MESH_FORMATS, check_output_path, load_surface, write_surface_mesh
 from .surface.optimize import OBJECTIVES
-from .surface.pipeline import MAX_NODES, PLACEMENTS, mesh_surface
+from .surface.pipeline import MAX_GRID_CELLS, MAX_NODES, MAX_OPTIMIZE_NODES, PLACEMENTS, mesh_surface
 
 EXIT_USAGE = 2
+EXIT_INTERNAL = 3
+EXIT_INTERRUPTED = 130
 EXPERIMENTS = Path(__file__).resolve().parents[2] / "experiments"
 
 
@@ -38,6 +53,8 @@ def build_parser():
             "'A uniform triangle mesh generation of curved surfaces'."
         ),
     )
+    parser.add_argument("--traceback", action="store_true",
+                        help="on an internal error (exit code 3), show the full traceback for a bug report")
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser, metavar="COMMAND")
 
     mesh = sub.add_parser(
@@ -51,21 +68,28 @@ def build_parser():
             "columns over v."
         ),
     )
-    mesh.add_argument("surface", metavar="SURFACE.json", help="surface description (JSON)")
+    mesh.add_argument("surface", metavar="SURFACE.json",
+                      help=f"surface description; format from the extension: {', '.join(sorted(INPUT_FORMATS))}")
     mesh.add_argument("--length", "-l", type=float, required=True, metavar="L", help="target member length")
     mesh.add_argument("--grid", type=int, nargs=2, default=(15, 15), metavar=("NU", "NV"),
-                      help="auxiliary grid cells along u and v (default: 15 15)")
+                      help="auxiliary grid cells along u and v (default: 15 15); at most "
+                           f"{MAX_GRID_CELLS} cells, because flattening time and memory grow with NU x NV "
+                           "(about 40 s and 0.6 GB at 200 x 200 on a 2-core machine)")
     mesh.add_argument("--optimize", choices=["none", *OBJECTIVES], default="paper",
                       help="final optimisation of the inner nodes (default: paper)")
     mesh.add_argument("--placement", choices=PLACEMENTS, default="best",
                       help="lattice placement: searched for the most equal members, or angle 0 at the origin "
                            "(default: best)")
-    mesh.add_argument("--max-nodes", type=int, default=MAX_NODES, metavar="N",
-                      help=f"refuse meshes estimated to need more than N nodes (default: {MAX_NODES})")
+    mesh.add_argument("--max-nodes", type=_max_nodes, default=argparse.SUPPRESS, metavar="N",
+                      help="refuse, before any heavy work, a mesh estimated to need more than N nodes; 'none' for "
+                           f"no limit. The defaults, {MAX_NODES} nodes with --optimize none and "
+                           f"{MAX_OPTIMIZE_NODES} with --optimize paper, keep a run to about two minutes on a "
+                           "2-core machine (docs/performance.md); beyond them time grows faster than the node count")
     mesh.add_argument("-o", "--output", required=True, metavar="OUT",
                       help=f"mesh file; format from the extension: {', '.join(sorted(MESH_FORMATS))}")
     mesh.add_argument("--members", metavar="CSV",
-                      help="also write a member schedule: member id, node ids, length, group, deviation from L")
+                      help="also write a member schedule: member id, node ids, length, group, deviation from L "
+                           "(written together with the mesh: both files or neither)")
     mesh.add_argument("--quiet", "-q", action="store_true", help="no progress lines")
     mesh.set_defaults(run=_run_mesh)
 
@@ -78,41 +102,97 @@ def build_parser():
 
 
 def main(argv=None):
-    parser = build_parser()
-    args, extra = parser.parse_known_args(argv)
-    if args.run is _run_experiment:
-        args.args = extra
-    elif extra:
-        parser.error(f"unrecognized arguments: {' '.join(extra)}")
+    """Run the command line; return the exit code (see the module docstring), never raise but ``SystemExit``."""
+    show_traceback = False
     try:
+        parser = build_parser()
+        args, extra = parser.parse_known_args(argv)
+        show_traceback = args.traceback
+        if args.run is _run_experiment:
+            args.args = extra
+        elif extra:
+            parser.error(f"unrecognized arguments: {' '.join(extra)}")
         return args.run(args) or 0
     except EquimeshError as exc:
-        print(f"equimesh: error: {exc}", file=sys.stderr)
-        return EXIT_USAGE
+        return _fail(EXIT_USAGE, f"error: {exc}")
+    except MemoryError:
+        return _fail(EXIT_USAGE, "error: out of memory; use a larger --length, a smaller --grid or a lower --max-nodes")
+    except KeyboardInterrupt:
+        return _fail(EXIT_INTERRUPTED, "interrupted")
+    except Exception as exc:  # InternalError, or any other bug: one line, not a traceback
+        if show_traceback:
+            raise
+        return _fail(EXIT_INTERNAL, f"internal error: {type(exc).__name__}: {exc} (please report this; "
+                                    "--traceback shows the details)")
+
+
+def _fail(code, message):
+    """Print ``message`` as one line on standard error and return ``code``."""
+    print("equimesh: " + " ".join(message.split()), file=sys.stderr)
+    return code
+
+
+def _max_nodes(text):
+    """``--max-nodes``: a positive whole number, or 'none' for no limit."""
+    if text.strip().lower() == "none":
+        return None
+    try:
+        value = int(text)
+    except ValueError:
+        value = 0
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"expected a positive whole number or 'none', got {text!r}")
+    return value
 
 
 def _run_mesh(args):
     check_output_path(args.output, MESH_FORMATS)
     if args.members:
-        check_output_path(args.members, {".csv": "csv"})
-    if args.max_nodes <= 0:
-        raise EquimeshError(f"--max-nodes must be positive, got {args.max_nodes}")
+        check_output_path(args.members, MEMBER_FORMATS)
     surface = load_surface(args.surface)
 
     def progress(stage, seconds):
         if not args.quiet:
             print(f"  {stage}: {seconds:.2f} s", file=sys.stderr)
 
-    mesh = mesh_surface(surface, args.length, grid=tuple(args.grid), optimize=args.optimize,
-                        placement=args.placement, max_nodes=args.max_nodes, progress=progress)
-    write_mesh(args.output, mesh.points, mesh.triangles)
-    if args.members:
-        write_members(args.members, mesh.points, mesh.edges, mesh.edge_groups, mesh.length)
+    limit = {"max_nodes": args.max_nodes} if "max_nodes" in args else {}
+    with _library_quiet():
+        mesh = mesh_surface(surface, args.length, grid=tuple(args.grid), optimize=args.optimize,
+                            placement=args.placement, progress=progress, **limit)
+    write_surface_mesh(mesh, args.output, args.members)
     if not args.quiet:
         n_g1 = int(mesh.g1_mask.sum())
-        print(f"wrote {args.output}: {len(mesh.points)} nodes, {len(mesh.edges)} members "
+        also = f" and {args.members}" if args.members else ""
+        print(f"wrote {args.output}{also}: {len(mesh.points)} nodes, {len(mesh.edges)} members "
               f"({n_g1} in the equal-length group G1), {len(mesh.triangles)} triangles", file=sys.stderr)
     return 0
+
+
+@contextlib.contextmanager
+def _library_quiet():
+    """Keep the run's outcome the only thing printed: no floating-point RuntimeWarnings, no C-level stdout.
+
+    The library checks its results (finite, every theorem) and raises one
+    error of its own; the warnings numpy emits on the way to that error, and
+    the messages Triangle's C code prints on file descriptor 1 before its
+    RuntimeError, would only add lines to it.
+    """
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)
+        try:
+            saved = os.dup(1)
+        except OSError:  # file descriptor 1 is closed: nothing to silence
+            yield
+            return
+        if sys.stdout is not None:
+            sys.stdout.flush()
+        try:
+            with open(os.devnull, "wb") as null:
+                os.dup2(null.fileno(), 1)
+            yield
+        finally:
+            os.dup2(saved, 1)
+            os.close(saved)
 
 
 def _run_experiment(args):

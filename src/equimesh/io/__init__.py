@@ -1,18 +1,35 @@
 """Input and output: surface descriptions in, meshes and member schedules out, provenance.
 
-* :mod:`._meshes`     reading surface JSON, writing meshes (meshio) and member schedules;
-* :mod:`._atomic`     atomic writes (temporary file, then rename);
+* :mod:`._surfaces`   reading surfaces: input formats by extension, surface types by JSON ``"type"``;
+* :mod:`._bezier`     the JSON schema of a Bezier surface (one row of the type table);
+* :mod:`._schema`     checks shared by the schemas, plain text for messages;
+* :mod:`._meshes`     writing meshes (meshio) and member schedules, checks of output paths;
+* :mod:`._atomic`     atomic writes (temporary files, then renames), one file or a set;
 * :mod:`.provenance`  git commit, date, versions and parameters beside every result.
 """
 
-from ._meshes import MESH_FORMATS, OutputPathError, check_output_path, load_surface, member_schedule, write_members, write_mesh
+from ._meshes import (
+    MEMBER_FORMATS,
+    MESH_FORMATS,
+    check_output_path,
+    member_schedule,
+    write_members,
+    write_mesh,
+    write_surface_mesh,
+)
+from ._surfaces import INPUT_FORMATS, SURFACE_TYPES, load_surface, surface_from_dict, surface_to_dict
 
 __all__ = [
+    "INPUT_FORMATS",
+    "MEMBER_FORMATS",
     "MESH_FORMATS",
-    "OutputPathError",
+    "SURFACE_TYPES",
     "check_output_path",
     "load_surface",
     "member_schedule",
+    "surface_from_dict",
+    "surface_to_dict",
     "write_members",
     "write_mesh",
+    "write_surface_mesh",
 ]

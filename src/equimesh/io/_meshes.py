@@ -1,70 +1,88 @@
-"""Surfaces in (JSON), meshes and member schedules out.
+"""Meshes and member schedules out: output formats by extension, checks before any work, all-or-nothing writes.
 
-Surface JSON::
-
-    {"type": "bezier", "control_points": [[[x, y, z], ...], ...]}
-
-rows over u, columns over v; an (m+1) x (n+1) net gives a Bézier surface of
-degree (m, n).  Meshes are written through meshio in the format given by the
-file extension; every output is written to a temporary file beside the
-target and renamed, so a failure never leaves a partial file.
+Meshes are written through meshio in the format given by the file extension
+(:data:`MESH_FORMATS`), member schedules as CSV (:data:`MEMBER_FORMATS`).
+:func:`check_output_path` tries everything a write will need (folder, name
+length, permission) so that a run can refuse a bad output before its expensive
+part; every output of one call is written to a temporary file and the files
+are renamed together at the end (:func:`equimesh.io._atomic.atomic_paths`), so a
+failure never leaves a partial file or half a set of files.
 """
 
-import json
+import errno
+import math
+import os
 from pathlib import Path
 
 import meshio
 import numpy as np
 import pandas as pd
 
-from ._atomic import atomic_path
-from ..errors import EquimeshError, InvalidSurfaceError, OutputPathError
-from ..mesh import edge_lengths
-from ..surface.bezier import BezierSurface
+from ..errors import OutputPathError
+from ..mesh import G1, edge_lengths
+from ._atomic import atomic_paths, probe_folder
+from ._schema import shown_path
 
-#: Output formats by extension (meshio format names).
-MESH_FORMATS = {".obj": "obj", ".vtk": "vtk", ".vtu": "vtu", ".stl": "stl", ".ply": "ply", ".msh": "gmsh"}
+#: Mesh output formats by extension (meshio format names).
+MESH_FORMATS = {".obj": "obj", ".vtk": "vtk", ".vtu": "vtu", ".stl": "stl", ".ply": "ply", ".msh": "gmsh22"}
 
+#: Member schedule formats by extension.
+MEMBER_FORMATS = {".csv": "csv"}
 
-def load_surface(path):
-    """Read a surface JSON file; raise :class:`InvalidSurfaceError` naming the problem."""
-    path = Path(path)
-    try:
-        text = path.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise InvalidSurfaceError(f"surface file not found: {path}") from None
-    except (IsADirectoryError, PermissionError, UnicodeDecodeError) as exc:
-        raise InvalidSurfaceError(f"cannot read surface file {path}: {exc.__class__.__name__}") from None
-    try:
-        data = json.loads(text)
-    except json.JSONDecodeError as exc:
-        raise InvalidSurfaceError(f"{path}: malformed JSON at line {exc.lineno} column {exc.colno}: {exc.msg}") from None
-    return BezierSurface.from_json_dict(data)
+#: Cell data a meshio format requires (one zero per triangle for each name).
+_REQUIRED_CELL_DATA = {"gmsh22": ("gmsh:physical", "gmsh:geometrical")}
 
 
 def check_output_path(path, formats):
-    """Validate an output path: known extension and an existing folder.  Returns the format."""
+    """Check that ``path`` can be written as one of ``formats`` (by extension); return the format.
+
+    Tried, in this order: the extension is known, the name and the whole path
+    fit the file system's limits, the folder exists and is a folder, the
+    target is not a folder nor a special file (a rename would replace it), and
+    a temporary file can really be created (and is removed) in the folder.
+
+    Raises
+    ------
+    OutputPathError
+        one line naming the first problem.
+    """
     path = Path(path)
     fmt = formats.get(path.suffix.lower())
     if fmt is None:
-        raise OutputPathError(f"unknown output extension {path.suffix!r} for {path}; use one of {sorted(formats)}")
-    if not path.parent.is_dir():
-        raise OutputPathError(f"output folder does not exist: {path.parent}")
+        raise OutputPathError(
+            f"unknown output extension {path.suffix!r} for {shown_path(path)}; use one of {sorted(formats)}"
+        )
+    folder = path.parent
+    try:
+        name_bytes, name_max = len(os.fsencode(path.name)), _pathconf(folder, "PC_NAME_MAX")
+        if name_bytes > name_max:
+            raise OutputPathError(
+                f"output file name is {name_bytes} bytes long, more than the {name_max} this file system allows: "
+                f"{shown_path(path.name)}"
+            )
+        path_bytes, path_max = len(os.fsencode(str(path))), _pathconf(folder, "PC_PATH_MAX")  # PATH_MAX counts a NUL
+        if path_bytes >= path_max:
+            raise OutputPathError(
+                f"output path is {path_bytes} bytes long, more than the {path_max - 1} this system allows: "
+                f"{shown_path(path)}"
+            )
+        if not folder.is_dir():
+            state = "is not a folder" if folder.exists() else "does not exist"
+            raise OutputPathError(f"output folder {state}: {shown_path(folder)}")
+        if path.is_dir():
+            raise OutputPathError(f"output {shown_path(path)} is a folder")
+        if path.exists() and not path.is_file():
+            raise OutputPathError(f"output {shown_path(path)} exists and is not a regular file")
+        probe_folder(folder, path.suffix)
+    except OSError as exc:
+        reason = "path too long" if exc.errno == errno.ENAMETOOLONG else exc.strerror or type(exc).__name__
+        raise OutputPathError(f"cannot write {shown_path(path)}: {reason}") from None
     return fmt
 
 
 def write_mesh(path, points, triangles):
     """Write a triangle mesh to ``path`` (format by extension, see :data:`MESH_FORMATS`), atomically."""
-    fmt = check_output_path(path, MESH_FORMATS)
-    cells = np.asarray(triangles, dtype=np.int32)
-    cell_data = {}
-    if fmt == "gmsh":
-        fmt = "gmsh22"
-        zeros = [np.zeros(len(cells), dtype=np.int32)]
-        cell_data = {"gmsh:physical": zeros, "gmsh:geometrical": zeros}
-    mesh = meshio.Mesh(np.asarray(points, dtype=float), [("triangle", cells)], cell_data=cell_data)
-    with atomic_path(path) as tmp:
-        mesh.write(tmp, file_format=fmt)
+    _write_all([_mesh_output(path, points, triangles)])
 
 
 def member_schedule(points, edges, groups, l):
@@ -77,7 +95,7 @@ def member_schedule(points, edges, groups, l):
             "node_i": e[:, 0],
             "node_j": e[:, 1],
             "length": length,
-            "group": np.where(np.asarray(groups) == 1, "G1", "other"),
+            "group": np.where(np.asarray(groups) == G1, "G1", "other"),
             "deviation": length - l,
             "relative_deviation": (length - l) / l,
         }
@@ -86,7 +104,48 @@ def member_schedule(points, edges, groups, l):
 
 def write_members(path, points, edges, groups, l):
     """Write :func:`member_schedule` as CSV to ``path``, atomically."""
-    check_output_path(path, {".csv": "csv"})
+    _write_all([_members_output(path, points, edges, groups, l)])
+
+
+def write_surface_mesh(mesh, path, members=None):
+    """Write a :class:`equimesh.SurfaceMesh` to ``path`` and, if given, its member schedule to ``members``.
+
+    All or nothing: either every file is written completely or none is
+    touched (a failure of the second write removes the first one's temporary
+    file before any rename).
+    """
+    outputs = [_mesh_output(path, mesh.points, mesh.triangles)]
+    if members is not None:
+        outputs.append(_members_output(members, mesh.points, mesh.edges, mesh.edge_groups, mesh.length))
+    _write_all(outputs)
+
+
+def _mesh_output(path, points, triangles):
+    fmt = check_output_path(path, MESH_FORMATS)
+    cells = np.asarray(triangles, dtype=np.int32)
+    zeros = np.zeros(len(cells), dtype=np.int32)
+    cell_data = {name: [zeros] for name in _REQUIRED_CELL_DATA.get(fmt, ())}
+    mesh = meshio.Mesh(np.asarray(points, dtype=float), [("triangle", cells)], cell_data=cell_data)
+    return path, lambda tmp: mesh.write(tmp, file_format=fmt)
+
+
+def _members_output(path, points, edges, groups, l):
+    check_output_path(path, MEMBER_FORMATS)
     table = member_schedule(points, edges, groups, l)
-    with atomic_path(path) as tmp:
-        table.to_csv(tmp, index=False, float_format="%.10g")
+    return path, lambda tmp: table.to_csv(tmp, index=False, float_format="%.10g")
+
+
+def _write_all(outputs):
+    """Write ``(path, write)`` pairs, ``write(tmp)`` filling a temporary file; rename them all at the end."""
+    with atomic_paths(*(path for path, _ in outputs)) as tmps:
+        for (_, write), tmp in zip(outputs, tmps):
+            write(tmp)
+
+
+def _pathconf(folder, name):
+    """The file system's limit ``name`` at ``folder`` (bytes), or infinity where there is none or it cannot be asked."""
+    try:
+        limit = os.pathconf(folder, name)
+    except (AttributeError, ValueError, OSError):  # no pathconf (Windows), unknown name
+        return math.inf
+    return math.inf if limit < 0 else limit

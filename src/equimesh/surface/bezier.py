@@ -8,7 +8,6 @@ paper's example, a tensor-product Bezier surface of any degree.
 """
 
 import math
-from numbers import Real
 from typing import Protocol, runtime_checkable
 
 import numpy as np
@@ -89,65 +88,6 @@ class BezierSurface:
         sv = _tensor_sum(n * np.diff(p, axis=1), u, v)
         return su, sv
 
-    @classmethod
-    def from_json_dict(cls, d):
-        """Build a surface from ``{"type": "bezier", "control_points": [[[x, y, z], ...], ...]}``.
-
-        An optional ``"description"`` string is allowed and ignored.
-
-        Rows of ``control_points`` run over ``u``, the entries of a row over
-        ``v``.  Every field is checked; the first problem found is raised as an
-        :class:`InvalidSurfaceError` naming the field and index at fault.
-        """
-        if not isinstance(d, dict):
-            raise InvalidSurfaceError(f"surface must be a JSON object, got {_json_type(d)}")
-        if "type" not in d:
-            raise InvalidSurfaceError('surface is missing the field "type" (expected "bezier")')
-        if d["type"] != "bezier":
-            raise InvalidSurfaceError(f'surface "type" must be "bezier", got {d["type"]!r}')
-        extra = sorted(set(d) - {"type", "control_points", "description"})
-        if extra:
-            raise InvalidSurfaceError(f"surface has unknown field {extra[0]!r}")
-        if not isinstance(d.get("description", ""), str):
-            raise InvalidSurfaceError(f'surface "description" must be a string, got {_json_type(d["description"])}')
-        if "control_points" not in d:
-            raise InvalidSurfaceError('surface is missing the field "control_points"')
-        rows = d["control_points"]
-        if not isinstance(rows, list):
-            raise InvalidSurfaceError(f'"control_points" must be a list of rows, got {_json_type(rows)}')
-        if len(rows) < 2:
-            raise InvalidSurfaceError(f'"control_points" needs at least 2 rows, got {len(rows)}')
-        width = None
-        for i, row in enumerate(rows):
-            if not isinstance(row, list):
-                raise InvalidSurfaceError(f"control_points[{i}] must be a list of points, got {_json_type(row)}")
-            if width is None:
-                width = len(row)
-                if width < 2:
-                    raise InvalidSurfaceError(f"control_points[{i}] needs at least 2 points, got {width}")
-            elif len(row) != width:
-                raise InvalidSurfaceError(
-                    f"control_points[{i}] has {len(row)} points, but control_points[0] has {width}"
-                )
-            for j, point in enumerate(row):
-                where = f"control_points[{i}][{j}]"
-                if not isinstance(point, list) or len(point) != 3:
-                    raise InvalidSurfaceError(f"{where} must be a list [x, y, z] of 3 numbers, got {point!r:.60}")
-                for k, x in enumerate(point):
-                    if isinstance(x, bool) or not isinstance(x, Real):
-                        raise InvalidSurfaceError(f"{where}[{k}] must be a number, got {_json_type(x)} {x!r:.40}")
-                    try:
-                        finite = math.isfinite(x)
-                    except OverflowError:  # an integer beyond the float range
-                        finite = False
-                    if not finite:
-                        raise InvalidSurfaceError(f"{where}[{k}] is not a finite number: {x!r:.40}")
-        return cls(rows)
-
-    def to_json_dict(self):
-        """The inverse of :meth:`from_json_dict`."""
-        return {"type": "bezier", "control_points": self.control_points.tolist()}
-
 
 def _tensor_sum(net, u, v):
     """``sum_ij B_i(u) B_j(v) net_ij`` for a net of shape (a, b, 3), vectorised over ``u, v``."""
@@ -175,11 +115,6 @@ def _validate_net(control_points):
         i, j, k = (int(x) for x in bad[0])
         raise InvalidSurfaceError(f"control point [{i}][{j}] has a non-finite coordinate {p[i, j, k]!r}")
     return p
-
-
-def _json_type(x):
-    names = {dict: "object", list: "list", str: "string", bool: "boolean", type(None): "null"}
-    return names.get(type(x), "number" if isinstance(x, Real) else type(x).__name__)
 
 
 def de_casteljau(control_points, u, v):

@@ -1,0 +1,65 @@
+"""Checks shared by the JSON schemas of every surface type, and plain text for messages.
+
+Every message names the field by its JSON path (``control_points[1][0][2]``)
+and shows values as plain text, never as a numpy or Python ``repr``.
+"""
+
+import math
+from numbers import Integral, Real
+
+from ..errors import InvalidSurfaceError
+
+#: How many characters of an offending value a message shows.
+SHOWN_CHARS = 40
+
+#: Longest path a message shows; longer ones are cut in the middle.
+SHOWN_PATH_CHARS = 160
+
+
+def json_type(x):
+    """The JSON name of ``x``'s type ("object", "list", "string", "number", ...)."""
+    names = {dict: "object", list: "list", str: "string", bool: "boolean", type(None): "null"}
+    if type(x) in names:
+        return names[type(x)]
+    return "number" if isinstance(x, Real) else type(x).__name__
+
+
+def shown(x):
+    """``x`` as short plain text for a message (numbers as plain decimals, long text cut)."""
+    if isinstance(x, Integral) and not isinstance(x, bool):
+        return str(int(x)) if abs(int(x)) < 10**SHOWN_CHARS else f"an integer beyond 1e{SHOWN_CHARS}"
+    if isinstance(x, Real):
+        return repr(float(x))
+    text = str(x)
+    return text if len(text) <= SHOWN_CHARS else text[: SHOWN_CHARS - 3] + "..."
+
+
+def a_list(x, where, what, min_length):
+    """``x`` if it is a list of at least ``min_length`` entries, else an :class:`InvalidSurfaceError`."""
+    if not isinstance(x, list):
+        raise InvalidSurfaceError(f"{where} must be a list of {what}, got {json_type(x)}")
+    if len(x) < min_length:
+        raise InvalidSurfaceError(f"{where} needs at least {min_length} {what}, got {len(x)}")
+    return x
+
+
+def finite_number(x, where):
+    """``float(x)`` if ``x`` is a finite real number (not a boolean), else an :class:`InvalidSurfaceError`."""
+    if isinstance(x, bool) or not isinstance(x, Real):
+        raise InvalidSurfaceError(f"{where} must be a real number, got {json_type(x)} {shown(x)}")
+    try:
+        value = float(x)
+    except OverflowError:  # an integer beyond the float range
+        value = math.inf
+    if not math.isfinite(value):
+        raise InvalidSurfaceError(f"{where} is not a finite number: {shown(x)}")
+    return value
+
+
+def shown_path(path):
+    """``path`` as text for a one-line message, cut in the middle beyond :data:`SHOWN_PATH_CHARS`."""
+    text = str(path)
+    if len(text) <= SHOWN_PATH_CHARS:
+        return text
+    half = SHOWN_PATH_CHARS // 2
+    return f"{text[:half]}...{text[-half:]} ({len(text)} characters)"

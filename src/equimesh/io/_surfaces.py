@@ -1,0 +1,148 @@
+"""Surface descriptions in: a table of surface types (the JSON ``"type"``) and a table of input formats.
+
+A surface file is read by the format of its extension (:data:`INPUT_FORMATS`);
+a JSON description names its surface type in ``"type"``
+(:data:`SURFACE_TYPES`), whose schema turns the object into a surface (step 1
+of Section 4: the map X^s(u, v)).  A new type or format is one new row in a
+table, nothing else.  Every problem, from an unreadable path to a coordinate
+that is not a finite number, is one :class:`InvalidSurfaceError` line.
+"""
+
+import errno
+import json
+import sys
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Callable
+
+from ..errors import InvalidSurfaceError
+from ..surface.bezier import BezierSurface
+from . import _bezier
+from ._schema import json_type, shown, shown_path
+
+
+@dataclass(frozen=True)
+class SurfaceType:
+    """One surface type: its class, its fields and its JSON schema in both directions."""
+
+    cls: type
+    fields: tuple  # required, besides "type"; "description" (a string) is allowed everywhere
+    from_dict: Callable  # the JSON object (fields present) -> a surface
+    to_dict: Callable  # a surface -> its fields
+
+
+@dataclass(frozen=True)
+class InputFormat:
+    """One input file format: its name and the function reading a path to a surface."""
+
+    name: str
+    read: Callable
+
+
+#: Surface types by their JSON ``"type"``.
+SURFACE_TYPES = {
+    "bezier": SurfaceType(BezierSurface, _bezier.FIELDS, _bezier.bezier_from_dict, _bezier.bezier_to_dict),
+}
+
+
+def surface_from_dict(d):
+    """The surface described by the JSON object ``d`` (``{"type": ..., ...}``, see :data:`SURFACE_TYPES`).
+
+    Raises
+    ------
+    InvalidSurfaceError
+        naming the first field at fault: not an object, missing or unknown
+        ``"type"``, a missing or unknown field, a malformed value.
+    """
+    if not isinstance(d, dict):
+        raise InvalidSurfaceError(f"surface must be a JSON object, got {json_type(d)}")
+    known = ", ".join(f'"{name}"' for name in SURFACE_TYPES)
+    if "type" not in d:
+        raise InvalidSurfaceError(f'surface is missing the field "type" (one of {known})')
+    kind = SURFACE_TYPES.get(d["type"]) if isinstance(d["type"], str) else None
+    if kind is None:
+        got = repr(shown(d["type"])) if isinstance(d["type"], str) else json_type(d["type"])
+        raise InvalidSurfaceError(f'surface "type" must be one of {known}, got {got}')
+    extra = sorted(set(d) - {"type", "description", *kind.fields})
+    if extra:
+        raise InvalidSurfaceError(f"surface has unknown field {shown(extra[0])!r}")
+    if not isinstance(d.get("description", ""), str):
+        raise InvalidSurfaceError(f'surface "description" must be a string, got {json_type(d["description"])}')
+    missing = [name for name in kind.fields if name not in d]
+    if missing:
+        raise InvalidSurfaceError(f'surface is missing the field "{missing[0]}"')
+    return kind.from_dict(d)
+
+
+def surface_to_dict(surface):
+    """The JSON object describing ``surface`` (the inverse of :func:`surface_from_dict`)."""
+    for name, kind in SURFACE_TYPES.items():
+        if type(surface) is kind.cls:
+            return {"type": name, **kind.to_dict(surface)}
+    raise TypeError(f"no JSON surface type for {type(surface).__name__}")
+
+
+def load_surface(path):
+    """Read the surface in file ``path``; its format is chosen by extension (:data:`INPUT_FORMATS`).
+
+    Raises
+    ------
+    InvalidSurfaceError
+        one line naming the problem: unknown extension (listing the known
+        ones), a path that is missing, too long, not a regular file or not
+        readable, or a malformed description.
+    """
+    path = Path(path)
+    fmt = INPUT_FORMATS.get(path.suffix.lower())
+    if fmt is None:
+        raise InvalidSurfaceError(
+            f"unknown surface file extension {path.suffix!r} for {shown_path(path)}; use one of {sorted(INPUT_FORMATS)}"
+        )
+    try:
+        if not path.is_file():
+            raise InvalidSurfaceError(
+                f"surface file {'is not a regular file' if path.exists() else 'not found'}: {shown_path(path)}"
+            )
+        return fmt.read(path)
+    except OSError as exc:
+        reason = "path too long" if exc.errno == errno.ENAMETOOLONG else exc.strerror or type(exc).__name__
+        raise InvalidSurfaceError(f"cannot read surface file {shown_path(path)}: {reason}") from None
+
+
+def read_json_surface(path):
+    """Read a JSON surface description (UTF-8, a byte-order mark allowed) and build it with :func:`surface_from_dict`."""
+    data = Path(path).read_bytes()
+    where = shown_path(path)
+    try:
+        text = data.decode("utf-8-sig")
+    except UnicodeDecodeError as exc:
+        raise InvalidSurfaceError(f"{where} is not UTF-8 text (byte {exc.start} cannot be decoded)") from None
+    try:
+        d = json.loads(text, object_pairs_hook=_unique_keys)
+    except json.JSONDecodeError as exc:
+        raise InvalidSurfaceError(f"{where}: malformed JSON at line {exc.lineno} column {exc.colno}: {exc.msg}") from None
+    except InvalidSurfaceError:  # from _unique_keys
+        raise
+    except RecursionError:
+        raise InvalidSurfaceError(f"{where}: JSON nested too deeply to read (a surface needs a few levels)") from None
+    except ValueError as exc:  # only an integer too long for int(), Python >= 3.11
+        raise InvalidSurfaceError(
+            f"{where}: an integer has more than {sys.get_int_max_str_digits()} digits; "
+            "write coordinates as ordinary numbers"
+        ) from None
+    return surface_from_dict(d)
+
+
+#: Input formats by file extension (lower case).
+INPUT_FORMATS = {
+    ".json": InputFormat("equimesh surface JSON", read_json_surface),
+}
+
+
+def _unique_keys(pairs):
+    seen = set()
+    for key, _ in pairs:
+        if key in seen:
+            raise InvalidSurfaceError(f"surface JSON has the field {shown(key)!r} twice")
+        seen.add(key)
+    return dict(pairs)
