@@ -57,13 +57,13 @@ import math
 import numpy as np
 from numba import njit
 
-from ...errors import InternalError
+from ...errors import EquimeshError, InternalError
 from ...tolerance import REL_TOL, SLIVER_GAP
 from ._cdt import adjacency, cavity, cavity_boundary, fill, locate, segments_touch, walk
 from ._region import Insertion, constrained_delaunay
 
-#: Returned by the compiled loop: every segment bounds exactly one triangle
-#: (else the index of the first segment that does not, as ``-2 - s``) ...
+#: Returned by the compiled loop: done; else ``-2 - s`` for the first
+#: segment ``s`` that is not an edge of exactly one triangle ...
 _OK = -1
 #: ... or a Bowyer-Watson cavity produced a non-counter-clockwise fan (a bug).
 _BROKEN = -2 - 2**62
@@ -264,7 +264,7 @@ def _insert_all(P0, T0, SEG0, lim):
     n_free = 0
     vfan = np.zeros(n, dtype=np.int64)
     vstamp = np.zeros(n, dtype=np.int64)
-    values = np.empty(max(n, 16))
+    values = np.zeros(n)
     cav = np.empty(n_slots, dtype=np.int64)
     edges = np.empty((n_slots + 2, 4), dtype=np.int64)
     slots = np.empty(n_slots + 2, dtype=np.int64)
@@ -360,5 +360,8 @@ def run(region, l):
     if status == _BROKEN:
         raise InternalError("fast engine: a Bowyer-Watson cavity did not re-triangulate (broken triangulation)")
     if status != _OK:
-        raise InternalError(f"fast engine: constraint segment {-2 - status} does not bound exactly one triangle")
+        raise EquimeshError(
+            f"the fast engine needs every constraint to bound the region, but segment {-2 - status} "
+            "is an edge of zero or two triangles; use engine='reference'"
+        )
     return Insertion(points, triangles, segments, len(region.points), values)
