@@ -152,12 +152,19 @@ def assert_same_insertion(runs):
     assert mesh_a.points.tobytes() == mesh_b.points.tobytes()
 
 
+#: Inserted values may rise by this much, relative: a circumradius is computed with a few
+#: roundings, so two cocircular candidates of the same exact value can differ in the last bit.
+VALUE_ROUNDING = 1e-12
+
+
 def assert_values_non_increasing(insertion):
-    """Step 3 takes the farthest point, and inserting a point only brings the others closer."""
+    """Step 3 takes the farthest point, and inserting a point only brings the others closer (up to rounding)."""
     v = insertion.values
     if len(v) > 1:
         k = int(np.argmax(np.diff(v)))
-        assert v[k + 1] <= v[k], f"value {v[k + 1]!r} inserted after {v[k]!r} (step {k + 1})"
+        assert v[k + 1] <= v[k] * (1.0 + VALUE_ROUNDING), (
+            f"value {float(v[k + 1])!r} inserted after {float(v[k])!r} (step {k + 1})"
+        )
 
 
 # --------------------------------------------------------------------------- equivalence
@@ -181,11 +188,24 @@ def test_problem1_engines_agree_bit_for_bit(problem):
         assert_values_non_increasing(insertion)
 
 
-@given(ss.cases(150.0), st.floats(0.01, 1.5), st.floats(1.0, 59.0))
-def test_problem2_engines_agree_bit_for_bit(case, turn, angle):
-    """Problem 2 on simple polygons turned by a generic angle, lattice at a generic angle: the same strip insertion."""
-    vertices, l = case
-    runs = problem2_runs(rotate(vertices, turn), l, angle)
+@st.composite
+def tie_free_simple(draw):
+    """Simple polygons (:mod:`strategies_simple`) grown by 1% and every vertex moved by up to 1e-3 l.
+
+    The families are built on grids and with symmetries (letters, stars,
+    regular polygons), which put four boundary points exactly on a circle
+    even after a rotation; the random moves break every such tie, and the
+    1% growth keeps every edge and every gap above l.
+    """
+    vertices, l = draw(ss.cases(150.0))
+    rng = np.random.default_rng(draw(ss.seeds))
+    return 1.01 * vertices + rng.uniform(-1e-3 * l, 1e-3 * l, vertices.shape), l
+
+
+@given(tie_free_simple(), st.floats(1.0, 59.0))
+def test_problem2_engines_agree_bit_for_bit(case, angle):
+    """Problem 2, tie-free polygon, lattice at a generic angle: the same strip insertion; values non-increasing."""
+    runs = problem2_runs(*case, angle)
     assert_same_insertion(runs)
     for _, insertion in runs.values():
         assert_values_non_increasing(insertion)

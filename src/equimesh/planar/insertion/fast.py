@@ -215,6 +215,20 @@ def _pop(HK, HI, n):
 
 
 @njit(cache=True)
+def _compact(HK, HI, n, ver, salive):
+    """Drop the dead entries of the heap ``[:n]`` (lazy deletion's garbage) and restore the heap order; the new size."""
+    k = 0
+    for i in range(n):
+        t, s = HI[i, 0], HI[i, 2]
+        if ver[t] == HI[i, 1] and (s < 0 or salive[s]):
+            HK[k], HI[k] = HK[i], HI[i]
+            k += 1
+    for i in range(k // 2 - 1, -1, -1):
+        _sift_down(HK, HI, k, i)
+    return k
+
+
+@njit(cache=True)
 def _grown(a, size):
     """``a`` in a zero-filled array of ``size`` rows."""
     out = np.zeros((size,) + a.shape[1:], dtype=a.dtype)
@@ -336,7 +350,9 @@ def _insert_all(P0, T0, SEG0, lim):
                         S[t, e] = n_segs + 1
             n_segs += 2
         if nh + 4 * m > len(HK):
-            HK, HI = _grown(HK, 2 * len(HK) + 4 * m), _grown(HI, 2 * len(HI) + 4 * m)
+            nh = _compact(HK, HI, nh, ver, salive)
+            if 2 * (nh + 4 * m) > len(HK):
+                HK, HI = _grown(HK, 2 * len(HK) + 4 * m), _grown(HI, 2 * len(HI) + 4 * m)
         for f in range(m):
             nh = _push_candidates(
                 P, V, N, S, SA, SB, salive, n_segs, alive, ver, n_slots, slots[f], lim, seen, HK, HI, nh
