@@ -38,7 +38,7 @@ Visibility (:func:`._cdt.walk`) decides the reference's test "the closed
 segment from the centroid to the circumcentre touches no constraint" by
 walking through the triangles it crosses; the distance of a circumcentre
 to the constraints is the minimum over the constraint edges of the
-triangles within ``2 SLIVER_GAP l`` of it (the segment from the
+triangles within ``2 SLIVER_GAP l`` of it, ``_REACH`` (the segment from the
 circumcentre to its nearest constraint point crosses only such triangles,
 or meets a nearer constraint first).  Degenerate walks (through a vertex)
 fall back to the reference's brute-force test against every constraint.
@@ -61,6 +61,14 @@ from ...errors import EquimeshError, InternalError
 from ...tolerance import REL_TOL, SLIVER_GAP
 from ._cdt import adjacency, cavity, cavity_boundary, fill, locate, segments_touch, walk
 from ._region import Insertion, constrained_delaunay
+
+#: The distance from a circumcentre to the constraints is searched among the
+#: triangles within ``_REACH * SLIVER_GAP * l`` of it (twice the largest gap
+#: that matters, a margin against rounding in the edge distances) ...
+_REACH = 2.0
+#: ... and measured against every constraint when there are more than this
+#: many such triangles (a vertex of high degree next to the circumcentre).
+_NEAR_TRIANGLES = 64
 
 #: Returned by the compiled loop: done; else ``-2 - s`` for the first
 #: segment ``s`` that is not an edge of exactly one triangle ...
@@ -146,7 +154,7 @@ def _gap(P, V, N, S, SA, SB, salive, n_segs, start, x, y, reach, seen):
 def _visible_circumcentre(P, V, N, S, SA, SB, salive, n_segs, alive, n_slots, t, lim, seen):
     """Candidate 1 of the reference for triangle ``t``: ``(value, x, y, triangle containing it)`` or value -1.
 
-    ``lim`` = ``(1 - REL_TOL) l, (1 + REL_TOL) l, REL_TOL l, SLIVER_GAP l``.
+    ``lim`` = ``(1 - REL_TOL) l, (1 + REL_TOL) l, REL_TOL l, SLIVER_GAP l``, the search reach.
     """
     cx, cy, r, gx, gy = _circumcircle(P, V[t])
     if not (math.isfinite(r) and r >= lim[0]):
@@ -159,7 +167,7 @@ def _visible_circumcentre(P, V, N, S, SA, SB, salive, n_segs, alive, n_slots, t,
         where = locate(P, V, alive, n_slots, cx, cy)
     elif status == 0:
         return -1.0, cx, cy, -1
-    gap = _gap(P, V, N, S, SA, SB, salive, n_segs, where, cx, cy, 2.0 * lim[3], seen)
+    gap = _gap(P, V, N, S, SA, SB, salive, n_segs, where, cx, cy, lim[4], seen)
     if gap <= lim[2] or (gap <= lim[3] and r <= lim[1]):
         return -1.0, cx, cy, -1
     return r, cx, cy, where
@@ -282,7 +290,7 @@ def _insert_all(P0, T0, SEG0, lim):
     cav = np.empty(n_slots, dtype=np.int64)
     edges = np.empty((n_slots + 2, 4), dtype=np.int64)
     slots = np.empty(n_slots + 2, dtype=np.int64)
-    seen = np.empty(64, dtype=np.int64)
+    seen = np.empty(_NEAR_TRIANGLES, dtype=np.int64)
     HK = np.empty((4 * n_slots + 16, 3))
     HI = np.empty((4 * n_slots + 16, 3), dtype=np.int64)
     nh = 0
@@ -369,7 +377,7 @@ def run(region, l):
     points = np.array(region.points, dtype=float).reshape(-1, 2)
     segments = np.array(region.segments, dtype=np.int64).reshape(-1, 2)
     triangles = constrained_delaunay(points, segments, region.holes)
-    lim = np.array([(1.0 - REL_TOL) * l, (1.0 + REL_TOL) * l, REL_TOL * l, SLIVER_GAP * l])
+    lim = np.array([(1.0 - REL_TOL) * l, (1.0 + REL_TOL) * l, REL_TOL * l, SLIVER_GAP * l, _REACH * SLIVER_GAP * l])
     status, points, triangles, segments, values = _insert_all(
         points, np.ascontiguousarray(triangles, dtype=np.int64), segments, lim
     )
