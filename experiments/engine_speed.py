@@ -6,8 +6,9 @@ For each target size, one fresh process (so that its peak memory is its own):
   about ``n`` output vertices; time of the whole call and of the engine alone;
 * ``triangle.triangulate(square, "qa<area>Q")`` with the area bound scaled to
   give about the same vertex count, in the same process;
-* peak resident memory of the process (``ru_maxrss``), import and
-  first-call time (compilation, or loading numba's cache).
+* peak resident memory of the process (``ru_maxrss``) after the increment
+  call and at the end (after Triangle too), import and first-call time
+  (compilation, or loading numba's cache).
 
 Run by hand (not a test; times are machine-dependent)::
 
@@ -52,6 +53,8 @@ def measure(n):
     t0 = time.perf_counter()
     mesh = equimesh.increment([[0, 0], [1, 0], [1, 1], [0, 1]], l, engine="fast")
     out.update(total_s=time.perf_counter() - t0, engine_s=engine_time[0], n_points=int(mesh.n_nodes), l=l)
+    out["peak_rss_mb_increment"] = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
+    del mesh
 
     square = {"vertices": np.array([[0, 0], [1, 0], [1, 1], [0, 1]], float), "segments": [[0, 1], [1, 2], [2, 3], [3, 0]]}
     area = 1.0 / n
@@ -78,7 +81,7 @@ def main(argv=None):
         proc = subprocess.run([sys.executable, __file__, "--one", str(n)], capture_output=True, text=True, check=True)
         rows.append(json.loads(proc.stdout.strip().splitlines()[-1]))
     cols = ["n_points", "engine_s", "total_s", "fast_us_per_vertex", "triangle_points", "triangle_s",
-            "triangle_us_per_vertex", "ratio", "peak_rss_mb", "import_s", "first_call_s"]
+            "triangle_us_per_vertex", "ratio", "peak_rss_mb_increment", "peak_rss_mb", "import_s", "first_call_s"]
     print("| " + " | ".join(cols) + " |")
     print("|" + "---|" * len(cols))
     for r in rows:

@@ -146,7 +146,8 @@ def cavity(P, V, N, S, start, px, py, mark, stamp, cav):
 
     ``start`` is always in the cavity; a neighbour joins when it is across
     a non-constraint edge and ``p`` is strictly inside its circumcircle.
-    Members get ``mark[t] = stamp``.
+    Members get ``mark[t] = stamp``.  Returns -1 if ``cav`` is too short
+    (the caller grows it and starts again with a new stamp).
     """
     mark[start] = stamp
     cav[0] = start
@@ -161,6 +162,8 @@ def cavity(P, V, N, S, start, px, py, mark, stamp, cav):
                 continue
             a, b, c = V[n, 0], V[n, 1], V[n, 2]
             if incircle(P[a, 0], P[a, 1], P[b, 0], P[b, 1], P[c, 0], P[c, 1], px, py) > 0.0:
+                if k == len(cav):
+                    return -1
                 mark[n] = stamp
                 cav[k] = n
                 k += 1
@@ -172,7 +175,8 @@ def cavity_boundary(V, N, S, cav, k, split, mark, stamp, edges):
     """Boundary edges of the cavity ``cav[:k]`` (without the split segment), rows ``(u, v, outer, segment)``.
 
     Returns their number, or -1 if a constraint has the cavity on both sides
-    (the engine requires every constraint to bound the region).
+    (the engine requires every constraint to bound the region) or there are
+    more than ``len(edges)`` (more than ``k + 2``: not a triangulated disc).
     """
     m = 0
     for i in range(k):
@@ -182,7 +186,7 @@ def cavity_boundary(V, N, S, cav, k, split, mark, stamp, edges):
             if s >= 0 and s == split:
                 continue
             inside = n >= 0 and mark[n] == stamp
-            if inside and s >= 0:
+            if (inside and s >= 0) or m == len(edges):
                 return -1
             if not inside:
                 edges[m, 0], edges[m, 1], edges[m, 2], edges[m, 3] = V[t, e], V[t, (e + 1) % 3], n, s

@@ -70,6 +70,9 @@ _REACH = 2.0
 #: many such triangles (a vertex of high degree next to the circumcentre).
 _NEAR_TRIANGLES = 64
 
+#: Starting length of the cavity buffers (grown on demand).
+_CAVITY = 64
+
 #: Returned by the compiled loop: done; else ``-2 - s`` for the first
 #: segment ``s`` that is not an edge of exactly one triangle ...
 _OK = -1
@@ -287,9 +290,9 @@ def _insert_all(P0, T0, SEG0, lim):
     vfan = np.zeros(n, dtype=np.int64)
     vstamp = np.zeros(n, dtype=np.int64)
     values = np.zeros(n)
-    cav = np.empty(n_slots, dtype=np.int64)
-    edges = np.empty((n_slots + 2, 4), dtype=np.int64)
-    slots = np.empty(n_slots + 2, dtype=np.int64)
+    cav = np.empty(_CAVITY, dtype=np.int64)
+    edges = np.empty((_CAVITY + 2, 4), dtype=np.int64)
+    slots = np.empty(_CAVITY + 2, dtype=np.int64)
     seen = np.empty(_NEAR_TRIANGLES, dtype=np.int64)
     HK = np.empty((4 * n_slots + 16, 3))
     HI = np.empty((4 * n_slots + 16, 3), dtype=np.int64)
@@ -321,6 +324,12 @@ def _insert_all(P0, T0, SEG0, lim):
         n += 1
         stamp += 1
         k = cavity(P, V, N, S, start, x, y, mark, stamp, cav)
+        while k < 0:
+            cav = _grown(cav, 2 * len(cav))
+            stamp += 1
+            k = cavity(P, V, N, S, start, x, y, mark, stamp, cav)
+        if k + 2 > len(slots):
+            edges, slots = _grown(edges, 2 * k + 2), _grown(slots, 2 * k + 2)
         m = cavity_boundary(V, N, S, cav, k, s, mark, stamp, edges)
         if m < 0:
             return _BROKEN, P, V, SEG0, values
@@ -333,7 +342,6 @@ def _insert_all(P0, T0, SEG0, lim):
             size = 2 * len(V) + m
             V, N, S = _grown(V, size), _grown(N, size), _grown(S, size)
             alive, ver, mark, free = _grown(alive, size), _grown(ver, size), _grown(mark, size), _grown(free, size)
-            cav, edges, slots = _grown(cav, size), _grown(edges, size + 2), _grown(slots, size + 2)
         for f in range(m):
             if n_free > 0:
                 n_free -= 1
