@@ -15,10 +15,11 @@ signature ``engine(region, l) -> Insertion``.
 """
 
 from ._region import Insertion, Region
+from .fast import run as _fast
 from .reference import run as _reference
 
 #: Available insertion engines, by name.
-ENGINES = {"reference": _reference}
+ENGINES = {"reference": _reference, "fast": _fast}
 
 
 def insert(region, l, engine="reference"):

@@ -1,0 +1,287 @@
+"""The insertion engines (Steps 3-4 of Algorithm INCREMENT): the fast engine against the reference.
+
+What must hold:
+
+* the exact predicates of the fast engine give the sign of the exact
+  determinant, also on cocircular and collinear points (lattices, regular
+  polygons);
+* on tie-free inputs (random polygons, generic rotation: no four cocircular
+  points) both engines insert the same points in the same order, with the
+  same values, bit for bit, and end with the same triangles;
+* the inserted values never increase (the heap top is the farthest point);
+* on degenerate inputs (squares, regular polygons, lattice strips, exact
+  multiples of l) the fast engine satisfies every invariant of Problems 1
+  and 2 and is deterministic;
+* engine names: an unknown one is a clear error listing the engines, and
+  validation does not depend on the engine.
+"""
+
+import math
+from contextlib import contextmanager
+from fractions import Fraction
+
+import numpy as np
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+
+import equimesh
+import equimesh.planar.increment
+import equimesh.planar.strip
+from equimesh import EquimeshError
+from equimesh.planar.insertion import ENGINES, Region, insert
+from equimesh.planar.insertion._predicates import incircle, orient2d
+from equimesh.testing.generators import random_convex_polygon, rectangle, regular_polygon, rotate
+
+import invariants_uniform as inv
+import strategies_simple as ss
+from invariants import assert_problem1_invariants
+from strategies import problems
+
+ENGINE_NAMES = sorted(ENGINES)
+
+# --------------------------------------------------------------------------- predicates
+
+
+def _sign(x):
+    return (x > 0) - (x < 0)
+
+
+def exact_orient(a, b, c):
+    (ax, ay), (bx, by), (cx, cy) = ((Fraction(x), Fraction(y)) for x, y in (a, b, c))
+    return _sign((ax - cx) * (by - cy) - (ay - cy) * (bx - cx))
+
+
+def exact_incircle(a, b, c, d):
+    dx, dy = Fraction(d[0]), Fraction(d[1])
+    rows = [(Fraction(p[0]) - dx, Fraction(p[1]) - dy) for p in (a, b, c)]
+    (ax, ay), (bx, by), (cx, cy) = rows
+    la, lb, lc = (x * x + y * y for x, y in rows)
+    return _sign(la * (bx * cy - by * cx) + lb * (cx * ay - cy * ax) + lc * (ax * by - ay * bx))
+
+
+#: Coordinates of the engine's frame (l about 1): zero or of magnitude 1e-6 to 1e3, so no product
+#: of the exact fallback underflows (the predicates' documented range).
+coordinates = st.one_of(st.just(0.0), st.floats(1e-6, 1e3), st.floats(-1e3, -1e-6))
+points = st.tuples(coordinates, coordinates)
+
+
+@st.composite
+def lattice_quadruples(draw):
+    """Four points of a scaled, shifted integer or triangular lattice (many collinear and cocircular)."""
+    h = draw(st.sampled_from([1.0, 0.1, 1.7, 2.0**-10]))
+    shift = np.array([draw(coordinates), draw(coordinates)])
+    ij = np.array(draw(st.lists(st.tuples(st.integers(-3, 3), st.integers(-3, 3)), min_size=4, max_size=4)), float)
+    if draw(st.booleans()):
+        ij = np.column_stack([ij[:, 0] + 0.5 * ij[:, 1], ij[:, 1] * math.sqrt(3.0) / 2.0])
+    return [tuple(map(float, p)) for p in ij * h + shift]
+
+
+@st.composite
+def cocircular_quadruples(draw):
+    """Four vertices of a regular k-gon (cocircular up to rounding), in ccw order, then a fourth point."""
+    k = draw(st.integers(4, 12))
+    v = regular_polygon(k, draw(st.floats(0.1, 10.0)), center=(draw(coordinates), draw(coordinates)))
+    idx = sorted(draw(st.lists(st.integers(0, k - 1), min_size=4, max_size=4, unique=True)))
+    return [tuple(map(float, v[i])) for i in idx]
+
+
+@given(st.one_of(st.lists(points, min_size=4, max_size=4), lattice_quadruples(), cocircular_quadruples()))
+def test_predicates_give_the_exact_sign(quad):
+    """orient2d and incircle agree in sign with rational arithmetic on the same doubles."""
+    a, b, c, d = quad
+    assert _sign(orient2d(*a, *b, *c)) == exact_orient(a, b, c)
+    assert _sign(orient2d(*a, *b, *d)) == exact_orient(a, b, d)
+    if exact_orient(a, b, c) > 0:
+        assert _sign(incircle(*a, *b, *c, *d)) == exact_incircle(a, b, c, d)
+
+
+def test_predicates_on_exact_degeneracies():
+    """Exactly collinear and cocircular points give 0; a point one ulp off the line gives the right side."""
+    assert orient2d(0.0, 0.0, 1.0, 1.0, 3.0, 3.0) == 0.0
+    assert orient2d(0.1, 0.1, 0.3, 0.3, 0.7, 0.7) == 0.0
+    assert orient2d(0.0, 0.0, 1.0, 1.0, 3.0, np.nextafter(3.0, 4.0)) > 0.0
+    assert incircle(0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 1.0) == 0.0
+    assert incircle(0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, np.nextafter(1.0, 0.0)) > 0.0
+    assert incircle(0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, np.nextafter(1.0, 2.0)) < 0.0
+
+
+# --------------------------------------------------------------------------- recording the engine's output
+
+
+@contextmanager
+def recorded(module):
+    """Record the :class:`Insertion` of every ``insert`` call made by ``module``."""
+    runs = []
+
+    def recording(region, l, engine):
+        runs.append(insert(region, l, engine=engine))
+        return runs[-1]
+
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setattr(module, "insert", recording)
+        yield runs
+
+
+def problem1_runs(vertices, l):
+    """``{engine: (mesh, insertion)}`` of Algorithm INCREMENT."""
+    out = {}
+    for name in ENGINE_NAMES:
+        with recorded(equimesh.planar.increment) as runs:
+            out[name] = equimesh.increment(vertices, l, engine=name), runs[0]
+    return out
+
+
+def problem2_runs(vertices, l, angle):
+    """``{engine: (mesh, insertion)}`` of the Problem 2 pipeline."""
+    out = {}
+    for name in ENGINE_NAMES:
+        with recorded(equimesh.planar.strip) as runs:
+            out[name] = equimesh.uniform_triangulation(vertices, l, angle=angle, engine=name), runs[0]
+    return out
+
+
+def assert_same_insertion(runs):
+    """Same points in the same order, same values, same constraints, same triangles (as sets), bit for bit."""
+    (mesh_a, a), (mesh_b, b) = runs["reference"], runs["fast"]
+    assert a.points.shape == b.points.shape, f"{len(a.points)} points against {len(b.points)}"
+    assert a.points.tobytes() == b.points.tobytes(), "the engines inserted different points"
+    assert a.values.tobytes() == b.values.tobytes(), "the engines report different values"
+    assert a.segments.tolist() == b.segments.tolist()
+    assert {tuple(sorted(t)) for t in a.triangles.tolist()} == {tuple(sorted(t)) for t in b.triangles.tolist()}
+    assert mesh_a.points.tobytes() == mesh_b.points.tobytes()
+
+
+#: Inserted values may rise by this much, relative: a circumradius is computed with a few
+#: roundings, so two cocircular candidates of the same exact value can differ in the last bit.
+VALUE_ROUNDING = 1e-12
+
+
+def assert_values_non_increasing(insertion):
+    """Step 3 takes the farthest point, and inserting a point only brings the others closer (up to rounding)."""
+    v = insertion.values
+    if len(v) > 1:
+        k = int(np.argmax(np.diff(v)))
+        assert v[k + 1] <= v[k] * (1.0 + VALUE_ROUNDING), (
+            f"value {float(v[k + 1])!r} inserted after {float(v[k])!r} (step {k + 1})"
+        )
+
+
+# --------------------------------------------------------------------------- equivalence
+
+
+@st.composite
+def tie_free_convex(draw):
+    """Random convex polygons (inner angles >= 90) at a generic rotation and l: no four cocircular points."""
+    rng = np.random.default_rng(draw(ss.seeds))
+    v = random_convex_polygon(rng, n_vertices=draw(st.integers(4, 10)), area=draw(st.floats(2.0, 150.0)))
+    l = draw(st.floats(0.3, 3.0))
+    return rotate(v, draw(st.floats(0.01, 1.5))) * l + np.array([draw(coordinates), draw(coordinates)]), l
+
+
+@given(tie_free_convex())
+def test_problem1_engines_agree_bit_for_bit(problem):
+    """Problem 1, tie-free input: the same points, order, values and triangles; values non-increasing."""
+    runs = problem1_runs(*problem)
+    assert_same_insertion(runs)
+    for _, insertion in runs.values():
+        assert_values_non_increasing(insertion)
+
+
+@st.composite
+def tie_free_simple(draw):
+    """Simple polygons (:mod:`strategies_simple`) grown by 1% and every vertex moved by up to 1e-3 l.
+
+    The families are built on grids and with symmetries (letters, stars,
+    regular polygons), which put four boundary points exactly on a circle
+    even after a rotation; the random moves break every such tie, and the
+    1% growth keeps every edge and every gap above l.
+    """
+    vertices, l = draw(ss.cases(150.0))
+    rng = np.random.default_rng(draw(ss.seeds))
+    return 1.01 * vertices + rng.uniform(-1e-3 * l, 1e-3 * l, vertices.shape), l
+
+
+@given(tie_free_simple(), st.floats(1.0, 59.0))
+def test_problem2_engines_agree_bit_for_bit(case, angle):
+    """Problem 2, tie-free polygon, lattice at a generic angle: the same strip insertion; values non-increasing."""
+    runs = problem2_runs(*case, angle)
+    assert_same_insertion(runs)
+    for _, insertion in runs.values():
+        assert_values_non_increasing(insertion)
+
+
+# --------------------------------------------------------------------------- degenerate inputs
+
+
+@given(problems)
+def test_problem1_fast_engine_invariants_and_determinism(problem):
+    """Every Problem 1 invariant (squares, regular polygons, exact multiples of l included); deterministic."""
+    vertices, l = problem
+    with recorded(equimesh.planar.increment) as runs:
+        mesh = equimesh.increment(vertices, l, engine="fast")
+        again = equimesh.increment(vertices.copy(), l, engine="fast")
+    assert_problem1_invariants(mesh, vertices, l)
+    assert_values_non_increasing(runs[0])
+    assert mesh.points.tobytes() == again.points.tobytes()
+    assert np.array_equal(mesh.triangles, again.triangles)
+
+
+@given(ss.cases(300.0), st.sampled_from([0.0, 30.0, 90.0]))
+def test_problem2_fast_engine_invariants_and_determinism(case, angle):
+    """Every Problem 2 invariant with the lattice aligned to the axes (cocircular everywhere); deterministic."""
+    vertices, l = case
+    with recorded(equimesh.planar.strip) as runs:
+        mesh = equimesh.uniform_triangulation(vertices, l, angle=angle, engine="fast")
+        again = equimesh.uniform_triangulation(vertices.copy(), l, angle=angle, engine="fast")
+    inv.assert_problem2_invariants(mesh, vertices, l)
+    assert_values_non_increasing(runs[0])
+    assert mesh.points.tobytes() == again.points.tobytes()
+    assert np.array_equal(mesh.triangles, again.triangles)
+
+
+@pytest.mark.parametrize("engine", ENGINE_NAMES)
+@pytest.mark.parametrize(
+    "vertices",
+    [rectangle(8.0, 8.0), rectangle(12.0, 2.0), rectangle(4.0, 4.0 - 2.0**-12), regular_polygon(12, 2.0)],
+    ids=["square", "strip", "near-cocircular", "12-gon"],
+)
+def test_lattice_strips_and_regular_polygons(engine, vertices):
+    """Exact multiples of l, axis-aligned lattice: both engines satisfy every invariant of both problems."""
+    assert_problem1_invariants(equimesh.increment(vertices, 1.0, engine=engine), vertices, 1.0)
+    big = vertices * 2.0
+    inv.assert_problem2_invariants(equimesh.uniform_triangulation(big, 1.0, engine=engine), big, 1.0)
+
+
+# --------------------------------------------------------------------------- names and bad input
+
+
+def test_unknown_engine_is_a_clear_error():
+    with pytest.raises(EquimeshError, match=r"unknown insertion engine 'quick'; choose from \['fast', 'reference'\]"):
+        equimesh.increment(rectangle(3.0, 3.0), 1.0, engine="quick")
+
+
+@pytest.mark.parametrize(
+    "call",
+    [
+        lambda e: equimesh.increment([[0, 0], [3, 0], [0, 3]], 1.0, engine=e),
+        lambda e: equimesh.increment(rectangle(3.0, 0.5), 1.0, engine=e),
+        lambda e: equimesh.uniform_triangulation(rectangle(3.0, 3.0), -1.0, engine=e),
+    ],
+    ids=["acute", "short-edge", "negative-l"],
+)
+def test_validation_does_not_depend_on_the_engine(call):
+    messages = set()
+    for name in ENGINE_NAMES:
+        with pytest.raises(EquimeshError) as info:
+            call(name)
+        messages.add((type(info.value), str(info.value)))
+    assert len(messages) == 1, messages
+
+
+def test_fast_engine_refuses_an_interior_constraint():
+    """A constraint with triangles on both sides is outside the fast engine's contract: a clear error."""
+    square = rectangle(2.0, 2.0)
+    region = Region(square, np.array([[0, 1], [1, 2], [2, 3], [3, 0], [0, 2]]), np.empty((0, 2)))
+    with pytest.raises(EquimeshError, match="segment 4 is an edge of zero or two triangles"):
+        insert(region, 1.0, engine="fast")
