@@ -13,8 +13,13 @@ surface_from_dict(d), surface_to_dict(surface)  the JSON description of a surfac
 
 Section 4 stages (what mesh_surface chains; public so that they can be timed and reused)
 flatten(points3d, triangles)      step 2: eq. (1) flattening of the auxiliary triangulation
-remap(surface, plane_points, flat_points, grid)  step 4: eqs. (2)-(3), plane -> (u, v) -> surface
+remap(surface, plane_points, flat_points, grid, outline=...)  step 4: eqs. (2)-(3), plane -> (u, v) -> surface
 optimize_uv(surface, uv, edges, groups, l, fixed=...)  final step: (u, v) of the inner nodes
+
+Errors: every bad input raises a subclass of EquimeshError (a ValueError) with a one-line
+message; InternalError (a RuntimeError) means a proven guarantee failed on an output, a bug.
+Layout: equimesh.planar (Problems 1 and 2), equimesh.surface (Section 4), equimesh.io (files),
+equimesh.testing (input generators); see docs/architecture.md.
 """
 
 from .planar.bounds import node_lower_bound, packing_upper_bound
