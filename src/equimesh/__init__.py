@@ -37,6 +37,8 @@ from .surface.optimize import optimize_uv
 from .planar.placement import Placement, best_lattice_placement
 from .surface.remap import remap
 from .surface.bezier import BezierSurface
+from .surface.chart import Domain
+from .surface.nurbs import NurbsSurface
 from .planar.strip import uniform_triangulation
 from .tolerance import REL_TOL
 
@@ -47,12 +49,14 @@ __all__ = [
     "OTHER",
     "REL_TOL",
     "BezierSurface",
+    "Domain",
     "EquimeshError",
     "InternalError",
     "InvalidLengthError",
     "InvalidPolygonError",
     "InvalidSurfaceError",
     "MeshTooLargeError",
+    "NurbsSurface",
     "OutputPathError",
     "PlanarMesh",
     "Placement",

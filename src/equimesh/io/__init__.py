@@ -2,6 +2,7 @@
 
 * :mod:`._surfaces`   reading surfaces: input formats by extension, surface types by JSON ``"type"``;
 * :mod:`._bezier`     the JSON schema of a Bezier surface (one row of the type table);
+* :mod:`._nurbs`      the JSON schema of a NURBS surface (another row);
 * :mod:`._schema`     checks shared by the schemas, plain text for messages;
 * :mod:`._meshes`     writing meshes (meshio) and member schedules, checks of output paths;
 * :mod:`._atomic`     atomic writes (temporary files, then renames), one file or a set;

@@ -17,7 +17,8 @@ from typing import Callable
 
 from ..errors import InvalidSurfaceError
 from ..surface.bezier import BezierSurface
-from . import _bezier
+from ..surface.nurbs import NurbsSurface
+from . import _bezier, _nurbs
 from ._schema import json_type, shown, shown_path
 
 
@@ -42,6 +43,7 @@ class InputFormat:
 #: Surface types by their JSON ``"type"``.
 SURFACE_TYPES = {
     "bezier": SurfaceType(BezierSurface, _bezier.FIELDS, _bezier.bezier_from_dict, _bezier.bezier_to_dict),
+    "nurbs": SurfaceType(NurbsSurface, _nurbs.FIELDS, _nurbs.nurbs_from_dict, _nurbs.nurbs_to_dict),
 }
 
 
