@@ -177,8 +177,8 @@ def test_unreadable_surface_paths(make, fragment, tmp_path):
 
 
 def test_unknown_extension_lists_the_known_ones(tmp_path):
-    with pytest.raises(InvalidSurfaceError, match=r"use one of \['\.json'\]"):
-        load_surface(tmp_path / "s.3dm")
+    with pytest.raises(InvalidSurfaceError, match=r"use one of \['\.3dm', '\.json'\]"):
+        load_surface(tmp_path / "s.igs")
 
 
 # ------------------------------------------------------------------ output checks
