@@ -8,7 +8,7 @@ packing_upper_bound(vertices, l)  Oler's bound on l-separated point sets
 mesh_surface(surface, l)          Section 4: uniform mesh of a parametric surface
 uniform_triangulation(vertices, l) Problem 2: lattice + boundary strip (Section 3)
 best_lattice_placement(vertices, l) lattice angle/offset maximising G1 (beyond the paper)
-load_surface(path)                a surface from a file (format by extension; JSON "type" by equimesh.io.SURFACE_TYPES)
+load_surface(path, object=None)   a surface from a file (.json, Rhino .3dm) (format by extension; JSON "type" by equimesh.io.SURFACE_TYPES)
 surface_from_dict(d), surface_to_dict(surface)  the JSON description of a surface, both ways
 
 Section 4 stages (what mesh_surface chains; public so that they can be timed and reused)
@@ -30,8 +30,10 @@ from .errors import (
     InvalidPolygonError,
     InvalidSurfaceError,
     MeshTooLargeError,
+    MissingDependencyError,
     OutputPathError,
     SurfaceTooSmallError,
+    SurfaceWarning,
 )
 from .io import load_surface, surface_from_dict, surface_to_dict
 from .surface.flatten import flatten
@@ -42,6 +44,8 @@ from .surface.optimize import optimize_uv
 from .planar.placement import Placement, best_lattice_placement
 from .surface.remap import remap
 from .surface.bezier import BezierSurface
+from .surface.chart import Domain
+from .surface.nurbs import NurbsSurface
 from .planar.strip import uniform_triangulation
 from .tolerance import REL_TOL
 
@@ -52,17 +56,21 @@ __all__ = [
     "OTHER",
     "REL_TOL",
     "BezierSurface",
+    "Domain",
     "EquimeshError",
     "InternalError",
     "InvalidLengthError",
     "InvalidPolygonError",
     "InvalidSurfaceError",
     "MeshTooLargeError",
+    "MissingDependencyError",
+    "NurbsSurface",
     "OutputPathError",
     "PlanarMesh",
     "Placement",
     "SurfaceMesh",
     "SurfaceTooSmallError",
+    "SurfaceWarning",
     "best_lattice_placement",
     "flatten",
     "increment",
