@@ -42,9 +42,16 @@ import math
 import numpy as np
 from hypothesis import strategies as st
 
-from equimesh.testing.generators import regular_polygon
-from equimesh.testing.shapes import column_polygon, dumbbell_polygon, flattened_square, letter_polygon, star_polygon
-from strategies import placed, random_polygons
+from equimesh.testing.generators import regular_polygon, rotate
+from equimesh.testing.shapes import (
+    column_polygon,
+    dumbbell_polygon,
+    flattened_square,
+    letter_polygon,
+    perforated_rectangle,
+    star_polygon,
+)
+from strategies import angles, lengths, placed, random_polygons, shifts
 
 #: Smallest grid unit, corridor and arm width, in units of l.
 MIN_FEATURE = 1.2
@@ -137,6 +144,38 @@ FAMILIES = {
     "star": stars,
     "flattened": flattened_boundaries,
 }
+
+
+@st.composite
+def hole_shapes(draw):
+    """One hole in units of l: a regular 3- to 6-gon with edges of 1.2 to 2.5, or an L of unit 1.2 to 2."""
+    if draw(st.booleans()):
+        return regular_polygon(draw(st.integers(3, 6)), draw(st.floats(MIN_FEATURE, 2.5)), rotation=draw(phases))
+    return np.asarray(letter_polygon("L", 1, draw(st.integers(1, 2))), dtype=float) * draw(st.floats(MIN_FEATURE, 2.0))
+
+
+@st.composite
+def perforated_cases(draw):
+    """``(vertices, holes, l)``: a rectangle with 1 to 3 holes (:func:`~equimesh.testing.shapes.perforated_rectangle`).
+
+    Holes are regular polygons (convex, so every corner of the region at a
+    hole vertex is reflex) or L shapes (one 90 degree corner of the region),
+    every edge at least 1.2, at least ``gap >= 1.2`` from each other and from
+    the rectangle.  Placed by the convention of :func:`strategies.placed`
+    (rotation about the outer polygon's mean, shift, rolled start vertices,
+    scale by l), holes in either orientation.
+    """
+    holes = draw(st.lists(hole_shapes(), min_size=1, max_size=3))
+    outer, holes = perforated_rectangle(holes, draw(st.floats(MIN_FEATURE, 2.5)))
+    angle, shift, l = draw(angles), np.array(draw(shifts)), draw(lengths())
+    centre = outer.mean(axis=0)
+
+    def move(v):
+        v = rotate(v - centre, angle) + shift
+        v = np.roll(v, -draw(st.integers(0, len(v) - 1)), axis=0)
+        return (v[::-1] if draw(st.booleans()) else v) * l
+
+    return move(outer), [move(h) for h in holes], l
 
 
 def simple_polygons(max_area=400.0, families=None):

@@ -99,6 +99,27 @@ def flattened_square(n, parts, a, b, ky, kx, p=0.0, q=0.0):
     return np.column_stack([x + a * np.sin(ky * y + p), y + b * np.sin(kx * x + q)])
 
 
+def perforated_rectangle(holes, gap):
+    """A rectangle around ``holes`` set in a row: ``(outer, holes)``, counter-clockwise.
+
+    Each hole is translated so that the bounding boxes are ``gap`` apart from
+    each other and from the rectangle's sides.  Every hole is then at least
+    ``gap`` from the outer boundary and from every other hole, and the
+    rectangle's edges are at least ``2 gap`` long: with ``gap >= 1`` and hole
+    edges at least 1 long, a valid input of Problem 2 with holes for
+    ``l = 1`` as far as the holes go (Lemma 3 (1) across boundaries).
+    """
+    placed, x = [], gap
+    rings = [np.asarray(h, dtype=float) for h in holes]
+    height = max(float(np.ptp(h[:, 1])) for h in rings) + 2.0 * gap
+    for h in rings:
+        lo = h.min(axis=0)
+        placed.append(h - lo + [x, (height - np.ptp(h[:, 1])) / 2.0])
+        x += float(np.ptp(h[:, 0])) + gap
+    outer = np.array([[0.0, 0.0], [x, 0.0], [x, height], [0.0, height]])
+    return outer, placed
+
+
 def place(vertices, angle, shift):
     """Rotate by ``angle`` radians about the mean of the vertices, which then moves to ``shift``."""
     v = np.asarray(vertices, dtype=float)
@@ -110,6 +131,7 @@ __all__ = [
     "dumbbell_polygon",
     "flattened_square",
     "letter_polygon",
+    "perforated_rectangle",
     "place",
     "remove_collinear",
     "star_polygon",
