@@ -569,3 +569,14 @@ def test_placement_and_size_guard_take_holes():
     equimesh.uniform_triangulation(FRAME, 1.0, max_nodes=limit)
     with pytest.raises(equimesh.MeshTooLargeError):
         equimesh.uniform_triangulation(FRAME, 1.0, holes=[WINDOW], max_nodes=limit)
+
+
+# --------------------------------------------------------------------------- 8: sharp corners (issue 10)
+
+
+@given(ss.cases(MAX_AREA, families=["sharp wedge", "sharp rhombus"]))
+def test_every_invariant_holds_at_sharp_corners(case):
+    """Corners of 10 to 60 degrees with sides at the proven limit of the staggered Step 2 (docs/proofs.md,
+    "Sharp corners"): accepted, and every guarantee of Problem 2 holds (Theorem 3 included)."""
+    vertices, l = case
+    inv.assert_problem2_invariants(equimesh.uniform_triangulation(vertices, l), vertices, l)

@@ -14,6 +14,7 @@ origin is validated as precisely as the same polygon near it.  Validation is
 O(n log n) in the number of vertices.
 """
 
+import math
 import numbers
 from dataclasses import dataclass, replace
 
@@ -413,6 +414,14 @@ class Boundary:
         return np.column_stack([start + j, start + (j + 1) % np.repeat(sizes, sizes)])
 
 
+#: Corners of P with an inner angle below this many degrees get staggered
+#: Step 2 points (:func:`stagger`).  At 60 degrees or more, points at distances
+#: ``s, t >= l`` from the corner on its two sides are at least ``min(s, t) >= l``
+#: apart (law of cosines), so equal parts need nothing more
+#: (docs/proofs.md, "Sharp corners").
+SHARP_CORNER = 60.0
+
+
 def resample_boundary(poly, l, spacing=2.0):
     """Step 2: place points V' on the boundary so consecutive points are between l and 2l apart.
 
@@ -424,24 +433,104 @@ def resample_boundary(poly, l, spacing=2.0):
     :func:`equimesh.planar.strip.uniform_triangulation`): a boundary part of
     exactly ``2l`` leaves its midpoint at distance exactly ``l``, and the
     farthest-point insertion then places a point a hair inside it, a sliver.
+    Next to a corner sharper than :data:`SHARP_CORNER` the points of its two
+    sides are staggered instead (:func:`side_positions`, :func:`stagger`).
 
     In a convex polygon with inner angles of at least 90 degrees (Problem 1)
     all boundary points are then pairwise at least ``l`` apart; the proof is
     in ``docs/proofs.md``, section "Step 2 boundary separation (Problem 1)".
-    For other polygons the separation is checked by
-    :func:`check_boundary_separation`.  The points are in the local frame.
+    For other polygons the separation of points on one edge or on the two
+    sides of one corner is proven in "Sharp corners" (when the sides are long
+    enough) and the rest is checked by :func:`check_boundary_separation`.
+    Every ring (the holes' too) is resampled alike.  The points are in the
+    local frame.
     """
+    lp = poly.local_length(l)
     points, is_vertex, edge, ring = [], [], [], []
     for r, each in enumerate(poly.rings):
         v = each.local
-        parts = split_counts(each.local_edge_lengths, poly.local_length(l), spacing)
-        for i, (a, b, k) in enumerate(zip(v, np.roll(v, -1, axis=0), parts)):
-            j = np.arange(k)[:, None]
-            points.append(a + (b - a) * j / k)
-            is_vertex.append(np.arange(k) == 0)
-            edge.append(np.full(k, i))
-            ring.append(np.full(k, r))
+        angles = [each.inner_angle(i) for i in range(len(v))]
+        sides = side_positions(each.local_edge_lengths, angles, lp, spacing)
+        for i, (a, b, (num, den)) in enumerate(zip(v, np.roll(v, -1, axis=0), sides)):
+            points.append(a + (b - a) * num[:, None] / den)
+            is_vertex.append(np.arange(len(num)) == 0)
+            edge.append(np.full(len(num), i))
+            ring.append(np.full(len(num), r))
     return Boundary(*(np.concatenate(x) for x in (points, is_vertex, edge, ring)))
+
+
+def stagger(angle, l, reach):
+    """The staggered Step 2 points next to a corner of inner angle ``angle`` (degrees), up to ``reach`` from it.
+
+    Returns ``(leaving, arriving)``: distances from the corner of the points
+    on the side leaving it (counter-clockwise) and on the side arriving at it.
+    For a corner of at least :data:`SHARP_CORNER` degrees both are empty.
+    Otherwise the points ``k l`` for ``k = 1 .. K``, ``K = ceil(1 / sin angle)``,
+    alternate between the sides, odd ``k`` leaving, even ``k`` arriving: along
+    each side the parts are ``2l`` (``l`` for the first leaving part), and two
+    points of different sides are at least ``l`` apart at any angle because
+    their distances from the corner differ by at least ``l``; past ``K l``
+    the sides themselves are ``l`` apart (docs/proofs.md, "Sharp corners").
+    """
+    count = min(_stagger_count(angle), math.floor(reach / l) + 1)
+    k = np.arange(1, count + 1) * l
+    return k[0::2], k[1::2]
+
+
+def _stagger_count(angle):
+    """``K = ceil(1 / sin angle)`` staggered points for a corner sharper than :data:`SHARP_CORNER`, else 0."""
+    if not angle < SHARP_CORNER * (1.0 - REL_TOL):
+        return 0
+    return math.ceil(1.0 / math.sin(math.radians(angle)))
+
+
+def stagger_reach(angle, l):
+    """How far from a corner of ``angle`` degrees :func:`stagger` places points: ``K l`` (0 if not sharp)."""
+    return _stagger_count(angle) * l
+
+
+def side_positions(lengths, angles, l, spacing=2.0):
+    """Step 2 on a closed ring of sides: where each side's points lie, staggered next to sharp corners.
+
+    Side ``i`` runs from corner ``i`` (inner angle ``angles[i]`` degrees) to
+    corner ``i + 1`` and is ``lengths[i]`` long.  Returns one
+    ``(numerators, denominator)`` pair per side: its points lie at the
+    fractions ``numerators / denominator`` of the side, the first (0) being
+    corner ``i``.  Shared by the polygon's Step 2 and the surface outline.
+
+    * Next to a corner sharper than :data:`SHARP_CORNER` the points of
+      :func:`stagger` are placed; between the last staggered point from each
+      end, the middle of length ``M`` is split into ``k`` equal parts by
+      :func:`split_counts` (``l <= M / k <= 2l``).  Staggered points that
+      leave a middle shorter than ``l`` are dropped, the farthest from its
+      corner first; a side at least ``stagger_reach`` of both its corners plus
+      ``l`` long drops none.
+    * A side with no staggered point is split into equal parts exactly as the
+      paper's Step 2 (numerators ``0 .. k - 1``, denominator ``k``), bit for
+      bit.
+    """
+    lengths = np.asarray(lengths, dtype=float)
+    n = len(lengths)
+    reach = [max(lengths[i - 1], lengths[i]) for i in range(n)]
+    corners = [stagger(a, l, r) for a, r in zip(angles, reach)]
+    sides = []
+    for i, length in enumerate(lengths):
+        start, end = corners[i][0], corners[(i + 1) % n][1]
+        start, end = start[start < length], end[end < length]
+        while (len(start) or len(end)) and not at_least(length - start.max(initial=0.0) - end.max(initial=0.0), l):
+            if start.max(initial=0.0) >= end.max(initial=0.0):
+                start = start[:-1]
+            else:
+                end = end[:-1]
+        if not len(start) and not len(end):
+            k = int(split_counts([length], l, spacing)[0])
+            sides.append((np.arange(k, dtype=float), float(k)))
+            continue
+        first, last = start.max(initial=0.0), length - end.max(initial=0.0)
+        k = int(split_counts([last - first], l, spacing)[0])
+        middle = first + (last - first) * np.arange(1, k) / k
+        sides.append((np.concatenate([[0.0], start, middle, length - end[::-1]]), length))
+    return sides
 
 
 def split_counts(lengths, l, spacing=2.0):
@@ -505,9 +594,13 @@ def _separation_error(poly, boundary, l, i, j):
     n = len(ri.local)
     corner = None if ri is not rj else ej if (ei + 1) % n == ej else ei if (ej + 1) % n == ei else None
     if corner is not None:
+        angle = ri.inner_angle(corner)
+        need = _num((stagger_reach(angle, poly.local_length(l)) / poly.frame.scale) + l)
         message = (
-            f"the corner at {ri.vertex_name(corner)} ({ri.inner_angle(corner):.6g} degrees) is too sharp "
-            f"for l = {_num(l)}: {where}, closer than l; use a smaller l or a wider corner"
+            f"the corner at {ri.vertex_name(corner)} ({angle:.6g} degrees) is too sharp for l = {_num(l)}: "
+            f"{where}, closer than l; at {angle:.6g} degrees Step 2 needs both sides of the corner at least "
+            f"{need} long, longer if the next corner is sharp too (docs/proofs.md, 'Sharp corners'); "
+            "use a smaller l, longer sides or a wider corner"
         )
     else:
         message = (

@@ -99,6 +99,29 @@ def flattened_square(n, parts, a, b, ky, kx, p=0.0, q=0.0):
     return np.column_stack([x + a * np.sin(ky * y + p), y + b * np.sin(kx * x + q)])
 
 
+def sharp_wedge(angle, side, depth):
+    """A tip of ``angle`` degrees at the origin, sides ``side`` long, closed by a rectangle ``depth`` deep.
+
+    Corners: the tip, ``180 - angle / 2`` twice and 90 twice; the rectangle is
+    ``2 side sin(angle / 2)`` wide.  Valid for Problem 2 with ``l = 1`` when
+    ``side >= stagger_reach(angle) + 1`` (the proven limit of the staggered
+    Step 2, docs/proofs.md "Sharp corners") and ``side sin(angle / 2) >= 1.2``.
+    """
+    h = math.radians(angle) / 2.0
+    a, b = side * np.array([math.cos(h), -math.sin(h)]), side * np.array([math.cos(h), math.sin(h)])
+    return np.array([[0.0, 0.0], a, a + [depth, 0.0], b + [depth, 0.0], b])
+
+
+def sharp_rhombus(angle, side):
+    """A rhombus with two tips of ``angle`` degrees and sides ``side`` long (the other corners obtuse).
+
+    Valid for Problem 2 with ``l = 1`` when ``side >= stagger_reach(angle) + 1``
+    and ``side sin(angle) >= 1.2`` (the width between opposite sides).
+    """
+    t = math.radians(angle)
+    return np.array([[0.0, 0.0], [side, 0.0], [side * (1 + math.cos(t)), side * math.sin(t)], [side * math.cos(t), side * math.sin(t)]])
+
+
 def perforated_rectangle(holes, gap):
     """A rectangle around ``holes`` set in a row: ``(outer, holes)``, counter-clockwise.
 
@@ -134,5 +157,7 @@ __all__ = [
     "perforated_rectangle",
     "place",
     "remove_collinear",
+    "sharp_rhombus",
+    "sharp_wedge",
     "star_polygon",
 ]
