@@ -471,17 +471,22 @@ def stagger(angle, l, reach):
     points of different sides are at least ``l`` apart at any angle because
     their distances from the corner differ by at least ``l``; past ``K l``
     the sides themselves are ``l`` apart (docs/proofs.md, "Sharp corners").
+    Where ``2 k l sin(angle / 2) > l`` the two points at ``k l`` on both sides
+    are ``l`` apart already, so ``k l`` is placed on both (parts of ``l``: a
+    ``2l`` part there would leave its midpoint ``l`` from every point, and
+    the insertion a sliver against it).
     """
     count = min(_stagger_count(angle), math.floor(reach / l) + 1)
-    k = np.arange(1, count + 1) * l
-    return k[0::2], k[1::2]
+    k = np.arange(1, count + 1)
+    both = 2.0 * k * math.sin(math.radians(angle) / 2.0) >= 1.0 + REL_TOL
+    return k[(k % 2 == 1) | both] * l, k[(k % 2 == 0) | both] * l
 
 
 def _stagger_count(angle):
     """``K = ceil(1 / sin angle)`` staggered points for a corner sharper than :data:`SHARP_CORNER`, else 0."""
     if not angle < SHARP_CORNER * (1.0 - REL_TOL):
         return 0
-    return math.ceil(1.0 / math.sin(math.radians(angle)))
+    return math.ceil((1.0 - REL_TOL) / math.sin(math.radians(angle)))
 
 
 def stagger_reach(angle, l):
