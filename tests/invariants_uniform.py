@@ -36,6 +36,23 @@ def ccw(vertices):
     return as_polygon(vertices).vertices
 
 
+def rings(vertices, holes=()):
+    """The outer ring (counter-clockwise) and the holes' rings (clockwise): the region on the left of each."""
+    return [ring.vertices for ring in as_polygon(vertices, holes=list(holes)).rings]
+
+
+def shape(vertices, holes=()):
+    """The closed region P: the polygon minus its holes, as a shapely polygon."""
+    outer, *inner = rings(vertices, holes)
+    return shapely.Polygon(outer, inner)
+
+
+def ring_edges(vertices, holes=()):
+    """``(a, b)``: the start and end points of every edge of every ring."""
+    r = rings(vertices, holes)
+    return np.vstack(r), np.vstack([np.roll(v, -1, axis=0) for v in r])
+
+
 def visible(region, a, b):
     """Whether each segment ``a[i] b[i]`` lies in the closed (prepared) shapely ``region``."""
     a, b = np.asarray(a, dtype=float).reshape(-1, 2), np.asarray(b, dtype=float).reshape(-1, 2)
@@ -57,9 +74,9 @@ def region_of(geometry, l):
     return grown
 
 
-def polygon_region(vertices, l):
-    """The closed polygon P as a visibility region."""
-    return region_of(shapely.Polygon(ccw(vertices)), l)
+def polygon_region(vertices, l, holes=()):
+    """The closed polygon P (minus its holes) as a visibility region."""
+    return region_of(shape(vertices, holes), l)
 
 
 def lattice_mask(mesh):
@@ -70,9 +87,9 @@ def lattice_mask(mesh):
     return np.array([all(tuple(p) in g1 for p in tri) for tri in pairs.tolist()], dtype=bool)
 
 
-def strip_region(mesh, vertices, l):
+def strip_region(mesh, vertices, l, holes=()):
     """The closed region R = P minus the interior of the lattice part, as a visibility region."""
-    poly = shapely.Polygon(ccw(vertices))
+    poly = shape(vertices, holes)
     lat = mesh.triangles[lattice_mask(mesh)]
     if len(lat):
         poly = poly.difference(shapely.unary_union(shapely.polygons(mesh.points[lat])))
@@ -89,7 +106,7 @@ def check_theorem3(mesh, l):
         assert err[k] <= G1_REL, f"G1 edge of length {lengths[k]!r} differs from l = {l!r} by {err[k]:.3g} relative"
 
 
-def check_separation(mesh, vertices, l):
+def check_separation(mesh, vertices, l, holes=()):
     """Lemma 3 (1) and Step 4: output points that see each other in P are at least (1 - REL_TOL) l apart."""
     pts = mesh.points
     pairs = cKDTree(pts).query_pairs((1.0 - REL_TOL) * l, output_type="ndarray")
@@ -99,7 +116,7 @@ def check_separation(mesh, vertices, l):
     close = pairs[d < (1.0 - REL_TOL) * l]
     if not len(close):
         return
-    seen = visible(polygon_region(vertices, l), pts[close[:, 0]], pts[close[:, 1]])
+    seen = visible(polygon_region(vertices, l, holes), pts[close[:, 0]], pts[close[:, 1]])
     if seen.any():
         i, j = close[np.flatnonzero(seen)[0]]
         raise AssertionError(
@@ -108,19 +125,18 @@ def check_separation(mesh, vertices, l):
         )
 
 
-def covering_samples(mesh, vertices, l):
+def covering_samples(mesh, vertices, l, holes=()):
     """Where the covering radius is probed: circumcentres in P, edge midpoints, centroids, dense boundary samples."""
     pts, tri = mesh.points, mesh.triangles
     t = np.sort(tri, axis=1)
     centers, _ = circumcenters(pts[t[:, 0]], pts[t[:, 1]], pts[t[:, 2]])
-    poly = shapely.Polygon(ccw(vertices))
+    poly = shape(vertices, holes)
     shapely.prepare(poly)
     centers = centers[np.isfinite(centers).all(axis=1)]
     centers = centers[shapely.covers(poly, shapely.points(centers))]
     mids = pts[mesh.edges].mean(axis=1)
     centroids = pts[tri].mean(axis=1)
-    v = ccw(vertices)
-    a, b = v, np.roll(v, -1, axis=0)
+    a, b = ring_edges(vertices, holes)
     boundary = []
     for p, q in zip(a, b):
         k = max(1, int(np.ceil(8.0 * np.linalg.norm(q - p) / l)))
@@ -128,15 +144,15 @@ def covering_samples(mesh, vertices, l):
     return np.vstack([centers, mids, centroids, *boundary])
 
 
-def check_covering(mesh, vertices, l):
+def check_covering(mesh, vertices, l, holes=()):
     """Step 4 halts: every probed point of P is within l (1 + REL_TOL) of an output point it sees (in P)."""
     pts = mesh.points
-    x = covering_samples(mesh, vertices, l)
+    x = covering_samples(mesh, vertices, l, holes)
     radius = l * (1.0 + REL_TOL)
     near = cKDTree(pts).query_ball_point(x, radius)
     rows = np.repeat(np.arange(len(x)), [len(n) for n in near])
     cols = np.fromiter((j for n in near for j in n), dtype=np.int64, count=len(rows))
-    seen = visible(polygon_region(vertices, l), x[rows], pts[cols]) if len(rows) else np.zeros(0, dtype=bool)
+    seen = visible(polygon_region(vertices, l, holes), x[rows], pts[cols]) if len(rows) else np.zeros(0, dtype=bool)
     covered = np.zeros(len(x), dtype=bool)
     covered[rows[seen]] = True
     if not covered.all():
@@ -147,7 +163,7 @@ def check_covering(mesh, vertices, l):
         )
 
 
-def check_triangulation(mesh, vertices, l):
+def check_triangulation(mesh, vertices, l, holes=()):
     """A valid conforming triangulation of P whose boundary contains the boundary of P.
 
     * indices in range, every point used, ``edges`` are the triangles' edges;
@@ -158,10 +174,12 @@ def check_triangulation(mesh, vertices, l):
       the boundary of P; those edges have total length perimeter(P);
     * every vertex of P is an output point (bit-identical) and every edge of
       P is a chain of mesh edges between its endpoints;
-    * the first ``n_boundary`` points lie on the boundary of P, in
-      counter-clockwise order from vertex 0, and the others do not.
+    * the first ``n_boundary`` points lie on the boundary of P: the outer
+      ring counter-clockwise from vertex 0, then each hole's ring clockwise
+      from its first vertex (``info["boundary_rings"]`` points each); the
+      others do not.
     """
-    v = ccw(vertices)
+    ring_list = rings(vertices, holes)
     pts, tri, nb = mesh.points, mesh.triangles, mesh.n_boundary
     n = len(pts)
     assert tri.ndim == 2 and tri.shape[1] == 3 and tri.min() >= 0 and tri.max() < n, "triangle index out of range"
@@ -171,7 +189,7 @@ def check_triangulation(mesh, vertices, l):
     areas = mesh.triangle_areas()
     k = int(np.argmin(areas))
     assert areas[k] > 0, f"triangle {k} {tri[k].tolist()} is not counter-clockwise (area {areas[k]!r})"
-    poly = shapely.Polygon(v)
+    poly = shape(vertices, holes)
     assert abs(areas.sum() - poly.area) <= 1e-9 * poly.area, f"triangles cover {areas.sum()!r}, P has {poly.area!r}"
 
     directed = np.concatenate([tri[:, [0, 1]], tri[:, [1, 2]], tri[:, [2, 0]]])
@@ -180,8 +198,8 @@ def check_triangulation(mesh, vertices, l):
     und, ucount = np.unique(np.sort(directed, axis=1), axis=0, return_counts=True)
     assert ucount.max() <= 2, f"edge {und[np.argmax(ucount)].tolist()} is in more than two triangles"
     single = und[ucount == 1]
-    a, b = v, np.roll(v, -1, axis=0)
-    scale = max(float(np.ptp(v, axis=0).max()), l)
+    a, b = ring_edges(vertices, holes)
+    scale = max(float(np.ptp(a, axis=0).max()), l)
 
     def to_boundary(x):
         return point_segment_distance(x[:, None, :], a[None], b[None]).min(axis=1)
@@ -195,7 +213,7 @@ def check_triangulation(mesh, vertices, l):
     assert abs(total - perimeter) <= 1e-9 * perimeter, f"boundary edges total {total!r}, perimeter {perimeter!r}"
 
     index = {tuple(p): i for i, p in enumerate(pts.tolist())}
-    missing = [p for p in v.tolist() if tuple(p) not in index]
+    missing = [p for p in a.tolist() if tuple(p) not in index]
     assert not missing, f"vertex {missing[0]} of P is not an output point"
     single_set = {tuple(e) for e in single.tolist()}
     for p, q in zip(a, b):
@@ -210,14 +228,21 @@ def check_triangulation(mesh, vertices, l):
     dist = to_boundary(pts)
     assert np.all(dist[:nb] <= 1e-12 * scale), "a leading 'boundary' point is off the boundary of P"
     assert np.all(dist[nb:] > 1e-12 * scale), "a point after the first n_boundary lies on the boundary of P"
-    assert np.array_equal(pts[0], v[0]), "the boundary ring does not start at vertex 0"
-    ring = np.column_stack([np.arange(nb), (np.arange(nb) + 1) % nb])
-    assert {tuple(e) for e in np.sort(ring, axis=1).tolist()} == single_set, "the boundary ring is not the boundary"
-    r = pts[:nb]
-    assert np.sum(r[:, 0] * np.roll(r[:, 1], -1) - np.roll(r[:, 0], -1) * r[:, 1]) > 0, "boundary ring is clockwise"
+    sizes = mesh.info.get("boundary_rings", (nb,))
+    assert len(sizes) == len(ring_list) and sum(sizes) == nb, f"boundary rings {sizes} for {len(ring_list)} rings"
+    starts = np.cumsum(sizes) - sizes
+    links = set()
+    for k, (start, size, v) in enumerate(zip(starts, sizes, ring_list)):
+        assert np.array_equal(pts[start], v[0]), f"boundary ring {k} does not start at its vertex 0"
+        j = np.arange(size)
+        links |= {tuple(e) for e in np.sort(np.column_stack([start + j, start + (j + 1) % size]), axis=1).tolist()}
+        r = pts[start : start + size]
+        twice_area = np.sum(r[:, 0] * np.roll(r[:, 1], -1) - np.roll(r[:, 0], -1) * r[:, 1])
+        assert (twice_area > 0) == (k == 0), f"boundary ring {k} has the wrong orientation"
+    assert links == single_set, "the boundary rings are not the boundary"
 
 
-def check_constrained_delaunay(mesh, vertices, l):
+def check_constrained_delaunay(mesh, vertices, l, holes=()):
     """Definition 1 in R: no output point visible (in R) from a strip triangle lies inside its circumcircle.
 
     Strip triangles are those not in the lattice part K; visibility is taken
@@ -242,7 +267,7 @@ def check_constrained_delaunay(mesh, vertices, l):
         return
     rows, cols = np.array(rows), np.array(cols)
     centroids = pts[t].mean(axis=1)
-    seen = visible(strip_region(mesh, vertices, l), centroids[rows], pts[cols])
+    seen = visible(strip_region(mesh, vertices, l, holes), centroids[rows], pts[cols])
     if seen.any():
         k = int(np.flatnonzero(seen)[0])
         raise AssertionError(
@@ -251,7 +276,7 @@ def check_constrained_delaunay(mesh, vertices, l):
         )
 
 
-def check_lattice_part(mesh, vertices, l, clearance=1.0):
+def check_lattice_part(mesh, vertices, l, clearance=1.0, holes=()):
     """The lattice part K: its triangles' vertices are kept lattice vertices, at least clearance * l from the boundary.
 
     Also checks that K has ``info["n_lattice_triangles"]`` triangles.
@@ -263,19 +288,19 @@ def check_lattice_part(mesh, vertices, l, clearance=1.0):
     if not mask.any():
         return
     used = np.unique(mesh.triangles[mask])
-    v = ccw(vertices)
-    d = point_segment_distance(mesh.points[used][:, None, :], v[None], np.roll(v, -1, axis=0)[None]).min(axis=1)
+    a, b = ring_edges(vertices, holes)
+    d = point_segment_distance(mesh.points[used][:, None, :], a[None], b[None]).min(axis=1)
     k = int(np.argmin(d))
     assert d[k] >= (1.0 - REL_TOL) * clearance * l, (
         f"lattice vertex {used[k]} is {d[k]!r} < clearance * l = {clearance * l!r} from the boundary"
     )
 
 
-def assert_problem2_invariants(mesh, vertices, l, clearance=1.0):
-    """Every guarantee of Problem 2 on one output."""
+def assert_problem2_invariants(mesh, vertices, l, clearance=1.0, holes=()):
+    """Every guarantee of Problem 2 on one output (``holes``: the openings passed to it)."""
     check_theorem3(mesh, l)
-    check_triangulation(mesh, vertices, l)
-    check_lattice_part(mesh, vertices, l, clearance)
-    check_separation(mesh, vertices, l)
-    check_covering(mesh, vertices, l)
-    check_constrained_delaunay(mesh, vertices, l)
+    check_triangulation(mesh, vertices, l, holes)
+    check_lattice_part(mesh, vertices, l, clearance, holes)
+    check_separation(mesh, vertices, l, holes)
+    check_covering(mesh, vertices, l, holes)
+    check_constrained_delaunay(mesh, vertices, l, holes)

@@ -31,6 +31,11 @@ by a drawn ``l``).  Why each family is valid:
   every corner angle is within ``2 atan(L) < 29`` degrees of 90 (points on
   the two edges at a corner are then at least ``2 sin(30.5 deg) 1.2 > 1``
   apart).  ``a`` is large enough to make the boundary wavy, i.e. non-convex.
+* **sharp wedges and rhombi** (issue 10): tips of 10 to 60 degrees whose
+  sides are at least ``stagger_reach(angle) + 2`` long, the proven limit of
+  the staggered Step 2 (docs/proofs.md, "Sharp corners") with one l to
+  spare, and at least 1.2 wide across the shape away from the tips; the
+  other corners are at least 90 degrees.
 
 The placement keeps the construction facts above (up to rounding that stays
 far below :data:`equimesh.REL_TOL`).  The constructors live in
@@ -42,9 +47,19 @@ import math
 import numpy as np
 from hypothesis import strategies as st
 
-from equimesh.testing.generators import regular_polygon
-from equimesh.testing.shapes import column_polygon, dumbbell_polygon, flattened_square, letter_polygon, star_polygon
-from strategies import placed, random_polygons
+from equimesh.testing.generators import regular_polygon, rotate
+from equimesh.testing.shapes import (
+    column_polygon,
+    dumbbell_polygon,
+    flattened_square,
+    letter_polygon,
+    perforated_rectangle,
+    sharp_rhombus,
+    sharp_wedge,
+    star_polygon,
+)
+from equimesh.planar.polygon import SHARP_CORNER, stagger_reach
+from strategies import angles, lengths, placed, random_polygons, shifts
 
 #: Smallest grid unit, corridor and arm width, in units of l.
 MIN_FEATURE = 1.2
@@ -129,6 +144,31 @@ def flattened_boundaries(draw, max_area=400.0):
     return flattened_square(n, parts, a, b, ky, kx, draw(phases), draw(phases))
 
 
+#: Smallest corner angle drawn by the sharp families, in degrees (issue 10 asks for 10).
+MIN_SHARP = 10.0
+
+
+def _sharp_side(angle, width):
+    """A side long enough for the staggered Step 2 at ``angle`` (with one l to spare against the rounding of
+    the angle) and for a width of at least 1.2 across the shape (``width`` is the width per unit of side)."""
+    return max(stagger_reach(angle, 1.0) + 2.0, MIN_FEATURE / width)
+
+
+@st.composite
+def sharp_wedges(draw, max_area=400.0):
+    """A tip of 10 to 60 degrees closed by a rectangle (:func:`~equimesh.testing.shapes.sharp_wedge`)."""
+    angle = draw(st.floats(MIN_SHARP, SHARP_CORNER))
+    side = _sharp_side(angle, math.sin(math.radians(angle) / 2.0)) * draw(st.floats(1.0, 1.3))
+    return sharp_wedge(angle, side, draw(st.floats(MIN_FEATURE, 6.0)))
+
+
+@st.composite
+def sharp_rhombi(draw, max_area=400.0):
+    """A rhombus with two tips of 10 to 60 degrees (:func:`~equimesh.testing.shapes.sharp_rhombus`)."""
+    angle = draw(st.floats(MIN_SHARP, SHARP_CORNER))
+    return sharp_rhombus(angle, _sharp_side(angle, math.sin(math.radians(angle))) * draw(st.floats(1.0, 1.3)))
+
+
 FAMILIES = {
     "convex": convex_polygons,
     "columns": column_polygons,
@@ -136,7 +176,41 @@ FAMILIES = {
     "dumbbell": dumbbells,
     "star": stars,
     "flattened": flattened_boundaries,
+    "sharp wedge": sharp_wedges,
+    "sharp rhombus": sharp_rhombi,
 }
+
+
+@st.composite
+def hole_shapes(draw):
+    """One hole in units of l: a regular 3- to 6-gon with edges of 1.2 to 2.5, or an L of unit 1.2 to 2."""
+    if draw(st.booleans()):
+        return regular_polygon(draw(st.integers(3, 6)), draw(st.floats(MIN_FEATURE, 2.5)), rotation=draw(phases))
+    return np.asarray(letter_polygon("L", 1, draw(st.integers(1, 2))), dtype=float) * draw(st.floats(MIN_FEATURE, 2.0))
+
+
+@st.composite
+def perforated_cases(draw):
+    """``(vertices, holes, l)``: a rectangle with 1 to 3 holes (:func:`~equimesh.testing.shapes.perforated_rectangle`).
+
+    Holes are regular polygons (convex, so every corner of the region at a
+    hole vertex is reflex) or L shapes (one 90 degree corner of the region),
+    every edge at least 1.2, at least ``gap >= 1.2`` from each other and from
+    the rectangle.  Placed by the convention of :func:`strategies.placed`
+    (rotation about the outer polygon's mean, shift, rolled start vertices,
+    scale by l), holes in either orientation.
+    """
+    holes = draw(st.lists(hole_shapes(), min_size=1, max_size=3))
+    outer, holes = perforated_rectangle(holes, draw(st.floats(MIN_FEATURE, 2.5)))
+    angle, shift, l = draw(angles), np.array(draw(shifts)), draw(lengths())
+    centre = outer.mean(axis=0)
+
+    def move(v):
+        v = rotate(v - centre, angle) + shift
+        v = np.roll(v, -draw(st.integers(0, len(v) - 1)), axis=0)
+        return (v[::-1] if draw(st.booleans()) else v) * l
+
+    return move(outer), [move(h) for h in holes], l
 
 
 def simple_polygons(max_area=400.0, families=None):

@@ -39,14 +39,22 @@ def assert_theorem(mesh, l):
 
 
 @pytest.mark.parametrize(
-    "vertices, corner",
-    [([[0, 0], [10, 0], [10, 2]], 0), ([[0, 0], [10, 0], [9, 1]], 0), (TIP20, 0)],
-    ids=["11 degrees", "6 degrees", "20 degree tip"],
+    "vertices", [[[0, 0], [10, 0], [10, 2]], TIP20], ids=["11 degrees", "20 degree tip"]
 )
-def test_sharp_corners_are_refused_naming_the_corner(vertices, corner):
-    """The issue's accepted-but-invalid inputs: boundary points next to a sharp corner are closer than l."""
-    with pytest.raises(InvalidPolygonError, match=rf"corner at vertex {corner} .* too sharp for l = 1.0") as info:
-        equimesh.uniform_triangulation(vertices, 1.0)
+def test_reported_sharp_corners_are_meshed_validly(vertices):
+    """The issue's accepted-but-invalid inputs (edges of 0.29 l to 0.52 l, then refused): the staggered
+    Step 2 now meshes them within every guarantee of Problem 2."""
+    import invariants_uniform as inv
+
+    inv.assert_problem2_invariants(equimesh.uniform_triangulation(vertices, 1.0), vertices, 1.0)
+
+
+def test_a_corner_beyond_the_proven_limit_is_refused_naming_corner_angle_and_limit():
+    """6.3 degrees needs sides of 11 l (K = ceil(1 / sin 6.3) = 10 staggered points, plus l); they are 10 and 9.06."""
+    with pytest.raises(
+        InvalidPolygonError, match=r"corner at vertex 0 .* \(6.34019 degrees\) is too sharp for l = 1.0: .* at least 11.0 long"
+    ) as info:
+        equimesh.uniform_triangulation([[0, 0], [10, 0], [9, 1]], 1.0)
     p, q = np.array(info.value.points)
     assert np.linalg.norm(p - q) < 1.0
 
@@ -61,8 +69,9 @@ def test_a_neck_narrower_than_l_is_refused_naming_both_edges():
 
 def test_the_cause_pairs_a_rounding_error_outside_are_still_seen():
     """The cause of the issue: resampled points fall a rounding error outside P, so an exact
-    ``covers`` test called the too-close pair invisible; the grown-polygon test sees it."""
-    poly = as_polygon([[0, 0], [10, 0], [10, 2]], 1.0)
+    ``covers`` test called the too-close pair invisible; the grown-polygon test sees it.  (The issue's
+    11-degree triangle is meshed now, its points staggered; the 6-degree one still shows the cause.)"""
+    poly = as_polygon([[0, 0], [10, 0], [9, 1]], 1.0)
     boundary = resample_boundary(poly, 1.0, BOUNDARY_SPACING)
     pts = boundary.points
     pairs = cKDTree(pts).query_pairs(1.0 - REL_TOL, output_type="ndarray")

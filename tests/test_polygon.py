@@ -132,3 +132,30 @@ def test_generator_builds_valid_problem1_polygons(seed, k, area, elongation, min
     assert poly.area >= area * (1.0 - 1e-12)
     capped = random_convex_polygon(np.random.default_rng(seed), n_vertices=k, area=area, elongation=elongation, max_area=60.0)
     assert validate_problem1(capped, 1.0)[0].area <= 60.0 * (1.0 + 1e-12)
+
+
+@given(
+    st.floats(0.5, 60.0, exclude_max=True),
+    st.floats(1.0, 1.5),
+    st.sampled_from([1.0, 1.5, 2.0]),
+    st.sampled_from([1.0, 2.0 ** -5, 2.0 ** 7]),
+)
+def test_staggered_step2_separates_the_sides_of_a_sharp_corner(angle, stretch, spacing, l):
+    """docs/proofs.md, "Sharp corners": at any corner angle down to 0.5 degrees, with both sides at least
+    ``stagger_reach + l`` long, the Step 2 points of the two sides are pairwise at least l apart, and every
+    boundary part is in [l, 2l]."""
+    from equimesh.planar.polygon import stagger_reach
+    from equimesh.testing.shapes import sharp_wedge
+
+    side = max(stagger_reach(angle, 1.0) + 2.0, 1.2 / math.sin(math.radians(angle) / 2.0)) * stretch
+    poly = as_polygon(sharp_wedge(angle, side, 2.0) * l, l)
+    boundary = resample_boundary(poly, l, spacing)
+    lp = poly.local_length(l)
+    parts = np.linalg.norm(np.roll(boundary.points, -1, axis=0) - boundary.points, axis=1)
+    assert parts.min() >= (1.0 - REL_TOL) * lp and parts.max() <= 2.0 * (1.0 + REL_TOL) * lp
+    tip = np.flatnonzero(np.all(poly.local == poly.frame.to_local(np.zeros((1, 2))), axis=1))[0]
+    sides = [boundary.points[boundary.edge == (tip - 1) % 5], boundary.points[boundary.edge == tip]]
+    sides[0] = np.vstack([sides[0], boundary.points[boundary.edge == tip][:1]])  # the tip closes the arriving side
+    gaps = np.linalg.norm(sides[0][:, None, :] - sides[1][None, :, :], axis=2)
+    gaps[-1, 0] = np.inf  # the tip with itself
+    assert gaps.min() >= (1.0 - REL_TOL) * lp

@@ -495,3 +495,88 @@ def test_checks_catch_a_missing_point(square_mesh):
     bad = PlanarMesh.build(pts, tri, 1.0, nb, info={"n_lattice_triangles": 0})
     with pytest.raises(AssertionError):
         inv.check_covering(bad, vertices, 1.0)
+
+
+# --------------------------------------------------------------------------- 7: openings (holes)
+
+FRAME = [[0, 0], [14, 0], [14, 10], [0, 10]]
+WINDOW = [[3, 3], [6, 3], [6, 6], [3, 6]]
+SLOT = [[9, 3], [11, 7], [8.5, 7]]
+
+
+@given(ss.perforated_cases())
+def test_every_invariant_holds_with_holes(case):
+    """Theorem 3, the conforming triangulation of P minus its holes, the lattice part kept l from every
+    boundary, Lemma 3 (1), covering and Definition 1 in R, with one to three holes of either orientation."""
+    vertices, holes, l = case
+    mesh = equimesh.uniform_triangulation(vertices, l, holes=holes)
+    assert len(mesh.info["boundary_rings"]) == len(holes) + 1
+    inv.assert_problem2_invariants(mesh, vertices, l, holes=holes)
+
+
+def test_holes_keep_the_lattice_out_and_leave_the_area_open():
+    """The openings are empty: the triangles cover area(P) minus the holes and no mesh point lies inside a hole."""
+    mesh = equimesh.uniform_triangulation(FRAME, 1.0, holes=[WINDOW, SLOT])
+    inv.assert_problem2_invariants(mesh, FRAME, 1.0, holes=[WINDOW, SLOT])
+    assert math.isclose(mesh.triangle_areas().sum(), 140.0 - 9.0 - 5.0, rel_tol=1e-12)
+    assert mesh.info["boundary_rings"][0] + sum(mesh.info["boundary_rings"][1:]) == mesh.n_boundary
+    without = equimesh.uniform_triangulation(FRAME, 1.0)
+    assert mesh.info["n_lattice_triangles"] < without.info["n_lattice_triangles"]
+
+
+def test_no_holes_is_the_same_mesh():
+    """``holes=[]`` and ``holes=None`` give the mesh without holes, bit for bit."""
+    a, b, c = (equimesh.uniform_triangulation(FRAME, 1.0, holes=h) for h in (None, [], ()))
+    for other in (b, c):
+        assert np.array_equal(a.points, other.points) and np.array_equal(a.triangles, other.triangles)
+
+
+BAD_HOLES = [
+    ("outside", [[[20, 3], [22, 3], [22, 6]]], r"hole 0 is not inside the polygon: its vertex 0"),
+    ("in the notch of an L", [[[1, 7], [3, 7], [3, 9]]], r"hole 0 lies outside the polygon"),
+    ("across the boundary", [[[3, 3], [16, 3], [6, 6]]], r"hole 0 is not inside the polygon: its vertex 1"),
+    ("touching the boundary", [[[3, 0], [6, 3], [3, 6]]], r"hole 0 overlaps the boundary of the polygon"),
+    ("overlapping", [WINDOW, [[5, 5], [8, 5], [8, 8]]], r"hole 0 and hole 1 overlap"),
+    ("nested", [WINDOW, [[4, 4], [5, 4], [5, 5]]], r"hole 0 and hole 1 overlap"),
+    ("closer than l to the boundary", [[[0.5, 3], [4, 3], [4, 6]]], r"hole 0 is 0\.5 from the boundary .* closer than l = 1\.0"),
+    ("closer than l to another hole", [WINDOW, [[3, 6.5], [6, 6.5], [6, 9]]], r"hole 0 and hole 1 are 0\.5 apart"),
+    ("short edge", [[[3, 3], [3.5, 3], [3.5, 6], [3, 6]]], r"edge \(\d, \d\) of hole 0 has length 0\.5, shorter than l"),
+    ("self-intersecting", [[[3, 3], [6, 6], [6, 3], [3, 6]]], r"hole 0 is not simple"),
+    ("collinear", [[[3, 3], [4, 3], [5, 3]]], r"hole 0 has zero area"),
+    ("two vertices", [[[3, 3], [4, 3]]], r"hole 0 needs at least 3 distinct vertices"),
+    ("not a ring", [[3, 3]], r"hole 0 vertices must be an \(n, 2\) array"),
+    ("nan", [[[3, 3], [4, math.nan], [5, 5]]], r"vertex 1 of hole 0 has a non-finite coordinate"),
+    ("not a list", 3.0, r"holes must be a list of polygons"),
+]
+
+
+@pytest.mark.parametrize("holes, message", [c[1:] for c in BAD_HOLES], ids=[c[0] for c in BAD_HOLES])
+def test_bad_holes_are_refused_naming_the_hole(holes, message):
+    """Each malformed opening is one line of ours naming the hole (Lemma 3 (1) across boundaries)."""
+    vertices = [[0, 0], [14, 0], [14, 10], [5, 10], [5, 5], [0, 5]] if "lies outside" in message else FRAME
+    with pytest.raises(EquimeshError, match=message) as info:
+        equimesh.uniform_triangulation(vertices, 1.0, holes=holes)
+    assert "\n" not in str(info.value)
+
+
+def test_placement_and_size_guard_take_holes():
+    """best_lattice_placement counts lattice edges clear of the holes; the size guard counts the holes' strip."""
+    with_holes = equimesh.best_lattice_placement(FRAME, 1.0, holes=[WINDOW, SLOT], n_angles=2, n_offsets=2, refine=0)
+    plain = equimesh.best_lattice_placement(FRAME, 1.0, n_angles=2, n_offsets=2, refine=0)
+    assert with_holes.lattice_edges < plain.lattice_edges
+    poly = equimesh.planar.polygon.as_polygon(FRAME, 1.0)
+    limit = int(equimesh.planar.strip.strip_estimate(poly, 1.0, 1.0)) + 1
+    equimesh.uniform_triangulation(FRAME, 1.0, max_nodes=limit)
+    with pytest.raises(equimesh.MeshTooLargeError):
+        equimesh.uniform_triangulation(FRAME, 1.0, holes=[WINDOW], max_nodes=limit)
+
+
+# --------------------------------------------------------------------------- 8: sharp corners (issue 10)
+
+
+@given(ss.cases(MAX_AREA, families=["sharp wedge", "sharp rhombus"]))
+def test_every_invariant_holds_at_sharp_corners(case):
+    """Corners of 10 to 60 degrees with sides at the proven limit of the staggered Step 2 (docs/proofs.md,
+    "Sharp corners"): accepted, and every guarantee of Problem 2 holds (Theorem 3 included)."""
+    vertices, l = case
+    inv.assert_problem2_invariants(equimesh.uniform_triangulation(vertices, l), vertices, l)

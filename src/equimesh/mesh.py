@@ -39,13 +39,14 @@ def boundary_ring(segments, start):
     return np.array(ring, dtype=np.int64)
 
 
-def boundary_first(segments, n_points):
-    """Renumbering that puts the boundary ring through vertex 0 first, then the other points in order.
+def boundary_first(segments, n_points, starts=(0,)):
+    """Renumbering that puts the boundary rings through vertices ``starts`` first, then the other points in order.
 
     Returns ``(order, inverse, n_ring)``: new point ``k`` is old point
-    ``order[k]``, old point ``i`` becomes ``inverse[i]``.
+    ``order[k]``, old point ``i`` becomes ``inverse[i]``; ``n_ring`` is the
+    number of points on the rings (one ring per start, in that order).
     """
-    ring = boundary_ring(segments, start=0)
+    ring = np.concatenate([boundary_ring(segments, start=int(s)) for s in starts])
     order = np.concatenate([ring, np.setdiff1d(np.arange(n_points), ring)])
     inverse = np.empty_like(order)
     inverse[order] = np.arange(len(order))

@@ -24,9 +24,12 @@ def verify_planar(mesh):
 
     * every triangle index in range, every triangle counter-clockwise with
       positive area;
-    * Euler's formula for a triangulated disc: ``2 n - h - 2`` triangles for
-      ``n`` points of which ``h`` on the boundary ring;
-    * the triangle areas sum to the area of the boundary ring (to REL_TOL);
+    * Euler's formula for a triangulated disc with ``k`` holes:
+      ``2 n - h - 2 + 2 k`` triangles for ``n`` points of which ``h`` on the
+      boundary rings (``V - E + T = 1 - k`` and ``3 T = 2 E - h``);
+    * the triangle areas sum to the area enclosed by the outer ring minus the
+      holes' rings (to REL_TOL); the rings are the first ``n_boundary``
+      points, ``info["boundary_rings"]`` points each (one ring without it);
     * every edge in ``[(1 - REL_TOL) l, 2 (1 + REL_TOL) l]``.
     """
     points = mesh.points if mesh.local_points is None else mesh.local_points
@@ -43,11 +46,15 @@ def verify_planar(mesh):
         raise InternalError(
             f"triangle {k} {tuple(map(int, t[k]))} is not counter-clockwise with positive area: {_REPORT}"
         )
-    if len(t) != 2 * n - h - 2:
+    sizes = mesh.info.get("boundary_rings", (h,))
+    holes = len(sizes) - 1
+    if len(t) != 2 * n - h - 2 + 2 * holes:
         raise InternalError(
-            f"{len(t)} triangles on {n} points ({h} on the boundary), Euler's formula needs {2 * n - h - 2}: {_REPORT}"
+            f"{len(t)} triangles on {n} points ({h} on the boundary, {holes} holes), Euler's formula needs "
+            f"{2 * n - h - 2 + 2 * holes}: {_REPORT}"
         )
-    ring = signed_area(points[:h])
+    ends = np.cumsum(sizes)
+    ring = sum(signed_area(points[end - size : end]) for end, size in zip(ends, sizes))
     if not abs(float(np.sum(area)) - ring) <= REL_TOL * ring:
         raise InternalError(
             f"triangle areas sum to {float(np.sum(area)) / scale**2!r}, the polygon's area is {ring / scale**2!r}: {_REPORT}"

@@ -110,7 +110,8 @@ def kept_vertices(poly, l, angle=0.0, offset=(0.0, 0.0), clearance=1.0):
     ``l`` and ``offset`` are in the caller's units.  Returns
     ``(ii, jj, points, kept)``: index grids, local coordinates
     ``(ni * nj, 2)`` and a boolean grid, True for vertices inside P at
-    distance at least ``clearance * l`` from its boundary.
+    distance at least ``clearance * l`` from its boundary (the outer
+    boundary and every hole's).
     """
     lp = poly.local_length(l)
     offset = local_offset(poly, l, angle, offset)
@@ -126,7 +127,7 @@ def kept_vertices(poly, l, angle=0.0, offset=(0.0, 0.0), clearance=1.0):
     shape = poly.shapely()
     inside = shapely.contains_xy(shape, pts[:, 0], pts[:, 1])
     far = np.zeros(len(pts), dtype=bool)
-    far[inside] = at_least(shapely.distance(shapely.points(pts[inside]), shape.exterior), clearance * lp)
+    far[inside] = at_least(shapely.distance(shapely.points(pts[inside]), shape.boundary), clearance * lp)
     return ii, jj, pts, far.reshape(ii.shape)
 
 

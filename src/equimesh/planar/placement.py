@@ -69,7 +69,9 @@ def lattice_edge_count(poly, l, angle, offset, clearance=1.0):
     return int(np.count_nonzero(up | pad_j) + np.count_nonzero(up | pad_i) + np.count_nonzero(up | down))
 
 
-def best_lattice_placement(vertices, l, *, clearance=1.0, n_angles=12, n_offsets=4, refine=2, max_nodes=MAX_NODES):
+def best_lattice_placement(
+    vertices, l, *, holes=None, clearance=1.0, n_angles=12, n_offsets=4, refine=2, max_nodes=MAX_NODES
+):
     """Search the lattice angle and offset that maximise the number of G1 lattice edges.
 
     Parameters
@@ -78,6 +80,9 @@ def best_lattice_placement(vertices, l, *, clearance=1.0, n_angles=12, n_offsets
         The polygon (simple).
     l : float
         Lattice spacing.
+    holes : list of (k, 2) array_like, optional
+        Openings, as in :func:`equimesh.uniform_triangulation`; the lattice
+        is kept ``clearance * l`` from them too.
     clearance : float
         As in :func:`equimesh.uniform_triangulation`.
     n_angles, n_offsets, refine : int
@@ -97,7 +102,7 @@ def best_lattice_placement(vertices, l, *, clearance=1.0, n_angles=12, n_offsets
     n_offsets = check_count(n_offsets, "n_offsets", 1)
     refine = check_count(refine, "refine", 0)
     max_nodes = check_max_nodes(max_nodes)
-    poly = as_polygon(vertices, l)
+    poly = as_polygon(vertices, l, holes)
     check_size("the boundary strip", strip_estimate(poly, l, clearance), max_nodes, l)
     evaluations = 0
 

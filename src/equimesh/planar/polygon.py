@@ -14,8 +14,9 @@ origin is validated as precisely as the same polygon near it.  Validation is
 O(n log n) in the number of vertices.
 """
 
+import math
 import numbers
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 import shapely
@@ -62,21 +63,35 @@ def _num(x):
 
 @dataclass(frozen=True)
 class Polygon:
-    """A validated simple polygon, counter-clockwise.
+    """A validated simple polygon, counter-clockwise, possibly with holes (openings).
 
     Attributes
     ----------
-    vertices : (n, 2) float array, the caller's coordinates, counter-clockwise,
-        no repeated vertex.
+    vertices : (n, 2) float array, the caller's coordinates, no repeated
+        vertex; counter-clockwise for the outer boundary, clockwise for a hole
+        (the region lies on the left of every ring).
     input_index : (n,) int array, the caller's index of each vertex.
     frame : the local frame every computation runs in.
     local : (n, 2) float array, ``frame.to_local(vertices)``.
+    holes : tuple of :class:`Polygon`, the holes' rings (clockwise, same frame).
+    label : ``""`` for the outer boundary, ``"hole k"`` for the caller's hole k.
+
+    ``local_area``, ``local_perimeter``, ``area``, ``perimeter`` and
+    :meth:`shapely` are those of the region (outer boundary minus the holes);
+    the edge properties and names are those of this ring.
     """
 
     vertices: np.ndarray
     input_index: np.ndarray
     frame: Frame
     local: np.ndarray
+    holes: tuple = ()
+    label: str = ""
+
+    @property
+    def rings(self):
+        """The outer ring, then the holes' rings: every ring with the region on its left."""
+        return (self, *self.holes)
 
     def local_length(self, l):
         """The length ``l`` in the local frame (exact: the scale is a power of two)."""
@@ -92,11 +107,11 @@ class Polygon:
 
     @property
     def local_area(self):
-        return signed_area(self.local)
+        return sum(signed_area(ring.local) for ring in self.rings)
 
     @property
     def local_perimeter(self):
-        return float(np.sum(self.local_edge_lengths))
+        return sum(float(np.sum(ring.local_edge_lengths)) for ring in self.rings)
 
     @property
     def area(self):
@@ -106,15 +121,19 @@ class Polygon:
     def perimeter(self):
         return self.local_perimeter / self.frame.scale
 
+    @property
+    def _of(self):
+        return f" of {self.label}" if self.label else ""
+
     def vertex_name(self, i):
         j = int(self.input_index[i % len(self.vertices)])
         x, y = self.vertices[i % len(self.vertices)]
-        return f"vertex {j} at ({x:.10g}, {y:.10g})"
+        return f"vertex {j}{self._of} at ({x:.10g}, {y:.10g})"
 
     def edge_name(self, i):
         n = len(self.vertices)
         a, b = int(self.input_index[i % n]), int(self.input_index[(i + 1) % n])
-        return f"edge ({a}, {b})"
+        return f"edge ({a}, {b}){self._of}"
 
     def inner_angle(self, i):
         """Inner angle at vertex ``i``, in degrees (in [0, 360))."""
@@ -124,8 +143,8 @@ class Polygon:
         return float(np.degrees(np.arctan2(cross(w, u), np.dot(w, u))) % 360.0)
 
     def shapely(self):
-        """The polygon in its local frame."""
-        return shapely.Polygon(self.local)
+        """The region (outer boundary minus the holes) in its local frame."""
+        return shapely.Polygon(self.local, [hole.local for hole in self.holes])
 
 
 def real_array(value, what, error):
@@ -144,15 +163,16 @@ def real_array(value, what, error):
         raise error(f"{what} must be an array of numbers") from None
 
 
-def _parse_vertices(vertices):
-    """The caller's vertices as an ``(n, 2)`` float array of finite numbers, or an error."""
-    v = real_array(vertices, "polygon vertices", InvalidPolygonError)
+def _parse_vertices(vertices, what="polygon"):
+    """The caller's vertices as an ``(n, 2)`` float array of finite numbers, or an error naming ``what``."""
+    v = real_array(vertices, f"{what} vertices", InvalidPolygonError)
     if v.ndim != 2 or v.shape[1] != 2:
-        raise InvalidPolygonError(f"polygon vertices must be an (n, 2) array, got shape {v.shape}")
+        raise InvalidPolygonError(f"{what} vertices must be an (n, 2) array, got shape {v.shape}")
     bad = np.flatnonzero(~np.all(np.isfinite(v), axis=1))
     if bad.size:
         x, y = v[bad[0]]
-        raise InvalidPolygonError(f"vertex {bad[0]} has a non-finite coordinate ({x!r}, {y!r})")
+        of = "" if what == "polygon" else f" of {what}"
+        raise InvalidPolygonError(f"vertex {bad[0]}{of} has a non-finite coordinate ({x!r}, {y!r})")
     return v
 
 
@@ -173,47 +193,125 @@ def _local_frame(v, l):
     return Frame(origin, power_of_two_scale(l))
 
 
-def as_polygon(vertices, l=None):
-    """Validate a simple polygon and orient it counter-clockwise.
+def as_polygon(vertices, l=None, holes=None):
+    """Validate a simple polygon, oriented counter-clockwise, and its holes (openings), clockwise.
 
     Checks: an ``(n, 2)`` array of finite real numbers, at least 3 distinct
     vertices, no repeated vertex (a closing copy of the first vertex is
     dropped), not all vertices collinear, no self-intersection (no two edges
     share a point other than the common vertex of consecutive edges) and, when
     ``l`` is given, an extent of at most ``MAX_EXTENT * l``.  The local frame
-    scales ``l`` (or, without ``l``, the extent) into ``[1, 2)``.
+    scales ``l`` (or, without ``l``, the extent) into ``[1, 2)``.  Each hole
+    passes the same checks and :func:`_check_holes` (inside the polygon, apart
+    from its boundary and from each other).
     """
-    v = _parse_vertices(vertices)
+    v = _ring_vertices(_parse_vertices(vertices), "")
+    outer = _ring(v, _local_frame(v, l), "")
+    if holes is None:
+        return outer
+    return replace(outer, holes=_check_holes(outer, holes, l))
+
+
+def _ring_vertices(v, label):
+    """``v`` without a closing copy of its first vertex; at least 3 distinct vertices, none repeated."""
     if len(v) > 1 and np.array_equal(v[0], v[-1]):
         v = v[:-1]
     distinct = len(np.unique(v, axis=0))
     if distinct < 3:
-        raise InvalidPolygonError(f"a polygon needs at least 3 distinct vertices, got {distinct}")
-    _check_no_repeated_vertex(v)
-    frame = _local_frame(v, l)
+        raise InvalidPolygonError(f"{label or 'a polygon'} needs at least 3 distinct vertices, got {distinct}")
+    _check_no_repeated_vertex(v, f" of {label}" if label else "")
+    return v
+
+
+def _ring(v, frame, label):
+    """A simple ring in ``frame``: counter-clockwise for the outer boundary (``label`` empty), clockwise for a hole."""
     local = frame.to_local(v)
-    _check_not_collinear(local)
+    _check_not_collinear(local, label or "polygon")
     index = np.arange(len(v))
-    _check_simple(Polygon(v, index, frame, local))
+    _check_simple(Polygon(v, index, frame, local, label=label))
     low = int(np.lexsort((local[:, 1], local[:, 0]))[0])
-    if orient_sign(local[low - 1], local[low], local[(low + 1) % len(v)]) < 0:
+    counter_clockwise = orient_sign(local[low - 1], local[low], local[(low + 1) % len(v)]) > 0
+    if counter_clockwise == bool(label):
         v, index, local = v[::-1].copy(), index[::-1].copy(), local[::-1].copy()
-    return Polygon(v, index, frame, local)
+    return Polygon(v, index, frame, local, label=label)
 
 
-def _check_no_repeated_vertex(v):
+def _check_holes(outer, holes, l):
+    """The holes as clockwise rings: each inside P, none touching its boundary or another hole.
+
+    With ``l`` given, also Lemma 3 (1) across boundaries: every hole at least
+    ``l`` (up to REL_TOL) from the outer boundary and from every other hole.
+    """
+    if isinstance(holes, (str, bytes)) or not hasattr(holes, "__iter__"):
+        raise InvalidPolygonError(f"holes must be a list of polygons, got {type(holes).__name__}")
+    lo, hi = outer.vertices.min(axis=0), outer.vertices.max(axis=0)
+    rings = []
+    for k, hole in enumerate(holes):
+        label = f"hole {k}"
+        v = _parse_vertices(hole, label)
+        out = np.flatnonzero(np.any((v < lo) | (v > hi), axis=1))
+        if out.size:
+            x, y = v[out[0]]
+            raise InvalidPolygonError(f"{label} is not inside the polygon: its vertex {out[0]} at ({x:.10g}, {y:.10g}) lies outside")
+        rings.append(_ring(_ring_vertices(v, label), outer.frame, label))
+    if not rings:
+        return ()
+    region = shapely.Polygon(outer.local)
+    shapes = [shapely.Polygon(ring.local) for ring in rings]
+    for ring, shape in zip(rings, shapes):
+        if shapely.intersects(region.exterior, shape.exterior):
+            raise InvalidPolygonError(f"{ring.label} overlaps the boundary of the polygon (their edges cross or touch)")
+        if not region.contains(shape):
+            raise InvalidPolygonError(f"{ring.label} lies outside the polygon")
+    tree = shapely.STRtree(shapes)
+    i, j = tree.query(shapes, predicate="intersects")
+    if np.any(i < j):
+        a, b = sorted(min(zip(i[i < j].tolist(), j[i < j].tolist())))
+        raise InvalidPolygonError(f"hole {a} and hole {b} overlap")
+    if l is not None:
+        _check_holes_apart(outer, rings, shapes, tree, l)
+    return tuple(rings)
+
+
+def _check_holes_apart(outer, rings, shapes, tree, l):
+    """Lemma 3 (1) across boundaries: each hole at least ``l`` from the outer boundary and from every other hole."""
+    lp = outer.local_length(l)
+    gap = shapely.distance(shapely.LinearRing(outer.local), [shape.exterior for shape in shapes])
+    close = np.flatnonzero(~at_least(gap, lp))
+    if close.size:
+        k = int(close[0])
+        d = _num(gap[k] / outer.frame.scale)
+        raise InvalidPolygonError(
+            f"{rings[k].label} is {d} from the boundary of the polygon, closer than l = {_num(l)} "
+            f"(Lemma 3 (1)); move it or use l <= {d}"
+        )
+    i, j = tree.query(shapes, predicate="dwithin", distance=lp)
+    keep = i < j
+    i, j = i[keep], j[keep]
+    gap = shapely.distance(np.array(shapes)[i], np.array(shapes)[j])
+    close = np.flatnonzero(~at_least(gap, lp))
+    if close.size:
+        k = close[np.lexsort((j[close], i[close]))[0]]
+        d = _num(gap[k] / outer.frame.scale)
+        raise InvalidPolygonError(
+            f"hole {i[k]} and hole {j[k]} are {d} apart, closer than l = {_num(l)} (Lemma 3 (1)); "
+            f"move them apart or use l <= {d}"
+        )
+
+
+def _check_no_repeated_vertex(v, of=""):
     order = np.lexsort((v[:, 1], v[:, 0]))
     same = np.all(v[order[1:]] == v[order[:-1]], axis=1)
     if np.any(same):
         k = np.flatnonzero(same)[0]
         i, j = sorted((int(order[k]), int(order[k + 1])))
-        raise InvalidPolygonError(f"vertices {i} and {j} coincide at ({v[i, 0]:.10g}, {v[i, 1]:.10g})")
+        raise InvalidPolygonError(f"vertices {i} and {j}{of} coincide at ({v[i, 0]:.10g}, {v[i, 1]:.10g})")
 
 
-def _check_not_collinear(local):
+def _check_not_collinear(local, what):
     other = int(np.flatnonzero(np.any(local != local[0], axis=1))[0])
     if not np.any(orient_sign(local[0], local[other], local)):
-        raise InvalidPolygonError("polygon has zero area (all vertices collinear)")
+        raise InvalidPolygonError(f"{what} has zero area (all vertices collinear)")
 
 
 def _check_simple(poly):
@@ -223,6 +321,7 @@ def _check_simple(poly):
     for polygons whose edges are not all stacked on each other); each candidate
     is decided by the exact :func:`~equimesh._geometry.segments_intersect`.
     """
+    what = poly.label or "polygon"
     v = poly.local
     n = len(v)
     a, b = v, np.roll(v, -1, axis=0)
@@ -230,7 +329,7 @@ def _check_simple(poly):
     spike = (orient_sign(a, b, np.roll(b, -1, axis=0)) == 0) & (np.sum(e_in * e_out, axis=1) < 0)
     if np.any(spike):
         i = int(np.flatnonzero(spike)[0])
-        raise InvalidPolygonError(f"polygon folds back on itself at {poly.vertex_name(i + 1)}")
+        raise InvalidPolygonError(f"{what} folds back on itself at {poly.vertex_name(i + 1)}")
     tree = shapely.STRtree(shapely.linestrings(np.stack([a, b], axis=1)))
     i, j = tree.query(tree.geometries)
     gap = j - i
@@ -240,20 +339,20 @@ def _check_simple(poly):
     if np.any(hit):
         k = np.lexsort((j[hit], i[hit]))[0]
         raise InvalidPolygonError(
-            f"polygon is not simple (self-intersecting): {poly.edge_name(i[hit][k])} intersects "
+            f"{what} is not simple (self-intersecting): {poly.edge_name(i[hit][k])} intersects "
             f"{poly.edge_name(j[hit][k])}"
         )
 
 
 def check_edges_at_least(poly, l):
-    """Every edge of the polygon must be at least ``l`` long (up to REL_TOL), compared in the local frame."""
-    lengths = poly.local_edge_lengths
-    short = np.flatnonzero(~at_least(lengths, poly.local_length(l)))
-    if short.size:
-        i = int(short[0])
-        raise InvalidPolygonError(
-            f"{poly.edge_name(i)} has length {_num(poly.edge_lengths[i])}, shorter than l = {_num(l)}"
-        )
+    """Every edge of the polygon and of its holes must be at least ``l`` long (up to REL_TOL), in the local frame."""
+    for ring in poly.rings:
+        short = np.flatnonzero(~at_least(ring.local_edge_lengths, poly.local_length(l)))
+        if short.size:
+            i = int(short[0])
+            raise InvalidPolygonError(
+                f"{ring.edge_name(i)} has length {_num(ring.edge_lengths[i])}, shorter than l = {_num(l)}"
+            )
 
 
 def check_convex_right_angles(poly):
@@ -288,21 +387,39 @@ class Boundary:
 
     Attributes
     ----------
-    points : (m, 2) float array, local coordinates, counter-clockwise,
-        starting at polygon vertex 0.
+    points : (m, 2) float array, local coordinates: the outer ring
+        counter-clockwise from polygon vertex 0, then each hole's ring
+        clockwise from its vertex 0 (``Polygon.rings`` order).
     is_vertex : (m,) bool array, True where the point is a vertex of P.
-    edge : (m,) int array, the polygon edge each point starts (points j with
-        ``edge[j] == i`` lie on edge i, the first of them is vertex i).
+    edge : (m,) int array, the edge of its ring each point starts (points j
+        with ``edge[j] == i`` lie on edge i, the first of them is vertex i).
+    ring : (m,) int array, the index into ``Polygon.rings`` of each point.
     """
 
     points: np.ndarray
     is_vertex: np.ndarray
     edge: np.ndarray
+    ring: np.ndarray
+
+    @property
+    def ring_sizes(self):
+        return np.bincount(self.ring)
 
     @property
     def segments(self):
-        m = len(self.points)
-        return np.column_stack([np.arange(m), (np.arange(m) + 1) % m])
+        """Each ring closed on itself, the region on the left."""
+        sizes = self.ring_sizes
+        start = np.repeat(np.cumsum(sizes) - sizes, sizes)
+        j = np.arange(len(self.points)) - start
+        return np.column_stack([start + j, start + (j + 1) % np.repeat(sizes, sizes)])
+
+
+#: Corners of P with an inner angle below this many degrees get staggered
+#: Step 2 points (:func:`stagger`).  At 60 degrees or more, points at distances
+#: ``s, t >= l`` from the corner on its two sides are at least ``min(s, t) >= l``
+#: apart (law of cosines), so equal parts need nothing more
+#: (docs/proofs.md, "Sharp corners").
+SHARP_CORNER = 60.0
 
 
 def resample_boundary(poly, l, spacing=2.0):
@@ -316,22 +433,109 @@ def resample_boundary(poly, l, spacing=2.0):
     :func:`equimesh.planar.strip.uniform_triangulation`): a boundary part of
     exactly ``2l`` leaves its midpoint at distance exactly ``l``, and the
     farthest-point insertion then places a point a hair inside it, a sliver.
+    Next to a corner sharper than :data:`SHARP_CORNER` the points of its two
+    sides are staggered instead (:func:`side_positions`, :func:`stagger`).
 
     In a convex polygon with inner angles of at least 90 degrees (Problem 1)
     all boundary points are then pairwise at least ``l`` apart; the proof is
     in ``docs/proofs.md``, section "Step 2 boundary separation (Problem 1)".
-    For other polygons the separation is checked by
-    :func:`check_boundary_separation`.  The points are in the local frame.
+    For other polygons the separation of points on one edge or on the two
+    sides of one corner is proven in "Sharp corners" (when the sides are long
+    enough) and the rest is checked by :func:`check_boundary_separation`.
+    Every ring (the holes' too) is resampled alike.  The points are in the
+    local frame.
     """
-    v = poly.local
-    parts = split_counts(poly.local_edge_lengths, poly.local_length(l), spacing)
-    points, is_vertex, edge = [], [], []
-    for i, (a, b, k) in enumerate(zip(v, np.roll(v, -1, axis=0), parts)):
-        j = np.arange(k)[:, None]
-        points.append(a + (b - a) * j / k)
-        is_vertex.append(np.arange(k) == 0)
-        edge.append(np.full(k, i))
-    return Boundary(np.vstack(points), np.concatenate(is_vertex), np.concatenate(edge))
+    lp = poly.local_length(l)
+    points, is_vertex, edge, ring = [], [], [], []
+    for r, each in enumerate(poly.rings):
+        v = each.local
+        angles = [each.inner_angle(i) for i in range(len(v))]
+        sides = side_positions(each.local_edge_lengths, angles, lp, spacing)
+        for i, (a, b, (num, den)) in enumerate(zip(v, np.roll(v, -1, axis=0), sides)):
+            points.append(a + (b - a) * num[:, None] / den)
+            is_vertex.append(np.arange(len(num)) == 0)
+            edge.append(np.full(len(num), i))
+            ring.append(np.full(len(num), r))
+    return Boundary(*(np.concatenate(x) for x in (points, is_vertex, edge, ring)))
+
+
+def stagger(angle, l, reach):
+    """The staggered Step 2 points next to a corner of inner angle ``angle`` (degrees), up to ``reach`` from it.
+
+    Returns ``(leaving, arriving)``: distances from the corner of the points
+    on the side leaving it (counter-clockwise) and on the side arriving at it.
+    For a corner of at least :data:`SHARP_CORNER` degrees both are empty.
+    Otherwise the points ``k l`` for ``k = 1 .. K``, ``K = ceil(1 / sin angle)``,
+    alternate between the sides, odd ``k`` leaving, even ``k`` arriving: along
+    each side the parts are ``2l`` (``l`` for the first leaving part), and two
+    points of different sides are at least ``l`` apart at any angle because
+    their distances from the corner differ by at least ``l``; past ``K l``
+    the sides themselves are ``l`` apart (docs/proofs.md, "Sharp corners").
+    Where ``2 k l sin(angle / 2) > l`` the two points at ``k l`` on both sides
+    are ``l`` apart already, so ``k l`` is placed on both (parts of ``l``: a
+    ``2l`` part there would leave its midpoint ``l`` from every point, and
+    the insertion a sliver against it).
+    """
+    count = min(_stagger_count(angle), math.floor(reach / l) + 1)
+    k = np.arange(1, count + 1)
+    both = 2.0 * k * math.sin(math.radians(angle) / 2.0) >= 1.0 + REL_TOL
+    return k[(k % 2 == 1) | both] * l, k[(k % 2 == 0) | both] * l
+
+
+def _stagger_count(angle):
+    """``K = ceil(1 / sin angle)`` staggered points for a corner sharper than :data:`SHARP_CORNER`, else 0."""
+    if not angle < SHARP_CORNER * (1.0 - REL_TOL):
+        return 0
+    return math.ceil((1.0 - REL_TOL) / math.sin(math.radians(angle)))
+
+
+def stagger_reach(angle, l):
+    """How far from a corner of ``angle`` degrees :func:`stagger` places points: ``K l`` (0 if not sharp)."""
+    return _stagger_count(angle) * l
+
+
+def side_positions(lengths, angles, l, spacing=2.0):
+    """Step 2 on a closed ring of sides: where each side's points lie, staggered next to sharp corners.
+
+    Side ``i`` runs from corner ``i`` (inner angle ``angles[i]`` degrees) to
+    corner ``i + 1`` and is ``lengths[i]`` long.  Returns one
+    ``(numerators, denominator)`` pair per side: its points lie at the
+    fractions ``numerators / denominator`` of the side, the first (0) being
+    corner ``i``.  Shared by the polygon's Step 2 and the surface outline.
+
+    * Next to a corner sharper than :data:`SHARP_CORNER` the points of
+      :func:`stagger` are placed; between the last staggered point from each
+      end, the middle of length ``M`` is split into ``k`` equal parts by
+      :func:`split_counts` (``l <= M / k <= 2l``).  Staggered points that
+      leave a middle shorter than ``l`` are dropped, the farthest from its
+      corner first; a side at least ``stagger_reach`` of both its corners plus
+      ``l`` long drops none.
+    * A side with no staggered point is split into equal parts exactly as the
+      paper's Step 2 (numerators ``0 .. k - 1``, denominator ``k``), bit for
+      bit.
+    """
+    lengths = np.asarray(lengths, dtype=float)
+    n = len(lengths)
+    reach = [max(lengths[i - 1], lengths[i]) for i in range(n)]
+    corners = [stagger(a, l, r) for a, r in zip(angles, reach)]
+    sides = []
+    for i, length in enumerate(lengths):
+        start, end = corners[i][0], corners[(i + 1) % n][1]
+        start, end = start[start < length], end[end < length]
+        while (len(start) or len(end)) and not at_least(length - start.max(initial=0.0) - end.max(initial=0.0), l):
+            if start.max(initial=0.0) >= end.max(initial=0.0):
+                start = start[:-1]
+            else:
+                end = end[:-1]
+        if not len(start) and not len(end):
+            k = int(split_counts([length], l, spacing)[0])
+            sides.append((np.arange(k, dtype=float), float(k)))
+            continue
+        first, last = start.max(initial=0.0), length - end.max(initial=0.0)
+        k = int(split_counts([last - first], l, spacing)[0])
+        middle = first + (last - first) * np.arange(1, k) / k
+        sides.append((np.concatenate([[0.0], start, middle, length - end[::-1]]), length))
+    return sides
 
 
 def split_counts(lengths, l, spacing=2.0):
@@ -386,17 +590,22 @@ def check_boundary_separation(poly, boundary, l):
 
 def _separation_error(poly, boundary, l, i, j):
     """The error for boundary points ``i`` and ``j`` closer than ``l`` that see each other."""
-    n = len(poly.local)
     p, q = boundary.points[i], boundary.points[j]
     d = _num(np.linalg.norm(q - p) / poly.frame.scale)
+    ri, rj = (poly.rings[int(boundary.ring[k])] for k in (i, j))
     ei, ej = int(boundary.edge[i]), int(boundary.edge[j])
-    where = f"boundary points on {poly.edge_name(ei)} and {poly.edge_name(ej)} are {d} apart"
+    where = f"boundary points on {ri.edge_name(ei)} and {rj.edge_name(ej)} are {d} apart"
     caller = poly.frame.to_caller(np.array([p, q]))
-    corner = ej if (ei + 1) % n == ej else ei if (ej + 1) % n == ei else None
+    n = len(ri.local)
+    corner = None if ri is not rj else ej if (ei + 1) % n == ej else ei if (ej + 1) % n == ei else None
     if corner is not None:
+        angle = ri.inner_angle(corner)
+        need = _num((stagger_reach(angle, poly.local_length(l)) / poly.frame.scale) + l)
         message = (
-            f"the corner at {poly.vertex_name(corner)} ({poly.inner_angle(corner):.6g} degrees) is too sharp "
-            f"for l = {_num(l)}: {where}, closer than l; use a smaller l or a wider corner"
+            f"the corner at {ri.vertex_name(corner)} ({angle:.6g} degrees) is too sharp for l = {_num(l)}: "
+            f"{where}, closer than l; at {angle:.6g} degrees Step 2 needs both sides of the corner at least "
+            f"{need} long, longer if the next corner is sharp too (docs/proofs.md, 'Sharp corners'); "
+            "use a smaller l, longer sides or a wider corner"
         )
     else:
         message = (

@@ -25,9 +25,10 @@ are at most ``|e| <= 2l`` (Lemma 5, the counterpart of Lemma 2).
 """
 
 import numpy as np
+import shapely
 
 from ..errors import EquimeshError
-from ..mesh import PlanarMesh, boundary_first, unique_edges
+from ..mesh import PlanarMesh, boundary_first, boundary_ring, unique_edges
 from .guarantees import verify_planar
 from .insertion import Region, insert
 from .lattice import lattice_adjacent, lattice_part
@@ -57,6 +58,7 @@ def uniform_triangulation(
     vertices,
     l,
     *,
+    holes=None,
     angle=0.0,
     offset=(0.0, 0.0),
     clearance=1.0,
@@ -74,6 +76,12 @@ def uniform_triangulation(
         mutually visible boundary points at least ``l`` apart.
     l : float
         Lattice spacing and minimum edge length.
+    holes : list of (k, 2) array_like, optional
+        Openings: simple polygons, either orientation, strictly inside the
+        polygon, each at least ``l`` from its boundary and from every other
+        hole (Lemma 3 (1) across boundaries), every edge at least ``l`` long.
+        The lattice is kept ``clearance * l`` from every boundary and the
+        strip is filled between the outer boundary, the holes and the lattice.
     angle : float
         Direction of the first lattice vector, in degrees (taken modulo 60,
         the lattice's symmetry).
@@ -96,8 +104,10 @@ def uniform_triangulation(
     -------
     PlanarMesh
         Points: the boundary of P (counter-clockwise from vertex 0, with any
-        point inserted on it), then the rest; ``edge_groups`` marks the
-        lattice edges (length exactly l) as G1.  Theorem 3 is checked on it
+        point inserted on it), then each hole's boundary (clockwise), then
+        the rest; ``n_boundary`` counts all boundary points and
+        ``info["boundary_rings"]`` the points of each ring (outer first);
+        ``edge_groups`` marks the lattice edges (length exactly l) as G1.  Theorem 3 is checked on it
         before it is returned (:func:`equimesh.planar.guarantees.verify_planar`).
     """
     l = check_length(l)
@@ -106,7 +116,7 @@ def uniform_triangulation(
     angle = _check_scalar(angle, "angle")
     spacing = check_spacing(boundary_spacing)
     max_nodes = check_max_nodes(max_nodes)
-    poly = as_polygon(vertices, l)
+    poly = as_polygon(vertices, l, holes)
     check_edges_at_least(poly, l)
     check_size("the boundary strip", strip_estimate(poly, l, clearance), max_nodes, l)
     boundary = resample_boundary(poly, l, spacing)
@@ -120,7 +130,7 @@ def uniform_triangulation(
     region = Region(
         np.vstack([boundary.points, lat.points[lat_boundary]]),
         np.vstack([boundary.segments, lat_index[lat.boundary_edges]]).astype(np.int64),
-        lat.holes,
+        np.vstack([lat.holes, *(hole_seed(hole) for hole in poly.holes)]),
     )
     strip = insert(region, poly.local_length(l), engine=engine)
 
@@ -133,7 +143,9 @@ def uniform_triangulation(
     is_lattice = np.zeros(len(points), dtype=bool)
     is_lattice[lat_index] = True
 
-    order, inverse, n_ring = boundary_first(strip.segments, len(points))
+    starts = np.cumsum(boundary.ring_sizes) - boundary.ring_sizes
+    rings = tuple(len(boundary_ring(strip.segments, start)) for start in starts)
+    order, inverse, n_ring = boundary_first(strip.segments, len(points), starts)
     mesh_edges = unique_edges(triangles)
     both = is_lattice[mesh_edges[:, 0]] & is_lattice[mesh_edges[:, 1]]
     g1 = mesh_edges[both][lattice_adjacent(ij[mesh_edges[both, 0]], ij[mesh_edges[both, 1]])]
@@ -150,11 +162,23 @@ def uniform_triangulation(
             "angle": angle,
             "offset": tuple(offset),
             "clearance": clearance,
+            "boundary_rings": rings,
         },
         frame=poly.frame,
-        pinned=(poly.local, poly.vertices),
+        pinned=pinned_vertices(poly),
     )
     return verify_planar(mesh)
+
+
+def hole_seed(hole):
+    """A point strictly inside a hole's ring (local frame): the seed that tells the CDT to leave the hole empty."""
+    point = shapely.Polygon(hole.local).representative_point()
+    return np.array([[point.x, point.y]])
+
+
+def pinned_vertices(poly):
+    """``(local, caller)`` rows of every ring's vertices, so the output keeps the caller's exact coordinates."""
+    return tuple(np.vstack([getattr(ring, name) for ring in poly.rings]) for name in ("local", "vertices"))
 
 
 def strip_estimate(poly, l, clearance):

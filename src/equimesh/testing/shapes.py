@@ -99,6 +99,50 @@ def flattened_square(n, parts, a, b, ky, kx, p=0.0, q=0.0):
     return np.column_stack([x + a * np.sin(ky * y + p), y + b * np.sin(kx * x + q)])
 
 
+def sharp_wedge(angle, side, depth):
+    """A tip of ``angle`` degrees at the origin, sides ``side`` long, closed by a rectangle ``depth`` deep.
+
+    Corners: the tip, ``180 - angle / 2`` twice and 90 twice; the rectangle is
+    ``2 side sin(angle / 2)`` wide.  Valid for Problem 2 with ``l = 1`` when
+    ``side >= stagger_reach(angle) + 1`` (the proven limit of the staggered
+    Step 2, docs/proofs.md "Sharp corners") and ``side sin(angle / 2) >= 1.2``.
+    """
+    h = math.radians(angle) / 2.0
+    a, b = side * np.array([math.cos(h), -math.sin(h)]), side * np.array([math.cos(h), math.sin(h)])
+    return np.array([[0.0, 0.0], a, a + [depth, 0.0], b + [depth, 0.0], b])
+
+
+def sharp_rhombus(angle, side):
+    """A rhombus with two tips of ``angle`` degrees and sides ``side`` long (the other corners obtuse).
+
+    Valid for Problem 2 with ``l = 1`` when ``side >= stagger_reach(angle) + 1``
+    and ``side sin(angle) >= 1.2`` (the width between opposite sides).
+    """
+    t = math.radians(angle)
+    return np.array([[0.0, 0.0], [side, 0.0], [side * (1 + math.cos(t)), side * math.sin(t)], [side * math.cos(t), side * math.sin(t)]])
+
+
+def perforated_rectangle(holes, gap):
+    """A rectangle around ``holes`` set in a row: ``(outer, holes)``, counter-clockwise.
+
+    Each hole is translated so that the bounding boxes are ``gap`` apart from
+    each other and from the rectangle's sides.  Every hole is then at least
+    ``gap`` from the outer boundary and from every other hole, and the
+    rectangle's edges are at least ``2 gap`` long: with ``gap >= 1`` and hole
+    edges at least 1 long, a valid input of Problem 2 with holes for
+    ``l = 1`` as far as the holes go (Lemma 3 (1) across boundaries).
+    """
+    placed, x = [], gap
+    rings = [np.asarray(h, dtype=float) for h in holes]
+    height = max(float(np.ptp(h[:, 1])) for h in rings) + 2.0 * gap
+    for h in rings:
+        lo = h.min(axis=0)
+        placed.append(h - lo + [x, (height - np.ptp(h[:, 1])) / 2.0])
+        x += float(np.ptp(h[:, 0])) + gap
+    outer = np.array([[0.0, 0.0], [x, 0.0], [x, height], [0.0, height]])
+    return outer, placed
+
+
 def place(vertices, angle, shift):
     """Rotate by ``angle`` radians about the mean of the vertices, which then moves to ``shift``."""
     v = np.asarray(vertices, dtype=float)
@@ -110,7 +154,10 @@ __all__ = [
     "dumbbell_polygon",
     "flattened_square",
     "letter_polygon",
+    "perforated_rectangle",
     "place",
     "remove_collinear",
+    "sharp_rhombus",
+    "sharp_wedge",
     "star_polygon",
 ]
