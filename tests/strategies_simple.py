@@ -31,7 +31,7 @@ by a drawn ``l``).  Why each family is valid:
   every corner angle is within ``2 atan(L) < 29`` degrees of 90 (points on
   the two edges at a corner are then at least ``2 sin(30.5 deg) 1.2 > 1``
   apart).  ``a`` is large enough to make the boundary wavy, i.e. non-convex.
-* **sharp wedges and rhombi** (issue 10): tips of 10 to 60 degrees whose
+* **sharp wedges and rhombi** (docs/proofs.md, sharp corners): tips of 10 to 60 degrees whose
   sides are at least ``stagger_reach(angle) + 2`` long, the proven limit of
   the staggered Step 2 (docs/proofs.md, "Sharp corners") with one l to
   spare, and at least 1.2 wide across the shape away from the tips; the
@@ -144,7 +144,7 @@ def flattened_boundaries(draw, max_area=400.0):
     return flattened_square(n, parts, a, b, ky, kx, draw(phases), draw(phases))
 
 
-#: Smallest corner angle drawn by the sharp families, in degrees (issue 10 asks for 10).
+#: Smallest corner angle drawn by the sharp families, in degrees (the sharp-corner property tests go down to 10).
 MIN_SHARP = 10.0
 
 

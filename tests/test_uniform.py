@@ -571,7 +571,7 @@ def test_placement_and_size_guard_take_holes():
         equimesh.uniform_triangulation(FRAME, 1.0, holes=[WINDOW], max_nodes=limit)
 
 
-# --------------------------------------------------------------------------- 8: sharp corners (issue 10)
+# --------------------------------------------------------------------------- 8: sharp corners (docs/decisions.md, item 23)
 
 
 @given(ss.cases(MAX_AREA, families=["sharp wedge", "sharp rhombus"]))
