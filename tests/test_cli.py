@@ -96,7 +96,7 @@ def _write(path, text):
 BAD = {
     "missing file": lambda d: (["mesh", d / "nope.json", "--length", 5], "not found"),
     "malformed JSON": lambda d: (["mesh", _write(d / "s.json", "{"), "--length", 5], "malformed JSON"),
-    "wrong type": lambda d: (["mesh", _write(d / "s.json", json.dumps({"type": "nurbs", "control_points": []})),
+    "wrong type": lambda d: (["mesh", _write(d / "s.json", json.dumps({"type": "mesh", "control_points": []})),
                               "--length", 5], "bezier"),
     "wrong net shape": lambda d: (["mesh", _write(d / "s.json", json.dumps(
         {"type": "bezier", "control_points": [[[0, 0, 0], [1, 0, 0]], [[0, 1, 0]]]})), "--length", 5], "points"),

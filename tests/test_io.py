@@ -85,9 +85,9 @@ def _cp(rows):
     "mutate, fragment",
     [
         (lambda d: [d], "must be a JSON object, got list"),
-        (lambda d: {"control_points": d["control_points"]}, 'missing the field "type" (one of "bezier")'),
-        (lambda d: {**d, "type": "nurbs"}, "must be one of \"bezier\", got 'nurbs'"),
-        (lambda d: {**d, "type": 3}, 'must be one of "bezier", got number'),
+        (lambda d: {"control_points": d["control_points"]}, 'missing the field "type" (one of "bezier", "nurbs")'),
+        (lambda d: {**d, "type": "mesh"}, "must be one of \"bezier\", \"nurbs\", got 'mesh'"),
+        (lambda d: {**d, "type": 3}, 'must be one of "bezier", "nurbs", got number'),
         (lambda d: {"type": "bezier"}, 'missing the field "control_points"'),
         (lambda d: {**d, "colour": 1}, "unknown field 'colour'"),
         (lambda d: {**d, "description": 7}, '"description" must be a string, got number'),
@@ -177,8 +177,8 @@ def test_unreadable_surface_paths(make, fragment, tmp_path):
 
 
 def test_unknown_extension_lists_the_known_ones(tmp_path):
-    with pytest.raises(InvalidSurfaceError, match=r"use one of \['\.json'\]"):
-        load_surface(tmp_path / "s.3dm")
+    with pytest.raises(InvalidSurfaceError, match=r"use one of \['\.3dm', '\.json'\]"):
+        load_surface(tmp_path / "s.igs")
 
 
 # ------------------------------------------------------------------ output checks

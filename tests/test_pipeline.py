@@ -9,6 +9,7 @@ import equimesh
 from equimesh._geometry import orient
 from equimesh.metrics import length_stats
 from equimesh.surface.bezier import BezierSurface
+from equimesh.surface.chart import domain_of
 
 
 def _vault(span=40.0, rise=8.0, width=30.0):
@@ -48,12 +49,13 @@ class Cylinder:
 def assert_valid_surface_mesh(mesh, surface):
     """The invariants every surface mesh must satisfy."""
     uv, tri = mesh.uv, mesh.triangles
-    # Every node on the surface, parameters in the square.
-    assert np.all((uv >= 0.0) & (uv <= 1.0))
+    lower, upper = domain_of(surface).lower, domain_of(surface).upper
+    # Every node on the surface, parameters in the chart's rectangle.
+    assert np.all((uv >= lower) & (uv <= upper))
     np.testing.assert_allclose(mesh.points, surface.evaluate(uv[:, 0], uv[:, 1]), rtol=0, atol=1e-9)
-    # Boundary nodes on the boundary curves: u or v exactly 0 or 1.
+    # Boundary nodes on the boundary curves: u or v exactly a bound of the rectangle.
     b = uv[: mesh.n_boundary]
-    assert np.all(np.any((b == 0.0) | (b == 1.0), axis=1))
+    assert np.all(np.any((b == lower) | (b == upper), axis=1))
     # No fold-over in (u, v): every triangle counter-clockwise with positive area.
     p = uv[tri]
     area2 = orient(p[:, 0], p[:, 1], p[:, 2])

@@ -4,9 +4,11 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from chart_checks import assert_derivatives_consistent
 
 from equimesh import InvalidSurfaceError
-from equimesh.surface.bezier import BezierSurface, ParametricSurface, bernstein, de_casteljau
+from equimesh.surface.bezier import BezierSurface, bernstein, de_casteljau
+from equimesh.surface.chart import UNIT, Chart
 
 degrees = st.integers(min_value=1, max_value=5)
 seeds = st.integers(min_value=0, max_value=2**32 - 1)
@@ -31,16 +33,11 @@ def test_evaluate_matches_de_casteljau(m, n, seed):
 @settings(max_examples=40, deadline=None)
 @given(m=degrees, n=degrees, seed=seeds)
 def test_derivatives_match_finite_differences(m, n, seed):
+    """First and second partials against central differences (of X^s, and of the first partials)."""
     surface = BezierSurface(random_net(m, n, seed))
     uv = np.random.default_rng(seed + 2).uniform(0.05, 0.95, size=(5, 2))
-    u, v = uv[:, 0], uv[:, 1]
-    su, sv = surface.derivatives(u, v)
-    h = 1e-6
-    fu = (surface.evaluate(u + h, v) - surface.evaluate(u - h, v)) / (2 * h)
-    fv = (surface.evaluate(u, v + h) - surface.evaluate(u, v - h)) / (2 * h)
-    scale = np.abs(surface.control_points).max() * max(m, n)
-    np.testing.assert_allclose(su, fu, rtol=0, atol=1e-6 * scale)
-    np.testing.assert_allclose(sv, fv, rtol=0, atol=1e-6 * scale)
+    scale = np.abs(surface.control_points).max() * max(m, n) ** 2
+    assert_derivatives_consistent(surface, uv[:, 0], uv[:, 1], atol=1e-6 * scale)
 
 
 def test_corners_interpolate_control_net_exactly():
@@ -76,8 +73,8 @@ def test_bilinear_patch_is_bilinear():
 
 def test_satisfies_protocol():
     s = BezierSurface(random_net(3, 3, 5))
-    assert isinstance(s, ParametricSurface)
-    assert s.degree == (3, 3)
+    assert isinstance(s, Chart)
+    assert s.degree == (3, 3) and s.domain == UNIT
 
 
 @pytest.mark.parametrize(

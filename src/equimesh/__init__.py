@@ -9,13 +9,18 @@ mesh_surface(surface, l)          Section 4: uniform mesh of a parametric surfac
 uniform_triangulation(vertices, l) Problem 2: lattice + boundary strip (Section 3)
 best_lattice_placement(vertices, l) lattice angle/offset maximising G1 (beyond the paper)
 length_classes(lengths, l, tol)   fewest member-length classes at a tolerance (beyond the paper)
-load_surface(path)                a surface from a file (format by extension; JSON "type" by equimesh.io.SURFACE_TYPES)
+load_surface(path, object=None)   a surface from a file (.json, Rhino .3dm) (format by extension; JSON "type" by equimesh.io.SURFACE_TYPES)
 surface_from_dict(d), surface_to_dict(surface)  the JSON description of a surface, both ways
 
 Section 4 stages (what mesh_surface chains; public so that they can be timed and reused)
 flatten(points3d, triangles)      step 2: eq. (1) flattening of the auxiliary triangulation
-remap(surface, plane_points, flat_points, grid)  step 4: eqs. (2)-(3), plane -> (u, v) -> surface
+remap(surface, plane_points, flat_points, grid, outline=...)  step 4: eqs. (2)-(3), plane -> (u, v) -> surface
 optimize_uv(surface, uv, edges, groups, l, fixed=...)  final step: (u, v) of the inner nodes
+
+Errors: every bad input raises a subclass of EquimeshError (a ValueError) with a one-line
+message; InternalError (a RuntimeError) means a proven guarantee failed on an output, a bug.
+Layout: equimesh.planar (Problems 1 and 2), equimesh.surface (Section 4), equimesh.io (files),
+equimesh.testing (input generators); see docs/architecture.md.
 """
 
 from .planar.bounds import node_lower_bound, packing_upper_bound
@@ -27,8 +32,10 @@ from .errors import (
     InvalidSurfaceError,
     InvalidToleranceError,
     MeshTooLargeError,
+    MissingDependencyError,
     OutputPathError,
     SurfaceTooSmallError,
+    SurfaceWarning,
 )
 from .classes import LengthClasses, length_classes
 from .io import load_surface, surface_from_dict, surface_to_dict
@@ -40,6 +47,8 @@ from .surface.optimize import optimize_uv
 from .planar.placement import Placement, best_lattice_placement
 from .surface.remap import remap
 from .surface.bezier import BezierSurface
+from .surface.chart import Domain
+from .surface.nurbs import NurbsSurface
 from .planar.strip import uniform_triangulation
 from .tolerance import REL_TOL
 
@@ -50,6 +59,7 @@ __all__ = [
     "OTHER",
     "REL_TOL",
     "BezierSurface",
+    "Domain",
     "EquimeshError",
     "InternalError",
     "InvalidLengthError",
@@ -58,11 +68,14 @@ __all__ = [
     "InvalidToleranceError",
     "LengthClasses",
     "MeshTooLargeError",
+    "MissingDependencyError",
+    "NurbsSurface",
     "OutputPathError",
     "PlanarMesh",
     "Placement",
     "SurfaceMesh",
     "SurfaceTooSmallError",
+    "SurfaceWarning",
     "best_lattice_placement",
     "flatten",
     "increment",

@@ -58,3 +58,11 @@ class OutputPathError(EquimeshError):
 
 class InternalError(RuntimeError):
     """An output violated a proven guarantee (Theorem 1 or 3, a valid triangulation): a bug, not bad input."""
+
+
+class MissingDependencyError(EquimeshError):
+    """An optional dependency needed for the request (e.g. rhino3dm for .3dm files) is not installed."""
+
+
+class SurfaceWarning(UserWarning):
+    """The surface read is not exactly what the file describes (a trimmed face read untrimmed); the mesh is still made."""

@@ -2,6 +2,8 @@
 
 * :mod:`._surfaces`   reading surfaces: input formats by extension, surface types by JSON ``"type"``;
 * :mod:`._bezier`     the JSON schema of a Bezier surface (one row of the type table);
+* :mod:`._nurbs`      the JSON schema of a NURBS surface (another row);
+* :mod:`._rhino`      Rhino ``.3dm`` files (rhino3dm, optional): a NURBS surface or a single-face Brep;
 * :mod:`._schema`     checks shared by the schemas, plain text for messages;
 * :mod:`._meshes`     writing meshes (meshio) and member schedules, checks of output paths;
 * :mod:`._atomic`     atomic writes (temporary files, then renames), one file or a set;
@@ -18,6 +20,7 @@ from ._meshes import (
     write_mesh,
     write_surface_mesh,
 )
+from ._rhino import to_rhino_surface
 from ._surfaces import INPUT_FORMATS, SURFACE_TYPES, load_surface, surface_from_dict, surface_to_dict
 
 __all__ = [
@@ -31,6 +34,7 @@ __all__ = [
     "member_schedule",
     "surface_from_dict",
     "surface_to_dict",
+    "to_rhino_surface",
     "write_members",
     "write_mesh",
     "write_surface_mesh",

@@ -6,9 +6,8 @@ Rows of ``control_points`` run over ``u``, the entries of a row over ``v``; an
 (m+1) x (n+1) net gives a surface of degree (m, n).
 """
 
-from ..errors import InvalidSurfaceError
 from ..surface.bezier import BezierSurface
-from ._schema import a_list, finite_number, json_type, shown
+from ._schema import control_net
 
 #: The fields of the "bezier" type besides "type" and "description".
 FIELDS = ("control_points",)
@@ -16,23 +15,7 @@ FIELDS = ("control_points",)
 
 def bezier_from_dict(d):
     """The :class:`BezierSurface` of a checked JSON object; the first problem found is raised naming its field."""
-    rows = a_list(d["control_points"], '"control_points"', "rows", 2)
-    width = None
-    for i, row in enumerate(rows):
-        row = a_list(row, f"control_points[{i}]", "points", 2)
-        if width is None:
-            width = len(row)
-        elif len(row) != width:
-            raise InvalidSurfaceError(f"control_points[{i}] has {len(row)} points, but control_points[0] has {width}")
-        for j, point in enumerate(row):
-            where = f"control_points[{i}][{j}]"
-            if not isinstance(point, list) or len(point) != 3:
-                raise InvalidSurfaceError(
-                    f"{where} must be a list [x, y, z] of 3 numbers, got {json_type(point)} {shown(point)}"
-                )
-            for k, x in enumerate(point):
-                finite_number(x, f"{where}[{k}]")
-    return BezierSurface(rows)
+    return BezierSurface(control_net(d["control_points"]))
 
 
 def bezier_to_dict(surface):

@@ -56,6 +56,30 @@ def finite_number(x, where):
     return value
 
 
+def number_rows(x, where, what, min_rows, min_length):
+    """``x`` if it is a list of at least ``min_rows`` equally long lists of at least ``min_length`` entries."""
+    rows = a_list(x, f'"{where}"', "rows", min_rows)
+    for i, row in enumerate(rows):
+        a_list(row, f"{where}[{i}]", what, min_length)
+        if len(row) != len(rows[0]):
+            raise InvalidSurfaceError(f"{where}[{i}] has {len(row)} {what}, but {where}[0] has {len(rows[0])}")
+    return rows
+
+
+def control_net(x, where="control_points"):
+    """``x`` if it is a control net: rows (over u) of equally many points (over v), each ``[x, y, z]`` finite."""
+    rows = number_rows(x, where, "points", 2, 2)
+    for i, row in enumerate(rows):
+        for j, point in enumerate(row):
+            if not isinstance(point, list) or len(point) != 3:
+                raise InvalidSurfaceError(
+                    f"{where}[{i}][{j}] must be a list [x, y, z] of 3 numbers, got {json_type(point)} {shown(point)}"
+                )
+            for k, c in enumerate(point):
+                finite_number(c, f"{where}[{i}][{j}][{k}]")
+    return rows
+
+
 def shown_path(path):
     """``path`` as text for a one-line message, cut in the middle beyond :data:`SHOWN_PATH_CHARS`."""
     text = str(path)

@@ -17,7 +17,9 @@ from typing import Callable
 
 from ..errors import InvalidSurfaceError
 from ..surface.bezier import BezierSurface
-from . import _bezier
+from ..surface.nurbs import NurbsSurface
+from . import _bezier, _nurbs
+from ._rhino import read_rhino_surface
 from ._schema import json_type, shown, shown_path
 
 
@@ -33,15 +35,17 @@ class SurfaceType:
 
 @dataclass(frozen=True)
 class InputFormat:
-    """One input file format: its name and the function reading a path to a surface."""
+    """One input file format: its name, the function reading a path to a surface, the keywords it accepts."""
 
     name: str
-    read: Callable
+    read: Callable  # read(path, **options) -> a surface
+    options: tuple = ()  # keyword options of ``read``, e.g. ("object",)
 
 
 #: Surface types by their JSON ``"type"``.
 SURFACE_TYPES = {
     "bezier": SurfaceType(BezierSurface, _bezier.FIELDS, _bezier.bezier_from_dict, _bezier.bezier_to_dict),
+    "nurbs": SurfaceType(NurbsSurface, _nurbs.FIELDS, _nurbs.nurbs_from_dict, _nurbs.nurbs_to_dict),
 }
 
 
@@ -82,15 +86,23 @@ def surface_to_dict(surface):
     raise TypeError(f"no JSON surface type for {type(surface).__name__}")
 
 
-def load_surface(path):
+def load_surface(path, *, object=None):
     """Read the surface in file ``path``; its format is chosen by extension (:data:`INPUT_FORMATS`).
+
+    Parameters
+    ----------
+    path : path-like
+    object : str or int, optional
+        For files holding several surfaces (Rhino ``.3dm``): the name, or
+        the index in the file's object table, of the one to read.
 
     Raises
     ------
     InvalidSurfaceError
         one line naming the problem: unknown extension (listing the known
         ones), a path that is missing, too long, not a regular file or not
-        readable, or a malformed description.
+        readable, a malformed description, ``object`` given for a format
+        holding one surface, or not naming a surface of the file.
     """
     path = Path(path)
     fmt = INPUT_FORMATS.get(path.suffix.lower())
@@ -98,12 +110,19 @@ def load_surface(path):
         raise InvalidSurfaceError(
             f"unknown surface file extension {path.suffix!r} for {shown_path(path)}; use one of {sorted(INPUT_FORMATS)}"
         )
+    options = {} if object is None else {"object": object}
+    if options and "object" not in fmt.options:
+        with_objects = sorted(ext for ext, f in INPUT_FORMATS.items() if "object" in f.options)
+        raise InvalidSurfaceError(
+            f"choosing an object applies to files with several surfaces ({', '.join(with_objects)}), "
+            f"not to {fmt.name} {shown_path(path)}"
+        )
     try:
         if not path.is_file():
             raise InvalidSurfaceError(
                 f"surface file {'is not a regular file' if path.exists() else 'not found'}: {shown_path(path)}"
             )
-        return fmt.read(path)
+        return fmt.read(path, **options)
     except OSError as exc:
         reason = "path too long" if exc.errno == errno.ENAMETOOLONG else exc.strerror or type(exc).__name__
         raise InvalidSurfaceError(f"cannot read surface file {shown_path(path)}: {reason}") from None
@@ -136,6 +155,7 @@ def read_json_surface(path):
 #: Input formats by file extension (lower case).
 INPUT_FORMATS = {
     ".json": InputFormat("equimesh surface JSON", read_json_surface),
+    ".3dm": InputFormat("Rhino file", read_rhino_surface, ("object",)),
 }
 
 

@@ -2,9 +2,13 @@
 
 Modules, in the order of the pipeline:
 
-* :mod:`.bezier`     the tensor-product Bezier surface (geometry only; its JSON form is in
-                     :mod:`equimesh.io`);
-* :mod:`.auxiliary`  step 1, the auxiliary triangulation of the parameter square;
+* :mod:`.chart`      a parameter rectangle with labelled sides plus the map X^s on it
+                     (``evaluate``, ``derivatives``): what every stage reads;
+* :mod:`.bezier`     the tensor-product Bezier surface, a chart on [0, 1]^2 (geometry only;
+                     its JSON form is in :mod:`equimesh.io`);
+* :mod:`.nurbs`      NURBS surfaces, a chart on the span of their knot vectors (exact rational
+                     first and second derivatives);
+* :mod:`.auxiliary`  step 1, the auxiliary triangulation of the chart's rectangle;
 * :mod:`.regularity` after step 1, the surface refused if non-finite, singular or folding;
 * :mod:`.flatten`    step 2, eq. (1): flattening the auxiliary triangulation to the plane;
 * :mod:`.outline`    step 3, the flattened boundary resampled into the polygon of Problem 2;

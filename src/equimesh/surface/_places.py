@@ -1,11 +1,10 @@
 """Places on a surface patch named in the caller's terms, for error messages.
 
-A refused surface is described by what the user gave: the parameter square
-[0, 1]^2 (its sides ``u = 0`` ... and corners ``(u, v) = (1, 0)`` ...) and the
-points in space, never by the internal outline polygon of step 3.
+A refused surface is described by what the user gave: the chart's parameter
+rectangle (its sides ``u = 0`` ... and corners ``(u, v) = (1, 0)`` ..., with
+the chart's own bounds) and the points in space, never by the internal outline
+polygon of step 3.
 """
-
-from .auxiliary import SIDES
 
 
 def number(x):
@@ -21,11 +20,11 @@ def at(uv, point=None):
     return text
 
 
-def side_name(side):
-    """``side v = 0`` for an index into :data:`~equimesh.surface.auxiliary.SIDES`."""
-    return "side " + SIDES[side].replace("=", " = ")
+def side_name(side, domain):
+    """``side v = 0`` for an index into :data:`~equimesh.surface.chart.SIDES` of ``domain``."""
+    return f"side {'uv'[side // 2]} = {number(domain.side_values[side])}"
 
 
 def corner_name(uv):
-    """``corner (u, v) = (1, 0)`` for a corner of the parameter square."""
-    return f"corner (u, v) = ({uv[0]:.0f}, {uv[1]:.0f})"
+    """``corner (u, v) = (1, 0)`` for a corner of the parameter rectangle."""
+    return f"corner (u, v) = ({number(uv[0])}, {number(uv[1])})"

@@ -1,7 +1,9 @@
-"""The auxiliary triangulation of the parameter square (Section 4, step 1).
+"""The auxiliary triangulation of a chart's parameter rectangle (Section 4, step 1).
 
 "Divide the parameter plane (u, v) into a n_u x n_v grid, and further divide
-each rectangular unit to two right triangles."  The nodes are u_i^0, the
+each rectangular unit to two right triangles."  The paper's parameter plane is
+[0, 1]^2; here it is the chart's :class:`~equimesh.surface.chart.Domain`
+``[u0, u1] x [v0, v1]`` (default [0, 1]^2).  The nodes are u_i^0, the
 triangles and edges are reused unchanged on the surface (step 2) and on the
 plane (steps 2-4).
 """
@@ -12,17 +14,16 @@ import numpy as np
 
 from ..errors import EquimeshError
 from ..mesh import unique_edges
-
-#: Column order of :attr:`AuxiliaryGrid.boundary_sides`.
-SIDES = ("u=0", "u=1", "v=0", "v=1")
+from .chart import UNIT, Domain
 
 
 @dataclass(frozen=True)
 class AuxiliaryGrid:
-    """An ``n_u x n_v`` grid on [0, 1]^2, each cell cut into two right triangles.
+    """An ``n_u x n_v`` grid on a domain ``[u0, u1] x [v0, v1]``, each cell cut into two right triangles.
 
-    Node numbering: node ``k = i * (n_v + 1) + j`` sits at
-    ``(u, v) = (i / n_u, j / n_v)``, ``0 <= i <= n_u``, ``0 <= j <= n_v``.
+    Node numbering: node ``k = i * (n_v + 1) + j`` sits at the fractions
+    ``(i / n_u, j / n_v)`` of the domain (:meth:`Domain.at_fractions`; on
+    [0, 1]^2 exactly ``(i / n_u, j / n_v)``), ``0 <= i <= n_u``, ``0 <= j <= n_v``.
 
     Diagonal: the cell ``[u_i, u_{i+1}] x [v_j, v_{j+1}]`` is cut along the
     diagonal from ``(u_i, v_j)`` to ``(u_{i+1}, v_{j+1})`` into the triangles
@@ -35,7 +36,8 @@ class AuxiliaryGrid:
     n_u, n_v : int
         Number of cells along ``u`` and ``v``.
     uv : ((n_u+1)(n_v+1), 2) float array
-        The nodes u_i^0; coordinates on the border are exactly 0.0 or 1.0.
+        The nodes u_i^0; coordinates on the border are exactly the domain's
+        bounds (0.0 or 1.0 on [0, 1]^2).
     triangles : (2 n_u n_v, 3) int array
         Counter-clockwise in (u, v).
     edges : (E, 2) int array
@@ -43,11 +45,14 @@ class AuxiliaryGrid:
         ``E = n_u (n_v+1) + n_v (n_u+1) + n_u n_v``.
     boundary : (2 (n_u + n_v),) int array
         The boundary node loop, counter-clockwise in (u, v), starting at
-        ``(0, 0)``: along ``v=0`` to ``(1, 0)``, along ``u=1`` to ``(1, 1)``,
-        along ``v=1`` back to ``(0, 1)``, along ``u=0`` down to the start.
+        ``(u0, v0)``: along ``v=v0`` to ``(u1, v0)``, along ``u=u1`` to
+        ``(u1, v1)``, along ``v=v1`` back to ``(u0, v1)``, along ``u=u0`` down
+        to the start.
     boundary_sides : (2 (n_u + n_v), 4) bool array
         For each node of :attr:`boundary`, the sides it lies on, columns in
-        the order of :data:`SIDES` (``u=0, u=1, v=0, v=1``).
+        the order of :data:`~equimesh.surface.chart.SIDES` (``u=u0, u=u1, v=v0, v=v1``).
+    domain : Domain
+        The parameter rectangle.
     """
 
     n_u: int
@@ -57,6 +62,7 @@ class AuxiliaryGrid:
     edges: np.ndarray
     boundary: np.ndarray
     boundary_sides: np.ndarray
+    domain: Domain = UNIT
 
     @property
     def n_nodes(self):
@@ -64,7 +70,7 @@ class AuxiliaryGrid:
 
     @property
     def boundary_corner(self):
-        """(B,) bool: the boundary node is a corner of [0, 1]^2 (on two sides)."""
+        """(B,) bool: the boundary node is a corner of the domain (on two sides)."""
         return self.boundary_sides.sum(axis=1) == 2
 
     @property
@@ -74,26 +80,28 @@ class AuxiliaryGrid:
 
     @property
     def boundary_segment_side(self):
-        """(B,) int: index into :data:`SIDES` of the side carrying each boundary segment."""
+        """(B,) int: index into :data:`~equimesh.surface.chart.SIDES` of the side carrying each boundary segment."""
         both = self.boundary_sides & np.roll(self.boundary_sides, -1, axis=0)
         return np.argmax(both, axis=1)
 
     def node(self, i, j):
-        """Index of the node at ``(i / n_u, j / n_v)``."""
+        """Index of the node at the fractions ``(i / n_u, j / n_v)`` of the domain."""
         return i * (self.n_v + 1) + j
 
 
-def auxiliary_grid(n_u, n_v):
+def auxiliary_grid(n_u, n_v, domain=UNIT):
     """Build the auxiliary triangulation of step 1 (see :class:`AuxiliaryGrid`).
 
     Parameters
     ----------
     n_u, n_v : int
         Number of grid cells along ``u`` and ``v``, each at least 1.
+    domain : Domain
+        The chart's parameter rectangle (:func:`~equimesh.surface.chart.domain_of`).
     """
     n_u, n_v = _check_count("n_u", n_u), _check_count("n_v", n_v)
     i, j = np.meshgrid(np.arange(n_u + 1), np.arange(n_v + 1), indexing="ij")
-    uv = np.column_stack([i.ravel() / n_u, j.ravel() / n_v])
+    uv = domain.at_fractions(i.ravel() / n_u, j.ravel() / n_v)
 
     node = np.arange((n_u + 1) * (n_v + 1)).reshape(n_u + 1, n_v + 1)
     a = node[:-1, :-1].ravel()  # (i, j)
@@ -104,15 +112,15 @@ def auxiliary_grid(n_u, n_v):
 
     boundary = np.concatenate(
         [
-            node[:-1, 0],  # v = 0, u increasing, (0,0) .. (1-1/n_u, 0)
-            node[-1, :-1],  # u = 1, v increasing
-            node[:0:-1, -1],  # v = 1, u decreasing
-            node[0, :0:-1],  # u = 0, v decreasing
+            node[:-1, 0],  # v = v0, u increasing
+            node[-1, :-1],  # u = u1, v increasing
+            node[:0:-1, -1],  # v = v1, u decreasing
+            node[0, :0:-1],  # u = u0, v decreasing
         ]
     )
     buv = uv[boundary]
-    sides = np.column_stack([buv[:, 0] == 0.0, buv[:, 0] == 1.0, buv[:, 1] == 0.0, buv[:, 1] == 1.0])
-    return AuxiliaryGrid(n_u, n_v, uv, triangles, unique_edges(triangles), boundary, sides)
+    sides = buv[:, np.arange(4) // 2] == domain.side_values  # columns in the order of SIDES
+    return AuxiliaryGrid(n_u, n_v, uv, triangles, unique_edges(triangles), boundary, sides, domain)
 
 
 def _check_count(name, value):

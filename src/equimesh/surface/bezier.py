@@ -1,33 +1,16 @@
-"""Parametric surfaces X^s(u, v) on [0, 1]^2 (Section 4, step 1 of the paper).
+"""The tensor-product Bezier surface, the paper's example chart on [0, 1]^2 (Section 4, step 1).
 
-Every stage of Section 4 talks to a surface through two vectorised methods
-only (:class:`ParametricSurface`): ``evaluate(u, v)`` for X^s and
-``derivatives(u, v)`` for its first partials (X^s_u, X^s_v), the latter feeding
-the analytic Jacobian of the final optimisation.  :class:`BezierSurface` is the
-paper's example, a tensor-product Bezier surface of any degree.
+:class:`BezierSurface` is a :class:`~equimesh.surface.chart.Chart`: its domain
+is the paper's parameter square and it gives X^s with its first and second
+partial derivatives, all vectorised.
 """
 
 import math
-from typing import Protocol, runtime_checkable
 
 import numpy as np
 
 from ..errors import InvalidSurfaceError
-
-
-@runtime_checkable
-class ParametricSurface(Protocol):
-    """A map X^s : [0, 1]^2 -> R^3 with first derivatives.
-
-    Both methods broadcast ``u`` and ``v`` against each other and return arrays
-    of shape ``broadcast(u, v).shape + (3,)``.
-    """
-
-    def evaluate(self, u, v) -> np.ndarray:
-        """Points X^s(u, v)."""
-
-    def derivatives(self, u, v) -> tuple[np.ndarray, np.ndarray]:
-        """First partial derivatives (dX^s/du, dX^s/dv)."""
+from .chart import UNIT
 
 
 def bernstein(degree, t):
@@ -58,6 +41,9 @@ class BezierSurface:
         non-finite coordinate.
     """
 
+    #: The parameter square [0, 1]^2 of the paper.
+    domain = UNIT
+
     def __init__(self, control_points):
         self.control_points = _validate_net(control_points)
         self.control_points.setflags(write=False)
@@ -87,6 +73,19 @@ class BezierSurface:
         su = _tensor_sum(m * np.diff(p, axis=0), u, v)
         sv = _tensor_sum(n * np.diff(p, axis=1), u, v)
         return su, sv
+
+    def second_derivatives(self, u, v):
+        """Analytic second partials ``(X^s_uu, X^s_uv, X^s_vv)``: Bezier surfaces of the twice-differenced net.
+
+        A direction of degree 1 has a zero second derivative in it.
+        """
+        m, n = self.degree
+        p = self.control_points
+        shape = np.broadcast_shapes(np.shape(u), np.shape(v)) + (3,)
+        suv = _tensor_sum(m * n * np.diff(np.diff(p, axis=0), axis=1), u, v)
+        suu = _tensor_sum(m * (m - 1) * np.diff(p, 2, axis=0), u, v) if m > 1 else np.zeros(shape)
+        svv = _tensor_sum(n * (n - 1) * np.diff(p, 2, axis=1), u, v) if n > 1 else np.zeros(shape)
+        return suu, suv, svv
 
 
 def _tensor_sum(net, u, v):

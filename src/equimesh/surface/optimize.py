@@ -2,7 +2,8 @@
 
 "Finally, the deviation of the edge lengths in G1 from the target value is
 minimized by considering (u_i, v_i) of inner nodes as variables."  The
-variables are the (u_i, v_i) of the free (inner) nodes, kept in [0, 1]^2 by
+variables are the (u_i, v_i) of the free (inner) nodes, kept in the chart's
+domain (:func:`~equimesh.surface.chart.domain_of`, [0, 1]^2 for the paper) by
 bounds; boundary nodes stay where remapping put them.  The problem is solved
 with :func:`scipy.optimize.least_squares` (trust region reflective with
 bounds, LSMR sub-problems) and an analytic sparse Jacobian obtained by the
@@ -42,6 +43,7 @@ import scipy.sparse
 from ._jacobian import AreaBarrier, ElementJacobian, signed_areas
 from ..errors import EquimeshError
 from ..mesh import G1
+from .chart import domain_of
 from .regularity import derivatives, evaluate
 
 
@@ -51,7 +53,7 @@ class UVProblem:
 
     Attributes
     ----------
-    surface : ParametricSurface
+    surface : Chart
     uv : (N, 2) float array
         Start parameters of all nodes (after remapping, step 4).
     edges : (E, 2) int array
@@ -201,9 +203,9 @@ def optimize_uv(
 
     Parameters
     ----------
-    surface : ParametricSurface
+    surface : Chart
     uv : (N, 2) array_like
-        Start parameters of every node, in [0, 1]^2 (step 4's output).
+        Start parameters of every node, in the surface's domain (step 4's output).
     edges : (E, 2) int array_like
     edge_groups : (E,) int array_like
         G1 / OTHER label per edge.
@@ -234,7 +236,8 @@ def optimize_uv(
         builder = OBJECTIVES[objective]
     except (KeyError, TypeError):
         raise EquimeshError(f"unknown objective {objective!r}; choose from {sorted(OBJECTIVES)}") from None
-    uv = np.clip(np.array(uv, dtype=float).reshape(-1, 2), 0.0, 1.0)
+    domain = domain_of(surface)
+    uv = domain.clip(np.array(uv, dtype=float).reshape(-1, 2))
     free = np.ones(len(uv), dtype=bool)
     fixed = np.asarray(fixed)
     free[fixed if fixed.dtype != bool else np.flatnonzero(fixed)] = False
@@ -259,7 +262,7 @@ def optimize_uv(
         solve.residuals,
         x0,
         jac=solve.jacobian,
-        bounds=(0.0, 1.0),
+        bounds=tuple(np.broadcast_to(b, uv.shape).ravel()[problem.variables] for b in (domain.lower, domain.upper)),
         method="trf",
         tr_solver="lsmr",
         tr_options={"atol": 1e-12, "btol": 1e-12},

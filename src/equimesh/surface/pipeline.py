@@ -1,6 +1,7 @@
 """Section 4 end to end: a uniform triangle mesh of a parametric surface.
 
-1. auxiliary triangulation of the parameter square (:mod:`equimesh.surface.auxiliary`);
+1. auxiliary triangulation of the chart's parameter rectangle (:mod:`equimesh.surface.auxiliary`,
+   :mod:`equimesh.surface.chart`);
    the surface is refused if it is not finite, singular or folds
    (:mod:`equimesh.surface.regularity`), or if the mesh would be too large
    (:data:`MAX_NODES`, :data:`MAX_OPTIMIZE_NODES`, :data:`MAX_GRID_CELLS`);
@@ -22,6 +23,7 @@ from numbers import Integral
 import numpy as np
 
 from .auxiliary import auxiliary_grid
+from .chart import domain_of
 from ..errors import EquimeshError, InternalError, InvalidPolygonError, InvalidSurfaceError, MeshTooLargeError
 from .flatten import flatten
 from ._jacobian import signed_areas
@@ -134,8 +136,10 @@ def mesh_surface(
 
     Parameters
     ----------
-    surface : object with ``evaluate(u, v)`` and ``derivatives(u, v)``
-        E.g. :class:`equimesh.BezierSurface`; (u, v) in [0, 1]^2.
+    surface : Chart
+        An object with ``evaluate(u, v)`` and ``derivatives(u, v)`` on its
+        ``domain`` (:class:`~equimesh.surface.chart.Chart`; [0, 1]^2 if it has
+        none), e.g. :class:`equimesh.BezierSurface` or :class:`equimesh.NurbsSurface`.
     l : float
         Target member length.
     grid : (int, int)
@@ -183,7 +187,7 @@ def mesh_surface(
     seconds = {}
     clock = _Clock(seconds, progress)
 
-    aux = auxiliary_grid(n_u, n_v)
+    aux = auxiliary_grid(n_u, n_v, domain_of(surface))
     x_s0 = evaluate(surface, aux.uv)
     check_regular(surface, aux)
     _check_size(x_s0, aux.triangles, l, limit)
@@ -192,8 +196,7 @@ def mesh_surface(
     flat = flatten(x_s0, aux.triangles, uv=aux.uv)
     clock("flattening (eq. 1)")
 
-    corners = np.flatnonzero(aux.boundary_corner)
-    outline = resample_outline(flat.points, aux.uv, aux.boundary, corners, l, boundary_spacing)
+    outline = resample_outline(flat.points, aux, l, boundary_spacing)
     try:
         # The surface's own guard (_check_size, measured end to end) bounds the planar stage too.
         chosen = best_lattice_placement(outline.vertices, l, max_nodes=None) if placement == "best" else None

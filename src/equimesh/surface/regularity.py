@@ -1,4 +1,4 @@
-"""The surface must be a regular, non-folding map of [0, 1]^2 (checked after Section 4, step 1).
+"""The surface must be a regular, non-folding map of its parameter rectangle (checked after Section 4, step 1).
 
 Section 4 assumes that X^s is an immersion: the normal ``n = X^s_u x X^s_v``
 never vanishes.  Then every small auxiliary triangle has a well-shaped image
@@ -55,7 +55,7 @@ def check_regular(surface, grid):
 
     Parameters
     ----------
-    surface : ParametricSurface
+    surface : Chart
     grid : AuxiliaryGrid
         The auxiliary triangulation of step 1; its nodes and triangle
         centroids are the samples.

@@ -20,9 +20,10 @@ caller names, the polygon actually triangulated in step 3 (the resampled
 :class:`~equimesh.surface.outline.Outline`, whose vertices carry their exact
 (u, v)): :func:`equimesh.mesh_surface` passes it, so that its boundary nodes
 take exactly the (u, v) of the outline vertices they sit on.  Both ends of a
-boundary segment share the side coordinate (exactly 0.0 or 1.0), which is
-then set explicitly: such nodes land exactly on the boundary of [0, 1]^2.
-No node ever fails to map.
+boundary segment share the side coordinate (exactly a bound of the chart's
+domain, 0.0 or 1.0 on [0, 1]^2), which is then set explicitly: such nodes
+land exactly on the boundary of the parameter rectangle.  No node ever fails
+to map.
 """
 
 from dataclasses import dataclass
@@ -30,6 +31,7 @@ from dataclasses import dataclass
 import matplotlib.tri
 import numpy as np
 
+from .chart import Domain
 from .regularity import evaluate
 
 
@@ -40,14 +42,14 @@ class Remap:
     Attributes
     ----------
     uv : (K, 2) float array
-        The parameters u_i of eq. (3), inside [0, 1]^2.
+        The parameters u_i of eq. (3), inside the grid's domain.
     triangle : (K,) int array
         The auxiliary triangle k of eq. (2), or -1 for a node projected onto
         the boundary.
     alpha, beta : (K,) float arrays
         The coefficients of eq. (2); ``nan`` for projected nodes.
     on_boundary : (K,) bool array
-        Node mapped by boundary projection; its u or v is exactly 0 or 1.
+        Node mapped by boundary projection; its u or v is exactly a bound of the domain.
     segment, t : (K,) arrays
         For projected nodes, the boundary segment ``k`` (from
         ``grid.boundary[k]`` to ``grid.boundary[k + 1]``, or from outline
@@ -72,14 +74,14 @@ def remap(surface, plane_points, flat_points, grid, *, on_boundary=None, outline
 
     Parameters
     ----------
-    surface : ParametricSurface
+    surface : Chart
     plane_points : (K, 2) array_like
         The nodes X_i^p of the plane triangulation (step 3).
     flat_points : (N, 2) array_like
         The flattened auxiliary nodes X_i^p0 (step 2).
     grid : AuxiliaryGrid
         The auxiliary triangulation (step 1): ``uv``, ``triangles``,
-        ``boundary`` and ``boundary_sides`` are used.
+        ``boundary``, ``boundary_sides`` and ``domain`` are used.
     on_boundary : array_like of int or bool, optional
         Nodes known to lie on the boundary of the plane polygon (e.g. the
         leading ``n_boundary`` nodes of a :class:`~equimesh.mesh.PlanarMesh`);
@@ -128,7 +130,7 @@ def locate(plane_points, flat_points, grid, *, on_boundary=None, outline=None, s
     found = np.asarray(matplotlib.tri.TrapezoidMapTriFinder(triangulation)(x[:, 0], x[:, 1]), dtype=np.int64)
     boundary_path |= found < 0
 
-    loop = Loop(flat[grid.boundary], grid.uv[grid.boundary], grid.boundary_segment_side)
+    loop = Loop(flat[grid.boundary], grid.uv[grid.boundary], grid.boundary_segment_side, grid.domain)
     seg_a, seg_b = loop.xy, np.roll(loop.xy, -1, axis=0)
     if snap_tol is None:
         snap_tol = 1e-9 * float(np.linalg.norm(flat.max(axis=0) - flat.min(axis=0)))
@@ -154,37 +156,38 @@ def locate(plane_points, flat_points, grid, *, on_boundary=None, outline=None, s
 
     paths = [(boundary_path & ~on_outline, loop)]
     if outline is not None:
-        paths.append((on_outline, Loop(outline.vertices, outline.uv, outline.side)))
+        paths.append((on_outline, Loop(outline.vertices, outline.uv, outline.side, outline.domain)))
     for nodes, ring in paths:
         if np.any(nodes):
             segment[nodes], t[nodes], uv[nodes] = ring.project(x[nodes])
-    np.clip(uv, 0.0, 1.0, out=uv)
+    uv = grid.domain.clip(uv)
     return Remap(uv, triangle, alpha, beta, boundary_path, segment, t)
 
 
 @dataclass(frozen=True)
 class Loop:
-    """A closed boundary polyline on the plane whose vertices carry their (u, v) on the square's boundary.
+    """A closed boundary polyline on the plane whose vertices carry their (u, v) on the domain's boundary.
 
-    ``side[k]`` is the side (index into :data:`~equimesh.surface.auxiliary.SIDES`)
-    carried by the segment from vertex ``k`` to ``k + 1``.
+    ``side[k]`` is the side (index into :data:`~equimesh.surface.chart.SIDES`)
+    of ``domain`` carried by the segment from vertex ``k`` to ``k + 1``.
     """
 
     xy: np.ndarray
     uv: np.ndarray
     side: np.ndarray
+    domain: Domain
 
     def project(self, x):
         """Nearest segment, position ``t`` on it and (u, v) there (eq. (3) on a boundary edge) for points ``x``.
 
         ``(1 - t) uv_a + t uv_b`` is exact at both ends; the side coordinate
-        is then set to exactly 0.0 or 1.0.
+        is then set to exactly the domain's bound.
         """
         seg, tt, _ = _nearest_segment(x, self.xy, np.roll(self.xy, -1, axis=0))
         ua, ub = self.uv[seg], np.roll(self.uv, -1, axis=0)[seg]
         uv = (1.0 - tt)[:, None] * ua + tt[:, None] * ub
-        side = self.side[seg]  # index into SIDES = (u=0, u=1, v=0, v=1)
-        uv[np.arange(len(seg)), side // 2] = (side % 2).astype(float)
+        side = self.side[seg]  # index into SIDES = (u=u0, u=u1, v=v0, v=v1)
+        uv[np.arange(len(seg)), side // 2] = self.domain.side_values[side]
         return seg, tt, uv
 
 

@@ -4,7 +4,7 @@ Problem 2 triangulates the resampled flattened boundary (the outline), a
 polygon the user never gave.  When it refuses that polygon because two
 mutually visible boundary points are closer than l (Lemma 3 (1)), the points
 it names are mapped back through the outline to (u, v), to the side or corner
-of the parameter square they lie on and to space, and the refusal says what
+of the parameter rectangle they lie on and to space, and the refusal says what
 to change.
 
 Why corners below ``SHARP_CORNER`` degrees get no suggested l: the first
@@ -47,16 +47,17 @@ def restate_polygon_error(exc, surface, flat_points, grid, outline, l):
             f"sharper than about {SHARP_CORNER:.0f} degrees on the flattened surface; try a smaller l"
         )
     xy = np.asarray(exc.points, dtype=float)
-    seg, _, uv = Loop(outline.vertices, outline.uv, outline.side).project(xy)
+    domain = outline.domain
+    seg, _, uv = Loop(outline.vertices, outline.uv, outline.side, domain).project(xy)
     sides = outline.side[seg]
     space = evaluate(surface, uv)
     gap = float(np.linalg.norm(xy[1] - xy[0]))
-    one, two = (f"{side_name(s)} at {at(p, x)}" for s, p, x in zip(sides, uv, space))
+    one, two = (f"{side_name(s, domain)} at {at(p, x)}" for s, p, x in zip(sides, uv, space))
     close = f"boundary points on {one} and on {two} are {number(gap)} apart on the flattened surface, closer than l = {number(l)}"
     if sides[0] // 2 != sides[1] // 2:  # adjacent sides: the corner between them
         corner = np.zeros(2)
         for s in sides:
-            corner[s // 2] = float(s % 2)
+            corner[s // 2] = domain.side_values[s]
         angle = _corner_angle(flat_points, grid, corner)
         name = f"{corner_name(corner)} at point ({', '.join(number(c) for c in evaluate(surface, corner)[0])})"
         if angle < SHARP_CORNER:
@@ -72,7 +73,7 @@ def restate_polygon_error(exc, surface, flat_points, grid, outline, l):
 
 
 def _corner_angle(flat_points, grid, corner):
-    """Inner angle (degrees) of the flattened boundary at the corner ``corner`` of the parameter square."""
+    """Inner angle (degrees) of the flattened boundary at the corner ``corner`` of the parameter rectangle."""
     loop = grid.boundary
     k = int(np.flatnonzero(np.all(grid.uv[loop] == corner, axis=1))[0])
     c = flat_points[loop[k]]
