@@ -12,6 +12,14 @@ PYTHON ?= python3
 VENV := .venv
 PY := $(VENV)/bin/python
 STAMP := $(VENV)/.equimesh-installed
+EXTRAS_STAMP := $(VENV)/.equimesh-extras-installed
+
+# Optional extras `make reproduce` installs when it can (pyproject.toml
+# [project.optional-dependencies]): peers = gmsh and pymeshlab for
+# experiments/compare_peers.py.  An extra that cannot be installed (no wheel
+# for this platform, no network, not defined) is reported and skipped; the
+# experiments then compare what they can.
+OPTIONAL_EXTRAS ?= peers rhino dask
 
 # Every experiment script, in the order `make reproduce` runs them.  Each one
 # has `main(argv)`, prints its progress and writes results/ (and, for figure
@@ -20,7 +28,8 @@ EXPERIMENTS := \
 	experiments/ratio_sweep.py \
 	experiments/problem2.py \
 	experiments/table1.py \
-	experiments/figures.py
+	experiments/figures.py \
+	experiments/compare_peers.py
 
 # The hypothesis profile comes from EQUIMESH_HYPOTHESIS_PROFILE (tests/conftest.py;
 # quick "ci" when unset); `make test-thorough` selects the thorough one.
@@ -43,7 +52,7 @@ test: $(STAMP)
 test-thorough: $(STAMP)
 	EQUIMESH_HYPOTHESIS_PROFILE=thorough $(PY) -m pytest $(PYTEST_ARGS)
 
-reproduce: $(STAMP)
+reproduce: $(STAMP) $(EXTRAS_STAMP)
 	@set -e; for script in $(EXPERIMENTS); do \
 		if [ ! -f "$$script" ]; then echo "make reproduce: $$script is missing" >&2; exit 1; fi; \
 		echo "==> $(PY) $$script"; \
@@ -70,6 +79,14 @@ venv: $(STAMP)
 $(STAMP): pyproject.toml | $(PY)
 	$(PY) -m pip install -e '.[test,bench]'
 	touch $(STAMP)
+
+# Each optional extra on its own, so that one failing leaves the others installed.
+$(EXTRAS_STAMP): pyproject.toml | $(STAMP)
+	@for extra in $(OPTIONAL_EXTRAS); do \
+		echo "==> optional extra [$$extra]"; \
+		$(PY) -m pip install -q -e ".[$$extra]" || echo "make reproduce: optional extra [$$extra] not installed; continuing without it" >&2; \
+	done
+	touch $(EXTRAS_STAMP)
 
 $(PY):
 	@$(PYTHON) -c 'import sys; sys.exit(sys.version_info < (3, 11))' 2>/dev/null || { \

@@ -56,15 +56,36 @@ def test_every_format_reads_back(meshed, ext):
         np.testing.assert_allclose(got.points, ref.points, rtol=1e-6, atol=1e-6)
 
 
-def test_members_schedule(tmp_path, capsys):
-    """--members writes one row per member with its deviation from L."""
-    code, _ = run(["mesh", SADDLE, "--length", 6, "--grid", 8, 8, "-o", tmp_path / "m.obj",
-                   "--members", tmp_path / "m.csv", "--optimize", "none"], capsys)
+def test_members_schedule_classes_and_summary(tmp_path, capsys):
+    """--members writes one row per member with its class and deviation from L, the classes CSV beside it,
+    and the summary on standard output agrees with both files."""
+    code, captured = run(["mesh", SADDLE, "--length", 6, "--grid", 8, 8, "-o", tmp_path / "m.obj",
+                          "--members", tmp_path / "m.csv", "--optimize", "none", "--tolerance", "1%"], capsys)
     assert code == 0
     table = pd.read_csv(tmp_path / "m.csv")
-    assert list(table.columns) == ["member", "node_i", "node_j", "length", "group", "deviation", "relative_deviation"]
+    assert list(table.columns) == ["member", "node_i", "node_j", "length", "group", "class", "deviation",
+                                   "relative_deviation"]
     np.testing.assert_allclose(table["deviation"], table["length"] - 6.0, rtol=0, atol=1e-8)
     assert set(table["group"]) <= {"G1", "other"} and (table["group"] == "G1").any()
+    classes = pd.read_csv(tmp_path / "m.classes.csv")
+    assert classes["count"].sum() == len(table) and classes["class"].tolist() == list(range(len(classes)))
+    nominal = classes["nominal_length"].to_numpy()[table["class"]]
+    assert np.all(np.abs(table["length"] - nominal) <= 0.01 * 6.0 * (1 + 1e-12))
+    summary = dict(line.split("  ", 1) for line in captured.out.splitlines())
+    assert int(summary["members"]) == len(table)
+    assert summary["length classes"].strip().startswith(f"{len(classes)} ")
+    share = 100 * classes["count"].max() / len(table)
+    assert summary["in the largest class"].strip() == f"{share:.1f} %"
+    within = 100 * np.mean(np.abs(table["length"] - 6.0) <= 0.06)
+    assert summary["within +-1 % of L"].strip() == f"{within:.1f} %"
+
+
+def test_optimize_default_is_the_library_default():
+    """--optimize omitted means mesh_surface's own default, whatever the library makes it."""
+    import inspect
+
+    args = equimesh._cli.build_parser().parse_args(["mesh", str(SADDLE), "--length", "5", "-o", "m.obj"])
+    assert args.optimize == inspect.signature(equimesh.mesh_surface).parameters["optimize"].default
 
 
 def _write(path, text):
@@ -104,6 +125,12 @@ BAD = {
     "bad max-nodes": lambda d: (["mesh", SADDLE, "--length", 5, "--max-nodes", 0], "max-nodes"),
     "missing length": lambda d: (["mesh", SADDLE], "--length"),
     "bad optimize": lambda d: (["mesh", SADDLE, "--length", 5, "--optimize", "magic"], "optimize"),
+    "tolerance 0": lambda d: (["mesh", SADDLE, "--length", 5, "--tolerance", "0"], "above 0"),
+    "tolerance negative": lambda d: (["mesh", SADDLE, "--length", 5, "--tolerance=-0.5%"], "above 0"),
+    "tolerance 50 %": lambda d: (["mesh", SADDLE, "--length", 5, "--tolerance", "50%"], "below 50%"),
+    "tolerance 0.7": lambda d: (["mesh", SADDLE, "--length", 5, "--tolerance", "0.7"], "below 50%"),
+    "tolerance nan": lambda d: (["mesh", SADDLE, "--length", 5, "--tolerance", "nan"], "above 0"),
+    "tolerance not a number": lambda d: (["mesh", SADDLE, "--length", 5, "--tolerance", "tight"], "--tolerance"),
 }
 
 
@@ -151,6 +178,8 @@ BAD_OUTPUTS = {
     "output folder unwritable": lambda d: ["-o", unwritable_folder(d) / "m.obj"],
     "members folder unwritable": lambda d: ["-o", d / "m.obj", "--members", unwritable_folder(d) / "m.csv"],
     "members extension": lambda d: ["-o", d / "m.obj", "--members", d / "m.txt"],
+    "classes CSV is a folder": lambda d: ["-o", d / "m.obj", "--members",
+                                          (d / "m.classes.csv").mkdir() or d / "m.csv"],
 }
 
 

@@ -262,7 +262,8 @@ class _Mesh:
 
 def test_mesh_and_members_are_written_together_or_not_at_all(tmp_path, monkeypatch):
     write_surface_mesh(_Mesh, tmp_path / "m.obj", tmp_path / "m.csv")
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["m.csv", "m.obj"]
+    written = ["m.classes.csv", "m.csv", "m.obj"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == written
     table = pd.read_csv(tmp_path / "m.csv")
     assert list(table["group"]) == ["G1", "G1", "other"]
 
@@ -272,7 +273,7 @@ def test_mesh_and_members_are_written_together_or_not_at_all(tmp_path, monkeypat
     monkeypatch.setattr(pd.DataFrame, "to_csv", disk_full)
     with pytest.raises(OSError, match="disk full"):
         write_surface_mesh(_Mesh, tmp_path / "n.obj", tmp_path / "n.csv")
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["m.csv", "m.obj"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == written
 
 
 def test_member_groups_follow_the_g1_constant():

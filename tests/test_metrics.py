@@ -2,19 +2,22 @@
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
-from hypothesis import strategies as st
 
 from equimesh.metrics import (
+    COMPARISON_COLUMNS,
     FABRICATION_COLUMNS,
+    SUMMARY_KEYS,
     TABLE1_COLUMNS,
     TABLE1_HEADINGS,
     angle_range,
+    comparison_figures,
     distinct_lengths,
     edge_lengths,
     fabrication_figures,
+    fabrication_summary,
     length_stats,
     quality_summary,
+    share_in_bounds,
     share_within,
     table1_row,
     triangle_angles,
@@ -54,26 +57,30 @@ def test_distinct_lengths_examples():
     assert distinct_lengths([5.0, 5.06, 5.12, 5.18], 5.0) == 2
 
 
-@settings(max_examples=50, deadline=None)
-@given(
-    seed=st.integers(0, 2**32 - 1),
-    n=st.integers(1, 60),
-    tol=st.sampled_from([0.005, 0.01, 0.05]),
-)
-def test_distinct_lengths_is_an_optimal_cover(seed, n, tol):
-    """Greedy count k: the interval starts are pairwise > 2 tol l apart (so no cover uses fewer),
-    and the k intervals cover every length."""
-    l = 5.0
-    x = np.sort(np.random.default_rng(seed).uniform(l, 2 * l, size=n))
-    k = distinct_lengths(x, l, tol)
-    starts, i = [], 0
-    while i < n:
-        starts.append(x[i])
-        i = int(np.searchsorted(x, x[i] + 2 * tol * l, side="right"))
-    assert len(starts) == k
-    assert np.all(np.diff(starts) > 2 * tol * l)
-    centre = np.array(starts) + tol * l
-    assert np.all(np.min(np.abs(x[:, None] - centre[None, :]), axis=1) <= tol * l * (1 + 1e-12))
+def test_share_in_bounds_counts_l_and_2l_themselves():
+    assert share_in_bounds([5.0, 10.0, 7.0, 4.999, 10.001], 5.0) == pytest.approx(3 / 5)
+    assert share_in_bounds([5.0 * (1 - 1e-10)], 5.0) == 1.0  # REL_TOL, as every guarantee
+    assert np.isnan(share_in_bounds([], 5.0))
+
+
+def test_fabrication_summary():
+    s = fabrication_summary([5.0, 5.0, 5.02, 5.3, 9.0], 5.0, 0.005)
+    assert tuple(s) == SUMMARY_KEYS
+    assert s == {"members": 5, "classes": 3, "largest_class_share": 0.6, "min_length": 5.0, "max_length": 9.0,
+                 "within_tolerance": 0.6}
+
+
+def test_comparison_figures_of_two_triangles():
+    """A unit rhombus of two equilateral triangles: 5 members of length 1, angles 60 degrees."""
+    s3 = np.sqrt(3.0)
+    points = np.array([[0, 0, 0], [1, 0, 0], [0.5, s3 / 2, 0], [1.5, s3 / 2, 0]])
+    f = comparison_figures(points, [[0, 1, 2], [1, 3, 2]], 1.0)
+    assert tuple(f) == COMPARISON_COLUMNS
+    assert f["members"] == 5 and f["classes_0.5pct"] == 1 and f["length_std"] == pytest.approx(0.0, abs=1e-15)
+    assert f["within_0.5pct"] == f["in_l_2l"] == 1.0
+    assert f["angle_min"] == pytest.approx(60.0) and f["angle_max"] == pytest.approx(60.0)
+    g = comparison_figures(points, [[0, 1, 2], [1, 3, 2]], 1.004)
+    assert g["within_0.5pct"] == 1.0 and g["in_l_2l"] == 0.0
 
 
 def test_angles():

@@ -8,6 +8,7 @@ packing_upper_bound(vertices, l)  Oler's bound on l-separated point sets
 mesh_surface(surface, l)          Section 4: uniform mesh of a parametric surface
 uniform_triangulation(vertices, l) Problem 2: lattice + boundary strip (Section 3)
 best_lattice_placement(vertices, l) lattice angle/offset maximising G1 (beyond the paper)
+length_classes(lengths, l, tol)   fewest member-length classes at a tolerance (beyond the paper)
 load_surface(path, object=None)   a surface from a file (.json, Rhino .3dm) (format by extension; JSON "type" by equimesh.io.SURFACE_TYPES)
 surface_from_dict(d), surface_to_dict(surface)  the JSON description of a surface, both ways
 
@@ -29,12 +30,14 @@ from .errors import (
     InvalidLengthError,
     InvalidPolygonError,
     InvalidSurfaceError,
+    InvalidToleranceError,
     MeshTooLargeError,
     MissingDependencyError,
     OutputPathError,
     SurfaceTooSmallError,
     SurfaceWarning,
 )
+from .classes import LengthClasses, length_classes
 from .io import load_surface, surface_from_dict, surface_to_dict
 from .surface.flatten import flatten
 from .planar.increment import increment
@@ -62,6 +65,8 @@ __all__ = [
     "InvalidLengthError",
     "InvalidPolygonError",
     "InvalidSurfaceError",
+    "InvalidToleranceError",
+    "LengthClasses",
     "MeshTooLargeError",
     "MissingDependencyError",
     "NurbsSurface",
@@ -74,6 +79,7 @@ __all__ = [
     "best_lattice_placement",
     "flatten",
     "increment",
+    "length_classes",
     "load_surface",
     "mesh_surface",
     "node_lower_bound",

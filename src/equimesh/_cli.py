@@ -22,13 +22,24 @@ Every run ends in one of four ways, always without a traceback:
 import argparse
 import contextlib
 import importlib.util
+import inspect
 import os
 import sys
 import warnings
 from pathlib import Path
 
+from .classes import DEFAULT_TOLERANCE, MAX_TOLERANCE, check_tolerance
 from .errors import EquimeshError
-from .io import INPUT_FORMATS, MEMBER_FORMATS, MESH_FORMATS, check_output_path, load_surface, write_surface_mesh
+from .io import (
+    INPUT_FORMATS,
+    MEMBER_FORMATS,
+    MESH_FORMATS,
+    check_output_path,
+    classes_path,
+    load_surface,
+    write_surface_mesh,
+)
+from .metrics import fabrication_summary
 from .surface.optimize import OBJECTIVES
 from .surface.pipeline import MAX_GRID_CELLS, MAX_NODES, MAX_OPTIMIZE_NODES, PLACEMENTS, mesh_surface
 
@@ -36,6 +47,9 @@ EXIT_USAGE = 2
 EXIT_INTERNAL = 3
 EXIT_INTERRUPTED = 130
 EXPERIMENTS = Path(__file__).resolve().parents[2] / "experiments"
+
+#: ``--optimize`` by default: the library's own default, whatever it is.
+DEFAULT_OPTIMIZE = inspect.signature(mesh_surface).parameters["optimize"].default
 
 
 class _Parser(argparse.ArgumentParser):
@@ -75,8 +89,8 @@ def build_parser():
                       help="auxiliary grid cells along u and v (default: 15 15); at most "
                            f"{MAX_GRID_CELLS} cells, because flattening time and memory grow with NU x NV "
                            "(about 40 s and 0.6 GB at 200 x 200 on a 2-core machine)")
-    mesh.add_argument("--optimize", choices=["none", *OBJECTIVES], default="paper",
-                      help="final optimisation of the inner nodes (default: paper)")
+    mesh.add_argument("--optimize", choices=["none", *OBJECTIVES], default=DEFAULT_OPTIMIZE,
+                      help=f"final optimisation of the inner nodes (default: {DEFAULT_OPTIMIZE})")
     mesh.add_argument("--placement", choices=PLACEMENTS, default="best",
                       help="lattice placement: searched for the most equal members, or angle 0 at the origin "
                            "(default: best)")
@@ -88,9 +102,16 @@ def build_parser():
     mesh.add_argument("-o", "--output", required=True, metavar="OUT",
                       help=f"mesh file; format from the extension: {', '.join(sorted(MESH_FORMATS))}")
     mesh.add_argument("--members", metavar="CSV",
-                      help="also write a member schedule: member id, node ids, length, group, deviation from L "
-                           "(written together with the mesh: both files or neither)")
-    mesh.add_argument("--quiet", "-q", action="store_true", help="no progress lines")
+                      help="also write a member schedule (member id, node ids, length, group, length class, "
+                           "deviation from L) and its length classes to CSV's stem + '.classes.csv' (class id, count, "
+                           "nominal, min and max length); all files written together or none")
+    mesh.add_argument("--tolerance", type=_tolerance, default=DEFAULT_TOLERANCE, metavar="TOL",
+                      help=("fabrication tolerance of a length class, relative to L: every member of a class is "
+                            "within +-TOL L of its nominal length, with the fewest classes; '0.5%' or '0.005', "
+                            f"above 0 and below {MAX_TOLERANCE:.0%} (default: {DEFAULT_TOLERANCE:.1%})"
+                            ).replace("%", "%%"))
+    mesh.add_argument("--quiet", "-q", action="store_true",
+                      help="print nothing but errors (no progress lines, no summary)")
     mesh.set_defaults(run=_run_mesh)
 
     for name, text in (("table1", "regenerate Table 1 (results/table1.*)"),
@@ -145,10 +166,19 @@ def _max_nodes(text):
     return value
 
 
+def _tolerance(text):
+    """``--tolerance``: a fraction of L or a percentage (:func:`equimesh.classes.check_tolerance`)."""
+    try:
+        return check_tolerance(text)
+    except EquimeshError as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
+
+
 def _run_mesh(args):
     check_output_path(args.output, MESH_FORMATS)
     if args.members:
         check_output_path(args.members, MEMBER_FORMATS)
+        check_output_path(classes_path(args.members), MEMBER_FORMATS)
     surface = load_surface(args.surface)
 
     def progress(stage, seconds):
@@ -159,13 +189,30 @@ def _run_mesh(args):
     with _library_quiet():
         mesh = mesh_surface(surface, args.length, grid=tuple(args.grid), optimize=args.optimize,
                             placement=args.placement, progress=progress, **limit)
-    write_surface_mesh(mesh, args.output, args.members)
+    write_surface_mesh(mesh, args.output, args.members, args.tolerance)
     if not args.quiet:
         n_g1 = int(mesh.g1_mask.sum())
-        also = f" and {args.members}" if args.members else ""
+        also = f" and {args.members} (+ {classes_path(args.members)})" if args.members else ""
         print(f"wrote {args.output}{also}: {len(mesh.points)} nodes, {len(mesh.edges)} members "
               f"({n_g1} in the equal-length group G1), {len(mesh.triangles)} triangles", file=sys.stderr)
+        print(_summary(mesh.edge_lengths(), mesh.length, args.tolerance))
     return 0
+
+
+def _summary(lengths, l, tolerance):
+    """The one-screen summary of a run's members (:func:`equimesh.metrics.fabrication_summary`)."""
+    s = fabrication_summary(lengths, l, tolerance)
+    tol = f"+-{100 * tolerance:.3g} %"
+    rows = [
+        ("members", f"{s['members']}"),
+        ("length classes", f"{s['classes']} (every member within {tol} of L of its class's nominal length)"),
+        ("in the largest class", f"{100 * s['largest_class_share']:.1f} %"),
+        ("shortest member", f"{s['min_length']:.6g} ({s['min_length'] / l:.4f} L)"),
+        ("longest member", f"{s['max_length']:.6g} ({s['max_length'] / l:.4f} L)"),
+        (f"within {tol} of L", f"{100 * s['within_tolerance']:.1f} %"),
+    ]
+    width = max(len(label) for label, _ in rows) + 2
+    return "\n".join(f"{label:<{width}}{value}" for label, value in rows)
 
 
 @contextlib.contextmanager

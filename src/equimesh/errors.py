@@ -48,6 +48,10 @@ class MeshTooLargeError(EquimeshError):
     """The requested mesh would exceed the configured node limit."""
 
 
+class InvalidToleranceError(EquimeshError):
+    """A length-class tolerance is not a number, or outside (0, 50 %) of l."""
+
+
 class OutputPathError(EquimeshError):
     """An output path cannot be written (missing or unwritable folder, unknown extension, name too long)."""
 

@@ -11,11 +11,18 @@ within 1 % and 5 % of l, the number of distinct member lengths at a +/-1 %
 tolerance (:func:`distinct_lengths`) and the range of triangle angles
 (:func:`fabrication_figures`).  ``experiments/table1.py`` builds its two
 tables from :func:`table1_row` and :func:`fabrication_figures`.
+
+:func:`fabrication_summary` is what ``equimesh mesh`` prints after meshing
+(length classes at the chosen tolerance, :mod:`equimesh.classes`), and
+:func:`comparison_figures` the one measure of ``experiments/compare_peers.py``,
+applied alike to equimesh and to other meshers.
 """
 
 import numpy as np
 
-from .mesh import G1, edge_lengths
+from .classes import DEFAULT_TOLERANCE, length_classes
+from .mesh import G1, edge_lengths, unique_edges
+from .tolerance import at_least, at_most
 
 #: Keys of :func:`length_stats`, in the column order of Table 1.
 TABLE1_COLUMNS = ("members", "mean", "min", "max", "std")
@@ -72,20 +79,73 @@ def share_within(lengths, l, rel):
 def distinct_lengths(lengths, l, tol=0.01):
     """Number of distinct member lengths needed at a fabrication tolerance of ``+/- tol * l``.
 
-    Definition: the smallest number of nominal lengths ``c_1 .. c_k`` such that
-    every member is within ``tol * l`` of one of them; equivalently the fewest
-    intervals of width ``2 tol l`` covering all lengths.  Computed greedily,
-    which is optimal for covering points on a line: sort the lengths, open an
-    interval at the smallest uncovered length ``x`` (nominal length
-    ``x + tol l``), let it cover every length ``<= x + 2 tol l``, repeat.
+    The smallest number of nominal lengths such that every member is within
+    ``tol * l`` of one of them: the number of classes of
+    :func:`equimesh.classes.length_classes`, whose greedy sweep is optimal.
     """
-    x = np.sort(np.asarray(lengths, dtype=float).ravel())
-    width = 2.0 * tol * l
-    count, i = 0, 0
-    while i < x.size:
-        count += 1
-        i = int(np.searchsorted(x, x[i] + width, side="right"))
-    return count
+    return len(length_classes(lengths, l, tol))
+
+
+def share_in_bounds(lengths, l):
+    """Fraction of members in [l, 2l] (Theorems 1 and 3), up to :data:`equimesh.tolerance.REL_TOL`."""
+    x = np.asarray(lengths, dtype=float).ravel()
+    if x.size == 0:
+        return np.nan
+    return float(np.mean(at_least(x, l) & at_most(x, 2.0 * l)))
+
+
+#: Keys of :func:`fabrication_summary`, in the order the command line prints them.
+SUMMARY_KEYS = ("members", "classes", "largest_class_share", "min_length", "max_length", "within_tolerance")
+
+
+def fabrication_summary(lengths, l, tolerance=DEFAULT_TOLERANCE):
+    """What a fabricator asks of a member schedule at a tolerance (beyond the paper), keyed by :data:`SUMMARY_KEYS`.
+
+    Members; length classes (:func:`equimesh.classes.length_classes`); the
+    share of members in the largest class; the shortest and longest member
+    (``nan`` without members); the share within ``tolerance * l`` of l.
+    """
+    x = np.asarray(lengths, dtype=float).ravel()
+    classes = length_classes(x, l, tolerance)
+    return {
+        "members": int(x.size),
+        "classes": len(classes),
+        "largest_class_share": float(classes.count.max() / x.size) if x.size else np.nan,
+        "min_length": float(x.min()) if x.size else np.nan,
+        "max_length": float(x.max()) if x.size else np.nan,
+        "within_tolerance": share_within(x, l, classes.tolerance),
+    }
+
+
+#: Keys of :func:`comparison_figures`: the one set of figures every mesher is measured by
+#: (``experiments/compare_peers.py``).
+COMPARISON_COLUMNS = (
+    "members", "within_0.5pct", "within_1pct", "within_5pct", "in_l_2l", "classes_0.5pct", "classes_1pct",
+    "length_std", "angle_min", "angle_max",
+)
+
+
+def comparison_figures(points, triangles, l):
+    """Member-length and angle figures of any triangle mesh at target length ``l``, keyed by :data:`COMPARISON_COLUMNS`.
+
+    The members are the unique edges of ``triangles``; ``length_std`` is
+    relative to l (population standard deviation over l).
+    """
+    triangles = np.asarray(triangles, dtype=np.int64).reshape(-1, 3)
+    lengths = edge_lengths(points, unique_edges(triangles))
+    lo, hi = angle_range(points, triangles)
+    return {
+        "members": int(lengths.size),
+        "within_0.5pct": share_within(lengths, l, 0.005),
+        "within_1pct": share_within(lengths, l, 0.01),
+        "within_5pct": share_within(lengths, l, 0.05),
+        "in_l_2l": share_in_bounds(lengths, l),
+        "classes_0.5pct": distinct_lengths(lengths, l, 0.005),
+        "classes_1pct": distinct_lengths(lengths, l, 0.01),
+        "length_std": float(np.std(lengths) / l),
+        "angle_min": lo,
+        "angle_max": hi,
+    }
 
 
 def triangle_angles(points, triangles):

@@ -1,7 +1,8 @@
 """Meshes and member schedules out: output formats by extension, checks before any work, all-or-nothing writes.
 
 Meshes are written through meshio in the format given by the file extension
-(:data:`MESH_FORMATS`), member schedules as CSV (:data:`MEMBER_FORMATS`).
+(:data:`MESH_FORMATS`), member schedules as CSV (:data:`MEMBER_FORMATS`) with
+their length classes (:mod:`equimesh.classes`) in a second CSV beside them.
 :func:`check_output_path` tries everything a write will need (folder, name
 length, permission) so that a run can refuse a bad output before its expensive
 part; every output of one call is written to a temporary file and the files
@@ -18,6 +19,7 @@ import meshio
 import numpy as np
 import pandas as pd
 
+from ..classes import DEFAULT_TOLERANCE, length_classes
 from ..errors import OutputPathError
 from ..mesh import G1, edge_lengths
 from ._atomic import atomic_paths, probe_folder
@@ -28,6 +30,9 @@ MESH_FORMATS = {".obj": "obj", ".vtk": "vtk", ".vtu": "vtu", ".stl": "stl", ".pl
 
 #: Member schedule formats by extension.
 MEMBER_FORMATS = {".csv": "csv"}
+
+#: The classes CSV of a member schedule ``m.csv`` is ``m.classes.csv`` (:func:`classes_path`).
+CLASSES_SUFFIX = ".classes.csv"
 
 #: Cell data a meshio format requires (one zero per triangle for each name).
 _REQUIRED_CELL_DATA = {"gmsh22": ("gmsh:physical", "gmsh:geometrical")}
@@ -85,38 +90,50 @@ def write_mesh(path, points, triangles):
     _write_all([_mesh_output(path, points, triangles)])
 
 
-def member_schedule(points, edges, groups, l):
-    """The member schedule: one row per edge with its nodes, length, group and deviation from l."""
+def member_schedule(points, edges, groups, l, classes=None):
+    """The member schedule: one row per edge with its nodes, length, group, class and deviation from l.
+
+    ``classes`` (:class:`equimesh.classes.LengthClasses` of these edges) adds
+    the column ``class``, each member's length class.
+    """
     e = np.asarray(edges)
     length = edge_lengths(points, e)
-    return pd.DataFrame(
-        {
-            "member": np.arange(len(e)),
-            "node_i": e[:, 0],
-            "node_j": e[:, 1],
-            "length": length,
-            "group": np.where(np.asarray(groups) == G1, "G1", "other"),
-            "deviation": length - l,
-            "relative_deviation": (length - l) / l,
-        }
-    )
+    columns = {
+        "member": np.arange(len(e)),
+        "node_i": e[:, 0],
+        "node_j": e[:, 1],
+        "length": length,
+        "group": np.where(np.asarray(groups) == G1, "G1", "other"),
+    }
+    if classes is not None:
+        columns["class"] = classes.member_class
+    columns.update({"deviation": length - l, "relative_deviation": (length - l) / l})
+    return pd.DataFrame(columns)
 
 
-def write_members(path, points, edges, groups, l):
-    """Write :func:`member_schedule` as CSV to ``path``, atomically."""
-    _write_all([_members_output(path, points, edges, groups, l)])
+def classes_path(members):
+    """Where the classes CSV of the member schedule ``members`` goes: ``<stem>.classes.csv`` beside it."""
+    members = Path(members)
+    return members.with_name(members.stem + CLASSES_SUFFIX)
 
 
-def write_surface_mesh(mesh, path, members=None):
+def write_members(path, points, edges, groups, l, tolerance=DEFAULT_TOLERANCE):
+    """Write :func:`member_schedule` as CSV to ``path`` and its length classes to :func:`classes_path`, atomically."""
+    _write_all(_members_outputs(path, points, edges, groups, l, tolerance))
+
+
+def write_surface_mesh(mesh, path, members=None, tolerance=DEFAULT_TOLERANCE):
     """Write a :class:`equimesh.SurfaceMesh` to ``path`` and, if given, its member schedule to ``members``.
 
-    All or nothing: either every file is written completely or none is
-    touched (a failure of the second write removes the first one's temporary
-    file before any rename).
+    With ``members`` the schedule gets a ``class`` column and the classes at
+    ``tolerance`` (:func:`equimesh.classes.length_classes`) go to
+    :func:`classes_path`.  All or nothing: either every file is written
+    completely or none is touched (a failure of a later write removes the
+    earlier temporary files before any rename).
     """
     outputs = [_mesh_output(path, mesh.points, mesh.triangles)]
     if members is not None:
-        outputs.append(_members_output(members, mesh.points, mesh.edges, mesh.edge_groups, mesh.length))
+        outputs += _members_outputs(members, mesh.points, mesh.edges, mesh.edge_groups, mesh.length, tolerance)
     _write_all(outputs)
 
 
@@ -129,10 +146,16 @@ def _mesh_output(path, points, triangles):
     return path, lambda tmp: mesh.write(tmp, file_format=fmt)
 
 
-def _members_output(path, points, edges, groups, l):
+def _members_outputs(path, points, edges, groups, l, tolerance):
+    """The schedule and the classes CSV; floats as the shortest text that reads back to the same bits."""
     check_output_path(path, MEMBER_FORMATS)
-    table = member_schedule(points, edges, groups, l)
-    return path, lambda tmp: table.to_csv(tmp, index=False, float_format="%.10g")
+    check_output_path(classes_path(path), MEMBER_FORMATS)
+    classes = length_classes(edge_lengths(points, edges), l, tolerance)
+    schedule = member_schedule(points, edges, groups, l, classes)
+    return [
+        (path, lambda tmp: schedule.to_csv(tmp, index=False)),
+        (classes_path(path), lambda tmp: classes.table().to_csv(tmp, index=False)),
+    ]
 
 
 def _write_all(outputs):
