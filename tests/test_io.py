@@ -7,7 +7,9 @@ leaves neither the target nor a temporary file behind.
 
 import json
 import signal
+import subprocess
 import sys
+import textwrap
 
 import numpy as np
 import pandas as pd
@@ -240,14 +242,26 @@ def test_interrupt_inside_a_transaction_removes_the_temporaries(tmp_path):
 
 
 def test_interrupt_during_the_renames_is_held_until_they_are_done():
-    """SIGINT arriving in the rename phase is delivered after it, so a set of outputs is never split."""
-    done = []
-    with pytest.raises(KeyboardInterrupt):
-        with _interrupts_held():
-            signal.raise_signal(signal.SIGINT)
-            done.append(True)
-    assert done == [True]
-    assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
+    """SIGINT arriving in the rename phase is delivered after it, so a set of outputs is never split.
+
+    Run in a fresh interpreter: a real SIGINT must not reach a pytest(-xdist) worker,
+    whose SIGINT disposition is not Python's default handler.
+    """
+    code = textwrap.dedent(
+        """
+        import signal
+        from equimesh.io._atomic import _interrupts_held
+        done = []
+        try:
+            with _interrupts_held():
+                signal.raise_signal(signal.SIGINT)
+                done.append(True)
+        except KeyboardInterrupt:
+            print("interrupted after", done, signal.getsignal(signal.SIGINT) is signal.default_int_handler)
+        """
+    )
+    run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert run.stdout.strip() == "interrupted after [True] True", run.stderr
 
 
 class _Mesh:

@@ -28,7 +28,7 @@ from .planar.polygon import check_length
 MAX_TOLERANCE = 0.5
 
 #: Tolerance used when none is given (the command line's ``--tolerance``):
-#: +/-0.5 % of l, the "exactly l" share that issue 9 measures.
+#: +/-0.5 % of l, the "exactly l" share reported by the comparison with other meshers.
 DEFAULT_TOLERANCE = 0.005
 
 #: Columns of :meth:`LengthClasses.table`, the classes CSV.
