@@ -303,3 +303,26 @@ def test_sigint_prints_one_line_exits_130_and_writes_nothing(tmp_path):
     assert code == 130 and rest.strip().splitlines()[-1] == "equimesh: interrupted", rest
     assert "Traceback" not in rest
     assert list(tmp_path.iterdir()) == []
+
+
+ROOF_3DM = SURFACES / "roof.3dm"
+
+
+@pytest.mark.parametrize("choice, expect", [(None, "holds 2 surfaces"), ("nosuch", "has no surface 'nosuch'")])
+def test_rhino_object_must_be_named_when_ambiguous_or_unknown(tmp_path, capsys, choice, expect):
+    pytest.importorskip("rhino3dm", reason="rhino3dm (the optional extra [rhino]) is not installed")
+    args = ["mesh", ROOF_3DM, "--length", 2, "-o", tmp_path / "m.obj", "-q"] + (["--object", choice] if choice else [])
+    code, captured = run(args, capsys)
+    assert code == 2 and expect in captured.err and len(captured.err.strip().splitlines()) == 1
+    assert not list(tmp_path.iterdir())
+
+
+def test_rhino_trimmed_face_warns_in_one_line_and_meshes(tmp_path, capsys):
+    pytest.importorskip("rhino3dm", reason="rhino3dm (the optional extra [rhino]) is not installed")
+    code, captured = run(["mesh", ROOF_3DM, "--object", "skylight plate", "--length", 1, "--optimize", "none",
+                          "--grid", 6, 6, "-o", tmp_path / "m.obj", "-q"], capsys)
+    assert code == 0 and (tmp_path / "m.obj").is_file()
+    assert captured.err.strip() == (
+        f"equimesh: warning: object 1 'skylight plate' of {ROOF_3DM} is a trimmed face: "
+        "it is meshed on its untrimmed surface, not on the trimmed outline"
+    )

@@ -29,7 +29,7 @@ import warnings
 from pathlib import Path
 
 from .classes import DEFAULT_TOLERANCE, MAX_TOLERANCE, check_tolerance
-from .errors import EquimeshError
+from .errors import EquimeshError, SurfaceWarning
 from .io import (
     INPUT_FORMATS,
     MEMBER_FORMATS,
@@ -73,17 +73,21 @@ def build_parser():
 
     mesh = sub.add_parser(
         "mesh",
-        help="mesh a surface given as JSON and write the mesh",
+        help="mesh a surface (JSON description or Rhino file) and write the mesh",
         description=(
             "Mesh a surface: flatten its auxiliary triangulation (eq. 1), triangulate the plane with a lattice of "
-            "spacing L plus a boundary strip (Problem 2), map back to the surface (eqs. 2-3) and, with "
-            "--optimize paper, optimise the inner nodes so the equal-length members stay equal. "
+            "spacing L plus a boundary strip (Problem 2), map back to the surface (eqs. 2-3) and optimise the "
+            "inner nodes (--optimize). "
             'SURFACE.json: {"type": "bezier", "control_points": [[[x, y, z], ...], ...]} with rows over u and '
-            "columns over v."
+            'columns over v, or {"type": "nurbs", "degree": [p, q], "knots_u": [...], "knots_v": [...], '
+            '"control_points": ..., "weights": ...}; SURFACE.3dm: a NURBS surface or a single-face Brep '
+            "(needs the extra [rhino])."
         ),
     )
-    mesh.add_argument("surface", metavar="SURFACE.json",
+    mesh.add_argument("surface", metavar="SURFACE",
                       help=f"surface description; format from the extension: {', '.join(sorted(INPUT_FORMATS))}")
+    mesh.add_argument("--object", metavar="NAME|INDEX",
+                      help="which object of a Rhino file to mesh, by name or index (needed when it holds several)")
     mesh.add_argument("--length", "-l", type=float, required=True, metavar="L", help="target member length")
     mesh.add_argument("--grid", type=int, nargs=2, default=(15, 15), metavar=("NU", "NV"),
                       help="auxiliary grid cells along u and v (default: 15 15); at most "
@@ -179,7 +183,11 @@ def _run_mesh(args):
     if args.members:
         check_output_path(args.members, MEMBER_FORMATS)
         check_output_path(classes_path(args.members), MEMBER_FORMATS)
-    surface = load_surface(args.surface)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", SurfaceWarning)
+        surface = load_surface(args.surface, **({"object": args.object} if args.object is not None else {}))
+    for warning in caught:
+        print(f"equimesh: warning: {warning.message}", file=sys.stderr)
 
     def progress(stage, seconds):
         if not args.quiet:
