@@ -307,3 +307,16 @@ def test_surface_in_huge_or_tiny_units_is_meshed_like_in_units_of_one(scale):
         base = equimesh.mesh_surface(BezierSurface(net), 10.0, optimize="none", placement="default")
         np.testing.assert_array_equal(mesh.triangles, base.triangles)
         np.testing.assert_array_equal(mesh.points, base.points * scale)
+
+
+def test_bezier_degree_above_the_limit_is_refused():
+    """A 1002-row net (degree 1001) is refused by name; before, C(n, i) overflowed from degree 1030 on."""
+    from equimesh.surface.bezier import MAX_DEGREE
+
+    net = np.zeros((MAX_DEGREE + 2, 2, 3))
+    net[..., 0] = np.linspace(0.0, 80.0, MAX_DEGREE + 2)[:, None]
+    net[:, 1, 1] = 80.0
+    with pytest.raises(InvalidSurfaceError, match=r"degree 1001 x 1; at most degree 1000"):
+        BezierSurface(net)
+    mesh = equimesh.mesh_surface(BezierSurface(net[1:]), 10.0, optimize="none")
+    check_edge_lengths(mesh.stages.plane, 10.0)
