@@ -285,9 +285,10 @@ def test_validation_of_a_10000_gon():
         (SQUARE10, 1.0 + 0j, InvalidLengthError, r"must be a real number, got complex"),
         (SQUARE10, np.complex128(1.0), InvalidLengthError, r"must be a real number, got complex"),
         (SQUARE10, np.float64(0.0), InvalidLengthError, r"positive and finite, got 0.0$"),
+        (np.array([[0, 0], [10, np.nan], [0, 10]]), 1.0, InvalidPolygonError, r"vertex 1 .* \(10.0, nan\)$"),
         ([[0, 0], [1, 1], [np.float64(2), 2]], 1.0, InvalidPolygonError, r"zero area \(all vertices collinear\)"),
     ],
-    ids=["bow-tie", "digits", "complex array", "complex entry", "complex l", "numpy complex l", "numpy l", "collinear"],
+    ids=["bow-tie", "digits", "complex array", "complex entry", "complex l", "numpy complex l", "numpy l", "nan", "collinear"],
 )
 def test_messages_name_the_problem_in_plain_numbers(vertices, l, error, message):
     for verb in (equimesh.increment, equimesh.uniform_triangulation):
@@ -300,3 +301,11 @@ def test_messages_name_the_problem_in_plain_numbers(vertices, l, error, message)
 def test_complex_or_text_parameters_are_refused(kwargs):
     with pytest.raises(EquimeshError, match=r"real number|real numbers|array of numbers"):
         equimesh.uniform_triangulation(SQUARE10, 1.0, **kwargs)
+
+
+@pytest.mark.parametrize("engine", ["nope", ["reference"], None, 1])
+def test_unknown_engine_is_refused_before_any_work(engine):
+    """Before: a list was a TypeError from the ENGINES lookup, after the lattice and boundary were built."""
+    for verb in (equimesh.increment, equimesh.uniform_triangulation):
+        with pytest.raises(EquimeshError, match=r"^unknown insertion engine .*; choose from \['reference'"):
+            verb(SQUARE10, 1e-3, engine=engine)  # checked before the size guard would refuse l = 1e-3

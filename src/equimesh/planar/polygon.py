@@ -151,7 +151,7 @@ def _parse_vertices(vertices):
         raise InvalidPolygonError(f"polygon vertices must be an (n, 2) array, got shape {v.shape}")
     bad = np.flatnonzero(~np.all(np.isfinite(v), axis=1))
     if bad.size:
-        x, y = v[bad[0]]
+        x, y = map(float, v[bad[0]])
         raise InvalidPolygonError(f"vertex {bad[0]} has a non-finite coordinate ({x!r}, {y!r})")
     return v
 
