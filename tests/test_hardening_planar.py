@@ -235,6 +235,13 @@ def test_placement_counts_must_be_integers(kwargs):
         equimesh.best_lattice_placement(SQUARE10, 1.0, **kwargs)
 
 
+@pytest.mark.parametrize("kwargs", [{"n_offsets": 10**6}, {"refine": 10**9}, {"n_angles": 4096}])
+def test_placement_search_is_bounded(kwargs):
+    with pytest.raises(EquimeshError, match=r"placements \(1 \+ n_angles n_offsets\^2 \+ 27 refine\), more than 4096"):
+        equimesh.best_lattice_placement(SQUARE10, 1.0, **kwargs)
+    assert equimesh.best_lattice_placement(SQUARE10, 4.0, n_angles=4095, n_offsets=1, refine=0).evaluations == 4096
+
+
 # --------------------------------------------------------------------------- 5: the size guard
 
 
