@@ -239,6 +239,9 @@ def test_placement_counts_must_be_integers(kwargs):
 def test_placement_search_is_bounded(kwargs):
     with pytest.raises(EquimeshError, match=r"placements \(1 \+ n_angles n_offsets\^2 \+ 27 refine\), more than 4096"):
         equimesh.best_lattice_placement(SQUARE10, 1.0, **kwargs)
+
+
+def test_placement_search_may_use_the_whole_budget():
     assert equimesh.best_lattice_placement(SQUARE10, 4.0, n_angles=4095, n_offsets=1, refine=0).evaluations == 4096
 
 
