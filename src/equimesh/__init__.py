@@ -17,7 +17,8 @@ remap(surface, plane_points, flat_points, grid)  step 4: eqs. (2)-(3), plane -> 
 optimize_uv(surface, uv, edges, groups, l, fixed=...)  final step: (u, v) of the inner nodes
 """
 
-from .planar.bounds import node_lower_bound, packing_upper_bound
+import importlib
+
 from .errors import (
     EquimeshError,
     InternalError,
@@ -28,17 +29,53 @@ from .errors import (
     OutputPathError,
     SurfaceTooSmallError,
 )
-from .io import load_surface, surface_from_dict, surface_to_dict
-from .surface.flatten import flatten
-from .planar.increment import increment
-from .mesh import G1, OTHER, PlanarMesh
-from .surface.pipeline import SurfaceMesh, mesh_surface
-from .surface.optimize import optimize_uv
-from .planar.placement import Placement, best_lattice_placement
-from .surface.remap import remap
-from .surface.bezier import BezierSurface
-from .planar.strip import uniform_triangulation
 from .tolerance import REL_TOL
+
+#: Where each public verb and type lives.  They are imported on first use
+#: (PEP 562), so that ``import equimesh._cli`` loads no numpy, scipy or
+#: shapely: the command line imports them inside ``main``, where a Ctrl-C
+#: during the (seconds long, on a busy machine) import is one line and exit
+#: code 130 like any other interrupt (tests/test_cli.py).
+_EXPORTS = {
+    "G1": ".mesh",
+    "OTHER": ".mesh",
+    "PlanarMesh": ".mesh",
+    "BezierSurface": ".surface.bezier",
+    "Placement": ".planar.placement",
+    "SurfaceMesh": ".surface.pipeline",
+    "best_lattice_placement": ".planar.placement",
+    "flatten": ".surface.flatten",
+    "increment": ".planar.increment",
+    "load_surface": ".io",
+    "mesh_surface": ".surface.pipeline",
+    "node_lower_bound": ".planar.bounds",
+    "optimize_uv": ".surface.optimize",
+    "packing_upper_bound": ".planar.bounds",
+    "remap": ".surface.remap",
+    "surface_from_dict": ".io",
+    "surface_to_dict": ".io",
+    "uniform_triangulation": ".planar.strip",
+}
+
+
+def __getattr__(name):
+    """A public verb or type (imported on first use), or a subpackage such as ``equimesh.planar``."""
+    if name in _EXPORTS:
+        value = getattr(importlib.import_module(_EXPORTS[name], __name__), name)
+    else:
+        try:
+            value = importlib.import_module(f".{name}", __name__)
+        except ModuleNotFoundError as exc:
+            if exc.name != f"{__name__}.{name}":
+                raise
+            raise AttributeError(f"module {__name__!r} has no attribute {name!r}") from None
+    globals()[name] = value
+    return value
+
+
+def __dir__():
+    return sorted(set(globals()) | set(_EXPORTS))
+
 
 __version__ = "0.1.0"
 

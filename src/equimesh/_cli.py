@@ -28,9 +28,6 @@ import warnings
 from pathlib import Path
 
 from .errors import EquimeshError
-from .io import INPUT_FORMATS, MEMBER_FORMATS, MESH_FORMATS, check_output_path, load_surface, write_surface_mesh
-from .surface.optimize import OBJECTIVES
-from .surface.pipeline import MAX_GRID_CELLS, MAX_NODES, MAX_OPTIMIZE_NODES, PLACEMENTS, mesh_surface
 
 EXIT_USAGE = 2
 EXIT_INTERNAL = 3
@@ -46,6 +43,12 @@ class _Parser(argparse.ArgumentParser):
 
 
 def build_parser():
+    # The library (numpy, scipy, shapely: seconds on a busy machine) is imported here and in
+    # _run_mesh, inside main's handlers, so that a Ctrl-C during the import is one line too.
+    from .io import INPUT_FORMATS, MESH_FORMATS
+    from .surface.optimize import OBJECTIVES
+    from .surface.pipeline import MAX_GRID_CELLS, MAX_NODES, MAX_OPTIMIZE_NODES, PLACEMENTS
+
     parser = _Parser(
         prog="equimesh",
         description=(
@@ -146,6 +149,9 @@ def _max_nodes(text):
 
 
 def _run_mesh(args):
+    from .io import MEMBER_FORMATS, MESH_FORMATS, check_output_path, load_surface, write_surface_mesh
+    from .surface.pipeline import mesh_surface
+
     check_output_path(args.output, MESH_FORMATS)
     if args.members:
         check_output_path(args.members, MEMBER_FORMATS)
