@@ -18,9 +18,9 @@ import numpy as np
 import pandas as pd
 import pytest
 
-import equimesh._cli
 from equimesh import InternalError, InvalidLengthError
 from equimesh._cli import main
+from equimesh.surface import pipeline
 
 from hostile_paths import fifo, name_max, unwritable_folder
 
@@ -186,7 +186,7 @@ BAD_OUTPUTS = {
 @pytest.mark.parametrize("case", sorted(BAD_OUTPUTS))
 def test_bad_outputs_are_refused_before_meshing(case, tmp_path, capsys, monkeypatch):
     """Every output is checked before the mesh is computed: one line, exit 2, nothing written."""
-    monkeypatch.setattr(equimesh._cli, "mesh_surface", _never_called)
+    monkeypatch.setattr(pipeline, "mesh_surface", _never_called)
     extra = BAD_OUTPUTS[case](tmp_path)
     made = sorted(tmp_path.rglob("*"))
     code, captured = run(["mesh", SADDLE, "--length", 5, "-q", *extra], capsys)
@@ -239,7 +239,7 @@ def _raising(exc):
     ],
 )
 def test_every_failure_is_one_line_with_its_exit_code(exc, code, message, tmp_path, capsys, monkeypatch):
-    monkeypatch.setattr(equimesh._cli, "mesh_surface", _raising(exc))
+    monkeypatch.setattr(pipeline, "mesh_surface", _raising(exc))
     got, captured = run(["mesh", SADDLE, "--length", 5, "-o", tmp_path / "m.obj", "-q"], capsys)
     assert got == code
     assert captured.err.count("\n") == 1 and captured.err.startswith(message), captured.err
@@ -253,7 +253,7 @@ def test_library_noise_does_not_reach_the_terminal(tmp_path, capfd, monkeypatch)
         np.array([1e300]) * 1e300  # overflow warning
         raise RuntimeError("Triangulation failed")
 
-    monkeypatch.setattr(equimesh._cli, "mesh_surface", noisy)
+    monkeypatch.setattr(pipeline, "mesh_surface", noisy)
     with warnings.catch_warnings(record=True) as shown:
         warnings.simplefilter("always")
         code = main(["mesh", str(SADDLE), "--length", "5", "-o", str(tmp_path / "m.obj"), "-q"])
@@ -263,7 +263,7 @@ def test_library_noise_does_not_reach_the_terminal(tmp_path, capfd, monkeypatch)
 
 
 def test_traceback_option_reraises_internal_errors(tmp_path, monkeypatch):
-    monkeypatch.setattr(equimesh._cli, "mesh_surface", _raising(InternalError("broken")))
+    monkeypatch.setattr(pipeline, "mesh_surface", _raising(InternalError("broken")))
     with pytest.raises(InternalError, match="broken"):
         main(["--traceback", "mesh", str(SADDLE), "--length", "5", "-o", str(tmp_path / "m.obj")])
 
@@ -278,7 +278,7 @@ def test_max_nodes_reaches_the_library(given, passed, tmp_path, capsys, monkeypa
         seen.update(kwargs)
         raise InvalidLengthError("stop here")
 
-    monkeypatch.setattr(equimesh._cli, "mesh_surface", mesh_surface)
+    monkeypatch.setattr(pipeline, "mesh_surface", mesh_surface)
     run(["mesh", SADDLE, "--length", 5, "-o", tmp_path / "m.obj", "-q", *given], capsys)
     assert {k: v for k, v in seen.items() if k == "max_nodes"} == passed
 
@@ -326,3 +326,15 @@ def test_rhino_trimmed_face_warns_in_one_line_and_meshes(tmp_path, capsys):
         f"equimesh: warning: object 1 'skylight plate' of {ROOF_3DM} is a trimmed face: "
         "it is meshed on its untrimmed surface, not on the trimmed outline"
     )
+
+
+def test_the_command_line_imports_the_library_inside_main():
+    """``import equimesh._cli`` loads no numpy, scipy or shapely: a Ctrl-C during their import (seconds on
+    a busy machine) happens inside main and is one line and exit code 130, not a traceback."""
+    code = (
+        "import sys, equimesh._cli; "
+        "print(sorted({m.split('.')[0] for m in sys.modules} & {'numpy', 'scipy', 'shapely', 'meshio'}))"
+    )
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join(sys.path)}
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env, check=True).stdout
+    assert out.strip() == "[]"

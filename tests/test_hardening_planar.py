@@ -244,6 +244,16 @@ def test_placement_counts_must_be_integers(kwargs):
         equimesh.best_lattice_placement(SQUARE10, 1.0, **kwargs)
 
 
+@pytest.mark.parametrize("kwargs", [{"n_offsets": 10**6}, {"refine": 10**9}, {"n_angles": 4096}])
+def test_placement_search_is_bounded(kwargs):
+    with pytest.raises(EquimeshError, match=r"placements \(1 \+ n_angles n_offsets\^2 \+ 27 refine\), more than 4096"):
+        equimesh.best_lattice_placement(SQUARE10, 1.0, **kwargs)
+
+
+def test_placement_search_may_use_the_whole_budget():
+    assert equimesh.best_lattice_placement(SQUARE10, 4.0, n_angles=4095, n_offsets=1, refine=0).evaluations == 4096
+
+
 # --------------------------------------------------------------------------- 5: the size guard
 
 
@@ -294,9 +304,10 @@ def test_validation_of_a_10000_gon():
         (SQUARE10, 1.0 + 0j, InvalidLengthError, r"must be a real number, got complex"),
         (SQUARE10, np.complex128(1.0), InvalidLengthError, r"must be a real number, got complex"),
         (SQUARE10, np.float64(0.0), InvalidLengthError, r"positive and finite, got 0.0$"),
+        (np.array([[0, 0], [10, np.nan], [0, 10]]), 1.0, InvalidPolygonError, r"vertex 1 .* \(10.0, nan\)$"),
         ([[0, 0], [1, 1], [np.float64(2), 2]], 1.0, InvalidPolygonError, r"zero area \(all vertices collinear\)"),
     ],
-    ids=["bow-tie", "digits", "complex array", "complex entry", "complex l", "numpy complex l", "numpy l", "collinear"],
+    ids=["bow-tie", "digits", "complex array", "complex entry", "complex l", "numpy complex l", "numpy l", "nan", "collinear"],
 )
 def test_messages_name_the_problem_in_plain_numbers(vertices, l, error, message):
     for verb in (equimesh.increment, equimesh.uniform_triangulation):
@@ -309,3 +320,11 @@ def test_messages_name_the_problem_in_plain_numbers(vertices, l, error, message)
 def test_complex_or_text_parameters_are_refused(kwargs):
     with pytest.raises(EquimeshError, match=r"real number|real numbers|array of numbers"):
         equimesh.uniform_triangulation(SQUARE10, 1.0, **kwargs)
+
+
+@pytest.mark.parametrize("engine", ["nope", ["reference"], None, 1])
+def test_unknown_engine_is_refused_before_any_work(engine):
+    """Before: a list was a TypeError from the ENGINES lookup, after the lattice and boundary were built."""
+    for verb in (equimesh.increment, equimesh.uniform_triangulation):
+        with pytest.raises(EquimeshError, match=r"^unknown insertion engine .*; choose from \['reference'"):
+            verb(SQUARE10, 1e-3, engine=engine)  # checked before the size guard would refuse l = 1e-3

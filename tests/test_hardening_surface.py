@@ -17,6 +17,7 @@ from invariants import check_edge_lengths
 from test_pipeline import assert_valid_surface_mesh
 
 import equimesh
+from equimesh._geometry import orient
 from equimesh.errors import InternalError, InvalidPolygonError, InvalidSurfaceError, MeshTooLargeError
 from equimesh.surface import pipeline
 from equimesh.surface.auxiliary import auxiliary_grid
@@ -286,3 +287,36 @@ def test_jittered_nets_are_meshed_correctly_or_refused_cleanly(surface):
         return
     assert_valid_surface_mesh(mesh, surface)
     check_edge_lengths(mesh.stages.plane, 6.0)
+
+
+@pytest.mark.parametrize("scale", [2.0**-400, 1e-100, 1e100, 2.0**450])
+def test_surface_in_huge_or_tiny_units_is_meshed_like_in_units_of_one(scale):
+    """The regularity check and the size estimate do not depend on the units.
+
+    Before: in units of 1e-100 the saddle was refused as singular (X_u x X_v
+    underflowed to 0), in units of 1e100 as folding or as needing more than
+    1e308 nodes (the cross products overflowed).  A power-of-two scale gives
+    the same mesh bit for bit, scaled; any other scale a valid mesh.
+    """
+    net = np.array(json.loads((SURFACES / "saddle.json").read_text())["control_points"])
+    mesh = equimesh.mesh_surface(BezierSurface(net * scale), 10.0 * scale, optimize="none", placement="default")
+    check_edge_lengths(mesh.stages.plane, 10.0 * scale)
+    uv = mesh.uv[mesh.triangles]
+    assert np.all(orient(uv[:, 0], uv[:, 1], uv[:, 2]) > 0)
+    if np.log2(scale).is_integer():
+        base = equimesh.mesh_surface(BezierSurface(net), 10.0, optimize="none", placement="default")
+        np.testing.assert_array_equal(mesh.triangles, base.triangles)
+        np.testing.assert_array_equal(mesh.points, base.points * scale)
+
+
+def test_bezier_degree_above_the_limit_is_refused():
+    """A 1002-row net (degree 1001) is refused by name; before, C(n, i) overflowed from degree 1030 on."""
+    from equimesh.surface.bezier import MAX_DEGREE
+
+    net = np.zeros((MAX_DEGREE + 2, 2, 3))
+    net[..., 0] = np.linspace(0.0, 80.0, MAX_DEGREE + 2)[:, None]
+    net[:, 1, 1] = 80.0
+    with pytest.raises(InvalidSurfaceError, match=r"degree 1001 x 1; at most degree 1000"):
+        BezierSurface(net)
+    mesh = equimesh.mesh_surface(BezierSurface(net[1:]), 10.0, optimize="none")
+    check_edge_lengths(mesh.stages.plane, 10.0)

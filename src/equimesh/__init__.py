@@ -23,7 +23,8 @@ Layout: equimesh.planar (Problems 1 and 2), equimesh.surface (Section 4), equime
 equimesh.testing (input generators); see docs/architecture.md.
 """
 
-from .planar.bounds import node_lower_bound, packing_upper_bound
+import importlib
+
 from .errors import (
     EquimeshError,
     InternalError,
@@ -37,56 +38,74 @@ from .errors import (
     SurfaceTooSmallError,
     SurfaceWarning,
 )
-from .classes import LengthClasses, length_classes
-from .io import load_surface, surface_from_dict, surface_to_dict
-from .surface.flatten import flatten
-from .planar.increment import increment
-from .mesh import G1, OTHER, PlanarMesh
-from .surface.pipeline import SurfaceMesh, mesh_surface
-from .surface.optimize import optimize_uv
-from .planar.placement import Placement, best_lattice_placement
-from .surface.remap import remap
-from .surface.bezier import BezierSurface
-from .surface.chart import Domain
-from .surface.nurbs import NurbsSurface
-from .planar.strip import uniform_triangulation
 from .tolerance import REL_TOL
+
+#: Where each public verb and type lives.  They are imported on first use
+#: (PEP 562), so that ``import equimesh._cli`` loads no numpy, scipy or
+#: shapely: the command line imports them inside ``main``, where a Ctrl-C
+#: during the (seconds long, on a busy machine) import is one line and exit
+#: code 130 like any other interrupt (tests/test_cli.py).
+_EXPORTS = {
+    "G1": ".mesh",
+    "OTHER": ".mesh",
+    "PlanarMesh": ".mesh",
+    "BezierSurface": ".surface.bezier",
+    "Domain": ".surface.chart",
+    "LengthClasses": ".classes",
+    "NurbsSurface": ".surface.nurbs",
+    "Placement": ".planar.placement",
+    "SurfaceMesh": ".surface.pipeline",
+    "best_lattice_placement": ".planar.placement",
+    "flatten": ".surface.flatten",
+    "increment": ".planar.increment",
+    "length_classes": ".classes",
+    "load_surface": ".io",
+    "mesh_surface": ".surface.pipeline",
+    "node_lower_bound": ".planar.bounds",
+    "optimize_uv": ".surface.optimize",
+    "packing_upper_bound": ".planar.bounds",
+    "remap": ".surface.remap",
+    "surface_from_dict": ".io",
+    "surface_to_dict": ".io",
+    "uniform_triangulation": ".planar.strip",
+}
+
+
+def __getattr__(name):
+    """A public verb or type (imported on first use), or a subpackage such as ``equimesh.planar``."""
+    if name in _EXPORTS:
+        value = getattr(importlib.import_module(_EXPORTS[name], __name__), name)
+    else:
+        try:
+            value = importlib.import_module(f".{name}", __name__)
+        except ModuleNotFoundError as exc:
+            if exc.name != f"{__name__}.{name}":
+                raise
+            raise AttributeError(f"module {__name__!r} has no attribute {name!r}") from None
+    globals()[name] = value
+    return value
+
+
+def __dir__():
+    return sorted(set(globals()) | set(_EXPORTS))
+
 
 __version__ = "0.1.0"
 
-__all__ = [
-    "G1",
-    "OTHER",
-    "REL_TOL",
-    "BezierSurface",
-    "Domain",
-    "EquimeshError",
-    "InternalError",
-    "InvalidLengthError",
-    "InvalidPolygonError",
-    "InvalidSurfaceError",
-    "InvalidToleranceError",
-    "LengthClasses",
-    "MeshTooLargeError",
-    "MissingDependencyError",
-    "NurbsSurface",
-    "OutputPathError",
-    "PlanarMesh",
-    "Placement",
-    "SurfaceMesh",
-    "SurfaceTooSmallError",
-    "SurfaceWarning",
-    "best_lattice_placement",
-    "flatten",
-    "increment",
-    "length_classes",
-    "load_surface",
-    "mesh_surface",
-    "node_lower_bound",
-    "optimize_uv",
-    "packing_upper_bound",
-    "remap",
-    "surface_from_dict",
-    "surface_to_dict",
-    "uniform_triangulation",
-]
+__all__ = sorted(
+    [
+        "REL_TOL",
+        "EquimeshError",
+        "InternalError",
+        "InvalidLengthError",
+        "InvalidPolygonError",
+        "InvalidSurfaceError",
+        "InvalidToleranceError",
+        "MeshTooLargeError",
+        "MissingDependencyError",
+        "OutputPathError",
+        "SurfaceTooSmallError",
+        "SurfaceWarning",
+        *_EXPORTS,
+    ]
+)

@@ -28,29 +28,12 @@ import sys
 import warnings
 from pathlib import Path
 
-from .classes import DEFAULT_TOLERANCE, MAX_TOLERANCE, check_tolerance
 from .errors import EquimeshError, SurfaceWarning
-from .io import (
-    INPUT_FORMATS,
-    MEMBER_FORMATS,
-    MESH_FORMATS,
-    check_output_path,
-    classes_path,
-    load_surface,
-    write_surface_mesh,
-)
-from .metrics import fabrication_summary
-from .surface.optimize import OBJECTIVES
-from .surface.pipeline import MAX_GRID_CELLS, MAX_NODES, MAX_OPTIMIZE_NODES, PLACEMENTS, mesh_surface
 
 EXIT_USAGE = 2
 EXIT_INTERNAL = 3
 EXIT_INTERRUPTED = 130
 EXPERIMENTS = Path(__file__).resolve().parents[2] / "experiments"
-
-#: ``--optimize`` by default: the library's own default, whatever it is.
-DEFAULT_OPTIMIZE = inspect.signature(mesh_surface).parameters["optimize"].default
-
 
 class _Parser(argparse.ArgumentParser):
     """argparse with one-line errors (no usage dump) and exit code 2."""
@@ -60,6 +43,15 @@ class _Parser(argparse.ArgumentParser):
 
 
 def build_parser():
+    # The library (numpy, scipy, shapely: seconds on a busy machine) is imported here and in
+    # _run_mesh, inside main's handlers, so that a Ctrl-C during the import is one line too.
+    from .classes import DEFAULT_TOLERANCE, MAX_TOLERANCE
+    from .io import INPUT_FORMATS, MESH_FORMATS
+    from .surface.optimize import OBJECTIVES
+    from .surface.pipeline import MAX_GRID_CELLS, MAX_NODES, MAX_OPTIMIZE_NODES, PLACEMENTS, mesh_surface
+
+    # ``--optimize`` by default: the library's own default, whatever it is.
+    default_optimize = inspect.signature(mesh_surface).parameters["optimize"].default
     parser = _Parser(
         prog="equimesh",
         description=(
@@ -93,8 +85,8 @@ def build_parser():
                       help="auxiliary grid cells along u and v (default: 15 15); at most "
                            f"{MAX_GRID_CELLS} cells, because flattening time and memory grow with NU x NV "
                            "(about 40 s and 0.6 GB at 200 x 200 on a 2-core machine)")
-    mesh.add_argument("--optimize", choices=["none", *OBJECTIVES], default=DEFAULT_OPTIMIZE,
-                      help=f"final optimisation of the inner nodes (default: {DEFAULT_OPTIMIZE})")
+    mesh.add_argument("--optimize", choices=["none", *OBJECTIVES], default=default_optimize,
+                      help=f"final optimisation of the inner nodes (default: {default_optimize})")
     mesh.add_argument("--placement", choices=PLACEMENTS, default="best",
                       help="lattice placement: searched for the most equal members, or angle 0 at the origin "
                            "(default: best)")
@@ -172,6 +164,8 @@ def _max_nodes(text):
 
 def _tolerance(text):
     """``--tolerance``: a fraction of L or a percentage (:func:`equimesh.classes.check_tolerance`)."""
+    from .classes import check_tolerance
+
     try:
         return check_tolerance(text)
     except EquimeshError as exc:
@@ -179,6 +173,9 @@ def _tolerance(text):
 
 
 def _run_mesh(args):
+    from .io import MEMBER_FORMATS, MESH_FORMATS, check_output_path, classes_path, load_surface, write_surface_mesh
+    from .surface.pipeline import mesh_surface
+
     check_output_path(args.output, MESH_FORMATS)
     if args.members:
         check_output_path(args.members, MEMBER_FORMATS)
@@ -209,6 +206,8 @@ def _run_mesh(args):
 
 def _summary(lengths, l, tolerance):
     """The one-screen summary of a run's members (:func:`equimesh.metrics.fabrication_summary`)."""
+    from .metrics import fabrication_summary
+
     s = fabrication_summary(lengths, l, tolerance)
     tol = f"+-{100 * tolerance:.3g} %"
     rows = [

@@ -17,7 +17,7 @@ import numpy as np
 
 from ..mesh import PlanarMesh, boundary_first
 from .guarantees import verify_planar
-from .insertion import Region, insert
+from .insertion import Region, check_engine, insert
 from .limits import MAX_NODES, check_max_nodes, check_size, node_estimate
 from .polygon import (
     as_polygon,
@@ -69,6 +69,7 @@ def increment(vertices, l, *, engine="reference", max_nodes=MAX_NODES):
         returned (:func:`equimesh.planar.guarantees.verify_planar`).
     """
     max_nodes = check_max_nodes(max_nodes)
+    check_engine(engine)
     poly, l = validate_problem1(vertices, l)
     lp = poly.local_length(l)
     check_size("the polygon", node_estimate(poly.local_area, poly.local_perimeter, lp), max_nodes, l)

@@ -24,10 +24,19 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..errors import EquimeshError
 from .lattice import kept_vertices, lattice_basis, lattice_triangle_masks
 from .limits import MAX_NODES, check_count, check_max_nodes, check_size
 from .polygon import as_polygon, check_length
 from .strip import check_clearance, strip_estimate
+
+
+#: Beyond the paper: the most placements one search may evaluate,
+#: ``1 + n_angles n_offsets^2 + 27 refine`` (16 times the default 247).  Each
+#: evaluation builds the lattice grid (bounded through ``max_nodes``), so this
+#: bounds the search; before, ``n_offsets=10**6`` asked for 1.2e13 evaluations.
+#: Test: tests/test_hardening_planar.py::test_placement_search_is_bounded.
+MAX_EVALUATIONS = 4096
 
 
 @dataclass(frozen=True)
@@ -86,7 +95,8 @@ def best_lattice_placement(
     clearance : float
         As in :func:`equimesh.uniform_triangulation`.
     n_angles, n_offsets, refine : int
-        Coarse grid size (positive) and number of refinement rounds (>= 0).
+        Coarse grid size (positive) and number of refinement rounds (>= 0);
+        at most :data:`MAX_EVALUATIONS` placements in all.
     max_nodes : int or None
         The size guard of :func:`equimesh.uniform_triangulation` (the lattice
         grid each evaluation builds is bounded through it); None for no limit.
@@ -101,6 +111,12 @@ def best_lattice_placement(
     n_angles = check_count(n_angles, "n_angles", 1)
     n_offsets = check_count(n_offsets, "n_offsets", 1)
     refine = check_count(refine, "refine", 0)
+    planned = 1 + n_angles * n_offsets**2 + 27 * refine
+    if planned > MAX_EVALUATIONS:
+        raise EquimeshError(
+            f"n_angles = {n_angles}, n_offsets = {n_offsets} and refine = {refine} ask for {planned} placements "
+            f"(1 + n_angles n_offsets^2 + 27 refine), more than {MAX_EVALUATIONS}; use smaller counts"
+        )
     max_nodes = check_max_nodes(max_nodes)
     poly = as_polygon(vertices, l, holes)
     check_size("the boundary strip", strip_estimate(poly, l, clearance), max_nodes, l)

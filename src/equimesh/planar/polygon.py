@@ -170,7 +170,7 @@ def _parse_vertices(vertices, what="polygon"):
         raise InvalidPolygonError(f"{what} vertices must be an (n, 2) array, got shape {v.shape}")
     bad = np.flatnonzero(~np.all(np.isfinite(v), axis=1))
     if bad.size:
-        x, y = v[bad[0]]
+        x, y = map(float, v[bad[0]])
         of = "" if what == "polygon" else f" of {what}"
         raise InvalidPolygonError(f"vertex {bad[0]}{of} has a non-finite coordinate ({x!r}, {y!r})")
     return v

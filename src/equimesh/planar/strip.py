@@ -30,7 +30,7 @@ import shapely
 from ..errors import EquimeshError
 from ..mesh import PlanarMesh, boundary_first, boundary_ring, unique_edges
 from .guarantees import verify_planar
-from .insertion import Region, insert
+from .insertion import Region, check_engine, insert
 from .lattice import lattice_adjacent, lattice_part
 from .limits import MAX_NODES, check_max_nodes, check_size, node_estimate
 from .polygon import (
@@ -116,6 +116,7 @@ def uniform_triangulation(
     angle = _check_scalar(angle, "angle")
     spacing = check_spacing(boundary_spacing)
     max_nodes = check_max_nodes(max_nodes)
+    check_engine(engine)
     poly = as_polygon(vertices, l, holes)
     check_edges_at_least(poly, l)
     check_size("the boundary strip", strip_estimate(poly, l, clearance), max_nodes, l)

@@ -13,6 +13,13 @@ from ..errors import InvalidSurfaceError
 from .chart import UNIT
 
 
+#: Beyond the paper: the highest degree of a Bezier net in u or in v.  The
+#: Bernstein basis uses the binomial coefficients C(n, i) as floats, and
+#: C(n, n / 2) exceeds the largest float from n = 1030 on (a 3000-row net
+#: ended in an OverflowError).  Test: tests/test_hardening_surface.py.
+MAX_DEGREE = 1000
+
+
 def bernstein(degree, t):
     """Bernstein basis polynomials ``B_i^degree(t)``, shape ``t.shape + (degree + 1,)``.
 
@@ -37,8 +44,8 @@ class BezierSurface:
     Raises
     ------
     InvalidSurfaceError
-        If the net has the wrong shape, fewer than 2 x 2 points, or a
-        non-finite coordinate.
+        If the net has the wrong shape, fewer than 2 x 2 points, a degree
+        above :data:`MAX_DEGREE`, or a non-finite coordinate.
     """
 
     #: The parameter square [0, 1]^2 of the paper.
@@ -109,6 +116,11 @@ def _validate_net(control_points):
         raise InvalidSurfaceError(f"control net must have shape (m+1, n+1, 3), got {p.shape}")
     if p.shape[0] < 2 or p.shape[1] < 2:
         raise InvalidSurfaceError(f"control net needs at least 2 x 2 points, got {p.shape[0]} x {p.shape[1]}")
+    if max(p.shape[:2]) > MAX_DEGREE + 1:
+        raise InvalidSurfaceError(
+            f"control net has {p.shape[0]} x {p.shape[1]} points, degree {p.shape[0] - 1} x {p.shape[1] - 1}; "
+            f"at most degree {MAX_DEGREE} in u and in v is supported"
+        )
     bad = np.argwhere(~np.isfinite(p))
     if len(bad):
         i, j, k = (int(x) for x in bad[0])

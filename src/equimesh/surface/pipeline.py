@@ -27,6 +27,7 @@ from .chart import domain_of
 from ..errors import EquimeshError, InternalError, InvalidPolygonError, InvalidSurfaceError, MeshTooLargeError
 from .flatten import flatten
 from ._jacobian import signed_areas
+from .._geometry import power_of_two_scale
 from ..mesh import G1, edge_lengths
 from .optimize import OBJECTIVES, optimize_uv
 from .outline import resample_outline
@@ -35,6 +36,7 @@ from ..planar.placement import best_lattice_placement
 from ..planar.polygon import check_length
 from .regularity import check_regular, evaluate
 from .remap import remap
+from ._places import number
 from .restate import restate_polygon_error
 from ..planar.strip import BOUNDARY_SPACING, check_spacing, uniform_triangulation
 
@@ -283,16 +285,19 @@ def _node_limit(max_nodes, optimize):
 def _check_size(surface_points, triangles, l, max_nodes):
     """Estimate the node count (surface area at the lattice density) and refuse it above ``max_nodes``.
 
-    The estimate is computed in floating point, so a tiny ``l`` gives
-    ``inf`` rather than an overflow.
+    The area is computed in units of the surface's extent (the points scaled
+    by a power of two, which is exact), so neither a surface given in units of
+    1e-100 nor one in units of 1e100 overflows or underflows; a tiny ``l``
+    gives an estimate of ``inf`` rather than an overflow.
     """
     if max_nodes is None:
         return
-    p = surface_points[triangles]
+    scale = power_of_two_scale(float(np.max(np.ptp(surface_points, axis=0))))
+    p = surface_points[triangles] * scale
     area = 0.5 * float(np.linalg.norm(np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]), axis=1).sum())
-    with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
-        estimate = float(np.float64(area) / np.float64(l) / np.float64(l) / (np.sqrt(3.0) / 2.0))
-    check_size(f"this surface (area {area:.6g})", estimate, max_nodes, l)
+    with np.errstate(over="ignore", under="ignore", divide="ignore"):
+        estimate = float(area / np.float64(l * scale) ** 2 / (np.sqrt(3.0) / 2.0))
+    check_size(f"this surface (area {number(area / scale / scale)})", estimate, max_nodes, l)
 
 
 def _check_orientation(uv, triangles, stage):

@@ -12,7 +12,9 @@ a mesh of it would overlap itself.
 Both are detected on the auxiliary grid: ``n`` is evaluated at every node and
 at every triangle centroid, and the surface is refused
 
-* when ``|n| <= SINGULAR_SIN |X_u| |X_v|`` at a sample (singular), or
+* when ``|n| <= SINGULAR_SIN |X_u| |X_v|`` at a sample (singular; computed
+  from X_u and X_v scaled to unit length, so the test does not depend on the
+  surface's units), or
 * when the normal at a triangle's centroid and at one of its corners are
   ``MAX_NORMAL_TURN`` degrees or more apart (folded, or curved so strongly
   that the auxiliary grid cannot follow it: a finer grid tells which).
@@ -63,10 +65,9 @@ def check_regular(surface, grid):
     centroids = grid.uv[grid.triangles].mean(axis=1)
     uv = np.vstack([grid.uv, centroids])
     su, sv = derivatives(surface, uv)
-    normal = np.cross(su, sv)
+    normal = np.cross(_rescaled(su), _rescaled(sv))
     size = np.linalg.norm(normal, axis=1)
-    stretch = np.linalg.norm(su, axis=1) * np.linalg.norm(sv, axis=1)
-    singular = np.flatnonzero(~(size > SINGULAR_SIN * stretch))
+    singular = np.flatnonzero(~(size > SINGULAR_SIN))
     if singular.size:
         k = int(singular[0])
         what = (
@@ -93,6 +94,19 @@ def check_regular(surface, grid):
             f"within one auxiliary cell, so a mesh of it would overlap itself "
             f"(if it is only strongly curved there, use a finer grid than {grid.n_u} x {grid.n_v})"
         )
+
+
+def _rescaled(d):
+    """The rows of ``d`` as unit vectors (zero rows stay zero), computed without overflow or underflow.
+
+    Each row is first divided by the power of two nearest its largest
+    component, so that a surface given in units of 1e-100 or 1e100 is tested
+    exactly like the same surface in units of 1.
+    """
+    big = np.max(np.abs(d), axis=1, keepdims=True)
+    scaled = np.ldexp(d, -np.frexp(np.where(big > 0, big, 1.0))[1])
+    norm = np.linalg.norm(scaled, axis=1, keepdims=True)
+    return scaled / np.where(norm > 0, norm, 1.0)
 
 
 def _check_finite(values, uv, what):

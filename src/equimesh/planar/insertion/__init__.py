@@ -22,15 +22,18 @@ from .reference import run as _reference
 ENGINES = {"reference": _reference, "fast": _fast}
 
 
+def check_engine(engine):
+    """The engine function named ``engine`` (a key of :data:`ENGINES`), or an EquimeshError naming the choices."""
+    if isinstance(engine, str) and engine in ENGINES:
+        return ENGINES[engine]
+    from ...errors import EquimeshError
+
+    raise EquimeshError(f"unknown insertion engine {engine!r}; choose from {sorted(ENGINES)}")
+
+
 def insert(region, l, engine="reference"):
     """Run farthest-point insertion in ``region`` with minimum distance ``l``."""
-    try:
-        run = ENGINES[engine]
-    except KeyError:
-        from ...errors import EquimeshError
-
-        raise EquimeshError(f"unknown insertion engine {engine!r}; choose from {sorted(ENGINES)}") from None
-    return run(region, l)
+    return check_engine(engine)(region, l)
 
 
-__all__ = ["ENGINES", "Insertion", "Region", "insert"]
+__all__ = ["ENGINES", "Insertion", "Region", "check_engine", "insert"]
