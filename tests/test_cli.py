@@ -84,8 +84,10 @@ def test_optimize_default_is_the_library_default():
     """--optimize omitted means mesh_surface's own default, whatever the library makes it."""
     import inspect
 
-    args = equimesh._cli.build_parser().parse_args(["mesh", str(SADDLE), "--length", "5", "-o", "m.obj"])
-    assert args.optimize == inspect.signature(equimesh.mesh_surface).parameters["optimize"].default
+    from equimesh._cli import build_parser
+
+    args = build_parser().parse_args(["mesh", str(SADDLE), "--length", "5", "-o", "m.obj"])
+    assert args.optimize == inspect.signature(pipeline.mesh_surface).parameters["optimize"].default
 
 
 def _write(path, text):

@@ -22,7 +22,6 @@ Every run ends in one of four ways, always without a traceback:
 import argparse
 import contextlib
 import importlib.util
-import inspect
 import os
 import sys
 import warnings
@@ -48,10 +47,7 @@ def build_parser():
     from .classes import DEFAULT_TOLERANCE, MAX_TOLERANCE
     from .io import INPUT_FORMATS, MESH_FORMATS
     from .surface.optimize import OBJECTIVES
-    from .surface.pipeline import MAX_GRID_CELLS, MAX_NODES, MAX_OPTIMIZE_NODES, PLACEMENTS, mesh_surface
-
-    # ``--optimize`` by default: the library's own default, whatever it is.
-    default_optimize = inspect.signature(mesh_surface).parameters["optimize"].default
+    from .surface.pipeline import DEFAULT_OPTIMIZE, MAX_GRID_CELLS, MAX_NODES, MAX_OPTIMIZE_NODES, PLACEMENTS
     parser = _Parser(
         prog="equimesh",
         description=(
@@ -85,8 +81,8 @@ def build_parser():
                       help="auxiliary grid cells along u and v (default: 15 15); at most "
                            f"{MAX_GRID_CELLS} cells, because flattening time and memory grow with NU x NV "
                            "(about 40 s and 0.6 GB at 200 x 200 on a 2-core machine)")
-    mesh.add_argument("--optimize", choices=["none", *OBJECTIVES], default=default_optimize,
-                      help=f"final optimisation of the inner nodes (default: {default_optimize})")
+    mesh.add_argument("--optimize", choices=["none", *OBJECTIVES], default=DEFAULT_OPTIMIZE,
+                      help=f"final optimisation of the inner nodes (default: {DEFAULT_OPTIMIZE})")
     mesh.add_argument("--placement", choices=PLACEMENTS, default="best",
                       help="lattice placement: searched for the most equal members, or angle 0 at the origin "
                            "(default: best)")

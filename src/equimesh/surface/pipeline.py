@@ -57,6 +57,9 @@ MAX_OPTIMIZE_NODES = 3_000
 #: 300 x 300 (docs/performance.md).
 MAX_GRID_CELLS = 40_000
 
+#: The final optimisation when none is named (a key of :data:`~equimesh.surface.optimize.OBJECTIVES`, or "none").
+DEFAULT_OPTIMIZE = "paper"
+
 #: Lattice placements: "best" searches (beyond the paper), "default" is angle 0, offset (0, 0).
 PLACEMENTS = ("best", "default")
 
@@ -128,7 +131,7 @@ def mesh_surface(
     l,
     *,
     grid=(15, 15),
-    optimize="paper",
+    optimize=DEFAULT_OPTIMIZE,
     placement="best",
     boundary_spacing=BOUNDARY_SPACING,
     max_nodes="default",
