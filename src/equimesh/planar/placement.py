@@ -24,8 +24,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .insertion import DEFAULT_ENGINE
 from .lattice import kept_vertices, lattice_basis, lattice_triangle_masks
-from .limits import MAX_NODES, check_count, check_max_nodes, check_size
+from .limits import check_count, check_max_nodes, check_size, planar_estimate
 from .polygon import as_polygon, check_length
 from .strip import check_clearance, strip_estimate
 
@@ -69,7 +70,7 @@ def lattice_edge_count(poly, l, angle, offset, clearance=1.0):
     return int(np.count_nonzero(up | pad_j) + np.count_nonzero(up | pad_i) + np.count_nonzero(up | down))
 
 
-def best_lattice_placement(vertices, l, *, clearance=1.0, n_angles=12, n_offsets=4, refine=2, max_nodes=MAX_NODES):
+def best_lattice_placement(vertices, l, *, clearance=1.0, n_angles=12, n_offsets=4, refine=2, max_nodes="default"):
     """Search the lattice angle and offset that maximise the number of G1 lattice edges.
 
     Parameters
@@ -82,9 +83,10 @@ def best_lattice_placement(vertices, l, *, clearance=1.0, n_angles=12, n_offsets
         As in :func:`equimesh.uniform_triangulation`.
     n_angles, n_offsets, refine : int
         Coarse grid size (positive) and number of refinement rounds (>= 0).
-    max_nodes : int or None
-        The size guard of :func:`equimesh.uniform_triangulation` (the lattice
-        grid each evaluation builds is bounded through it); None for no limit.
+    max_nodes : int, None or "default"
+        The size guard of :func:`equimesh.uniform_triangulation` with the
+        default engine (the lattice grid each evaluation builds is bounded
+        through it); None for no limit.
 
     Returns
     -------
@@ -98,7 +100,7 @@ def best_lattice_placement(vertices, l, *, clearance=1.0, n_angles=12, n_offsets
     refine = check_count(refine, "refine", 0)
     max_nodes = check_max_nodes(max_nodes)
     poly = as_polygon(vertices, l)
-    check_size("the boundary strip", strip_estimate(poly, l, clearance), max_nodes, l)
+    check_size(*planar_estimate(poly, l, strip_estimate(poly, l, clearance), DEFAULT_ENGINE), max_nodes, l)
     evaluations = 0
 
     def score(angle, frac):
