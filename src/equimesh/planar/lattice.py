@@ -35,7 +35,7 @@ import numpy as np
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 
-from ..mesh import half_edges
+from ..mesh import edge_keys, half_edges
 from ._clearance import clear_of_boundary
 
 #: Lattice steps (di, dj) between neighbouring vertices, in the basis
@@ -162,9 +162,8 @@ def lattice_part(poly, l, angle=0.0, offset=(0.0, 0.0), clearance=1.0):
 def _single_edges(tri):
     """Directed edges of ``tri`` that belong to exactly one triangle."""
     directed = half_edges(tri)
-    undirected = np.sort(directed, axis=1)
-    _, inverse, counts = np.unique(undirected, axis=0, return_inverse=True, return_counts=True)
-    return directed[counts[inverse.ravel()] == 1]
+    _, inverse, counts = np.unique(edge_keys(directed)[0], return_inverse=True, return_counts=True)
+    return directed[counts[inverse] == 1]
 
 
 def _component_seeds(points, tri):
