@@ -20,7 +20,8 @@ EXPERIMENTS := \
 	experiments/ratio_sweep.py \
 	experiments/problem2.py \
 	experiments/table1.py \
-	experiments/figures.py
+	experiments/figures.py \
+	experiments/scaling.py
 
 # The hypothesis profile comes from EQUIMESH_HYPOTHESIS_PROFILE (tests/conftest.py;
 # quick "ci" when unset); `make test-thorough` selects the thorough one.
