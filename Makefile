@@ -31,7 +31,8 @@ EXPERIMENTS := \
 	experiments/problem2.py \
 	experiments/table1.py \
 	experiments/figures.py \
-	experiments/compare_peers.py
+	experiments/compare_peers.py \
+	experiments/scaling.py
 
 # The hypothesis profile comes from EQUIMESH_HYPOTHESIS_PROFILE (tests/conftest.py;
 # quick "ci" when unset); `make test-thorough` selects the thorough one.

@@ -16,14 +16,16 @@ Writes (``results/`` data, ``paper_figs/`` figure drawn from the data only)::
 
 Size distribution.  The area is log-uniform on [1, ``--max-area``] l^2, and a
 fraction ``--tail-fraction`` of the polygons is log-uniform on
-[``--max-area``, ``--tail-max-area``]; node counts run from 4 to about 500.
-The tail is kept small because the reference engine re-triangulates after
-every insertion (about 1.5 s for a polygon of 700 l^2, 500 nodes), and the
-whole sweep should take about a minute on two cores.
+[``--max-area``, ``--tail-max-area``]; node counts run from 4 to about
+35,000.  The insertion engine is ``--engine`` (the fast one by default: the
+reference engine re-triangulates after every insertion, about 1.5 s for a
+polygon of 700 l^2, and kept the sweep below 700 l^2); the whole sweep
+should take about a minute on two cores.  The report gives n'/LB per decade
+of area and the figure draws it against the area.
 
 Usage::
 
-    python experiments/ratio_sweep.py [--n-polygons 2000] [--seed 20261122] [--jobs 2]
+    python experiments/ratio_sweep.py [--n-polygons 2000] [--seed 20261122] [--jobs 2] [--engine fast]
     python experiments/ratio_sweep.py --plot-only      # redraw the figure from the CSV
 """
 
@@ -39,6 +41,7 @@ import pandas as pd
 import equimesh
 from equimesh import REL_TOL
 from equimesh.planar.increment import validate_problem1
+from equimesh.planar.insertion import DEFAULT_ENGINE, ENGINES
 from equimesh.testing.generators import random_convex_polygon
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))  # _common.py, also when loaded by file path
@@ -69,9 +72,10 @@ def parse_args(argv=None):
     p.add_argument("--n-polygons", type=int, default=2000, help="number of random polygons (default 2000)")
     p.add_argument("--seed", type=int, default=20261122, help="root seed (default 20261122)")
     _common.add_output_options(p, jobs=True, plot_only=True)
-    p.add_argument("--max-area", type=float, default=200.0, help="upper end of the main area range, in l^2")
+    p.add_argument("--max-area", type=float, default=1e4, help="upper end of the main area range, in l^2")
     p.add_argument("--tail-fraction", type=float, default=0.02, help="fraction of polygons in the large-area tail")
-    p.add_argument("--tail-max-area", type=float, default=700.0, help="upper end of the tail's area range, in l^2")
+    p.add_argument("--tail-max-area", type=float, default=3e4, help="upper end of the tail's area range, in l^2")
+    p.add_argument("--engine", choices=sorted(ENGINES), default=DEFAULT_ENGINE, help=f"insertion engine (default {DEFAULT_ENGINE})")
     return p.parse_args(argv)
 
 
@@ -93,11 +97,11 @@ def draw_polygon(seed_sequence, max_area, tail_fraction, tail_max_area):
 
 def measure(task):
     """Run INCREMENT on polygon ``index`` and return its CSV row."""
-    index, seed_sequence, options = task
+    index, seed_sequence, options, engine = task
     vertices = draw_polygon(seed_sequence, **options)
     l = 1.0
     poly, _ = validate_problem1(vertices, l)
-    mesh = equimesh.increment(vertices, l)
+    mesh = equimesh.increment(vertices, l, engine=engine, max_nodes=None)
     lb = equimesh.node_lower_bound(vertices, l)
     lengths = mesh.edge_lengths()
     return {
@@ -116,14 +120,14 @@ def measure(task):
     }
 
 
-def sweep(n_polygons, seed, jobs, options, progress=print):
+def sweep(n_polygons, seed, jobs, options, engine=DEFAULT_ENGINE, progress=print):
     """Measure ``n_polygons`` polygons; rows in index order whatever ``jobs`` is.
 
     Polygon ``i`` is drawn from child ``i`` of ``numpy.random.SeedSequence(seed)``,
     so a row does not depend on the number of workers or on the other rows.
     """
     children = np.random.SeedSequence(seed).spawn(n_polygons)
-    tasks = [(i, child, options) for i, child in enumerate(children)]
+    tasks = [(i, child, options, engine) for i, child in enumerate(children)]
     start = time.perf_counter()
     every = max(1, n_polygons // 10)
     rows = []
@@ -156,6 +160,10 @@ def summarize(df, record):
             "",
             f"Edge lengths over all meshes (l = 1): min {df['min_edge'].min():.12g}, max {df['max_edge'].max():.12g}.",
             "",
+            "## n'/LB against the area",
+            "",
+            *by_area(df),
+            "",
             f"## Worst polygon (index {int(worst['index'])})",
             "",
             f"n' = {int(worst['n_nodes'])}, LB = {int(worst['lower_bound'])}, n'/LB = {worst['ratio']:.4f}, "
@@ -167,6 +175,16 @@ def summarize(df, record):
         ],
         record,
     )
+
+
+def by_area(df):
+    """Markdown table of n'/LB per decade of area (in l^2)."""
+    decade = np.floor(np.log10(df["area"])).astype(int)
+    lines = ["| area (l^2) | polygons | n' range | min n'/LB | median n'/LB | max n'/LB |", "|---|---:|---:|---:|---:|---:|"]
+    for d, g in df.groupby(decade):
+        lines.append(f"| 10^{d} .. 10^{d + 1} | {len(g)} | {g['n_nodes'].min()} .. {g['n_nodes'].max()} | "
+                     f"{g['ratio'].min():.4f} | {g['ratio'].median():.4f} | {g['ratio'].max():.4f} |")
+    return lines
 
 
 def plot(csv_path, fig_path):
@@ -188,13 +206,13 @@ def plot(csv_path, fig_path):
     hist.set_ylabel("polygons")
     hist.set_title(f"{len(df)} random convex polygons, inner angles >= 90 deg", fontsize=10)
     hist.legend(frameon=False, fontsize=8)
-    scatter.scatter(df["n_nodes"], df["ratio"], s=4, alpha=0.5, color="tab:blue", linewidths=0)
+    scatter.scatter(df["area"], df["ratio"], s=4, alpha=0.5, color="tab:blue", linewidths=0)
     scatter.axhline(THEOREM2, color="tab:red", linestyle="--")
     scatter.set_xscale("log")
-    scatter.set_xlabel("n' (nodes of the INCREMENT mesh)")
+    scatter.set_xlabel("area of the polygon (l^2)")
     scatter.set_ylabel("n' / LB")
     scatter.set_ylim(0.9, THEOREM2 + 0.3)
-    scatter.set_title("ratio against mesh size", fontsize=10)
+    scatter.set_title("ratio against area", fontsize=10)
     return _common.save_figure(fig, fig_path, {"source": str(csv_path)}, dpi=150)
 
 
@@ -205,7 +223,7 @@ def main(argv=None):
     if not args.plot_only:
         options = {"max_area": args.max_area, "tail_fraction": args.tail_fraction, "tail_max_area": args.tail_max_area}
         start = time.perf_counter()
-        df = sweep(args.n_polygons, args.seed, args.jobs, options)
+        df = sweep(args.n_polygons, args.seed, args.jobs, options, args.engine)
         elapsed = time.perf_counter() - start
         parameters = {k: (str(v) if isinstance(v, Path) else v) for k, v in vars(args).items() if k != "plot_only"}
         _common.write_results(csv_path, df, parameters, lambda record: summarize(df, record))

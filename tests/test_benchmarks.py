@@ -147,7 +147,9 @@ def test_every_benchmark_runs_on_its_smallest_parameters(module, suite):
 def test_smallest_parameters_come_first():
     """The smoke test above runs the first value of each parameter, so keep it the cheapest."""
     common = _import("common")
-    assert list(common.POLYGON_AREAS) == sorted(common.POLYGON_AREAS)
+    for sizes in (common.POLYGON_AREAS, common.NODE_COUNTS, common.PROBLEM2_AREAS):
+        assert list(sizes) == sorted(sizes)
+    assert common.ENGINES[0] == "fast", "the reference engine is slow: keep it off the smoke test"
 
 
 # Fingerprints of the frozen inputs: (vertex count, sum of |coordinates|, sum of squares).
@@ -168,6 +170,13 @@ def test_frozen_inputs_are_unchanged(shape, area):
     assert len(v) == n
     assert np.isclose(np.abs(v).sum(), s, rtol=1e-12, atol=1e-12)
     assert np.isclose((v * v).sum(), q, rtol=1e-12, atol=1e-12)
+
+
+def test_frozen_scaling_squares_are_unchanged():
+    common = _import("common")
+    assert [float(common.square_for_nodes(n)[2, 0]) for n in (1000, 10000, 100000)] == pytest.approx(
+        [38.34824944236852, 121.26781251816648, 383.4824944236852], rel=1e-12
+    )
 
 
 def test_frozen_inputs_are_valid_problem1_inputs():

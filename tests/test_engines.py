@@ -30,6 +30,7 @@ import equimesh.planar.increment
 import equimesh.planar.strip
 from equimesh import EquimeshError
 from equimesh.planar.insertion import ENGINES, Region, insert
+from equimesh.planar.insertion._cdt import cavity_boundary
 from equimesh.planar.insertion._predicates import incircle, orient2d
 from equimesh.testing.generators import rectangle, regular_polygon, rotate
 
@@ -287,3 +288,20 @@ def test_fast_engine_refuses_an_interior_constraint():
     region = Region(square, np.array([[0, 1], [1, 2], [2, 3], [3, 0], [0, 2]]), np.empty((0, 2)))
     with pytest.raises(EquimeshError, match="segment 4 is an edge of zero or two triangles"):
         insert(region, 1.0, engine="fast")
+
+
+def test_cavity_boundary_fills_its_buffer_exactly():
+    """A cavity of k triangles has k + 2 boundary edges: a buffer of exactly that length suffices.
+
+    Regression: an interior edge visited after the last boundary edge was
+    refused as "buffer full", and a cavity of 64 triangles (the initial
+    buffer) broke the run (random convex polygons of ~6,800 l^2).
+    """
+    V = np.array([[0, 1, 2], [0, 2, 3]], dtype=np.int64)
+    N = np.array([[-1, -1, 1], [0, -1, -1]], dtype=np.int64)
+    S = np.full((2, 3), -1, dtype=np.int64)
+    mark = np.ones(2, dtype=np.int64)
+    edges = np.empty((4, 4), dtype=np.int64)
+    # Triangle 1 first, so the last edge visited (2, 0) of triangle 0 is interior.
+    assert cavity_boundary(V, N, S, np.array([1, 0]), 2, -1, mark, 1, edges) == 4
+    assert {tuple(e[:2]) for e in edges.tolist()} == {(2, 3), (3, 0), (0, 1), (1, 2)}

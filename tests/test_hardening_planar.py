@@ -141,7 +141,7 @@ def test_verify_planar_fires_on_a_corrupted_mesh(corrupt, message):
 @pytest.mark.parametrize("verb", [equimesh.increment, equimesh.uniform_triangulation])
 def test_a_broken_engine_is_never_returned(verb, monkeypatch):
     """An engine that moves an inserted point makes the verb raise InternalError instead of returning."""
-    real = insertion.ENGINES["reference"]
+    real = insertion.ENGINES[insertion.DEFAULT_ENGINE]
 
     def broken(region, l):
         out = real(region, l)
@@ -149,7 +149,7 @@ def test_a_broken_engine_is_never_returned(verb, monkeypatch):
         points[-1] = points[out.n_initial - 1] + 0.3 * l  # closer than l to a boundary point
         return insertion.Insertion(points, out.triangles, out.segments, out.n_initial, out.values)
 
-    monkeypatch.setitem(insertion.ENGINES, "reference", broken)
+    monkeypatch.setitem(insertion.ENGINES, insertion.DEFAULT_ENGINE, broken)
     with pytest.raises(InternalError):
         verb(SQUARE10, 1.0)
 
@@ -257,15 +257,21 @@ def test_placement_search_may_use_the_whole_budget():
 # --------------------------------------------------------------------------- 5: the size guard
 
 
+REFERENCE = {"engine": "reference"}
+
+
 @pytest.mark.parametrize(
-    "verb, l, what",
-    [(equimesh.increment, 0.1, "the polygon"), (equimesh.uniform_triangulation, 1e-3, "the boundary strip"),
-     (equimesh.best_lattice_placement, 1e-3, "the boundary strip")],
+    "verb, l, kwargs, what, limit",
+    [(equimesh.increment, 0.1, REFERENCE, "the polygon", 2500),
+     (equimesh.uniform_triangulation, 1e-3, REFERENCE, "the boundary strip", 2500),
+     (equimesh.increment, 1e-2, {}, "the polygon", 1000000),
+     (equimesh.uniform_triangulation, 1e-2, {}, "the polygon", 1000000),
+     (equimesh.best_lattice_placement, 1e-2, {}, "the polygon", 1000000)],
 )
-def test_size_guard_refuses_before_any_work(verb, l, what):
-    """The issue's unbounded runs are refused with the estimate, the limit and what to change."""
-    with pytest.raises(MeshTooLargeError, match=rf"would need about .* nodes in {what}, more than max_nodes = 2500; use a larger l"):
-        verb(SQUARE10, l)
+def test_size_guard_refuses_before_any_work(verb, l, kwargs, what, limit):
+    """The issue's unbounded runs are refused with the estimate, the engine's limit and what to change."""
+    with pytest.raises(MeshTooLargeError, match=rf"would need about .* nodes in {what}, more than max_nodes = {limit}; use a larger l"):
+        verb(SQUARE10, l, **kwargs)
 
 
 @pytest.mark.parametrize("bad", [0, -1, 2.5, True, float("nan"), "10"])

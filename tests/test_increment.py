@@ -12,6 +12,7 @@ from hypothesis import assume, given
 from hypothesis import strategies as st
 
 import equimesh
+from equimesh.planar.insertion import ENGINES
 from equimesh.testing.generators import rectangle, regular_polygon
 from invariants import (
     assert_problem1_invariants,
@@ -22,16 +23,22 @@ from invariants import (
 )
 from strategies import problems
 
+#: Every property runs against both engines (issue 8); the reference engine is the oracle.
+ENGINE_NAMES = sorted(ENGINES)
+engines = pytest.mark.parametrize("engine", ENGINE_NAMES)
 
+
+@engines
 @given(problems)
-def test_theorem1_every_edge_between_l_and_2l(problem):
+def test_theorem1_every_edge_between_l_and_2l(engine, problem):
     """Theorem 1: every edge of the output triangulation has length in [l, 2l] (up to REL_TOL)."""
     vertices, l = problem
-    check_edge_lengths(equimesh.increment(vertices, l), l)
+    check_edge_lengths(equimesh.increment(vertices, l, engine=engine), l)
 
 
+@engines
 @given(problems)
-def test_points_are_l_separated_and_cover_the_polygon(problem):
+def test_points_are_l_separated_and_cover_the_polygon(engine, problem):
     """Steps 3-4: output points are pairwise >= l apart, and every point of P is within l of one.
 
     Separation holds because a point is inserted only at distance >= l from
@@ -40,33 +47,36 @@ def test_points_are_l_separated_and_cover_the_polygon(problem):
     inside P and at the crossings of Voronoi edges with the boundary.
     """
     vertices, l = problem
-    mesh = equimesh.increment(vertices, l)
+    mesh = equimesh.increment(vertices, l, engine=engine)
     check_separation(mesh, l)
     check_covering(mesh, vertices, l)
 
 
+@engines
 @given(problems)
-def test_output_is_a_delaunay_triangulation_of_the_polygon(problem):
+def test_output_is_a_delaunay_triangulation_of_the_polygon(engine, problem):
     """Step 5: the output is a valid Delaunay triangulation of P covering its boundary.
 
     Areas sum to area(P), no triangle inverted or degenerate, circumcircles
     empty, every boundary segment and every vertex of P present.
     """
     vertices, l = problem
-    check_triangulation(equimesh.increment(vertices, l), vertices, l)
+    check_triangulation(equimesh.increment(vertices, l, engine=engine), vertices, l)
 
 
+@engines
 @given(problems)
-def test_same_input_gives_bit_identical_output(problem):
+def test_same_input_gives_bit_identical_output(engine, problem):
     """Determinism: two runs on the same input give bit-identical points and triangles."""
     vertices, l = problem
-    first, second = equimesh.increment(vertices, l), equimesh.increment(vertices.copy(), l)
+    first, second = equimesh.increment(vertices, l, engine=engine), equimesh.increment(vertices.copy(), l, engine=engine)
     assert first.points.tobytes() == second.points.tobytes()
     assert np.array_equal(first.triangles, second.triangles)
 
 
+@engines
 @given(problems, st.sampled_from([-3, -2, -1, 1, 2, 3]))
-def test_power_of_two_scaling_scales_the_mesh_exactly(problem, k):
+def test_power_of_two_scaling_scales_the_mesh_exactly(engine, problem, k):
     """Scale invariance: scaling P and l by 2**k scales the output points exactly, same triangles.
 
     Multiplying by a power of two is exact in IEEE arithmetic, so any
@@ -80,8 +90,8 @@ def test_power_of_two_scaling_scales_the_mesh_exactly(problem, k):
     vertices, l = problem
     tiny = (vertices != 0) & (np.abs(vertices) < 2.0**-60 * l)
     assume(not tiny.any())
-    base = equimesh.increment(vertices, l)
-    scaled = equimesh.increment(vertices * 2.0**k, l * 2.0**k)
+    base = equimesh.increment(vertices, l, engine=engine)
+    scaled = equimesh.increment(vertices * 2.0**k, l * 2.0**k, engine=engine)
     assert np.array_equal(scaled.points, base.points * 2.0**k)
     assert np.array_equal(scaled.triangles, base.triangles)
 
@@ -92,8 +102,9 @@ def _as_sets(mesh):
     return set(points), triangles
 
 
+@engines
 @given(problems)
-def test_clockwise_input_gives_the_same_mesh(problem):
+def test_clockwise_input_gives_the_same_mesh(engine, problem):
     """Orientation is normalised: the clockwise input gives the same points and triangles.
 
     Only the reversed list is promised to match: starting the ring at another
@@ -102,8 +113,8 @@ def test_clockwise_input_gives_the_same_mesh(problem):
     another, equally valid, mesh.
     """
     vertices, l = problem
-    ccw = equimesh.increment(vertices, l)
-    cw = equimesh.increment(vertices[::-1], l)
+    ccw = equimesh.increment(vertices, l, engine=engine)
+    cw = equimesh.increment(vertices[::-1], l, engine=engine)
     assert _as_sets(cw) == _as_sets(ccw)
 
 
@@ -140,12 +151,13 @@ REGRESSION_CASES = {
 }
 
 
+@engines
 @pytest.mark.parametrize("l", [1.0, 0.3])
 @pytest.mark.parametrize("name", sorted(REGRESSION_CASES))
-def test_regression_cases_satisfy_every_invariant(name, l):
+def test_regression_cases_satisfy_every_invariant(name, l, engine):
     """Every guarantee of INCREMENT (Theorems 1-2, separation, covering, Delaunay) on known degeneracies."""
     vertices = REGRESSION_CASES[name] * l
-    assert_problem1_invariants(equimesh.increment(vertices, l), vertices, l)
+    assert_problem1_invariants(equimesh.increment(vertices, l, engine=engine), vertices, l)
 
 
 def test_unit_square_needs_no_insertion():
@@ -167,9 +179,10 @@ FINGERPRINTS = [
 ]
 
 
+@engines
 @pytest.mark.parametrize("vertices, l, n_nodes, length_sum", FINGERPRINTS)
-def test_fingerprint(vertices, l, n_nodes, length_sum):
+def test_fingerprint(vertices, l, n_nodes, length_sum, engine):
     """Regression pin (not a theorem): node count and summed edge length of fixed inputs."""
-    mesh = equimesh.increment(vertices, l)
+    mesh = equimesh.increment(vertices, l, engine=engine)
     assert mesh.n_nodes == n_nodes
     assert float(np.sum(np.sort(mesh.edge_lengths()))) == pytest.approx(length_sum, rel=1e-12)

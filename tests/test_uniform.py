@@ -17,6 +17,7 @@ from scipy.spatial import cKDTree
 
 import equimesh
 import equimesh.planar.polygon
+from equimesh.planar.insertion import ENGINES
 from equimesh import G1, REL_TOL, EquimeshError
 from equimesh.testing.generators import random_convex_polygon, rectangle, regular_polygon
 from equimesh._geometry import orient
@@ -30,19 +31,24 @@ import strategies_simple as ss
 #: Largest polygon area drawn by the property tests, in units of l^2.
 MAX_AREA = 1500.0
 
+#: Every property runs against both engines (issue 8); the reference engine is the oracle.
+engines = pytest.mark.parametrize("engine", sorted(ENGINES))
+
 
 # --------------------------------------------------------------------------- 1-3: Theorem 3 and the triangulation
 
 
+@engines
 @given(ss.cases(MAX_AREA))
-def test_theorem3_edge_lengths(case):
+def test_theorem3_edge_lengths(engine, case):
     """Theorem 3: every edge is in [l, 2l] (REL_TOL) and every G1 edge has length l to 1e-12 relative."""
     vertices, l = case
-    inv.check_theorem3(equimesh.uniform_triangulation(vertices, l), l)
+    inv.check_theorem3(equimesh.uniform_triangulation(vertices, l, engine=engine), l)
 
 
+@engines
 @given(ss.cases(MAX_AREA))
-def test_separation_and_covering(case):
+def test_separation_and_covering(engine, case):
     """Lemma 3 (1) and Steps 3-4 under the visibility distance d~.
 
     Output points that see each other in P are at least (1 - REL_TOL) l
@@ -51,13 +57,14 @@ def test_separation_and_covering(case):
     l (1 + REL_TOL).
     """
     vertices, l = case
-    mesh = equimesh.uniform_triangulation(vertices, l)
+    mesh = equimesh.uniform_triangulation(vertices, l, engine=engine)
     inv.check_separation(mesh, vertices, l)
     inv.check_covering(mesh, vertices, l)
 
 
+@engines
 @given(ss.cases(MAX_AREA))
-def test_conforming_constrained_delaunay(case):
+def test_conforming_constrained_delaunay(engine, case):
     """The output is one conforming triangulation of P: lattice part K plus the CDT of R = P minus K.
 
     Areas sum to area(P), no inverted or overlapping triangle, the boundary of
@@ -67,7 +74,7 @@ def test_conforming_constrained_delaunay(case):
     (Definition 1).
     """
     vertices, l = case
-    mesh = equimesh.uniform_triangulation(vertices, l)
+    mesh = equimesh.uniform_triangulation(vertices, l, engine=engine)
     inv.check_triangulation(mesh, vertices, l)
     inv.check_lattice_part(mesh, vertices, l)
     inv.check_constrained_delaunay(mesh, vertices, l)
@@ -185,11 +192,12 @@ def test_non_g1_edges_grow_linearly_with_perimeter(name):
     assert 0.8 <= slope <= 1.2, f"non-G1 counts {counts} grow with exponent {slope:.2f}, not 1"
 
 
+@engines
 @given(ss.cases(MAX_AREA))
-def test_non_g1_bound_on_generated_polygons(case):
+def test_non_g1_bound_on_generated_polygons(engine, case):
     """The proven bound of the counting argument holds on every generated polygon satisfying hypothesis H."""
     vertices, l = case
-    mesh = equimesh.uniform_triangulation(vertices, l)
+    mesh = equimesh.uniform_triangulation(vertices, l, engine=engine)
     if globally_separated(mesh.points[strip_vertices(mesh)], l):
         check_non_g1_bound(mesh, vertices, l)
 
@@ -197,25 +205,27 @@ def test_non_g1_bound_on_generated_polygons(case):
 # --------------------------------------------------------------------------- 5: determinism, scaling, bad input
 
 
+@engines
 @given(ss.cases(400.0))
-def test_deterministic(case):
+def test_deterministic(engine, case):
     """Two runs on the same input give bit-identical points, triangles, edges and groups."""
     vertices, l = case
-    a = equimesh.uniform_triangulation(vertices, l)
-    b = equimesh.uniform_triangulation(vertices.copy(), l)
+    a = equimesh.uniform_triangulation(vertices, l, engine=engine)
+    b = equimesh.uniform_triangulation(vertices.copy(), l, engine=engine)
     assert a.points.tobytes() == b.points.tobytes()
     assert np.array_equal(a.triangles, b.triangles)
     assert np.array_equal(a.edges, b.edges)
     assert np.array_equal(a.edge_groups, b.edge_groups)
 
 
+@engines
 @given(
     ss.cases(400.0),
     st.integers(-4, 4),
     st.floats(0.0, 60.0),
     st.tuples(st.integers(-192, 192), st.integers(-192, 192)).map(lambda ij: (ij[0] / 64.0, ij[1] / 64.0)),
 )
-def test_scaling_by_powers_of_two(case, k, angle, offset):
+def test_scaling_by_powers_of_two(engine, case, k, angle, offset):
     """Scaling polygon, l and offset by 2**k scales the points exactly and keeps triangles and groups.
 
     Every comparison with l is relative (REL_TOL) and every computation is
@@ -226,8 +236,8 @@ def test_scaling_by_powers_of_two(case, k, angle, offset):
     vertices, l = case
     f = 2.0**k
     offset = np.array(offset) * l
-    a = equimesh.uniform_triangulation(vertices, l, angle=angle, offset=offset)
-    b = equimesh.uniform_triangulation(vertices * f, l * f, angle=angle, offset=offset * f)
+    a = equimesh.uniform_triangulation(vertices, l, angle=angle, offset=offset, engine=engine)
+    b = equimesh.uniform_triangulation(vertices * f, l * f, angle=angle, offset=offset * f, engine=engine)
     assert np.array_equal(a.points * f, b.points)
     assert np.array_equal(a.triangles, b.triangles)
     assert np.array_equal(a.edge_groups, b.edge_groups)

@@ -94,3 +94,28 @@ SURFACE_GRID = (15, 15)
 def reference_surface_json():
     """The parsed reference surface JSON (``{"type": "bezier", "control_points": ...}``)."""
     return json.loads(REFERENCE_SURFACE_JSON.read_text(encoding="utf-8"))
+
+
+# --- Engines and sizes (issue 8) -------------------------------------------------
+
+#: The insertion engines compared by the size-parametrised suites.
+ENGINES = ("fast", "reference")
+
+#: Output sizes (about this many nodes) of the Problem 1 scaling suite, smallest first.
+NODE_COUNTS = (1000, 10000, 100000)
+
+#: Problem 2 polygon areas in units of l^2, smallest first.
+PROBLEM2_AREAS = (100, 1000, 10000)
+
+#: The reference engine is benchmarked only up to these sizes (a run of a few seconds;
+#: it grows about as n^2.5).
+REFERENCE_MAX_NODES = 1000
+REFERENCE_MAX_AREA = 1000
+
+#: Nodes per unit area of farthest-point insertion at l = 1 on a square (measured).
+INSERTION_DENSITY = 0.68
+
+
+def square_for_nodes(n):
+    """The axis-parallel square on which INCREMENT at l = L places about ``n`` nodes."""
+    return square(math.sqrt(n / INSERTION_DENSITY))

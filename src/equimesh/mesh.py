@@ -18,9 +18,23 @@ def half_edges(triangles):
     return np.concatenate([t[:, [0, 1]], t[:, [1, 2]], t[:, [2, 0]]])
 
 
+def edge_keys(edges):
+    """``(keys, n)``: one int64 ``min * n + max`` per edge ``(E, 2)`` (``n`` above every index), ordered like the sorted rows."""
+    e = np.asarray(edges, dtype=np.int64).reshape(-1, 2)
+    n = int(e.max()) + 1 if e.size else 1
+    return np.minimum(e[:, 0], e[:, 1]) * n + np.maximum(e[:, 0], e[:, 1]), n
+
+
 def unique_edges(triangles):
-    """Sorted unique undirected edges ``(E, 2)`` of a triangle array."""
-    return np.unique(np.sort(half_edges(triangles), axis=1), axis=0)
+    """Sorted unique undirected edges ``(E, 2)`` of a triangle array.
+
+    Sorted through one int64 key per edge (:func:`edge_keys`): a 1-D sort,
+    far faster than ``np.unique(..., axis=0)`` at a million points.
+    """
+    keys, n = edge_keys(half_edges(triangles))
+    keys = np.sort(keys)
+    keys = keys[np.concatenate([keys[:1] == keys[:1], keys[1:] != keys[:-1]])]
+    return np.column_stack([keys // n, keys % n])
 
 
 def edge_lengths(points, edges):
@@ -47,7 +61,9 @@ def boundary_first(segments, n_points, starts=(0,)):
     number of points on the rings (one ring per start, in that order).
     """
     ring = np.concatenate([boundary_ring(segments, start=int(s)) for s in starts])
-    order = np.concatenate([ring, np.setdiff1d(np.arange(n_points), ring)])
+    rest = np.ones(n_points, dtype=bool)
+    rest[ring] = False
+    order = np.concatenate([ring, np.flatnonzero(rest)])
     inverse = np.empty_like(order)
     inverse[order] = np.arange(len(order))
     return order, inverse, len(ring)
@@ -111,9 +127,11 @@ class PlanarMesh:
             groups[_rows_in(edges, g1)] = G1
         caller = local if frame is None else frame.to_caller(local)
         if pinned is not None:
-            where = {row.tobytes(): k for k, row in enumerate(np.asarray(pinned[0], dtype=float))}
-            for i, row in enumerate(local):
-                k = where.get(row.tobytes())
+            pinned_local = np.asarray(pinned[0], dtype=float)
+            where = {row.tobytes(): k for k, row in enumerate(pinned_local)}
+            # Only rows whose x equals a pinned x can match: a vectorised filter, then the exact (bitwise) lookup.
+            for i in np.flatnonzero(np.isin(local[:, 0], pinned_local[:, 0])):
+                k = where.get(local[i].tobytes())
                 if k is not None:
                     caller[i] = pinned[1][k]
         return cls(

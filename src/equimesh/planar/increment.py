@@ -17,8 +17,8 @@ import numpy as np
 
 from ..mesh import PlanarMesh, boundary_first
 from .guarantees import verify_planar
-from .insertion import Region, check_engine, insert
-from .limits import MAX_NODES, check_max_nodes, check_size, node_estimate
+from .insertion import DEFAULT_ENGINE, Region, check_engine, insert
+from .limits import check_max_nodes, check_size, planar_estimate
 from .polygon import (
     as_polygon,
     check_boundary_separation,
@@ -43,7 +43,7 @@ def validate_problem1(vertices, l):
     return poly, l
 
 
-def increment(vertices, l, *, engine="reference", max_nodes=MAX_NODES):
+def increment(vertices, l, *, engine=DEFAULT_ENGINE, max_nodes="default"):
     """Triangulate a convex polygon with every edge in [l, 2l] (Algorithm INCREMENT).
 
     Parameters
@@ -54,11 +54,12 @@ def increment(vertices, l, *, engine="reference", max_nodes=MAX_NODES):
     l : float
         The minimum edge length.
     engine : str
-        Name of the insertion engine (see :data:`equimesh.planar.insertion.ENGINES`).
-    max_nodes : int or None
+        Name of the insertion engine (see :data:`equimesh.planar.insertion.ENGINES`):
+        "fast" (the default) or "reference" (the oracle, slow).
+    max_nodes : int, None or "default"
         Refuse, before any heavy work, a polygon whose estimated node count
-        (Oler's bound) exceeds this (:data:`equimesh.planar.limits.MAX_NODES`);
-        None for no limit.
+        (Oler's bound) exceeds this; "default" is the engine's limit
+        (:data:`equimesh.planar.limits.MAX_NODES`), None no limit.
 
     Returns
     -------
@@ -68,11 +69,11 @@ def increment(vertices, l, *, engine="reference", max_nodes=MAX_NODES):
         triangulation and its edges.  Theorem 1 is checked on it before it is
         returned (:func:`equimesh.planar.guarantees.verify_planar`).
     """
-    max_nodes = check_max_nodes(max_nodes)
     check_engine(engine)
+    max_nodes = check_max_nodes(max_nodes, engine)
     poly, l = validate_problem1(vertices, l)
     lp = poly.local_length(l)
-    check_size("the polygon", node_estimate(poly.local_area, poly.local_perimeter, lp), max_nodes, l)
+    check_size(*planar_estimate(poly, l, None, engine), max_nodes, l)
     boundary = resample_boundary(poly, l)
     check_boundary_separation(poly, boundary, l)
     region = Region(boundary.points, boundary.segments, np.empty((0, 2)))

@@ -32,12 +32,11 @@ insertion, under the same guarantees as everywhere else in R.
 from dataclasses import dataclass
 
 import numpy as np
-import shapely
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 
-from ..mesh import half_edges
-from ..tolerance import at_least
+from ..mesh import edge_keys, half_edges
+from ._clearance import clear_of_boundary
 
 #: Lattice steps (di, dj) between neighbouring vertices, in the basis
 #: a1 = l (cos t, sin t), a2 = l (cos(t + 60), sin(t + 60)).
@@ -124,11 +123,8 @@ def kept_vertices(poly, l, angle=0.0, offset=(0.0, 0.0), clearance=1.0):
     i1, j1 = np.ceil(coords.max(axis=0)).astype(int) + 1
     ii, jj = np.meshgrid(np.arange(i0, i1 + 1), np.arange(j0, j1 + 1), indexing="ij")
     pts = lattice_points(np.column_stack([ii.ravel(), jj.ravel()]), lp, angle, offset)
-    shape = poly.shapely()
-    inside = shapely.contains_xy(shape, pts[:, 0], pts[:, 1])
-    far = np.zeros(len(pts), dtype=bool)
-    far[inside] = at_least(shapely.distance(shapely.points(pts[inside]), shape.boundary), clearance * lp)
-    return ii, jj, pts, far.reshape(ii.shape)
+    kept = clear_of_boundary(poly.shapely(), pts, (i0, j0), ii.shape, offset, basis, clearance * lp)
+    return ii, jj, pts, kept
 
 
 def lattice_triangle_masks(kept):
@@ -167,9 +163,8 @@ def lattice_part(poly, l, angle=0.0, offset=(0.0, 0.0), clearance=1.0):
 def _single_edges(tri):
     """Directed edges of ``tri`` that belong to exactly one triangle."""
     directed = half_edges(tri)
-    undirected = np.sort(directed, axis=1)
-    _, inverse, counts = np.unique(undirected, axis=0, return_inverse=True, return_counts=True)
-    return directed[counts[inverse.ravel()] == 1]
+    _, inverse, counts = np.unique(edge_keys(directed)[0], return_inverse=True, return_counts=True)
+    return directed[counts[inverse] == 1]
 
 
 def _component_seeds(points, tri):

@@ -1,27 +1,35 @@
 """Beyond the paper: the size guard shared by the planar algorithms and the surface pipeline.
 
-The reference insertion engine re-triangulates after every inserted point and
-tests every candidate against every constraint, so a run costs far more than
-linear time in its node count (docs/decisions.md, "Hardening of the planar
-core", has the measured times).  ``max_nodes`` bounds, before any heavy work,
-the estimated number of nodes the farthest-point insertion has to place:
+``max_nodes`` bounds, before any heavy work, the estimated number of nodes a
+run has to place; its default depends on the insertion engine
+(:data:`MAX_NODES`), each measured to about a minute on a 2-core machine
+(docs/decisions.md):
 
-* Problem 1: every node (Oler's bound on an l-separated set, :func:`node_estimate`);
-* Problem 2: the nodes of the boundary strip R, which lies within
-  ``(clearance + 1) l`` of the boundary (:mod:`equimesh.planar.lattice`).  The
-  lattice part is cheap (vectorised) and needs no limit of its own: by the
+* the reference engine re-triangulates after every inserted point and tests
+  every candidate against every constraint, far more than linear time in the
+  nodes it inserts, so only those count: Problem 1 every node (Oler's bound
+  on an l-separated set, :func:`node_estimate`), Problem 2 the nodes of the
+  boundary strip R, which lies within ``(clearance + 1) l`` of the boundary
+  (:mod:`equimesh.planar.lattice`; the lattice part is vectorised, and by the
   isoperimetric inequality its bounding-box grid has at most about
-  ``0.3 (perimeter / l)^2`` vertices, so bounding the strip bounds it too.
+  ``0.3 (perimeter / l)^2`` vertices, so bounding the strip bounds it too);
+* the fast engine runs in about O(n log n), and at its limit the lattice
+  part and the memory of the whole mesh matter as much as the strip: every
+  node of the polygon counts (Oler's bound on the whole polygon), for
+  Problem 2 and the lattice placement search too.
 """
 
 import math
 import numbers
 
 from ..errors import EquimeshError, MeshTooLargeError
+from .insertion import DEFAULT_ENGINE, check_engine
 
-#: Default of ``max_nodes``: a run at this estimate takes about a minute on a
-#: 2-core machine (docs/decisions.md).  ``None`` means no limit.
-MAX_NODES = 2500
+#: Default of ``max_nodes`` (``max_nodes="default"``) for each insertion engine,
+#: in the nodes it counts (module docstring).  Reference: a run at 2500 takes
+#: about a minute; fast: 10^6 nodes take about 20 s and stay under 1 GB (the
+#: memory, not the time, sets it; docs/decisions.md).  ``None`` means no limit.
+MAX_NODES = {"reference": 2500, "fast": 1_000_000}
 
 
 def check_count(value, name, least=1):
@@ -31,9 +39,22 @@ def check_count(value, name, least=1):
     return int(value)
 
 
-def check_max_nodes(value):
-    """``max_nodes`` as an int, or None for no limit."""
+def check_max_nodes(value, engine=DEFAULT_ENGINE):
+    """``max_nodes`` as an int, None for no limit, or ``"default"``: the limit of ``engine`` (:data:`MAX_NODES`)."""
+    if isinstance(value, str) and value == "default":
+        return MAX_NODES[check_engine(engine)]
     return None if value is None else check_count(value, "max_nodes (None for no limit)")
+
+
+def planar_estimate(poly, l, strip, engine):
+    """The node count ``max_nodes`` bounds for ``engine``: ``(what, estimate)`` (module docstring).
+
+    ``strip`` is the reference engine's count for Problem 2 (the boundary
+    strip's estimate), None for Problem 1.
+    """
+    if strip is not None and check_engine(engine) == "reference":
+        return "the boundary strip", strip
+    return "the polygon", node_estimate(poly.local_area, poly.local_perimeter, poly.local_length(l))
 
 
 def node_estimate(area, perimeter, l):

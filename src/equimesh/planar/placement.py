@@ -18,6 +18,15 @@ offsets (fractions of the two lattice vectors), then ``refine`` rounds of a
 first placement in search order (angle, then offset along a1, then along a2),
 and the default placement (0, (0, 0)) is evaluated first, so the search never
 returns a worse placement than the default.
+
+Cost: ``1 + n_angles n_offsets^2 + 27 refine`` evaluations (247 by default),
+each O(A / l^2) elementwise array operations on the lattice's bounding-box
+grid plus O((clearance + 1) P / l) point-segment distances for the vertices
+near the boundary (:mod:`equimesh.planar._clearance`; A the area, P the
+perimeter).  Before issue 8 every grid vertex was measured against every
+boundary edge, O(A P / l^3): on the reference dome at l = 0.5 the search
+now takes about 2 s, where the whole planar stage took 149 s before
+(docs/performance.md).
 """
 
 from dataclasses import dataclass
@@ -25,8 +34,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import EquimeshError
+from .insertion import DEFAULT_ENGINE
 from .lattice import kept_vertices, lattice_basis, lattice_triangle_masks
-from .limits import MAX_NODES, check_count, check_max_nodes, check_size
+from .limits import check_count, check_max_nodes, check_size, planar_estimate
 from .polygon import as_polygon, check_length
 from .strip import check_clearance, strip_estimate
 
@@ -79,7 +89,7 @@ def lattice_edge_count(poly, l, angle, offset, clearance=1.0):
 
 
 def best_lattice_placement(
-    vertices, l, *, holes=None, clearance=1.0, n_angles=12, n_offsets=4, refine=2, max_nodes=MAX_NODES
+    vertices, l, *, holes=None, clearance=1.0, n_angles=12, n_offsets=4, refine=2, max_nodes="default"
 ):
     """Search the lattice angle and offset that maximise the number of G1 lattice edges.
 
@@ -97,9 +107,10 @@ def best_lattice_placement(
     n_angles, n_offsets, refine : int
         Coarse grid size (positive) and number of refinement rounds (>= 0);
         at most :data:`MAX_EVALUATIONS` placements in all.
-    max_nodes : int or None
-        The size guard of :func:`equimesh.uniform_triangulation` (the lattice
-        grid each evaluation builds is bounded through it); None for no limit.
+    max_nodes : int, None or "default"
+        The size guard of :func:`equimesh.uniform_triangulation` with the
+        default engine (the lattice grid each evaluation builds is bounded
+        through it); None for no limit.
 
     Returns
     -------
@@ -119,7 +130,7 @@ def best_lattice_placement(
         )
     max_nodes = check_max_nodes(max_nodes)
     poly = as_polygon(vertices, l, holes)
-    check_size("the boundary strip", strip_estimate(poly, l, clearance), max_nodes, l)
+    check_size(*planar_estimate(poly, l, strip_estimate(poly, l, clearance), DEFAULT_ENGINE), max_nodes, l)
     evaluations = 0
 
     def score(angle, frac):

@@ -30,9 +30,9 @@ import shapely
 from ..errors import EquimeshError
 from ..mesh import PlanarMesh, boundary_first, boundary_ring, unique_edges
 from .guarantees import verify_planar
-from .insertion import Region, check_engine, insert
+from .insertion import DEFAULT_ENGINE, Region, check_engine, insert
 from .lattice import lattice_adjacent, lattice_part
-from .limits import MAX_NODES, check_max_nodes, check_size, node_estimate
+from .limits import check_max_nodes, check_size, node_estimate, planar_estimate
 from .polygon import (
     as_polygon,
     check_boundary_separation,
@@ -63,8 +63,8 @@ def uniform_triangulation(
     offset=(0.0, 0.0),
     clearance=1.0,
     boundary_spacing=BOUNDARY_SPACING,
-    engine="reference",
-    max_nodes=MAX_NODES,
+    engine=DEFAULT_ENGINE,
+    max_nodes="default",
 ):
     """Triangulate a simple polygon with most edges exactly ``l`` and all in [l, 2l] (Problem 2).
 
@@ -94,11 +94,14 @@ def uniform_triangulation(
         Target length, in units of l, of the parts long boundary edges are
         split into (Step 2); kept within [l, 2l].
     engine : str
-        Insertion engine for the boundary strip.
-    max_nodes : int or None
-        Refuse, before any heavy work, a polygon whose boundary strip is
-        estimated to need more nodes than this
-        (:data:`equimesh.planar.limits.MAX_NODES`); None for no limit.
+        Insertion engine for the boundary strip: "fast" (the default) or
+        "reference" (the oracle, slow).
+    max_nodes : int, None or "default"
+        Refuse, before any heavy work, a polygon estimated to need more nodes
+        than this (the boundary strip's for the reference engine, the whole
+        polygon's for the fast one, :mod:`equimesh.planar.limits`); "default"
+        is the engine's limit (:data:`equimesh.planar.limits.MAX_NODES`), None
+        no limit.
 
     Returns
     -------
@@ -115,11 +118,11 @@ def uniform_triangulation(
     offset = _check_pair(offset, "offset")
     angle = _check_scalar(angle, "angle")
     spacing = check_spacing(boundary_spacing)
-    max_nodes = check_max_nodes(max_nodes)
     check_engine(engine)
+    max_nodes = check_max_nodes(max_nodes, engine)
     poly = as_polygon(vertices, l, holes)
     check_edges_at_least(poly, l)
-    check_size("the boundary strip", strip_estimate(poly, l, clearance), max_nodes, l)
+    check_size(*planar_estimate(poly, l, strip_estimate(poly, l, clearance), engine), max_nodes, l)
     boundary = resample_boundary(poly, l, spacing)
     check_boundary_separation(poly, boundary, l)
     lat = lattice_part(poly, l, angle, offset, clearance)

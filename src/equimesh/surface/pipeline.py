@@ -31,6 +31,7 @@ from .._geometry import power_of_two_scale
 from ..mesh import G1, edge_lengths
 from .optimize import OBJECTIVES, optimize_uv
 from .outline import resample_outline
+from ..planar.insertion import DEFAULT_ENGINE, check_engine
 from ..planar.limits import check_max_nodes, check_size
 from ..planar.placement import best_lattice_placement
 from ..planar.polygon import check_length
@@ -136,6 +137,7 @@ def mesh_surface(
     boundary_spacing=BOUNDARY_SPACING,
     max_nodes="default",
     progress=None,
+    engine=DEFAULT_ENGINE,
 ):
     """Mesh a parametric surface with members as equal as possible (Section 4).
 
@@ -165,6 +167,8 @@ def mesh_surface(
         minutes on a small machine.
     progress : callable, optional
         Called as ``progress(stage, seconds)`` after each stage.
+    engine : str
+        Insertion engine of Problem 2 (:data:`equimesh.planar.insertion.ENGINES`).
 
     Returns
     -------
@@ -186,6 +190,7 @@ def mesh_surface(
         raise EquimeshError(f"placement must be one of {PLACEMENTS}, got {placement!r}")
     boundary_spacing = check_spacing(boundary_spacing)  # Problem 2's own check, needed by step 3 already
     limit = _node_limit(max_nodes, optimize)
+    engine = check_engine(engine)
     n_u, n_v = _grid_pair(grid)
     if not (hasattr(surface, "evaluate") and hasattr(surface, "derivatives")):
         raise InvalidSurfaceError("surface must provide evaluate(u, v) and derivatives(u, v)")
@@ -207,7 +212,8 @@ def mesh_surface(
         chosen = best_lattice_placement(outline.vertices, l, max_nodes=None) if placement == "best" else None
         angle, offset = (chosen.angle, chosen.offset) if chosen else (0.0, (0.0, 0.0))
         plane = uniform_triangulation(
-            outline.vertices, l, angle=angle, offset=offset, boundary_spacing=boundary_spacing, max_nodes=None
+            outline.vertices, l, angle=angle, offset=offset, boundary_spacing=boundary_spacing, engine=engine,
+            max_nodes=None,
         )
     except InvalidPolygonError as exc:
         raise restate_polygon_error(exc, surface, flat.points, aux, outline, l) from None

@@ -186,9 +186,11 @@ def cavity_boundary(V, N, S, cav, k, split, mark, stamp, edges):
             if s >= 0 and s == split:
                 continue
             inside = n >= 0 and mark[n] == stamp
-            if (inside and s >= 0) or m == len(edges):
+            if inside and s >= 0:
                 return -1
             if not inside:
+                if m == len(edges):
+                    return -1
                 edges[m, 0], edges[m, 1], edges[m, 2], edges[m, 3] = V[t, e], V[t, (e + 1) % 3], n, s
                 m += 1
     return m

@@ -50,6 +50,12 @@ deterministic (exact predicates, fixed slot order).
 
 The engine requires every constraint to bound the region (a triangle on one
 side only), as in Problems 1 and 2.
+
+numba's on-disk cache (``cache=True``) is keyed by the source file of each
+compiled function, not by the functions it calls: after an edit of
+:mod:`._cdt` or :mod:`._predicates` alone, the cached :func:`_insert_all`
+still holds the old code.  Edit this file too (or delete ``__pycache__/*.nb*``)
+whenever one of them changes.
 """
 
 import math

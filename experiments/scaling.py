@@ -1,0 +1,204 @@
+"""Scaling of Problem 1: time and peak memory against the number of points, both engines, Triangle and scipy.
+
+For each target size n (about n output points), each method runs in a fresh
+process (so that its peak memory is its own), on the unit square:
+
+* ``fast``, ``reference``: ``equimesh.increment(unit square, l, engine=...)``
+  with ``l = sqrt(0.68 / n)`` (farthest-point insertion places about
+  ``0.68 / l^2`` points per unit area); the whole call, validation, Step 2 and
+  the Theorem 1 check included.  The reference engine runs only while its
+  predicted time (the last run's, or the issue's 0.44 s at 308 nodes, scaled
+  by ``(n / n_last)^2.5``, the issue's measured exponent) stays under ``--reference-limit`` seconds (a minute with
+  ``--full``, 5 s in the default range, which should take about a minute);
+* ``triangle``: Triangle's own quality refinement
+  ``triangle.triangulate(square, "pqa<area>Q")``, the area bound set from n
+  and corrected once to the vertex count of the fast engine (Triangle's
+  "about the same number of vertices");
+* ``scipy``: ``scipy.spatial.Delaunay`` of n uniformly random points (seeded),
+  an unconstrained triangulation without insertion: the floor any mesh
+  generator pays.
+
+Peak memory is the process's resident high-water mark (``ru_maxrss``) after
+the call minus the same before it (imports and the input), in MB.  The
+exponent of each method is fitted by least squares on the logs
+(``np.polyfit(log n, log t, 1)``) over the sizes where its time is above
+``--fit-floor`` seconds (timer and start-up noise below).
+
+Writes (``results/`` data, ``paper_figs/`` figure drawn from the data only)::
+
+    results/scaling.csv, .md, .provenance.json    one row per (method, size); fitted exponents;
+                                                  the fast engine's time per point against Triangle's
+    paper_figs/scaling.png, .pdf, .provenance.json  log-log time and memory against n
+
+Usage::
+
+    python experiments/scaling.py            # 10^2 .. 3 10^4, about a minute
+    python experiments/scaling.py --full     # 10^2 .. 10^6 (several minutes, ~1 GB)
+    python experiments/scaling.py --plot-only
+"""
+
+import json
+import math
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))  # _common.py, also when loaded by file path
+import _common  # noqa: E402
+
+NAME = "scaling"
+METHODS = ("fast", "reference", "triangle", "scipy")
+DEFAULT_SIZES = (100, 300, 1000, 3000, 10000, 30000)
+FULL_SIZES = (100, 300, 1000, 3000, 10000, 30000, 100000, 300000, 1000000)
+#: Points per unit area of farthest-point insertion at spacing l = 1 (measured on squares).
+DENSITY = 0.68
+#: Exponent used to predict the reference engine's next run, and the run it starts from
+#: before it has run (the issue's measurement: 0.44 s for 308 nodes).
+REFERENCE_EXPONENT = 2.5
+REFERENCE_START = {"n_target": 308, "seconds": 0.44}
+COLUMNS = ["method", "n_target", "n_points", "seconds", "us_per_point", "peak_mb", "first_call_s"]
+
+SQUARE = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]
+
+
+def _peak_mb():
+    import resource
+
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
+
+
+def measure(method, n, like=None):
+    """One method at one size, in this process: a dict of the columns (``like``: Triangle's target vertex count)."""
+    first_s = 0.0
+    if method in ("fast", "reference"):
+        import equimesh
+
+        first, first_s = _common.timed(equimesh.increment, [[0, 0], [3, 0], [3, 3], [0, 3]], 1.0, engine=method)
+        base = _peak_mb()
+        mesh, seconds = _common.timed(equimesh.increment, SQUARE, math.sqrt(DENSITY / n), engine=method, max_nodes=None)
+        points = mesh.n_nodes
+    elif method == "triangle":
+        import triangle
+
+        square = {"vertices": np.array(SQUARE), "segments": [[0, 1], [1, 2], [2, 3], [3, 0]]}
+        target = like or n
+        area = 1.0 / target
+        base = _peak_mb()
+        for _ in range(2):  # the second run with the area bound corrected to the target vertex count
+            out, seconds = _common.timed(triangle.triangulate, square, f"pqa{area:.20f}Q")
+            points = len(out["vertices"])
+            area *= points / target
+    else:
+        from scipy.spatial import Delaunay
+
+        xy = np.random.default_rng(n).random((n, 2))
+        base = _peak_mb()
+        _, seconds = _common.timed(Delaunay, xy)
+        points = n
+    return {
+        "method": method, "n_target": n, "n_points": int(points), "seconds": seconds,
+        "us_per_point": 1e6 * seconds / points, "peak_mb": _peak_mb() - base,
+        "first_call_s": first_s,
+    }
+
+
+def _run(method, n, like=None):
+    """:func:`measure` in a fresh interpreter (its own peak memory); the row."""
+    args = [sys.executable, __file__, "--one", method, str(n)] + ([str(like)] if like else [])
+    proc = subprocess.run(args, capture_output=True, text=True, check=True)
+    return json.loads(proc.stdout.strip().splitlines()[-1])
+
+
+def sweep(sizes, reference_limit, progress=print):
+    """Rows for every method and size, smallest size first."""
+    rows, last_reference = [], REFERENCE_START
+    for n in sizes:
+        fast = _run("fast", n)
+        rows.append(fast)
+        rows.append(_run("triangle", n, fast["n_points"]))
+        rows.append(_run("scipy", n))
+        if last_reference["seconds"] * (n / last_reference["n_target"]) ** REFERENCE_EXPONENT < reference_limit:
+            last_reference = _run("reference", n)
+            rows.append(last_reference)
+        progress(f"n = {n}: " + ", ".join(f"{r['method']} {r['seconds']:.3g} s" for r in rows if r["n_target"] == n))
+    return pd.DataFrame(rows, columns=COLUMNS)
+
+
+def exponents(frame, floor):
+    """Fitted exponent of time against points per method: ``{method: (slope, n_sizes)}`` (nan below two sizes)."""
+    out = {}
+    for method, group in frame.groupby("method", sort=False):
+        g = group[group["seconds"] >= floor]
+        slope = np.polyfit(np.log(g["n_points"]), np.log(g["seconds"]), 1)[0] if len(g) >= 2 else float("nan")
+        out[method] = (float(slope), len(g))
+    return out
+
+
+def report(frame, floor, record):
+    fits = exponents(frame, floor)
+    body = ["## Fitted exponents (time ~ n^k, least squares on the logs)", "", "| method | k | sizes fitted |", "|---|---|---|"]
+    body += [f"| {m} | {k:.3f} | {c} |" for m, (k, c) in fits.items()]
+    body += ["", "## Fast engine against Triangle's quality refinement (time per output point)", "",
+             "| n (fast) | fast us/point | n (Triangle) | Triangle us/point | ratio | fast peak MB |", "|---|---|---|---|---|---|"]
+    for n, group in frame.groupby("n_target"):
+        f = group[group["method"] == "fast"].iloc[0]
+        t = group[group["method"] == "triangle"].iloc[0]
+        body.append(f"| {f.n_points} | {f.us_per_point:.3g} | {t.n_points} | {t.us_per_point:.3g} | "
+                    f"{f.us_per_point / t.us_per_point:.2f} | {f.peak_mb:.0f} |")
+    body += ["", "## All runs", "", "| " + " | ".join(COLUMNS) + " |", "|" + "---|" * len(COLUMNS)]
+    body += ["| " + " | ".join(f"{v:.4g}" if isinstance(v, float) else str(v) for v in row) + " |" for row in frame.itertuples(index=False)]
+    return _common.markdown_report("Scaling of Problem 1 (unit square)", "`python experiments/scaling.py`", body, record)
+
+
+def plot(frame, fig_dir, parameters):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, (ax_t, ax_m) = plt.subplots(1, 2, figsize=(10, 4))
+    for method, group in frame.groupby("method", sort=False):
+        ax_t.loglog(group["n_points"], group["seconds"], "o-", label=method)
+        ax_m.loglog(group["n_points"], np.maximum(group["peak_mb"], 0.1), "o-", label=method)
+    ax_t.set(xlabel="points n", ylabel="seconds", title="time")
+    ax_m.set(xlabel="points n", ylabel="peak memory above baseline (MB)", title="memory")
+    ax_t.legend()
+    fig.tight_layout()
+    _common.save_figure(fig, Path(fig_dir) / NAME, parameters, dpi=120)
+    plt.close(fig)
+
+
+def main(argv=None):
+    argv = sys.argv[1:] if argv is None else list(argv)
+    if argv[:1] == ["--one"]:
+        print(json.dumps(measure(argv[1], int(argv[2]), int(argv[3]) if len(argv) > 3 else None)))
+        return 0
+    p = _common.add_output_options(_common.parser(__doc__), plot_only=True)
+    p.add_argument("--full", action="store_true", help="sizes 10^2 .. 10^6 (default: 10^2 .. 3 10^4)")
+    p.add_argument("--sizes", type=int, nargs="+", help="explicit target sizes (overrides --full)")
+    p.add_argument("--reference-limit", type=float, help="skip a reference run predicted above this (default 60 s with --full, else 5 s)")
+    p.add_argument("--fit-floor", type=float, default=0.01, help="fit exponents on times above this (s)")
+    args = p.parse_args(argv)
+    csv = args.out_dir / f"{NAME}.csv"
+    sizes = args.sizes or (FULL_SIZES if args.full else DEFAULT_SIZES)
+    limit = args.reference_limit if args.reference_limit is not None else (60.0 if args.full else 5.0)
+    parameters = {"sizes": list(sizes), "reference_limit": limit, "fit_floor": args.fit_floor}
+    if args.plot_only:
+        frame = pd.read_csv(csv)
+    else:
+        frame = sweep(sizes, limit)
+        args.out_dir.mkdir(parents=True, exist_ok=True)
+        _common.write_results(csv, frame, parameters, lambda record: report(frame, args.fit_floor, record))
+    args.fig_dir.mkdir(parents=True, exist_ok=True)
+    plot(frame, args.fig_dir, parameters)
+    for method, (k, count) in exponents(frame, args.fit_floor).items():
+        print(f"{method}: time ~ n^{k:.2f} ({count} sizes)")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

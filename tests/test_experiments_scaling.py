@@ -1,0 +1,39 @@
+"""Smoke test of experiments/scaling.py: every method measured, exponents fitted, every output written."""
+
+import json
+
+import pandas as pd
+
+
+def test_scaling_writes_data_report_figure_and_provenance(load_experiment, tmp_path, monkeypatch):
+    """The sweep's logic in this process (the script runs each measurement in a fresh one): rows, fits, files."""
+    scaling = load_experiment("scaling")
+    monkeypatch.setattr(scaling, "_run", scaling.measure)
+    out, figs = tmp_path / "results", tmp_path / "figs"
+    assert scaling.main(["--sizes", "30", "60", "--out-dir", str(out), "--fig-dir", str(figs), "--fit-floor", "0"]) == 0
+    frame = pd.read_csv(out / "scaling.csv")
+    assert list(frame.columns) == scaling.COLUMNS
+    assert sorted(set(frame["method"])) == sorted(scaling.METHODS)
+    assert (frame["n_points"] > 0).all() and (frame["seconds"] > 0).all()
+    report = (out / "scaling.md").read_text()
+    assert "Fitted exponents" in report and "| fast |" in report and "Provenance" in report
+    assert json.loads((out / "scaling.provenance.json").read_text())["parameters"]["sizes"] == [30, 60]
+    for name in ("scaling.png", "scaling.pdf", "scaling.provenance.json"):
+        assert (figs / name).exists()
+    (figs / "scaling.png").unlink()
+    assert scaling.main(["--plot-only", "--out-dir", str(out), "--fig-dir", str(figs)]) == 0
+    assert (figs / "scaling.png").exists()
+
+
+def test_reference_skipped_when_predicted_over_the_limit(load_experiment, monkeypatch):
+    """The reference engine stops once its predicted time passes the limit; the other methods go on."""
+    scaling = load_experiment("scaling")
+    fake = lambda method, n, like=None: {"method": method, "n_target": n, "n_points": n, "seconds": 1e-3 * n, "us_per_point": 1e3,
+                                         "peak_mb": 0.0, "first_call_s": 0.0}
+    monkeypatch.setattr(scaling, "_run", fake)
+    frame = scaling.sweep([10, 100, 1000], reference_limit=5.0, progress=lambda _: None)
+    assert list(frame[frame["method"] == "reference"]["n_target"]) == [10, 100]
+    assert list(frame[frame["method"] == "fast"]["n_target"]) == [10, 100, 1000]
+    # Before any reference run, the prediction starts from the issue's measurement (0.44 s at 308 nodes).
+    frame = scaling.sweep([100000], reference_limit=60.0, progress=lambda _: None)
+    assert "reference" not in set(frame["method"])
