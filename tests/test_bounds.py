@@ -89,6 +89,8 @@ EXACT_LOWER_BOUNDS = {
     "regular hexagon, edge 2l": (regular_polygon(6, 2.0), 1.0, 7),
     # Area 16 l^2: ceil(9.24) = 10 triangles; perimeter 16 l = 8 * 2l, so h >= 8 > |V|.
     "square 4l": (rectangle(4.0, 4.0), 1.0, 10),
+    # Area 25 l^2: ceil(14.43) = 15 triangles; perimeter 20 l = 10 * 2l, h >= 10; 15 + 10 odd.
+    "square 5l": (rectangle(5.0, 5.0), 1.0, 14),
     # The same at l = 2^-3: the bound depends on P / l only.
     "square 4l, l = 1/8": (rectangle(0.5, 0.5), 0.125, 10),
 }
