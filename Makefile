@@ -77,8 +77,9 @@ bench-history: $(STAMP)
 		../$(VENV)/bin/asv run --skip-existing-commits --show-stderr $(ASV_ARGS) "$(RANGE)"
 
 # HEAD against BASE: prints the benchmarks that changed by more than FACTOR
-# and fails (non-zero exit) when one got slower.
-bench-compare: $(STAMP)
+# and fails (non-zero exit) when one got slower.  BASE is checked before the
+# .venv is made, so a wrong one fails at once.
+bench-compare:
 	@base="$(BASE)"; \
 	if [ -z "$$base" ]; then \
 		main=$$(git rev-parse --verify -q main || git rev-parse --verify -q origin/main) || { \
@@ -88,6 +89,7 @@ bench-compare: $(STAMP)
 	fi; \
 	git rev-parse --verify -q "$$base^{commit}" >/dev/null || { \
 		echo "make bench-compare: unknown base commit '$$base'" >&2; exit 2; }; \
+	$(MAKE) --no-print-directory venv || exit $$?; \
 	echo "==> HEAD against $$base, factor $(FACTOR)"; \
 	cd benchmarks && ../$(VENV)/bin/asv machine --yes >/dev/null && \
 		../$(VENV)/bin/asv continuous --factor $(FACTOR) --split --show-stderr $(ASV_ARGS) "$$base" HEAD

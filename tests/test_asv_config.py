@@ -12,6 +12,7 @@ reason.  With the environment in place it takes about a minute.
 
 import json
 import os
+import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -69,3 +70,14 @@ def test_asv_builds_and_benchmarks_the_head_commit(tmp_path):
     assert record["commit_hash"] == head
     values = record["results"][BENCHMARK][0]
     assert all(v is not None and v > 0 for v in values), values
+
+
+def test_bench_compare_refuses_an_unknown_base_in_one_line():
+    """``make bench-compare BASE=<unknown>``: one line naming the base, exit status 2, before any venv or asv work."""
+    if shutil.which("make") is None or _head() is None:
+        pytest.skip("needs make and a git checkout")
+    done = subprocess.run(["make", "--no-print-directory", "bench-compare", "BASE=no-such-commit"],
+                          cwd=ROOT, capture_output=True, text=True)
+    assert done.returncode == 2
+    assert done.stderr.splitlines()[0] == "make bench-compare: unknown base commit 'no-such-commit'"
+    assert done.stdout == ""
