@@ -64,7 +64,16 @@ MODULES = {
 
 #: Equivalent mutants: (module, the mutated line as mutmut prints it after
 #: "+", stripped) -> why no test can tell it from the original.
-EQUIVALENT = {}
+_POLYGON = "src/equimesh/planar/polygon.py"
+_SPACING_ABOVE_2 = ("equivalent: for any spacing >= 2 the lower bound ceil(L / 2l) of split_counts decides, "
+                    "so a default of 3 gives the same parts as 2")
+_FLOAT_ANYWAY = "equivalent: the division by l that follows makes the counts' arithmetic float for any real input"
+EQUIVALENT = {
+    (_POLYGON, "def split_counts(lengths, l, spacing=3.0):"): _SPACING_ABOVE_2,
+    (_POLYGON, "def resample_boundary(poly, l, spacing=3.0):"): _SPACING_ABOVE_2,
+    (_POLYGON, "lengths = np.asarray(lengths, dtype=None)"): _FLOAT_ANYWAY,
+    (_POLYGON, "lengths = np.asarray(lengths, )"): _FLOAT_ANYWAY,
+}
 
 #: pytest options for every mutant run: stop at the first failure.
 PYTEST_ARGS = ["-p", "no:cacheprovider", "-q", "-x"]

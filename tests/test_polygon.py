@@ -18,7 +18,7 @@ import equimesh
 from equimesh import REL_TOL, EquimeshError, InvalidLengthError, InvalidPolygonError
 from equimesh.testing.generators import random_convex_polygon, rectangle, regular_polygon
 from equimesh.planar.increment import validate_problem1
-from equimesh.planar.polygon import as_polygon, resample_boundary
+from equimesh.planar.polygon import as_polygon, resample_boundary, split_counts
 from strategies import problems, seeds
 
 SQUARE = rectangle(4.0, 4.0)
@@ -132,3 +132,40 @@ def test_generator_builds_valid_problem1_polygons(seed, k, area, elongation, min
     assert poly.area >= area * (1.0 - 1e-12)
     capped = random_convex_polygon(np.random.default_rng(seed), n_vertices=k, area=area, elongation=elongation, max_area=60.0)
     assert validate_problem1(capped, 1.0)[0].area <= 60.0 * (1.0 + 1e-12)
+
+
+# Step 2 by hand: (l, spacing, edge length L, parts k).  k = ceil(L / (spacing l)) kept in
+# [ceil(L / 2l), floor(L / l)], each bound up to REL_TOL; l = 2 tells l from 1 / l.
+SPLIT_COUNTS = [
+    (1.0, 2.0, 1.0, 1),  # shorter than 2l: one part
+    (1.0, 2.0, 2.0, 1),  # exactly 2l: still one part
+    (1.0, 2.0, 4.0, 2),  # exactly 4l: two parts of 2l, not three
+    (1.0, 2.0, 4.0 * (1.0 + 0.5 * REL_TOL), 2),  # 2l up to REL_TOL
+    (1.0, 2.0, 4.0 * (1.0 + 2.0 * REL_TOL), 3),
+    (2.0, 2.0, 8.0, 2),
+    (1.0, 1.5, 3.0, 2),  # the spacing decides: parts of 1.5 l
+    (2.0, 1.5, 6.0, 2),
+    (1.0, 1.5, 4.0, 3),
+    (1.0, 3.0, 5.0, 3),  # spacing above 2: the lower bound ceil(L / 2l) decides
+    (1.0, 0.5, 3.0, 3),  # spacing below 1: the upper bound floor(L / l) decides
+    (2.0, 0.5, 6.0, 3),
+    (1.0, 0.5, 3.0 * (1.0 - 0.5 * REL_TOL), 3),  # parts of l up to REL_TOL
+    (1.0, 0.5, 3.0 * (1.0 - 2.0 * REL_TOL), 2),
+]
+
+
+@pytest.mark.parametrize("l, spacing, length, parts", SPLIT_COUNTS)
+def test_split_counts_by_hand(l, spacing, length, parts):
+    """Step 2: the number of equal parts of a boundary edge, each part in [l, 2l] (up to REL_TOL)."""
+    assert split_counts([length], l, spacing).tolist() == [parts]
+    if spacing == 2.0:
+        assert split_counts([length], l).tolist() == [parts]  # 2 is the default (Problem 1)
+
+
+def test_resample_boundary_uses_the_spacing():
+    """A square of side 4l: parts of at most 2l (default) give 8 boundary points, of at most 1.5 l give 12."""
+    poly = as_polygon(rectangle(4.0, 4.0), 1.0)
+    assert len(resample_boundary(poly, 1.0).points) == 8
+    boundary = resample_boundary(poly, 1.0, 1.5)
+    assert len(boundary.points) == 12 and boundary.is_vertex.sum() == 4
+    assert boundary.edge.tolist() == [0, 0, 0, 1, 1, 1, 2, 2, 2, 3, 3, 3]
