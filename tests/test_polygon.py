@@ -7,6 +7,7 @@ edge at fault.
 """
 
 import math
+import re
 
 import numpy as np
 import pytest
@@ -18,7 +19,8 @@ import equimesh
 from equimesh import REL_TOL, EquimeshError, InvalidLengthError, InvalidPolygonError
 from equimesh.testing.generators import random_convex_polygon, rectangle, regular_polygon
 from equimesh.planar.increment import validate_problem1
-from equimesh.planar.polygon import as_polygon, resample_boundary, split_counts
+from equimesh.planar.polygon import as_polygon, check_length, resample_boundary, split_counts
+from equimesh.tolerance import MAX_LENGTH, MIN_LENGTH
 from strategies import problems, seeds
 
 SQUARE = rectangle(4.0, 4.0)
@@ -169,3 +171,30 @@ def test_resample_boundary_uses_the_spacing():
     boundary = resample_boundary(poly, 1.0, 1.5)
     assert len(boundary.points) == 12 and boundary.is_vertex.sum() == 4
     assert boundary.edge.tolist() == [0, 0, 0, 1, 1, 1, 2, 2, 2, 3, 3, 3]
+
+
+@pytest.mark.parametrize("vertices, where", [
+    ([(0, 0), (4, 0), (2, 0), (2, 3)], "vertex 1 at (4, 0)"),
+    ([(0, 0), (3, 0), (3, 3), (3, 1), (0, 3)], "vertex 2 at (3, 3)"),
+    ([(0, 3), (0, 0), (3, 0), (3, 3), (3, 1)], "vertex 3 at (3, 3)"),
+])
+def test_polygon_folding_back_names_the_vertex(vertices, where):
+    """Two consecutive edges on one line in opposite directions: refused at the vertex between them."""
+    with pytest.raises(InvalidPolygonError, match=r"^polygon folds back on itself at " + re.escape(where) + "$"):
+        as_polygon(vertices)
+
+
+@pytest.mark.parametrize("l", [MIN_LENGTH, MAX_LENGTH, np.float64(2.0), np.int64(3), np.array(0.5), np.float32(0.25)])
+def test_lengths_at_the_ends_of_the_range_and_numpy_scalars_are_accepted(l):
+    assert check_length(l) == float(l) and type(check_length(l)) is float
+
+
+@pytest.mark.parametrize("l, message", [
+    (1 + 2j, "got complex value (1+2j)"),
+    (np.complex128(2.0), "got complex value (2+0j)"),
+    (np.array([1.0]), "got array([1.])"),
+    ("1", "got '1'"),
+])
+def test_a_length_that_is_not_one_real_number_is_named(l, message):
+    with pytest.raises(InvalidLengthError, match=r"^target length l must be a real number, " + re.escape(message) + "$"):
+        check_length(l)
