@@ -1,8 +1,9 @@
 # equimesh: the README's two commands are `make reproduce` and `make test`.
 #
 # Both create .venv with `$(PYTHON) -m venv` on first use (Python >= 3.11) and
-# install the project into it with `pip install -e '.[test,bench]'`; later runs
-# reuse it and reinstall only when pyproject.toml is newer than the stamp file.
+# install the project into it with `pip install -e '.[test,bench]'` and then, one
+# by one and only where they install, the optional extras; later runs reuse it and
+# reinstall only when pyproject.toml is newer than the stamp file.
 # Nothing outside .venv is installed, so a machine with Python 3.11+ and make
 # is enough.
 
@@ -46,8 +47,17 @@ export MPLBACKEND ?= Agg
 PYTEST_ARGS ?= -n 2 -q
 # Extra arguments for `asv run`, e.g. `make bench ASV_ARGS=--quick`.
 ASV_ARGS ?=
+# `make bench-history`: the commits to measure (a git range).
+RANGE ?= HEAD~20..HEAD
+# `make bench-compare`: the commit to compare HEAD with (default: the merge
+# base with main, or HEAD~1 on main) and the factor that counts as a change.
+BASE ?=
+FACTOR ?= 1.2
+# `make mutation`: modules to mutate (default: all of experiments/mutation_report.py's table).
+MODULES ?=
+MUTATION_STAMP := $(VENV)/.equimesh-mutation-installed
 
-.PHONY: test test-thorough reproduce bench bench-publish venv clean-venv
+.PHONY: test test-thorough reproduce bench bench-history bench-compare bench-publish mutation venv clean-venv
 
 test: $(STAMP) $(EXTRAS_STAMP)
 	$(PY) -m pytest $(PYTEST_ARGS)
@@ -72,9 +82,43 @@ bench: $(STAMP)
 	../$(VENV)/bin/asv machine --yes >/dev/null; \
 	../$(VENV)/bin/asv run --environment existing:../$(PY) --set-commit-hash $$commit --show-stderr $(ASV_ARGS)
 
+# Performance history: every commit of RANGE, each in a virtualenv that asv
+# builds from the repository (benchmarks/asv.conf.json); commits measured
+# before on this machine are skipped.  Results: .asv/results/<machine>/.
+bench-history: $(STAMP)
+	cd benchmarks && ../$(VENV)/bin/asv machine --yes >/dev/null && \
+		../$(VENV)/bin/asv run --skip-existing-commits --show-stderr $(ASV_ARGS) "$(RANGE)"
+
+# HEAD against BASE: prints the benchmarks that changed by more than FACTOR
+# and fails (non-zero exit) when one got slower.  BASE is checked before the
+# .venv is made, so a wrong one fails at once.
+bench-compare:
+	@base="$(BASE)"; \
+	if [ -z "$$base" ]; then \
+		main=$$(git rev-parse --verify -q main || git rev-parse --verify -q origin/main) || { \
+			echo "make bench-compare: no branch main to compare with; give BASE=<commit>" >&2; exit 2; }; \
+		base=$$(git merge-base "$$main" HEAD); \
+		if [ "$$base" = "$$(git rev-parse HEAD)" ]; then base=$$(git rev-parse HEAD~1); fi; \
+	fi; \
+	git rev-parse --verify -q "$$base^{commit}" >/dev/null || { \
+		echo "make bench-compare: unknown base commit '$$base'" >&2; exit 2; }; \
+	$(MAKE) --no-print-directory venv || exit $$?; \
+	echo "==> HEAD against $$base, factor $(FACTOR)"; \
+	cd benchmarks && ../$(VENV)/bin/asv machine --yes >/dev/null && \
+		../$(VENV)/bin/asv continuous --factor $(FACTOR) --split --show-stderr $(ASV_ARGS) "$$base" HEAD
+
 bench-publish: $(STAMP)
 	cd benchmarks && ../$(VENV)/bin/asv publish
 	@echo "==> open .asv/html/index.html (or: cd benchmarks && ../$(VENV)/bin/asv preview)"
+
+# Mutation testing of the algorithm modules (not part of `make test`; about
+# an hour on 2 cores, see README): writes results/mutation.md.
+mutation: $(MUTATION_STAMP)
+	$(PY) experiments/mutation_report.py $(MODULES)
+
+$(MUTATION_STAMP): $(STAMP)
+	$(PY) -m pip install -e '.[test,bench,mutation]'
+	touch $(MUTATION_STAMP)
 
 venv: $(STAMP)
 

@@ -209,15 +209,15 @@ def _measure(task):
     return function(argument)
 
 
-def run(shapes, areas, spacings, spacing_area, jobs, progress=print):
-    """All measurements, as a DataFrame in a fixed row order whatever ``jobs`` is."""
+def run(shapes, areas, spacings, spacing_area, jobs, progress=print, scheduler="local"):
+    """All measurements, as a DataFrame in a fixed row order whatever ``jobs`` and ``scheduler`` are."""
     tasks = [(measure_size, (s, a)) for a in areas for s in shapes]
     tasks += [(measure_spacing, (s, spacing_area, b)) for s in shapes for b in spacings]
     # Largest first, so the pool is not left waiting on one big polygon at the end.
     order = sorted(range(len(tasks)), key=lambda i: -tasks[i][1][1])
     results = [None] * len(tasks)
     start = time.perf_counter()
-    for i, rows in zip(order, _common.parallel_map(_measure, [tasks[i] for i in order], jobs)):
+    for i, rows in zip(order, _common.parallel_map(_measure, [tasks[i] for i in order], jobs, scheduler=scheduler)):
         results[i] = rows
     progress(f"{NAME}: {len(tasks)} tasks in {time.perf_counter() - start:.1f} s")
     return pd.DataFrame([r for rows in results for r in rows], columns=COLUMNS)
@@ -415,7 +415,7 @@ def main(argv=None):
     if not args.plot_only:
         args.out_dir.mkdir(parents=True, exist_ok=True)
         start = time.perf_counter()
-        df = run(shapes, areas, SPACINGS, spacing_area, args.jobs)
+        df = run(shapes, areas, SPACINGS, spacing_area, args.jobs, scheduler=args.scheduler)
         elapsed = time.perf_counter() - start
         parameters = {
             "shapes": list(shapes),
@@ -426,6 +426,7 @@ def main(argv=None):
             "default_boundary_spacing": BOUNDARY_SPACING,
             "quick": args.quick,
             "jobs": args.jobs,
+            "scheduler": args.scheduler,
             "out_dir": str(args.out_dir),
             "fig_dir": str(args.fig_dir),
         }

@@ -120,8 +120,8 @@ def measure(task):
     }
 
 
-def sweep(n_polygons, seed, jobs, options, engine=DEFAULT_ENGINE, progress=print):
-    """Measure ``n_polygons`` polygons; rows in index order whatever ``jobs`` is.
+def sweep(n_polygons, seed, jobs, options, engine=DEFAULT_ENGINE, progress=print, scheduler="local"):
+    """Measure ``n_polygons`` polygons; rows in index order whatever ``jobs`` and ``scheduler`` are.
 
     Polygon ``i`` is drawn from child ``i`` of ``numpy.random.SeedSequence(seed)``,
     so a row does not depend on the number of workers or on the other rows.
@@ -131,7 +131,7 @@ def sweep(n_polygons, seed, jobs, options, engine=DEFAULT_ENGINE, progress=print
     start = time.perf_counter()
     every = max(1, n_polygons // 10)
     rows = []
-    for row in _common.parallel_map(measure, tasks, jobs, chunksize=4):
+    for row in _common.parallel_map(measure, tasks, jobs, chunksize=4, scheduler=scheduler):
         rows.append(row)
         if len(rows) % every == 0 or len(rows) == n_polygons:
             progress(f"{NAME}: {len(rows)}/{n_polygons} polygons, {time.perf_counter() - start:.1f} s")
@@ -223,7 +223,7 @@ def main(argv=None):
     if not args.plot_only:
         options = {"max_area": args.max_area, "tail_fraction": args.tail_fraction, "tail_max_area": args.tail_max_area}
         start = time.perf_counter()
-        df = sweep(args.n_polygons, args.seed, args.jobs, options, args.engine)
+        df = sweep(args.n_polygons, args.seed, args.jobs, options, args.engine, scheduler=args.scheduler)
         elapsed = time.perf_counter() - start
         parameters = {k: (str(v) if isinstance(v, Path) else v) for k, v in vars(args).items() if k != "plot_only"}
         _common.write_results(csv_path, df, parameters, lambda record: summarize(df, record))

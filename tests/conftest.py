@@ -10,6 +10,13 @@ Profiles, chosen by the environment variable EQUIMESH_HYPOTHESIS_PROFILE:
 No deadline in either: the reference engine re-triangulates after every
 inserted point, so the time of one example grows with the polygon's area.
 
+Replaying a failure.  Both profiles print the ``@reproduce_failure(...)``
+blob of a failing example (``print_blob``).  A random profile also runs with
+a seed that is printed in the header and again after failures
+("hypothesis seed: N"): ``--hypothesis-seed=N`` with the same profile runs
+the same examples again (one is drawn when none is given; under
+pytest-xdist the controller draws it and the workers inherit it).
+
 Fixture ``load_experiment``: import ``experiments/<name>.py`` for a smoke test.
 
 Conditional properties.  A property that only says something when a
@@ -28,6 +35,7 @@ and the end of the run lists every condition that was reached but never held
 import collections
 import importlib
 import os
+import random
 import sys
 from pathlib import Path
 
@@ -53,6 +61,43 @@ settings.load_profile(os.environ.get("EQUIMESH_HYPOTHESIS_PROFILE", "ci"))
 
 
 EXPERIMENTS = Path(__file__).resolve().parent.parent / "experiments"
+
+
+# --------------------------------------------------------------------------- a printed seed for random profiles
+
+
+_SEED_KEY = "equimesh_hypothesis_seed"
+
+
+@pytest.hookimpl(tryfirst=True)
+def pytest_configure(config):
+    """A random profile without ``--hypothesis-seed``: draw one, before hypothesis's plugin reads the option.
+
+    A pytest-xdist worker takes the controller's (:func:`pytest_configure_node`).
+    """
+    if settings.default.derandomize or config.getoption("hypothesis_seed") is not None:
+        return
+    worker = getattr(config, "workerinput", None)
+    config.option.hypothesis_seed = worker[_SEED_KEY] if worker else str(random.SystemRandom().randrange(2**32))
+
+
+@pytest.hookimpl(optionalhook=True)
+def pytest_configure_node(node):
+    """Controller side of :func:`pytest_configure`: hand the seed to a starting worker."""
+    node.workerinput[_SEED_KEY] = node.config.getoption("hypothesis_seed")
+
+
+def replay_line(config):
+    """How to run the same examples again, or None for a derandomized profile."""
+    seed = config.getoption("hypothesis_seed")
+    if settings.default.derandomize or seed is None:
+        return None
+    profile = settings.get_current_profile_name()
+    return f"hypothesis seed: {seed} (replay: EQUIMESH_HYPOTHESIS_PROFILE={profile} pytest --hypothesis-seed={seed} ...)"
+
+
+def pytest_report_header(config):
+    return replay_line(config)
 
 
 @pytest.fixture(scope="session")
@@ -110,7 +155,11 @@ def pytest_testnodedown(node, error):
         _CONDITIONS[name][1] += held
 
 
-def pytest_terminal_summary(terminalreporter):
+def pytest_terminal_summary(terminalreporter, exitstatus):
+    replay = replay_line(terminalreporter.config)
+    if replay and exitstatus != 0:
+        terminalreporter.section("replaying the failures", red=True)
+        terminalreporter.write_line(replay)
     lines = never_exercised(_CONDITIONS)
     if lines:
         terminalreporter.section("conditional properties never exercised", yellow=True)

@@ -163,6 +163,21 @@ def check_node_bounds(mesh, polygon, l):
     return n / lb
 
 
+#: Inserted values may rise by this much, relative: a circumradius is computed with a few
+#: roundings, so two cocircular candidates of the same exact value can differ in the last bit.
+VALUE_ROUNDING = 1e-12
+
+
+def assert_values_non_increasing(insertion):
+    """Step 3 takes the farthest point, and inserting a point only brings the others closer (up to rounding)."""
+    v = insertion.values
+    if len(v) > 1:
+        k = int(np.argmax(np.diff(v)))
+        assert v[k + 1] <= v[k] * (1.0 + VALUE_ROUNDING), (
+            f"value {float(v[k + 1])!r} inserted after {float(v[k])!r} (step {k + 1})"
+        )
+
+
 def assert_problem1_invariants(mesh, polygon, l):
     """Every guarantee of Algorithm INCREMENT on one output; returns the ratio n' / LB."""
     check_edge_lengths(mesh, l)

@@ -78,3 +78,26 @@ def test_lower_bound_is_tight_on_small_squares():
     """On the unit square and the square 2l the bound equals the optimum (4 and 5 nodes)."""
     assert equimesh.node_lower_bound(rectangle(1.0, 1.0), 1.0) == 4
     assert equimesh.node_lower_bound(rectangle(2.0, 2.0), 1.0) == 5
+
+
+# Exact values of the lower bound where a term of its formula is an integer up to rounding:
+# (polygon, l, LB, derivation).  ceil(x - 1e-12) must round such a term down to the integer.
+EXACT_LOWER_BOUNDS = {
+    # Area 4 sqrt(3) l^2: exactly 4 triangles; perimeter (4 + 4 sqrt(3)) l = 5.46 * 2l, so h >= 6.
+    "rectangle 2 sqrt(3) l x 2l": (rectangle(2.0 * math.sqrt(3.0), 2.0), 1.0, 6),
+    # Area 6 sqrt(3) (2l)^2 / 4 = 6 sqrt(3) l^2: 6 triangles; perimeter 12 l = 6 * 2l, h >= 6.
+    "regular hexagon, edge 2l": (regular_polygon(6, 2.0), 1.0, 7),
+    # Area 16 l^2: ceil(9.24) = 10 triangles; perimeter 16 l = 8 * 2l, so h >= 8 > |V|.
+    "square 4l": (rectangle(4.0, 4.0), 1.0, 10),
+    # Area 25 l^2: ceil(14.43) = 15 triangles; perimeter 20 l = 10 * 2l, h >= 10; 15 + 10 odd.
+    "square 5l": (rectangle(5.0, 5.0), 1.0, 14),
+    # The same at l = 2^-3: the bound depends on P / l only.
+    "square 4l, l = 1/8": (rectangle(0.5, 0.5), 0.125, 10),
+}
+
+
+@pytest.mark.parametrize("name", sorted(EXACT_LOWER_BOUNDS))
+def test_lower_bound_exact_values(name):
+    """node_lower_bound = ceil((ceil(A / (sqrt(3) l^2)) + max(|V|, ceil(perimeter / 2l)) + 2) / 2), by hand."""
+    vertices, l, expected = EXACT_LOWER_BOUNDS[name]
+    assert equimesh.node_lower_bound(vertices, l) == expected

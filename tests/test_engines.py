@@ -37,7 +37,7 @@ from equimesh.testing.generators import rectangle, regular_polygon, rotate
 import invariants_uniform as inv
 import strategies
 import strategies_simple as ss
-from invariants import assert_problem1_invariants
+from invariants import assert_problem1_invariants, assert_values_non_increasing
 from strategies import problems
 
 ENGINE_NAMES = sorted(ENGINES)
@@ -152,21 +152,6 @@ def assert_same_insertion(runs):
     assert a.segments.tolist() == b.segments.tolist()
     assert {tuple(sorted(t)) for t in a.triangles.tolist()} == {tuple(sorted(t)) for t in b.triangles.tolist()}
     assert mesh_a.points.tobytes() == mesh_b.points.tobytes()
-
-
-#: Inserted values may rise by this much, relative: a circumradius is computed with a few
-#: roundings, so two cocircular candidates of the same exact value can differ in the last bit.
-VALUE_ROUNDING = 1e-12
-
-
-def assert_values_non_increasing(insertion):
-    """Step 3 takes the farthest point, and inserting a point only brings the others closer (up to rounding)."""
-    v = insertion.values
-    if len(v) > 1:
-        k = int(np.argmax(np.diff(v)))
-        assert v[k + 1] <= v[k] * (1.0 + VALUE_ROUNDING), (
-            f"value {float(v[k + 1])!r} inserted after {float(v[k])!r} (step {k + 1})"
-        )
 
 
 # --------------------------------------------------------------------------- equivalence

@@ -7,6 +7,7 @@ edge at fault.
 """
 
 import math
+import re
 
 import numpy as np
 import pytest
@@ -18,7 +19,8 @@ import equimesh
 from equimesh import REL_TOL, EquimeshError, InvalidLengthError, InvalidPolygonError
 from equimesh.testing.generators import random_convex_polygon, rectangle, regular_polygon
 from equimesh.planar.increment import validate_problem1
-from equimesh.planar.polygon import as_polygon, resample_boundary
+from equimesh.planar.polygon import as_polygon, check_length, resample_boundary, split_counts
+from equimesh.tolerance import MAX_LENGTH, MIN_LENGTH
 from strategies import problems, seeds
 
 SQUARE = rectangle(4.0, 4.0)
@@ -159,3 +161,67 @@ def test_staggered_step2_separates_the_sides_of_a_sharp_corner(angle, stretch, s
     gaps = np.linalg.norm(sides[0][:, None, :] - sides[1][None, :, :], axis=2)
     gaps[-1, 0] = np.inf  # the tip with itself
     assert gaps.min() >= (1.0 - REL_TOL) * lp
+
+
+# Step 2 by hand: (l, spacing, edge length L, parts k).  k = ceil(L / (spacing l)) kept in
+# [ceil(L / 2l), floor(L / l)], each bound up to REL_TOL; l = 2 tells l from 1 / l.
+SPLIT_COUNTS = [
+    (1.0, 2.0, 1.0, 1),  # shorter than 2l: one part
+    (1.0, 2.0, 2.0, 1),  # exactly 2l: still one part
+    (1.0, 2.0, 4.0, 2),  # exactly 4l: two parts of 2l, not three
+    (1.0, 2.0, 4.0 * (1.0 + 0.5 * REL_TOL), 2),  # 2l up to REL_TOL
+    (1.0, 2.0, 4.0 * (1.0 + 2.0 * REL_TOL), 3),
+    (2.0, 2.0, 8.0, 2),
+    (1.0, 1.5, 3.0, 2),  # the spacing decides: parts of 1.5 l
+    (2.0, 1.5, 6.0, 2),
+    (1.0, 1.5, 4.0, 3),
+    (1.0, 3.0, 5.0, 3),  # spacing above 2: the lower bound ceil(L / 2l) decides
+    (1.0, 0.5, 3.0, 3),  # spacing below 1: the upper bound floor(L / l) decides
+    (2.0, 0.5, 6.0, 3),
+    (1.0, 0.5, 3.0 * (1.0 - 0.5 * REL_TOL), 3),  # parts of l up to REL_TOL
+    (1.0, 0.5, 3.0 * (1.0 - 2.0 * REL_TOL), 2),
+]
+
+
+@pytest.mark.parametrize("l, spacing, length, parts", SPLIT_COUNTS)
+def test_split_counts_by_hand(l, spacing, length, parts):
+    """Step 2: the number of equal parts of a boundary edge, each part in [l, 2l] (up to REL_TOL)."""
+    assert split_counts([length], l, spacing).tolist() == [parts]
+    if spacing == 2.0:
+        assert split_counts([length], l).tolist() == [parts]  # 2 is the default (Problem 1)
+
+
+def test_resample_boundary_uses_the_spacing():
+    """A square of side 4l: parts of at most 2l (default) give 8 boundary points, of at most 1.5 l give 12."""
+    poly = as_polygon(rectangle(4.0, 4.0), 1.0)
+    assert len(resample_boundary(poly, 1.0).points) == 8
+    boundary = resample_boundary(poly, 1.0, 1.5)
+    assert len(boundary.points) == 12 and boundary.is_vertex.sum() == 4
+    assert boundary.edge.tolist() == [0, 0, 0, 1, 1, 1, 2, 2, 2, 3, 3, 3]
+
+
+@pytest.mark.parametrize("vertices, where", [
+    ([(0, 0), (4, 0), (2, 0), (2, 3)], "vertex 1 at (4, 0)"),
+    ([(0, 0), (3, 0), (3, 3), (3, 1), (0, 3)], "vertex 2 at (3, 3)"),
+    ([(0, 3), (0, 0), (3, 0), (3, 3), (3, 1)], "vertex 3 at (3, 3)"),
+])
+def test_polygon_folding_back_names_the_vertex(vertices, where):
+    """Two consecutive edges on one line in opposite directions: refused at the vertex between them."""
+    with pytest.raises(InvalidPolygonError, match=r"^polygon folds back on itself at " + re.escape(where) + "$"):
+        as_polygon(vertices)
+
+
+@pytest.mark.parametrize("l", [MIN_LENGTH, MAX_LENGTH, np.float64(2.0), np.int64(3), np.array(0.5), np.float32(0.25)])
+def test_lengths_at_the_ends_of_the_range_and_numpy_scalars_are_accepted(l):
+    assert check_length(l) == float(l) and type(check_length(l)) is float
+
+
+@pytest.mark.parametrize("l, message", [
+    (1 + 2j, "got complex value (1+2j)"),
+    (np.complex128(2.0), "got complex value (2+0j)"),
+    (np.array([1.0]), "got array([1.])"),
+    ("1", "got '1'"),
+])
+def test_a_length_that_is_not_one_real_number_is_named(l, message):
+    with pytest.raises(InvalidLengthError, match=r"^target length l must be a real number, " + re.escape(message) + "$"):
+        check_length(l)

@@ -1,0 +1,210 @@
+"""How strong the property tests are: mutation testing of the algorithm modules with mutmut.
+
+For each algorithm module (Problem 1: ``increment.py`` and the reference
+insertion engine; Problem 2: ``strip.py``, ``lattice.py``; ``bounds.py``; Step 2
+boundary resampling and separation in ``polygon.py``) mutmut makes small
+changes to the code (an operator, a constant, a comparison), one at a time, and
+runs the tests selected for that module in :data:`MODULES`.  A mutant is
+*killed* when a test fails, *survived* when every test passes.  A survivor is
+either a gap in the tests (then a test is added that kills it) or an
+*equivalent* mutant that no test can kill; the argument for each equivalent
+survivor is in :data:`EQUIVALENT`, and the report lists every survivor with it.
+
+Writes::
+
+    results/mutation.md      per module: mutants, killed, survived, timed out,
+                             score over the non-equivalent mutants, every survivor
+    results/mutation.json    the same counts and survivors, machine-readable
+    results/mutation.provenance.json
+
+Each module runs in its own copy of ``src/``, ``tests/`` and ``pyproject.toml``
+under ``--work-dir`` (default ``.mutation/``, gitignored), whose
+``[tool.mutmut]`` table names only that module and its tests; mutmut itself
+comes from the ``[mutation]`` extra (``make mutation`` installs it).  The
+report is rewritten after each module, and modules already in
+``results/mutation.json`` from an earlier run are kept, so the modules can be
+run one at a time; ``--resume`` continues an interrupted module where mutmut
+stopped instead of starting it afresh.
+
+Usage::
+
+    python experiments/mutation_report.py [--max-children 2] [MODULE ...]
+    python experiments/mutation_report.py src/equimesh/planar/bounds.py
+"""
+
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))  # _common.py, also when loaded by file path
+import _common  # noqa: E402
+
+from equimesh.io._atomic import atomic_write_text  # noqa: E402
+from equimesh.io.provenance import provenance_path, write_provenance  # noqa: E402
+
+NAME = "mutation"
+ROOT = Path(__file__).resolve().parent.parent
+
+#: Module -> the test files that must kill its mutants.  Each selection is
+#: the property tests of that module plus the direct tests of its internals,
+#: kept small so that one mutant costs a few seconds.
+MODULES = {
+    "src/equimesh/planar/bounds.py": ["tests/test_bounds.py"],
+    "src/equimesh/planar/lattice.py": ["tests/test_uniform.py"],
+    "src/equimesh/planar/polygon.py": ["tests/test_polygon.py", "tests/test_hardening_planar.py"],
+    "src/equimesh/planar/increment.py": ["tests/test_increment.py", "tests/test_reference_engine.py"],
+    "src/equimesh/planar/insertion/reference.py": ["tests/test_reference_engine.py", "tests/test_increment.py"],
+    "src/equimesh/planar/strip.py": ["tests/test_uniform.py"],
+}
+
+#: Equivalent mutants: (module, the mutated line as mutmut prints it after
+#: "+", stripped) -> why no test can tell it from the original.
+_POLYGON = "src/equimesh/planar/polygon.py"
+_SPACING_ABOVE_2 = ("equivalent: for any spacing >= 2 the lower bound ceil(L / 2l) of split_counts decides, "
+                    "so a default of 3 gives the same parts as 2")
+_FLOAT_ANYWAY = "equivalent: the division by l that follows makes the counts' arithmetic float for any real input"
+EQUIVALENT = {
+    (_POLYGON, "def split_counts(lengths, l, spacing=3.0):"): _SPACING_ABOVE_2,
+    (_POLYGON, "def resample_boundary(poly, l, spacing=3.0):"): _SPACING_ABOVE_2,
+    (_POLYGON, "lengths = np.asarray(lengths, dtype=None)"): _FLOAT_ANYWAY,
+    (_POLYGON, "lengths = np.asarray(lengths, )"): _FLOAT_ANYWAY,
+}
+
+#: pytest options for every mutant run: stop at the first failure.
+PYTEST_ARGS = ["-p", "no:cacheprovider", "-q", "-x"]
+
+STATUSES = ("killed", "survived", "timeout", "no tests", "suspicious", "skipped", "segfault")
+
+
+def parse_args(argv=None):
+    p = _common.parser(__doc__)
+    p.add_argument("modules", nargs="*", help="module paths (default: every module of MODULES)")
+    p.add_argument("--max-children", type=int, default=2, help="parallel mutant runs (default 2)")
+    p.add_argument("--work-dir", type=Path, default=ROOT / ".mutation", help="scratch folder (default .mutation/)")
+    p.add_argument("--resume", action="store_true", help="keep the scratch copy of a module and its finished mutants")
+    _common.add_output_options(p, fig_dir=False)
+    args = p.parse_args(argv)
+    unknown = [m for m in args.modules if m not in MODULES]
+    if unknown:
+        p.error(f"unknown module {unknown[0]!r}; known: {', '.join(MODULES)}")
+    return args
+
+
+def mutmut_table(module):
+    """The ``[tool.mutmut]`` table that mutates ``module`` only, against its tests."""
+    def toml_list(items):
+        return "[" + ", ".join(json.dumps(i) for i in items) + "]"
+
+    return "\n".join([
+        "", "[tool.mutmut]", 'source_paths = ["src"]',
+        f"only_mutate = {toml_list([module])}",
+        f"pytest_add_cli_args_test_selection = {toml_list(MODULES[module])}",
+        f"pytest_add_cli_args = {toml_list(PYTEST_ARGS)}", "",
+    ])
+
+
+def prepare(module, work_dir, resume=False):
+    """A fresh copy of the project for ``module``'s mutants (kept as it is with ``resume``); returns its folder."""
+    folder = work_dir / re.sub(r"[^A-Za-z0-9]+", "_", module)
+    if resume and folder.exists():
+        return folder
+    shutil.rmtree(folder, ignore_errors=True)
+    folder.mkdir(parents=True)
+    for name in ("src", "tests"):
+        shutil.copytree(ROOT / name, folder / name, ignore=shutil.ignore_patterns("__pycache__", "*.pyc"))
+    text = (ROOT / "pyproject.toml").read_text()
+    (folder / "pyproject.toml").write_text(text + mutmut_table(module))
+    return folder
+
+
+def mutmut(folder, *args):
+    """Run ``mutmut *args`` in ``folder``; its standard output."""
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}  # mutmut puts mutants/src first itself
+    done = subprocess.run([sys.executable, "-m", "mutmut", *args], cwd=folder, env=env, capture_output=True, text=True)
+    if done.returncode:
+        raise SystemExit(f"mutmut {' '.join(args)} failed in {folder}: {done.stderr.strip().splitlines()[-1:]}")
+    return done.stdout
+
+
+def mutated_line(folder, name):
+    """The line of the mutant ``name`` as mutmut shows it (the first "+" line of its diff)."""
+    for line in mutmut(folder, "show", name).splitlines():
+        if line.startswith("+") and not line.startswith("+++"):
+            return line[1:].strip()
+    return ""
+
+
+def run_module(module, work_dir, max_children, resume=False, progress=print):
+    """Mutate ``module``, run its tests on every mutant; its counts and survivors."""
+    folder = prepare(module, work_dir, resume)
+    progress(f"{NAME}: {module} against {' '.join(MODULES[module])}")
+    start = time.perf_counter()
+    mutmut(folder, "run", "--max-children", str(max_children))
+    seconds = time.perf_counter() - start
+    status = dict(re.findall(r"^\s*(\S+): (.+)$", mutmut(folder, "results", "--all", "true"), re.M))
+    counts = {s: sum(v == s for v in status.values()) for s in STATUSES}
+    survivors = []
+    for name in sorted((n for n, s in status.items() if s == "survived"), key=_natural):
+        line = mutated_line(folder, name)
+        survivors.append({"mutant": name, "line": line, "equivalent": EQUIVALENT.get((module, line))})
+    equivalent = sum(s["equivalent"] is not None for s in survivors)
+    relevant = len(status) - equivalent - counts["no tests"] - counts["skipped"]
+    score = (counts["killed"] + counts["timeout"]) / relevant if relevant else 1.0
+    progress(f"{NAME}: {module}: {len(status)} mutants, {counts['killed']} killed, "
+             f"{counts['survived']} survived ({equivalent} equivalent), {seconds:.0f} s")
+    return {"module": module, "tests": MODULES[module], "mutants": len(status), **counts,
+            "equivalent": equivalent, "score": score, "seconds": round(seconds), "survivors": survivors}
+
+
+def _natural(name):
+    """Sort key: mutant names with their numbers compared as numbers."""
+    return [int(t) if t.isdigit() else t for t in re.split(r"(\d+)", name)]
+
+
+def report(modules, record):
+    """The Markdown report of ``modules`` (a list of :func:`run_module` results)."""
+    body = [
+        "A mutant is killed when one of its module's tests fails.  Score = (killed + timed out) /",
+        "(mutants - equivalent survivors - mutants no test reaches).  Goal: >= 90 % per module.",
+        "",
+        "| module | tests | mutants | killed | survived | equivalent | timed out | no tests | score | time |",
+        "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|",
+    ]
+    for m in modules:
+        body.append(f"| `{m['module']}` | {', '.join(m['tests'])} | {m['mutants']} | {m['killed']} | {m['survived']} "
+                    f"| {m['equivalent']} | {m['timeout']} | {m['no tests']} | {100 * m['score']:.1f} % | {m['seconds']} s |")
+    for m in modules:
+        body += ["", f"## Survivors in `{m['module']}`", ""]
+        if not m["survivors"]:
+            body.append("None.")
+        for s in m["survivors"]:
+            why = s["equivalent"] or "**not explained: a test is missing**"
+            body.append(f"- `{s['mutant']}`: `{s['line']}` — {why}")
+    return _common.markdown_report("Mutation testing of the algorithm modules", "`make mutation` "
+                                   "(`python experiments/mutation_report.py`)", body, record)
+
+
+def main(argv=None):
+    args = parse_args(argv)
+    wanted = args.modules or list(MODULES)
+    json_path = args.out_dir / f"{NAME}.json"
+    previous = json.loads(json_path.read_text())["modules"] if json_path.exists() else []
+    done = {m["module"]: m for m in previous if m["module"] in MODULES}
+    args.out_dir.mkdir(parents=True, exist_ok=True)
+    for module in wanted:
+        done[module] = run_module(module, args.work_dir, args.max_children, args.resume)
+        modules = [done[m] for m in MODULES if m in done]
+        atomic_write_text(json_path, json.dumps({"modules": modules}, indent=1) + "\n")
+        parameters = {"modules": [m["module"] for m in modules], "max_children": args.max_children, "pytest_args": PYTEST_ARGS}
+        record = write_provenance(provenance_path(json_path), parameters)
+        atomic_write_text(args.out_dir / f"{NAME}.md", report(modules, record))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,48 @@
+"""experiments/mutation_report.py (``make mutation``): its module table, mutmut set-up and report, without running mutmut."""
+
+import tomllib
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+@pytest.fixture
+def mutation(load_experiment):
+    return load_experiment("mutation_report")
+
+
+def test_every_module_and_test_file_exists(mutation):
+    for module, tests in mutation.MODULES.items():
+        assert (ROOT / module).is_file(), module
+        assert tests and all((ROOT / t).is_file() for t in tests), tests
+
+
+def test_mutmut_table_mutates_one_module_against_its_tests(mutation):
+    module = "src/equimesh/planar/bounds.py"
+    table = tomllib.loads(mutation.mutmut_table(module))["tool"]["mutmut"]
+    assert table["only_mutate"] == [module]
+    assert table["pytest_add_cli_args_test_selection"] == mutation.MODULES[module]
+
+
+def test_unknown_module_is_refused(mutation, capsys):
+    with pytest.raises(SystemExit) as exit_:
+        mutation.parse_args(["src/equimesh/nowhere.py"])
+    assert exit_.value.code == 2 and "unknown module" in capsys.readouterr().err
+
+
+def test_report_explains_or_flags_every_survivor(mutation):
+    """An equivalent survivor carries its argument; any other is flagged as a missing test."""
+    survivors = [
+        {"mutant": "m__mutmut_1", "line": "x = 1", "equivalent": "the value is never read"},
+        {"mutant": "m__mutmut_2", "line": "y = 2", "equivalent": None},
+    ]
+    module = {"module": "src/m.py", "tests": ["tests/test_m.py"], "mutants": 10, "killed": 8, "survived": 2,
+              "timeout": 0, "no tests": 0, "equivalent": 1, "score": 8 / 9, "seconds": 5, "survivors": survivors}
+    record = {"git": {"commit": "abc", "dirty": False}, "date": "2026-01-01", "parameters": {},
+              "python": "3.11", "platform": "linux", "versions": {}}
+    text = mutation.report([module], record)
+    assert "| `src/m.py` | tests/test_m.py | 10 | 8 | 2 | 1 | 0 | 0 | 88.9 % | 5 s |" in text
+    assert "`m__mutmut_1`: `x = 1` — the value is never read" in text
+    assert "`m__mutmut_2`: `y = 2` — **not explained: a test is missing**" in text
