@@ -35,6 +35,7 @@ from .regularity import check_regular, evaluate
 from .remap import remap
 from .restate import restate_polygon_error
 from ..planar.strip import BOUNDARY_SPACING, check_spacing, uniform_triangulation
+from ..tolerance import at_least, at_most
 
 #: Default limit on the node count of a surface mesh without the final
 #: optimisation (``optimize="none"``); :func:`mesh_surface` refuses, before any
@@ -43,6 +44,10 @@ from ..planar.strip import BOUNDARY_SPACING, check_spacing, uniform_triangulatio
 #: machine the saddle took 70 s at 32,400 nodes and 140 s at 39,900
 #: (docs/performance.md).
 MAX_NODES = 30_000
+
+#: Objectives whose boundary nodes slide along the boundary (beyond the paper)
+#: and whose members are guaranteed to lie in [l, 2l] (checked on the result).
+SLIDING_OBJECTIVES = ("bounded",)
 
 #: Default node limit with the paper's optimisation (about n^2): the
 #: reference dome took 57 s at 2,265 nodes and 105 s at 2,917 (docs/performance.md).
@@ -124,7 +129,7 @@ def mesh_surface(
     l,
     *,
     grid=(15, 15),
-    optimize="paper",
+    optimize="bounded",
     placement="best",
     boundary_spacing=BOUNDARY_SPACING,
     max_nodes="default",
@@ -212,19 +217,24 @@ def mesh_surface(
     result = None
     final_uv, final_points = mapped.uv, mapped.points
     if optimize != "none":
+        boundary = np.arange(plane.n_boundary)
+        slides = optimize in SLIDING_OBJECTIVES
         result = optimize_uv(
             surface,
             mapped.uv,
             plane.edges,
             plane.edge_groups,
             l,
-            fixed=np.arange(plane.n_boundary),
+            fixed=boundary[:0] if slides else boundary,
+            sliding=boundary if slides else (),
             triangles=plane.triangles,
             objective=optimize,
         )
         final_uv = result.uv
         _check_orientation(final_uv, plane.triangles, "the optimisation")
         final_points = evaluate(surface, final_uv)
+        if optimize in SLIDING_OBJECTIVES:
+            _check_members(final_points, plane.edges, l)
         clock("optimisation of inner nodes")
 
     stages = Stages(aux, x_s0, flat, outline, chosen, plane, mapped.uv, mapped.points, result, seconds)
@@ -290,6 +300,17 @@ def _check_size(surface_points, triangles, l, max_nodes):
     with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
         estimate = float(np.float64(area) / np.float64(l) / np.float64(l) / (np.sqrt(3.0) / 2.0))
     check_size(f"this surface (area {area:.6g})", estimate, max_nodes, l)
+
+
+def _check_members(points, edges, l):
+    """Every member of the surface mesh in [l, 2l] (up to REL_TOL), or the bounded optimisation broke its guarantee."""
+    ratio = edge_lengths(points, edges) / l
+    bad = np.flatnonzero(~(at_least(ratio, 1.0) & at_most(ratio, 2.0)))
+    if bad.size:
+        raise InternalError(
+            f"the bounded optimisation returned {bad.size} of {len(edges)} members outside [l, 2l] "
+            f"(lengths from {ratio.min():.10g} l to {ratio.max():.10g} l); please report this surface"
+        )
 
 
 def _check_orientation(uv, triangles, stage):
