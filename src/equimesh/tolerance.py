@@ -85,6 +85,6 @@ LM_DIAGONAL_FLOOR = 1e-12
 #: l = 5 (docs/decisions.md).  Tests: tests/test_bounded.py, tests/test_optimize.py.
 BOUNDED_OFFSET = 1e-3
 BOUNDED_PENALTY = 1000.0
-BOUNDED_SCALES = (0.1, 0.01, 0.002)
+BOUNDED_SCALES = (0.01, 0.002)
 BOUNDED_FTOL = 1e-5
 PAPER_FTOL = 1e-8
