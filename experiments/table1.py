@@ -391,9 +391,9 @@ def comparison(df, run):
         f"range max. - min. from {rb:.4f} to {ra:.4f} (paper {prb:.4f} to {pra:.4f})."
     )
     opt = run["optimisation"]
-    if opt is not None and opt["status"] == 0:
+    if opt is not None and not opt["converged"]:
         out.append(
-            f"- **Optimiser stopped early.** scipy's least_squares ended at its evaluation limit "
+            f"- **Optimiser stopped early.** The solver ended at its iteration guard "
             f"({opt['nfev']} evaluations: \"{opt['message']}\"), not at a convergence tolerance; the final opt. rows "
             f"are where it stopped."
         )

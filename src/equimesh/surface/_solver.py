@@ -96,7 +96,7 @@ def least_squares(residuals, jacobian, x0, lower, upper, *, accept=None, gtol=1e
                 if actual <= ftol * old and predicted <= ftol * old and not retried:
                     return Solution(x, cost, iteration + 1, evaluations, True, "relative reduction below ftol")
                 break
-            if not predicted > 0 or (small_step and lam >= 1.0 / LM_DIAGONAL_FLOOR):
+            if small_step and lam >= 1.0 / LM_DIAGONAL_FLOOR:
                 return Solution(x, cost, iteration + 1, evaluations, True, "no further reduction: step below xtol")
             lam *= nu
             nu *= 2.0

@@ -346,9 +346,13 @@ def optimize_uv(
     x, nfev, njev = x0, 0, 0
     while True:
         solve = obj if tri is None or area_floor <= 0 else _with_barrier(problem, obj, tri, area_floor, x)
-        solution = least_squares(solve.residuals, solve.jacobian, x, *box, accept=guard, gtol=gtol, xtol=xtol,
-                                 ftol=obj.ftol if ftol is None else ftol)
-        x, nfev, njev = solution.x, nfev + solution.evaluations, njev + solution.iterations + 1
+        tol = obj.ftol if ftol is None else ftol
+        while True:
+            solution = least_squares(solve.residuals, solve.jacobian, x, *box, accept=guard, gtol=gtol, xtol=xtol, ftol=tol)
+            x, nfev, njev = solution.x, nfev + solution.evaluations, njev + solution.iterations + 1
+            if obj.feasible is None or obj.feasible(x) or tol <= PAPER_FTOL:
+                break
+            tol = PAPER_FTOL  # a stage that ends outside the hard constraint goes on to the tight tolerance
         if obj.refine is None:
             break
         obj = obj.refine(x)

@@ -49,9 +49,14 @@ MAX_NODES = 30_000
 #: and whose members are guaranteed to lie in [l, 2l] (checked on the result).
 SLIDING_OBJECTIVES = ("bounded",)
 
-#: Default node limit with the paper's optimisation (about n^2): the
-#: reference dome took 57 s at 2,265 nodes and 105 s at 2,917 (docs/performance.md).
-MAX_OPTIMIZE_NODES = 3_000
+#: Default node limits with an optimisation, per objective, measured with the
+#: sparse Levenberg-Marquardt solver on the reference dome (15 x 15 grid,
+#: default placement) on this project's busy 2-core machine (docs/decisions.md,
+#: "A solver that scales"): "paper" took 11 s at 5,840 nodes (17,333 members)
+#: and 344 s at 34,031 nodes (101,654 members); "bounded" 3 s at about 370
+#: nodes and 100 s at 1,438 nodes, and did not reach [l, 2l] within the
+#: solver's iteration guard at 5,840 nodes.
+MAX_OPTIMIZE_NODES = {"paper": 15_000, "bounded": 1_500}
 
 #: Limit on the auxiliary grid's cells n_u * n_v: flattening by eq. (1) took
 #: 9 s at 100 x 100, 41 s (0.6 GB) at 200 x 200 and 251 s (1.3 GB) at
@@ -145,9 +150,12 @@ def mesh_surface(
         Target member length.
     grid : (int, int)
         Auxiliary grid n_u x n_v (step 1), at most :data:`MAX_GRID_CELLS` cells.
-    optimize : "paper" or "none"
-        Final optimisation of the inner nodes' (u, v) (see
-        :data:`equimesh.surface.optimize.OBJECTIVES`), or none.
+    optimize : "bounded", "paper" or "none"
+        Final optimisation of the nodes' (u, v) (see
+        :data:`equimesh.surface.optimize.OBJECTIVES`), or none.  "bounded"
+        (beyond the paper, the default) keeps every member in [l, 2l] with as
+        many as possible at one length, boundary nodes sliding along their
+        side; "paper" is the paper's (G1 members only, boundary fixed).
     placement : "best" or "default"
         Lattice placement of Problem 2.
     boundary_spacing : float
@@ -156,9 +164,9 @@ def mesh_surface(
         Refuse, before flattening, a mesh estimated (from the surface area of
         the auxiliary triangulation and the lattice density ``2 / (sqrt(3) l^2)``)
         to need more nodes; None means no limit.  "default" is
-        :data:`MAX_NODES`, or :data:`MAX_OPTIMIZE_NODES` with the paper's
-        optimisation: runs within the defaults take at most about two
-        minutes on a small machine.
+        :data:`MAX_NODES`, or :data:`MAX_OPTIMIZE_NODES` of the objective:
+        runs within the defaults take at most about two minutes on a small
+        machine.
     progress : callable, optional
         Called as ``progress(stage, seconds)`` after each stage.
 
@@ -174,6 +182,8 @@ def mesh_surface(
         this ``l``; the message names the side, corner or (u, v) at fault.
     MeshTooLargeError
         The estimated node count exceeds ``max_nodes``.
+    InternalError
+        A returned "bounded" mesh would have a member outside [l, 2l].
     """
     l = check_length(l)
     if not (isinstance(optimize, str) and (optimize == "none" or optimize in OBJECTIVES)):
@@ -281,7 +291,7 @@ def _grid_pair(grid):
 def _node_limit(max_nodes, optimize):
     """The node limit: a positive int, None (no limit) or "default" (:data:`MAX_NODES` or :data:`MAX_OPTIMIZE_NODES`)."""
     if isinstance(max_nodes, str) and max_nodes == "default":
-        return MAX_NODES if optimize == "none" else MAX_OPTIMIZE_NODES
+        return MAX_NODES if optimize == "none" else MAX_OPTIMIZE_NODES[optimize]
     if isinstance(max_nodes, str):
         raise EquimeshError(f'max_nodes must be a positive integer, None (no limit) or "default", got {max_nodes!r}')
     return check_max_nodes(max_nodes)
