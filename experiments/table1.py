@@ -190,9 +190,8 @@ def run_summary(mesh, surface, surface_path, grid):
             "cost_before": float(opt.cost_before),
             "cost_after": float(opt.cost_after),
             "nfev": int(opt.nfev),
-            "status": int(opt.status),
+            "converged": bool(opt.converged),
             "message": opt.message,
-            "step_fraction": float(opt.step_fraction),
         },
         "seconds": {k: float(v) for k, v in st.seconds.items()},
     }
@@ -392,9 +391,9 @@ def comparison(df, run):
         f"range max. - min. from {rb:.4f} to {ra:.4f} (paper {prb:.4f} to {pra:.4f})."
     )
     opt = run["optimisation"]
-    if opt is not None and opt["status"] == 0:
+    if opt is not None and not opt["converged"]:
         out.append(
-            f"- **Optimiser stopped early.** scipy's least_squares ended at its evaluation limit "
+            f"- **Optimiser stopped early.** The solver ended at its iteration guard "
             f"({opt['nfev']} evaluations: \"{opt['message']}\"), not at a convergence tolerance; the final opt. rows "
             f"are where it stopped."
         )
@@ -492,8 +491,7 @@ def markdown(df, quality, run, record, command):
     if opt is not None:
         lines.append(
             f"| optimisation ({opt['objective']}: G1 deviation from l) | cost {opt['cost_before']:.6g} -> "
-            f"{opt['cost_after']:.6g}, {opt['nfev']} evaluations, status {opt['status']} ({opt['message']}), "
-            f"step fraction {opt['step_fraction']:g} |"
+            f"{opt['cost_after']:.6g}, {opt['nfev']} evaluations, {opt['message']} |"
         )
     for stage, sec in run["seconds"].items():
         lines.append(f"| time: {stage} | {sec:.2f} s |")

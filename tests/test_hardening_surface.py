@@ -146,7 +146,8 @@ def test_length_outside_the_supported_range_is_refused(l):
 @pytest.mark.parametrize("l", [1e-140, 1e-12])
 def test_tiny_length_is_too_large_a_mesh(l):
     """The estimate is a plain float: never an OverflowError or ZeroDivisionError."""
-    refuse(MeshTooLargeError, plane_patch(), l, r"would need about .* nodes in this surface .* max_nodes = 3000")
+    limit = pipeline.MAX_OPTIMIZE_NODES["bounded"]  # the default objective's
+    refuse(MeshTooLargeError, plane_patch(), l, rf"would need about .* nodes in this surface .* max_nodes = {limit}\b")
 
 
 @pytest.mark.parametrize("l", [1e100, 1e149])
@@ -164,7 +165,8 @@ def test_max_nodes_none_means_no_limit_and_default_depends_on_optimize():
     # about 115 nodes: refused under a limit of 100, with either optimisation
     for optimize in ("none", "paper"):
         refuse(MeshTooLargeError, plane_patch(), 3.0, "max_nodes = 100", max_nodes=100, optimize=optimize)
-    assert pipeline._node_limit("default", "paper") == pipeline.MAX_OPTIMIZE_NODES < pipeline.MAX_NODES
+    for objective in ("paper", "bounded"):
+        assert pipeline._node_limit("default", objective) == pipeline.MAX_OPTIMIZE_NODES[objective] < pipeline.MAX_NODES
 
 
 def test_size_is_checked_before_flattening():

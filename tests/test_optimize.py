@@ -13,6 +13,7 @@ from equimesh.surface.optimize import (
     Objective,
     UVProblem,
     _with_barrier,
+    bounded_objective,
     edge_length_terms,
     flipped_triangles,
     optimize_uv,
@@ -62,7 +63,7 @@ def test_paper_objective_and_barrier_jacobians_match_finite_differences():
     obj = paper_objective(problem)
     x = problem.x0
     np.testing.assert_allclose(obj.jacobian(x).toarray(), finite_difference(obj.residuals, x), atol=1e-6)
-    barrier = _with_barrier(problem, obj, mesh.triangles, weight=2.0, fraction=0.9)
+    barrier = _with_barrier(problem, obj, mesh.triangles, 0.9, x)
     squeezed = x + 0.03 * np.random.default_rng(2).standard_normal(x.shape)  # some triangles below the floor
     assert np.any(barrier.residuals(squeezed)[len(obj.residuals(x)) :] > 0)
     np.testing.assert_allclose(
@@ -122,10 +123,22 @@ def test_flat_surface_is_already_optimal():
     np.testing.assert_allclose(opt.uv, r.uv, atol=1e-12)
 
 
-def test_backtracking_guard_without_barrier():
+def test_acceptance_guard_without_barrier():
+    """Without the barrier only the solver's acceptance test stands between the steps and a fold-over."""
     mesh, r, opt = run(dome(rise=20.0), 5.0, area_floor=0.0)
     check_invariants(mesh, r, opt)
-    assert 0.0 <= opt.step_fraction <= 1.0
+    assert opt.converged
+
+
+def test_bounded_objective_jacobian_matches_finite_differences():
+    """Every stage of the continuation: weighted deviations and the smoothed penalty, also outside the band."""
+    mesh, problem = problem_for(dome(rise=15.0), 12.0, 3, spread=0.03)
+    obj = bounded_objective(problem)
+    x = problem.x0
+    while obj is not None:
+        assert np.any(obj.residuals(x)[len(mesh.edges) :] > 0)  # some members outside the penalty-free band
+        np.testing.assert_allclose(obj.jacobian(x).toarray(), finite_difference(obj.residuals, x), atol=1e-4)
+        obj = obj.refine(x) if obj.refine else None
 
 
 def test_objective_table_is_the_seam(monkeypatch):

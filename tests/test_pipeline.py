@@ -78,7 +78,7 @@ def g1_deviation(points, mesh):
 def test_flat_surface_is_exact():
     """A flat square: flattening energy 0, the G1 members exactly l before and after optimisation."""
     s = _flat()
-    mesh = equimesh.mesh_surface(s, 3.0, grid=(6, 6))
+    mesh = equimesh.mesh_surface(s, 3.0, grid=(6, 6), optimize="paper")
     assert mesh.stages.flattening.energy < 1e-20
     g1 = mesh.edge_lengths()[mesh.g1_mask]
     np.testing.assert_allclose(g1, 3.0, rtol=1e-9)
@@ -88,7 +88,7 @@ def test_flat_surface_is_exact():
 def test_developable_vault_reaches_l():
     """A parabolic vault is developable: energy ~0 and the final G1 lengths equal l to 1e-3 relative."""
     s = _vault()
-    mesh = equimesh.mesh_surface(s, 4.0, grid=(20, 8))
+    mesh = equimesh.mesh_surface(s, 4.0, grid=(20, 8), optimize="paper")
     assert mesh.stages.flattening.energy < 1e-3
     g1 = mesh.edge_lengths()[mesh.g1_mask]
     np.testing.assert_allclose(g1, 4.0, rtol=1e-3)
@@ -98,7 +98,7 @@ def test_developable_vault_reaches_l():
 def test_any_parametric_surface_works():
     """A non-Bézier surface (circular cylinder patch) goes through the whole pipeline."""
     s = Cylinder()
-    mesh = equimesh.mesh_surface(s, 4.0, grid=(12, 8))
+    mesh = equimesh.mesh_surface(s, 4.0, grid=(12, 8), optimize="paper")
     assert_valid_surface_mesh(mesh, s)
     np.testing.assert_allclose(mesh.edge_lengths()[mesh.g1_mask], 4.0, rtol=1e-3)
 
@@ -121,7 +121,7 @@ def mild_bezier(draw):
 @given(mild_bezier())
 def test_pipeline_property(surface):
     """On mild Bézier surfaces: a valid surface triangulation, and optimisation never worsens G1."""
-    mesh = equimesh.mesh_surface(surface, 5.0, grid=(8, 8))
+    mesh = equimesh.mesh_surface(surface, 5.0, grid=(8, 8), optimize="paper")
     assert_valid_surface_mesh(mesh, surface)
     before = g1_deviation(mesh.stages.remapped_points, mesh)[1]
     after = g1_deviation(mesh.points, mesh)[1]

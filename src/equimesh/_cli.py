@@ -47,6 +47,7 @@ def build_parser():
     from .classes import DEFAULT_TOLERANCE, MAX_TOLERANCE
     from .io import INPUT_FORMATS, MESH_FORMATS
     from .surface.optimize import OBJECTIVES
+    from .planar.insertion import DEFAULT_ENGINE, ENGINES
     from .surface.pipeline import DEFAULT_OPTIMIZE, MAX_GRID_CELLS, MAX_NODES, MAX_OPTIMIZE_NODES, PLACEMENTS
     parser = _Parser(
         prog="equimesh",
@@ -86,10 +87,14 @@ def build_parser():
     mesh.add_argument("--placement", choices=PLACEMENTS, default="best",
                       help="lattice placement: searched for the most equal members, or angle 0 at the origin "
                            "(default: best)")
+    mesh.add_argument("--engine", choices=sorted(ENGINES), default=DEFAULT_ENGINE,
+                      help="farthest-point insertion engine of Problem 2: the compiled one, or the reference that "
+                           f"reads like the paper (default: {DEFAULT_ENGINE})")
     mesh.add_argument("--max-nodes", type=_max_nodes, default=argparse.SUPPRESS, metavar="N",
                       help="refuse, before any heavy work, a mesh estimated to need more than N nodes; 'none' for "
                            f"no limit. The defaults, {MAX_NODES} nodes with --optimize none and "
-                           f"{MAX_OPTIMIZE_NODES} with --optimize paper, keep a run to about two minutes on a "
+                           f"{MAX_OPTIMIZE_NODES['bounded']} with --optimize bounded and {MAX_OPTIMIZE_NODES['paper']} with "
+                           "--optimize paper, keep a run to about two minutes on a "
                            "2-core machine (docs/performance.md); beyond them time grows faster than the node count")
     mesh.add_argument("-o", "--output", required=True, metavar="OUT",
                       help=f"mesh file; format from the extension: {', '.join(sorted(MESH_FORMATS))}")
@@ -189,7 +194,7 @@ def _run_mesh(args):
     limit = {"max_nodes": args.max_nodes} if "max_nodes" in args else {}
     with _library_quiet():
         mesh = mesh_surface(surface, args.length, grid=tuple(args.grid), optimize=args.optimize,
-                            placement=args.placement, progress=progress, **limit)
+                            placement=args.placement, engine=args.engine, progress=progress, **limit)
     write_surface_mesh(mesh, args.output, args.members, args.tolerance)
     if not args.quiet:
         n_g1 = int(mesh.g1_mask.sum())

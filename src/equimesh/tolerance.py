@@ -63,3 +63,28 @@ SINGULAR_SIN = 1e-6
 #: as folded (:mod:`equimesh.surface.regularity`; test: the folding net of
 #: tests/test_hardening_surface.py).
 MAX_NORMAL_TURN = 90.0
+
+#: Beyond the paper (docs/decisions.md, "A solver that scales"): the
+#: Levenberg-Marquardt damping of :mod:`equimesh.surface._solver` starts at
+#: ``LM_INITIAL_DAMPING`` times Marquardt's diagonal ``diag(J^T J)`` (the usual
+#: ``tau = 1e-3``), whose entries are floored at ``LM_DIAGONAL_FLOOR`` times the
+#: largest one, so that a variable no active residual sees keeps a regular
+#: system.  Neither changes a converged result; tests: tests/test_optimize.py.
+LM_INITIAL_DAMPING = 1e-3
+LM_DIAGONAL_FLOOR = 1e-12
+
+#: Beyond the paper (docs/decisions.md, "The bounded objective"): the
+#: ``"bounded"`` optimisation (:func:`equimesh.surface.optimize.bounded_objective`)
+#: aims every member at ``l (1 + BOUNDED_OFFSET)``, inside the 0.5 % band and
+#: away from the hard bound l; its one-sided penalty of slope
+#: ``BOUNDED_PENALTY`` starts below ``l (1 + BOUNDED_OFFSET / 2)`` and above
+#: ``l (2 - BOUNDED_OFFSET)`` (a hinge smoothed over ``BOUNDED_OFFSET / 4``); its
+#: Cauchy scale decreases through ``BOUNDED_SCALES`` (relative deviations), each
+#: stage solved to a relative reduction ``BOUNDED_FTOL``.  The paper's
+#: objective is solved to ``PAPER_FTOL``.  Measured on the reference dome at
+#: l = 5 (docs/decisions.md).  Tests: tests/test_bounded.py, tests/test_optimize.py.
+BOUNDED_OFFSET = 1e-3
+BOUNDED_PENALTY = 1000.0
+BOUNDED_SCALES = (0.01, 0.002)
+BOUNDED_FTOL = 1e-5
+PAPER_FTOL = 1e-8

@@ -52,7 +52,7 @@ def signed_areas(points, triangles):
 
 
 class AreaBarrier:
-    """Fold-over barrier: residuals ``w * max(0, 1 - A / (tau A0))`` per triangle.
+    """Fold-over barrier: residuals ``w * max(0, 1 - A / (tau A0))^p`` per triangle.
 
     ``A`` is a triangle's signed area in a 2D coordinate array (the plane in
     eq. (1), (u, v) in the final optimisation), ``A0 > 0`` its area at the
@@ -63,25 +63,36 @@ class AreaBarrier:
     to the cost.  With ``w^2 / 2`` above the start's cost a solver that only
     accepts cost-decreasing steps (``trf``) can therefore never end on a
     fold-over.  Triangles without positive area at the start are ignored.
+
+    The power ``p`` is 1 (eq. (1), a kink at the floor) or 2: the residual
+    is then continuously differentiable, so a Gauss-Newton model that does
+    not see a triangle yet is not surprised by a cost jump when a step takes
+    it just below the floor (the final optimisation, whose tiny boundary-strip
+    triangles otherwise stall Levenberg-Marquardt for hundreds of steps).
     """
 
-    def __init__(self, triangles, start, fraction, weight, free=None):
+    def __init__(self, triangles, start, fraction, weight, free=None, power=1):
         start = np.asarray(start, dtype=float)
         tri = np.asarray(triangles, dtype=np.int64).reshape(-1, 3)
         area = signed_areas(start, tri)
         self.triangles = tri[area > 0]
         self._floor = fraction * area[area > 0]
         self._weight = float(weight)
+        self._power = power
         self._assemble = ElementJacobian(self.triangles, len(start), 2, free)
 
+    def _depth(self, points):
+        return np.maximum(0.0, 1.0 - signed_areas(points, self.triangles) / self._floor)
+
     def residuals(self, points):
-        return self._weight * np.maximum(0.0, 1.0 - signed_areas(points, self.triangles) / self._floor)
+        return self._weight * self._depth(points) ** self._power
 
     def jacobian(self, points):
         """``dA/dp_k = 1/2 perp(p_{k+2} - p_{k+1})`` for each corner, scaled where the barrier is active."""
         p = [points[self.triangles[:, k]] for k in range(3)]
+        slope = self._power * self._depth(points) ** (self._power - 1) if self._power > 1 else 1.0
         active = signed_areas(points, self.triangles) < self._floor
-        scale = np.where(active, -self._weight / self._floor, 0.0)[:, None]
+        scale = np.where(active, -self._weight * slope / self._floor, 0.0)[:, None]
         grads = []
         for k in range(3):
             d = p[(k + 2) % 3] - p[(k + 1) % 3]

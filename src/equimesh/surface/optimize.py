@@ -1,36 +1,39 @@
-"""Final optimisation of the inner nodes' parameters (Section 4, last paragraph).
+"""Final optimisation of the nodes' parameters (Section 4, last paragraph, and beyond).
 
 "Finally, the deviation of the edge lengths in G1 from the target value is
 minimized by considering (u_i, v_i) of inner nodes as variables."  The
-variables are the (u_i, v_i) of the free (inner) nodes, kept in the chart's
-domain (:func:`~equimesh.surface.chart.domain_of`, [0, 1]^2 for the paper) by
-bounds; boundary nodes stay where remapping put them.  The problem is solved
-with :func:`scipy.optimize.least_squares` (trust region reflective with
-bounds, LSMR sub-problems) and an analytic sparse Jacobian obtained by the
-chain rule through the surface's first derivatives.
+variables are the (u, v) of the free nodes, kept in the chart's parameter domain by
+bounds (:func:`parameter_box`), and for "sliding" boundary nodes the one
+parameter along the side they lie on (the other stays on the side; corners
+stay fixed).  The least-squares problem is solved by the sparse bounded
+Levenberg-Marquardt of :mod:`equimesh.surface._solver` with an analytic sparse
+Jacobian (chain rule through the surface's first derivatives).
 
 The seam.  What is minimised is looked up by name in :data:`OBJECTIVES`: a
 builder ``builder(problem: UVProblem) -> Objective`` returning the residual
-and sparse Jacobian functions of the variable vector.  ``"paper"`` is the
-paper's objective; further objectives (e.g. keeping every member in [l, 2l]
-with as many as possible exactly l) are added beside it with the same
-signature, reusing :func:`edge_length_terms`.
+and sparse Jacobian functions of the variable vector, optionally a hard
+constraint (``feasible``) and a continuation (``refine``).
+
+* ``"paper"``: the paper's objective, ``(L - l) / l`` of the G1 members,
+  boundary fixed;
+* ``"bounded"`` (beyond the paper, the default of
+  :func:`~equimesh.surface.pipeline.mesh_surface`): every member in [l, 2l]
+  as a hard constraint, and as many members as possible at the target
+  ``l (1 + BOUNDED_OFFSET)`` by a reweighted (Cauchy) least squares with a
+  decreasing scale (:func:`bounded_objective`), boundary nodes sliding.
 
 Fold-over.  Lengths do not see orientation, and the G1 edges do not see the
 triangles between the lattice and the boundary at all: minimising the G1
-deviation alone lets the lattice slide over the fixed boundary nodes and flips
+deviation alone lets the lattice slide over the boundary nodes and flips
 boundary-strip triangles (observed on doubly curved patches).  Two guards:
 
 * a barrier (:class:`~equimesh.surface._jacobian.AreaBarrier`), zero unless a triangle's (u, v) area
   falls below ``area_floor`` (default 0.5) of its start area, heavy enough
-  that a folded triangle costs more than the whole start, so that ``trf``,
-  which only accepts cost-decreasing steps, can never end on a fold-over;
-  while no triangle is that squeezed the objective is exactly the paper's;
-* a check after solving: every triangle counter-clockwise in (u, v) at the
-  start must still be; otherwise (only possible with the barrier disabled)
-  the step is shortened (``x0 + t (x* - x0)``, ``t`` halved) until no
-  triangle flips and the cost is no larger than at the start (``t = 0``, the
-  start itself, always qualifies).  The fraction ``t`` kept is reported.
+  that a folded triangle costs more than the whole start; while no triangle
+  is that squeezed the objective is exactly the paper's;
+* the solver's acceptance test: a step that leaves any triangle that was
+  counter-clockwise in (u, v) at the start not strictly counter-clockwise is
+  refused, so no iterate, and no result, has a fold-over.
 """
 
 from dataclasses import dataclass, field
@@ -41,10 +44,12 @@ import scipy.optimize
 import scipy.sparse
 
 from ._jacobian import AreaBarrier, ElementJacobian, signed_areas
-from ..errors import EquimeshError
+from ._solver import least_squares
+from ..errors import EquimeshError, InvalidSurfaceError
 from ..mesh import G1
 from .chart import domain_of
 from .regularity import derivatives, evaluate
+from ..tolerance import BOUNDED_FTOL, BOUNDED_OFFSET, BOUNDED_PENALTY, BOUNDED_SCALES, PAPER_FTOL
 
 
 @dataclass(frozen=True)
@@ -61,8 +66,9 @@ class UVProblem:
         :data:`~equimesh.mesh.G1` or :data:`~equimesh.mesh.OTHER` per edge.
     length : float
         The target length l.
-    free : (N,) bool array
-        True for the variable (inner) nodes.
+    free : (N,) or (N, 2) bool array
+        True for the variable nodes (both parameters), or per parameter
+        (a sliding boundary node varies one of u and v).
     """
 
     surface: object
@@ -74,8 +80,8 @@ class UVProblem:
 
     @property
     def variables(self):
-        """(2N,) bool mask of the variable entries of ``uv.ravel()`` (u and v of free nodes)."""
-        return np.repeat(self.free, 2)
+        """(2N,) bool mask of the variable entries of ``uv.ravel()``."""
+        return np.broadcast_to(np.asarray(self.free, dtype=bool).reshape(len(self.uv), -1), self.uv.shape).ravel()
 
     @property
     def x0(self):
@@ -91,11 +97,23 @@ class UVProblem:
 
 @dataclass(frozen=True)
 class Objective:
-    """Residuals ``r(x)`` and their sparse Jacobian ``J(x)`` over the variable vector; cost is ``|r|^2 / 2``."""
+    """Residuals ``r(x)`` and their sparse Jacobian ``J(x)`` over the variable vector; cost is ``|r|^2 / 2``.
+
+    ``feasible(x)`` (optional) is a hard constraint: once an iterate satisfies
+    it every later one does, and the result must (else :func:`optimize_uv`
+    raises ``InvalidSurfaceError`` with ``violation(x)``, a phrase naming what
+    is violated).  ``refine(x)`` (optional) gives the next objective of a
+    continuation from the solution ``x`` of this one, or None when done.
+    ``ftol`` is the solver's relative-reduction tolerance for this objective.
+    """
 
     residuals: Callable[[np.ndarray], np.ndarray]
     jacobian: Callable[[np.ndarray], object]
     description: str = ""
+    feasible: Callable[[np.ndarray], bool] = None
+    violation: Callable[[np.ndarray], str] = None
+    refine: Callable[[np.ndarray], object] = None
+    ftol: float = PAPER_FTOL
 
 
 def edge_length_terms(problem, edges):
@@ -148,8 +166,80 @@ def paper_objective(problem):
     return Objective(residuals, jac, "relative deviation (L - l) / l of the G1 edges")
 
 
+def bounded_objective(problem):
+    """Beyond the paper: every member in [l, 2l], and as many as possible at one length.
+
+    Counting (the issue's argument): each free node has 2 parameters and each
+    member is one equation, so on a doubly curved surface about 2 of every 3
+    members can be exact, on a developable one all lattice members can.  Which
+    ones is not known in advance, so the objective seeks a sparse deviation:
+
+    * the hard constraint ``l <= L_e <= 2 l`` for every member (Theorems 1 and
+      3 kept on the surface), as :attr:`Objective.feasible`; the solver never
+      leaves it once reached;
+    * a one-sided penalty ``BOUNDED_PENALTY`` times the distance of ``L_e / l``
+      below ``1 + BOUNDED_OFFSET / 2`` or above ``2 - BOUNDED_OFFSET``, which
+      drives an infeasible start into the bounds and keeps iterates off them;
+    * iteratively reweighted least squares for the Cauchy loss on
+      ``d_e = L_e / l - 1 - BOUNDED_OFFSET``: weights ``1 / (1 + (d_e / s)^2)``
+      frozen at the start of each stage, the scale ``s`` decreasing through
+      :data:`~equimesh.tolerance.BOUNDED_SCALES` (continuation).  A member
+      that cannot be made exact ends far outside ``s`` with a small weight and
+      stops pulling on the others, which then reach the target to solver
+      precision.
+
+    The target is ``l (1 + BOUNDED_OFFSET)``, not ``l``: exact members sit at
+    the lower bound otherwise, where any rounding would put them outside [l, 2l].
+    """
+    l = problem.length
+    lengths, length_jacobian = edge_length_terms(problem, problem.edges)
+    low, high = 1.0 + 0.5 * BOUNDED_OFFSET, 2.0 - BOUNDED_OFFSET
+    smooth = 0.25 * BOUNDED_OFFSET
+
+    def feasible(x):
+        ratio = lengths(x) / l
+        return bool(np.all((ratio >= 1.0) & (ratio <= 2.0)))
+
+    def violation(x):
+        ratio = lengths(x) / l
+        out = int(np.count_nonzero((ratio < 1.0) | (ratio > 2.0)))
+        return f"{out} of {len(ratio)} members outside [l, 2l] (lengths from {ratio.min():.6g} l to {ratio.max():.6g} l)"
+
+    def penalty(ratio):
+        """Smoothed hinge ``psi(h)`` of the depth ``h`` outside the band and its derivative in ``ratio``."""
+        depth = np.maximum(0.0, low - ratio) + np.maximum(0.0, ratio - high)
+        side = np.where(ratio > high, 1.0, -1.0)
+        inner = depth < smooth
+        value = np.where(inner, depth**2 / (2 * smooth), depth - smooth / 2)
+        slope = np.where(inner, depth / smooth, 1.0) * side
+        return BOUNDED_PENALTY * value, BOUNDED_PENALTY * slope
+
+    def stage(k, x_start):
+        scale = BOUNDED_SCALES[k]
+        weight = 1.0 / np.sqrt(1.0 + ((lengths(x_start) / l - 1.0 - BOUNDED_OFFSET) / scale) ** 2)
+
+        def residuals(x):
+            ratio = lengths(x) / l
+            return np.concatenate([weight * (ratio - 1.0 - BOUNDED_OFFSET), penalty(ratio)[0]])
+
+        def jacobian(x):
+            length, jac = length_jacobian(x)
+            jac = jac / l
+            return scipy.sparse.vstack(
+                [scipy.sparse.diags(weight) @ jac, scipy.sparse.diags(penalty(length / l)[1]) @ jac], format="csr"
+            )
+
+        refine = (lambda x: stage(k + 1, x)) if k + 1 < len(BOUNDED_SCALES) else None
+        return Objective(
+            residuals, jacobian, f"members in [l, 2l], Cauchy loss on L / l - 1 - {BOUNDED_OFFSET:g} at scale {scale:g}",
+            feasible, violation, refine, BOUNDED_FTOL,
+        )
+
+    return stage(0, problem.x0)
+
+
 #: Objective builders by name, each ``builder(problem: UVProblem) -> Objective``.
-OBJECTIVES = {"paper": paper_objective}
+OBJECTIVES = {"paper": paper_objective, "bounded": bounded_objective}
 
 
 @dataclass(frozen=True)
@@ -161,13 +251,11 @@ class UVOptimization:
     uv : (N, 2) float array
         Optimised parameters; fixed nodes bit-identical to the start.
     cost_before, cost_after : float
-        ``|r|^2 / 2`` of the objective at the start and at ``uv``.
+        ``|r|^2 / 2`` of the (last stage's) objective at the start and at ``uv``.
     nfev, njev : int
-        Residual and Jacobian evaluations of the solver.
-    status : int, message : str
-        From :func:`scipy.optimize.least_squares`.
-    step_fraction : float
-        ``t`` of the fold-over guard: 1.0 when the solver's result was kept.
+        Residual and Jacobian evaluations of the solver (all stages).
+    converged : bool, message : str
+        Whether the last stage met a convergence test, and which.
     objective : str
     """
 
@@ -176,9 +264,8 @@ class UVOptimization:
     cost_after: float
     nfev: int
     njev: int
-    status: int
+    converged: bool
     message: str
-    step_fraction: float
     objective: str
     info: dict = field(default_factory=dict, compare=False)
 
@@ -191,13 +278,13 @@ def optimize_uv(
     length,
     *,
     fixed,
+    sliding=(),
     triangles=None,
     objective="paper",
     area_floor=0.5,
-    ftol=1e-10,
+    ftol=None,
     xtol=1e-10,
     gtol=1e-10,
-    max_nfev=200,
 ):
     """Optimise the (u, v) of the free nodes (Section 4, final step).
 
@@ -205,98 +292,140 @@ def optimize_uv(
     ----------
     surface : Chart
     uv : (N, 2) array_like
-        Start parameters of every node, in the surface's domain (step 4's output).
+        Start parameters of every node, in the parameter domain (step 4's output).
     edges : (E, 2) int array_like
     edge_groups : (E,) int array_like
         G1 / OTHER label per edge.
     length : float
         The target length l.
     fixed : array_like of int or (N,) bool
-        Nodes that stay put (the boundary nodes).
+        Nodes that stay put (the boundary nodes for ``"paper"``).
+    sliding : array_like of int
+        Nodes on the boundary of the parameter domain that move along it:
+        the parameter(s) at a side of :func:`parameter_box` stay, the other
+        varies (a node at a corner stays put).
     triangles : (M, 3) int array_like, optional
-        For the fold-over guard (recommended): without them neither the
-        barrier nor the backtracking is applied.
+        For the fold-over guards (recommended): without them neither the
+        barrier nor the acceptance test is applied.
+    objective : str
+        Key of :data:`OBJECTIVES`.
     area_floor : float
         Fold-over barrier threshold ``tau`` in [0, 1): a triangle is penalised
         once its (u, v) area falls below ``tau`` times its start area (see
-        :class:`~equimesh.surface._jacobian.AreaBarrier`).  0 disables the barrier (the backtracking
-        guard still applies).  The default 0.5 keeps the strip between the
-        lattice and the boundary well shaped at a negligible cost in the G1
-        deviation.
-    objective : str
-        Key of :data:`OBJECTIVES`.
-    ftol, xtol, gtol, max_nfev
-        Passed to :func:`scipy.optimize.least_squares`.
+        :class:`~equimesh.surface._jacobian.AreaBarrier`).  0 disables the
+        barrier (the acceptance test still applies).
+    ftol, xtol, gtol
+        Convergence tolerances of :func:`equimesh.surface._solver.least_squares`;
+        ``ftol=None`` takes the objective's (:attr:`Objective.ftol`).
 
     Returns
     -------
     UVOptimization
+
+    Raises
+    ------
+    InvalidSurfaceError
+        The objective has a hard constraint (``"bounded"``: every member in
+        [l, 2l]) and no point satisfying it was found.
     """
     try:
         builder = OBJECTIVES[objective]
     except (KeyError, TypeError):
         raise EquimeshError(f"unknown objective {objective!r}; choose from {sorted(OBJECTIVES)}") from None
-    domain = domain_of(surface)
-    uv = domain.clip(np.array(uv, dtype=float).reshape(-1, 2))
-    free = np.ones(len(uv), dtype=bool)
-    fixed = np.asarray(fixed)
-    free[fixed if fixed.dtype != bool else np.flatnonzero(fixed)] = False
+    lower, upper = parameter_box(surface)
+    uv = np.clip(np.array(uv, dtype=float).reshape(-1, 2), lower, upper)
+    free = _free_parameters(uv, fixed, sliding, lower, upper)
     problem = UVProblem(surface, uv, np.asarray(edges, dtype=np.int64), np.asarray(edge_groups), float(length), free)
     obj = builder(problem)
     x0 = problem.x0
-
-    def cost(x):
-        r = obj.residuals(x)
-        return 0.5 * float(r @ r)
-
-    cost0 = cost(x0)
     if len(x0) == 0:
-        return UVOptimization(uv, cost0, cost0, 0, 0, 0, "no free nodes", 1.0, objective)
+        cost0 = _cost(obj, x0)
+        return UVOptimization(uv, cost0, cost0, 0, 0, True, "no free nodes", objective)
     tri = None if triangles is None else np.asarray(triangles, dtype=np.int64).reshape(-1, 3)
-    if tri is None or area_floor <= 0:
-        solve = obj
-    else:
-        # weight^2 / 2 > cost0: a folded triangle alone costs more than the start
-        solve = _with_barrier(problem, obj, tri, 1.0 + 2.0 * np.sqrt(cost0), float(area_floor))
-    result = scipy.optimize.least_squares(
-        solve.residuals,
-        x0,
-        jac=solve.jacobian,
-        bounds=tuple(np.broadcast_to(b, uv.shape).ravel()[problem.variables] for b in (domain.lower, domain.upper)),
-        method="trf",
-        tr_solver="lsmr",
-        tr_options={"atol": 1e-12, "btol": 1e-12},
-        x_scale=1.0,
-        ftol=ftol,
-        xtol=xtol,
-        gtol=gtol,
-        max_nfev=max_nfev,
-    )
-    x, t = result.x, 1.0
-    if tri is not None:
-        x, t = _backtrack_fold_over(problem, tri, x0, result.x, cost, cost0)
+    guard = _Guard(problem, tri, obj.feasible)
+    box = (np.tile(lower, len(uv))[problem.variables], np.tile(upper, len(uv))[problem.variables])
+    x, nfev, njev = x0, 0, 0
+    while True:
+        solve = obj if tri is None or area_floor <= 0 else _with_barrier(problem, obj, tri, area_floor, x)
+        tol = obj.ftol if ftol is None else ftol
+        while True:
+            solution = least_squares(solve.residuals, solve.jacobian, x, *box, accept=guard, gtol=gtol, xtol=xtol, ftol=tol)
+            x, nfev, njev = solution.x, nfev + solution.evaluations, njev + solution.iterations + 1
+            if obj.feasible is None or obj.feasible(x) or tol <= PAPER_FTOL:
+                break
+            tol = PAPER_FTOL  # a stage that ends outside the hard constraint goes on to the tight tolerance
+        if obj.refine is None:
+            break
+        obj = obj.refine(x)
+    if obj.feasible is not None and not obj.feasible(x):
+        raise InvalidSurfaceError(
+            f"optimisation ({objective}): no mesh with every member in [l, 2l] found, {obj.violation(x)}; "
+            "use a smaller l or a finer auxiliary grid"
+        )
     return UVOptimization(
-        problem.uv_of(x),
-        cost0,
-        cost(x),
-        int(result.nfev),
-        int(result.njev or 0),
-        int(result.status),
-        str(result.message),
-        t,
-        objective,
+        problem.uv_of(x), _cost(obj, x0), _cost(obj, x), nfev, njev, solution.converged, solution.message, objective
     )
 
 
-def _with_barrier(problem, obj, triangles, weight, fraction):
-    """Append the fold-over barrier (:class:`~equimesh.surface._jacobian.AreaBarrier`) on (u, v) areas."""
-    barrier = AreaBarrier(triangles, problem.uv, fraction, weight, problem.variables)
+def parameter_box(surface):
+    """The chart's parameter domain as ``(lower, upper)``, each ``(u, v)`` (:func:`~equimesh.surface.chart.domain_of`)."""
+    domain = domain_of(surface)
+    return np.asarray(domain.lower, dtype=float), np.asarray(domain.upper, dtype=float)
 
-    def residuals(x):
-        return np.concatenate([obj.residuals(x), barrier.residuals(problem.uv_of(x))])
 
-    def jacobian(x):
-        return scipy.sparse.vstack([obj.jacobian(x), barrier.jacobian(problem.uv_of(x))], format="csr")
+def _free_parameters(uv, fixed, sliding, lower, upper):
+    """(N, 2) mask of the variable parameters: all but the fixed nodes', and a sliding node's only off its sides."""
+    free = np.ones(uv.shape, dtype=bool)
+    fixed = np.asarray(fixed)
+    free[np.flatnonzero(fixed) if fixed.dtype == bool else fixed.astype(np.int64)] = False
+    slide = np.asarray(sliding, dtype=np.int64)
+    free[slide] &= (uv[slide] > lower) & (uv[slide] < upper)
+    return free
+
+
+def _cost(obj, x):
+    r = obj.residuals(x)
+    return 0.5 * float(r @ r)
+
+
+class _Guard:
+    """The solver's acceptance test: no fold-over in (u, v), and a reached hard constraint kept.
+
+    :func:`~equimesh.surface._solver.least_squares` calls it only on
+    cost-reducing steps and takes the step exactly when it returns True, so
+    it tracks whether the current iterate is feasible.
+    """
+
+    def __init__(self, problem, triangles, feasible):
+        self.problem, self.triangles, self.feasible = problem, triangles, feasible
+        self.inside = feasible is not None and feasible(problem.x0)
+
+    def __call__(self, x):
+        if self.triangles is not None and len(flipped_triangles(self.problem.uv, self.problem.uv_of(x), self.triangles)):
+            return False
+        if self.feasible is None:
+            return True
+        now = self.feasible(x)
+        if self.inside and not now:
+            return False
+        self.inside = now
+        return True
+
+
+def _with_barrier(problem, obj, triangles, fraction, x):
+    """Append the fold-over barrier (:class:`~equimesh.surface._jacobian.AreaBarrier`) on (u, v) areas.
+
+    Its weight ``w`` has ``w^2 / 2`` above the objective's cost at ``x``: a
+    folded triangle alone costs more than the start of the solve.
+    """
+    weight = 1.0 + 2.0 * np.sqrt(_cost(obj, x))
+    barrier = AreaBarrier(triangles, problem.uv, fraction, weight, problem.variables, power=2)
+
+    def residuals(y):
+        return np.concatenate([obj.residuals(y), barrier.residuals(problem.uv_of(y))])
+
+    def jacobian(y):
+        return scipy.sparse.vstack([obj.jacobian(y), barrier.jacobian(problem.uv_of(y))], format="csr")
 
     return Objective(residuals, jacobian, obj.description + " + fold-over barrier")
 
@@ -306,15 +435,3 @@ def flipped_triangles(uv_before, uv_after, triangles):
     triangles = np.asarray(triangles, dtype=np.int64).reshape(-1, 3)
     before, after = signed_areas(uv_before, triangles), signed_areas(uv_after, triangles)
     return np.flatnonzero((before > 0) & (after <= 0))
-
-
-def _backtrack_fold_over(problem, triangles, x0, x1, cost, cost0, halvings=30):
-    """Shorten the step ``x0 -> x1`` until no triangle flips and the cost does not rise."""
-    uv0 = problem.uv
-    t = 1.0
-    for _ in range(halvings):
-        x = x0 + t * (x1 - x0)
-        if not len(flipped_triangles(uv0, problem.uv_of(x), triangles)) and cost(x) <= cost0:
-            return x, t
-        t *= 0.5
-    return x0, 0.0

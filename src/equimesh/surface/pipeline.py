@@ -40,6 +40,7 @@ from .remap import remap
 from ._places import number
 from .restate import restate_polygon_error
 from ..planar.strip import BOUNDARY_SPACING, check_spacing, uniform_triangulation
+from ..tolerance import at_least, at_most
 
 #: Default limit on the node count of a surface mesh without the final
 #: optimisation (``optimize="none"``); :func:`mesh_surface` refuses, before any
@@ -49,9 +50,18 @@ from ..planar.strip import BOUNDARY_SPACING, check_spacing, uniform_triangulatio
 #: (docs/performance.md).
 MAX_NODES = 30_000
 
-#: Default node limit with the paper's optimisation (about n^2): the
-#: reference dome took 57 s at 2,265 nodes and 105 s at 2,917 (docs/performance.md).
-MAX_OPTIMIZE_NODES = 3_000
+#: Objectives whose boundary nodes slide along the boundary (beyond the paper)
+#: and whose members are guaranteed to lie in [l, 2l] (checked on the result).
+SLIDING_OBJECTIVES = ("bounded",)
+
+#: Default node limits with an optimisation, per objective, measured with the
+#: sparse Levenberg-Marquardt solver on the reference dome (15 x 15 grid,
+#: default placement) on this project's busy 2-core machine (docs/decisions.md,
+#: "A solver that scales"): "paper" took 11 s at 5,840 nodes (17,333 members)
+#: and 344 s at 34,031 nodes (101,654 members); "bounded" 3 s at about 370
+#: nodes and 100 s at 1,438 nodes, and did not reach [l, 2l] within the
+#: solver's iteration guard at 5,840 nodes.
+MAX_OPTIMIZE_NODES = {"paper": 15_000, "bounded": 1_500}
 
 #: Limit on the auxiliary grid's cells n_u * n_v: flattening by eq. (1) took
 #: 9 s at 100 x 100, 41 s (0.6 GB) at 200 x 200 and 251 s (1.3 GB) at
@@ -59,7 +69,7 @@ MAX_OPTIMIZE_NODES = 3_000
 MAX_GRID_CELLS = 40_000
 
 #: The final optimisation when none is named (a key of :data:`~equimesh.surface.optimize.OBJECTIVES`, or "none").
-DEFAULT_OPTIMIZE = "paper"
+DEFAULT_OPTIMIZE = "bounded"
 
 #: Lattice placements: "best" searches (beyond the paper), "default" is angle 0, offset (0, 0).
 PLACEMENTS = ("best", "default")
@@ -151,9 +161,12 @@ def mesh_surface(
         Target member length.
     grid : (int, int)
         Auxiliary grid n_u x n_v (step 1), at most :data:`MAX_GRID_CELLS` cells.
-    optimize : "paper" or "none"
-        Final optimisation of the inner nodes' (u, v) (see
-        :data:`equimesh.surface.optimize.OBJECTIVES`), or none.
+    optimize : "bounded", "paper" or "none"
+        Final optimisation of the nodes' (u, v) (see
+        :data:`equimesh.surface.optimize.OBJECTIVES`), or none.  "bounded"
+        (beyond the paper, the default) keeps every member in [l, 2l] with as
+        many as possible at one length, boundary nodes sliding along their
+        side; "paper" is the paper's (G1 members only, boundary fixed).
     placement : "best" or "default"
         Lattice placement of Problem 2.
     boundary_spacing : float
@@ -162,9 +175,9 @@ def mesh_surface(
         Refuse, before flattening, a mesh estimated (from the surface area of
         the auxiliary triangulation and the lattice density ``2 / (sqrt(3) l^2)``)
         to need more nodes; None means no limit.  "default" is
-        :data:`MAX_NODES`, or :data:`MAX_OPTIMIZE_NODES` with the paper's
-        optimisation: runs within the defaults take at most about two
-        minutes on a small machine.
+        :data:`MAX_NODES`, or :data:`MAX_OPTIMIZE_NODES` of the objective:
+        runs within the defaults take at most about two minutes on a small
+        machine.
     progress : callable, optional
         Called as ``progress(stage, seconds)`` after each stage.
     engine : str
@@ -182,6 +195,8 @@ def mesh_surface(
         this ``l``; the message names the side, corner or (u, v) at fault.
     MeshTooLargeError
         The estimated node count exceeds ``max_nodes``.
+    InternalError
+        A returned "bounded" mesh would have a member outside [l, 2l].
     """
     l = check_length(l)
     if not (isinstance(optimize, str) and (optimize == "none" or optimize in OBJECTIVES)):
@@ -226,19 +241,24 @@ def mesh_surface(
     result = None
     final_uv, final_points = mapped.uv, mapped.points
     if optimize != "none":
+        boundary = np.arange(plane.n_boundary)
+        slides = optimize in SLIDING_OBJECTIVES
         result = optimize_uv(
             surface,
             mapped.uv,
             plane.edges,
             plane.edge_groups,
             l,
-            fixed=np.arange(plane.n_boundary),
+            fixed=boundary[:0] if slides else boundary,
+            sliding=boundary if slides else (),
             triangles=plane.triangles,
             objective=optimize,
         )
         final_uv = result.uv
         _check_orientation(final_uv, plane.triangles, "the optimisation")
         final_points = evaluate(surface, final_uv)
+        if optimize in SLIDING_OBJECTIVES:
+            _check_members(final_points, plane.edges, l)
         clock("optimisation of inner nodes")
 
     stages = Stages(aux, x_s0, flat, outline, chosen, plane, mapped.uv, mapped.points, result, seconds)
@@ -285,7 +305,7 @@ def _grid_pair(grid):
 def _node_limit(max_nodes, optimize):
     """The node limit: a positive int, None (no limit) or "default" (:data:`MAX_NODES` or :data:`MAX_OPTIMIZE_NODES`)."""
     if isinstance(max_nodes, str) and max_nodes == "default":
-        return MAX_NODES if optimize == "none" else MAX_OPTIMIZE_NODES
+        return MAX_NODES if optimize == "none" else MAX_OPTIMIZE_NODES[optimize]
     if isinstance(max_nodes, str):
         raise EquimeshError(f'max_nodes must be a positive integer, None (no limit) or "default", got {max_nodes!r}')
     return check_max_nodes(max_nodes)
@@ -307,6 +327,17 @@ def _check_size(surface_points, triangles, l, max_nodes):
     with np.errstate(over="ignore", under="ignore", divide="ignore"):
         estimate = float(area / np.float64(l * scale) ** 2 / (np.sqrt(3.0) / 2.0))
     check_size(f"this surface (area {number(area / scale / scale)})", estimate, max_nodes, l)
+
+
+def _check_members(points, edges, l):
+    """Every member of the surface mesh in [l, 2l] (up to REL_TOL), or the bounded optimisation broke its guarantee."""
+    ratio = edge_lengths(points, edges) / l
+    bad = np.flatnonzero(~(at_least(ratio, 1.0) & at_most(ratio, 2.0)))
+    if bad.size:
+        raise InternalError(
+            f"the bounded optimisation returned {bad.size} of {len(edges)} members outside [l, 2l] "
+            f"(lengths from {ratio.min():.10g} l to {ratio.max():.10g} l); please report this surface"
+        )
 
 
 def _check_orientation(uv, triangles, stage):
