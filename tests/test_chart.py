@@ -71,13 +71,14 @@ def test_mesh_on_a_shifted_rectangle_equals_the_unit_chart():
     np.testing.assert_allclose((b.uv - SHIFTED.lower) / (SHIFTED.upper - SHIFTED.lower), a.uv, rtol=0, atol=1e-12)
 
 
-def test_optimisation_keeps_the_nodes_in_the_chart_rectangle():
-    """The final step's bounds are the chart's rectangle; the G1 deviation does not grow."""
+@pytest.mark.parametrize("objective", ["paper", "bounded"])
+def test_optimisation_keeps_the_nodes_in_the_chart_rectangle(objective):
+    """The final step's bounds are the chart's rectangle; the objective does not grow."""
     shifted = Reparametrised(dome(rise=10.0), SHIFTED)
-    mesh = equimesh.mesh_surface(shifted, 5.0, grid=(8, 8), placement="default")
+    mesh = equimesh.mesh_surface(shifted, 5.0, grid=(8, 8), placement="default", optimize=objective)
     assert_valid_surface_mesh(mesh, shifted)
     opt = mesh.stages.optimization
-    assert opt.cost_after <= opt.cost_before and opt.step_fraction == 1.0
+    assert opt.cost_after <= opt.cost_before
 
 
 def test_refusals_name_the_sides_of_the_chart():
