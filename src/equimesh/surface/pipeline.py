@@ -44,11 +44,12 @@ from ..tolerance import at_least, at_most
 
 #: Default limit on the node count of a surface mesh without the final
 #: optimisation (``optimize="none"``); :func:`mesh_surface` refuses, before any
-#: expensive work, a request estimated to exceed it.  The time goes into the
-#: lattice placement search (about n^1.6): on this project's busy 2-core
-#: machine the saddle took 70 s at 32,400 nodes and 140 s at 39,900
-#: (docs/performance.md).
-MAX_NODES = 30_000
+#: expensive work, a request estimated to exceed it.  With the fast engine and
+#: the row-by-row clearance of the placement search, `equimesh mesh --optimize
+#: none` on an idle 2-core machine took 3.2 s for the reference dome at 36,847
+#: nodes, 12 s for the saddle at 184,518 and 30 s (0.74 GB) at 565,740
+#: (docs/performance.md, "Section 4 without optimisation").
+MAX_NODES = 500_000
 
 #: Objectives whose boundary nodes slide along the boundary (beyond the paper)
 #: and whose members are guaranteed to lie in [l, 2l] (checked on the result).
