@@ -33,7 +33,8 @@ EXPERIMENTS := \
 	experiments/table1.py \
 	experiments/figures.py \
 	experiments/compare_peers.py \
-	experiments/scaling.py
+	experiments/scaling.py \
+	experiments/bounded.py
 
 # The hypothesis profile comes from EQUIMESH_HYPOTHESIS_PROFILE (tests/conftest.py;
 # quick "ci" when unset); `make test-thorough` selects the thorough one.
