@@ -1,4 +1,4 @@
-"""Beyond the paper (issue 9): the "bounded" optimisation against the paper's on five surfaces.
+"""Beyond the paper: the "bounded" optimisation against the paper's on five surfaces.
 
 For the reference dome, a steeper dome, a hyperbolic paraboloid, a wave and a
 developable barrel vault (all bicubic Bezier patches over 80 x 80), each at

@@ -62,7 +62,7 @@ def test_bounded_beats_paper_on_a_doubly_curved_dome():
 
 
 def test_developable_vault_reaches_three_quarters():
-    """A developable surface: lattice members can all be exact (issue 9 target: >= 75 % within 0.5 %)."""
+    """A developable surface: lattice members can all be exact (target: >= 75 % within 0.5 %, docs/decisions.md item 41)."""
     mesh = mesh_surface(parabolic_vault(), 60.0 / 17)
     assert in_bounds(mesh)
     assert share_exact(mesh) >= 0.75

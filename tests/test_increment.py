@@ -23,7 +23,7 @@ from invariants import (
 )
 from strategies import problems
 
-#: Every property runs against both engines (issue 8); the reference engine is the oracle.
+#: Every property runs against both engines; the reference engine is the oracle.
 ENGINE_NAMES = sorted(ENGINES)
 engines = pytest.mark.parametrize("engine", ENGINE_NAMES)
 

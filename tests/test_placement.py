@@ -32,7 +32,7 @@ MAX_AREA = 400.0
 
 
 def kept_by_every_vertex(poly, l, angle, offset, clearance):
-    """The scorer before issue 8 (the oracle): every lattice vertex tested against the boundary with shapely."""
+    """The scorer before the row-by-row clearance (the oracle): every lattice vertex tested against the boundary with shapely."""
     ii, _, pts, kept = kept_vertices(poly, l, angle, offset, clearance)
     shape = poly.shapely()
     inside = shapely.contains_xy(shape, pts[:, 0], pts[:, 1])

@@ -31,7 +31,7 @@ import strategies_simple as ss
 #: Largest polygon area drawn by the property tests, in units of l^2.
 MAX_AREA = 1500.0
 
-#: Every property runs against both engines (issue 8); the reference engine is the oracle.
+#: Every property runs against both engines; the reference engine is the oracle.
 engines = pytest.mark.parametrize("engine", sorted(ENGINES))
 
 

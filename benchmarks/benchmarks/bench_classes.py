@@ -1,4 +1,4 @@
-"""Fabrication figures of the surface mesh per optimisation objective (issue 9): not times, values over commits.
+"""Fabrication figures of the surface mesh per optimisation objective: not times, values over commits.
 
 Uses only equimesh's public API (``equimesh.mesh_surface``, ``equimesh.length_classes``).
 Input: the reference surface ``experiments/surfaces/reference_dome.json``, l = 5,
@@ -15,7 +15,7 @@ from .common import SURFACE_GRID, SURFACE_LENGTH, reference_surface_json
 #: Objectives tracked; the first is the one every equimesh has (the smoke test runs it).
 OBJECTIVES = ["paper", "bounded"]
 
-#: The fabrication tolerance of issue 9: +-0.5 % of l.
+#: The fabrication tolerance of the comparison: +-0.5 % of l.
 TOLERANCE = 0.005
 
 

@@ -1,4 +1,4 @@
-"""The two insertion engines (issue 8) against the size of the output.
+"""The two insertion engines against the size of the output.
 
 Uses only equimesh's public API (``equimesh.increment``,
 ``equimesh.uniform_triangulation``, ``equimesh.node_lower_bound``).  The

@@ -12,7 +12,7 @@ from .common import L, POLYGON_AREAS, SHAPES, polygon
 class Increment:
     """``equimesh.increment(vertices, l, engine="reference")``: the reference engine, as since the first commit.
 
-    (The default engine became "fast" with issue 8; this suite keeps the
+    (The default engine became "fast" (docs/decisions.md item 28); this suite keeps the
     reference engine so that its history stays comparable.  Both engines by
     size: ``bench_engines.py``.)
 

@@ -133,7 +133,7 @@ class Optimisation:
         self._run(cache, objective, l)
 
     def track_share_within_half_percent(self, cache, objective, l):
-        """Share of all members within 0.5 % of l after the optimisation (issue 9)."""
+        """Share of all members within 0.5 % of l after the optimisation."""
         result, surface, mesh = self._run(cache, objective, l)
         points = surface.evaluate(result.uv[:, 0], result.uv[:, 1])
         ratio = np.linalg.norm(points[mesh.edges[:, 1]] - points[mesh.edges[:, 0]], axis=1) / l

@@ -96,7 +96,7 @@ def reference_surface_json():
     return json.loads(REFERENCE_SURFACE_JSON.read_text(encoding="utf-8"))
 
 
-# --- Engines and sizes (issue 8) -------------------------------------------------
+# --- Engines and sizes ----------------------------------------------------------
 
 #: The insertion engines compared by the size-parametrised suites.
 ENGINES = ("fast", "reference")

@@ -23,7 +23,7 @@ Cost: ``1 + n_angles n_offsets^2 + 27 refine`` evaluations (247 by default),
 each O(A / l^2) elementwise array operations on the lattice's bounding-box
 grid plus O((clearance + 1) P / l) point-segment distances for the vertices
 near the boundary (:mod:`equimesh.planar._clearance`; A the area, P the
-perimeter).  Before issue 8 every grid vertex was measured against every
+perimeter).  Before the row-by-row clearance every grid vertex was measured against every
 boundary edge, O(A P / l^3): on the reference dome at l = 0.5 the search
 now takes about 2 s, where the whole planar stage took 149 s before
 (docs/performance.md).

@@ -22,7 +22,7 @@ from .reference import run as _reference
 #: Available insertion engines, by name.
 ENGINES = {"reference": _reference, "fast": _fast}
 
-#: The engine every verb uses unless told otherwise (issue 8: the fast engine,
+#: The engine every verb uses unless told otherwise (the fast engine,
 #: tested against the reference, which stays as the oracle).
 DEFAULT_ENGINE = "fast"
 
