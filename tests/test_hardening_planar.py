@@ -334,3 +334,10 @@ def test_unknown_engine_is_refused_before_any_work(engine):
     for verb in (equimesh.increment, equimesh.uniform_triangulation):
         with pytest.raises(EquimeshError, match=r"^unknown insertion engine .*; choose from \[.*'reference'"):
             verb(SQUARE10, 1e-3, engine=engine)  # checked before the size guard would refuse l = 1e-3
+
+
+@pytest.mark.parametrize("value, kind", [(True, "boolean True"), (np.bool_(False), "boolean False"), (1j, "complex value 1j")])
+def test_non_real_lengths_are_named_by_their_kind(value, kind):
+    """A boolean is a number to Python's numbers module; the message still says what it is."""
+    with pytest.raises(equimesh.InvalidLengthError, match=f"must be a real number, got {kind}$"):
+        equimesh.increment([[0, 0], [4, 0], [4, 4], [0, 4]], value)

@@ -32,7 +32,8 @@ def real_number(value, name, error):
     if isinstance(value, (bool, np.bool_, str, bytes)) or not (
         isinstance(value, numbers.Real) or (np.ndim(value) == 0 and np.asarray(value).dtype.kind in "iuf")
     ):
-        kind = "complex value " if isinstance(value, numbers.Complex) or np.iscomplexobj(value) else ""
+        boolean = isinstance(value, (bool, np.bool_))
+        kind = "boolean " if boolean else "complex value " if isinstance(value, numbers.Complex) or np.iscomplexobj(value) else ""
         shown = value.item() if isinstance(value, np.generic) else value
         raise error(f"{name} must be a real number, got {kind}{shown!r}")
     return float(value)
