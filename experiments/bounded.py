@@ -126,7 +126,7 @@ def main(argv=None):
     divisors = QUICK_DIVISORS if args.quick else DIVISORS
     tasks = [(n, d, k, o) for n, d, _ in surfaces() for k in divisors for o in OBJECTIVES]
     args.out_dir.mkdir(parents=True, exist_ok=True)
-    df = pd.DataFrame(list(_common.parallel_map(_measure, tasks, args.jobs)))
+    df = pd.DataFrame(list(_common.parallel_map(_measure, tasks, args.jobs, scheduler=args.scheduler)))
     parameters = {"span": SPAN, "divisors": list(divisors), "objectives": list(OBJECTIVES), "band": BAND,
                   "quick": args.quick, "jobs": args.jobs, "out_dir": str(args.out_dir)}
     _common.write_results(args.out_dir / f"{NAME}.csv", df, parameters, lambda record: summarize(df, record))

@@ -297,7 +297,7 @@ def main(argv=None):
     parameters.update(methods=chosen, peer_versions=_peer_versions())
     tasks = [(s, m, args.length) for s in args.surfaces for m in chosen]
     runs = []
-    for row, hist in _common.parallel_map(measure, tasks, args.jobs):
+    for row, hist in _common.parallel_map(measure, tasks, args.jobs, scheduler=args.scheduler):
         print(f"{NAME}: {row['surface']}, {row['method']}: {row['status']}, "
               f"{100 * row['within_0.5pct']:.1f} % within 0.5 % of l, {row['seconds']:.2f} s", flush=True)
         runs.append((row, hist))

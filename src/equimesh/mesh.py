@@ -144,14 +144,14 @@ class PlanarMesh:
         return len(self.points)
 
     @property
-    def _local(self):
+    def local(self):
         """``(points, scale)``: the points the guarantees hold for, and the scale from caller lengths to them."""
         if self.frame is None:
             return self.points, 1.0
         return self.local_points, self.frame.scale
 
     def edge_lengths(self):
-        points, scale = self._local
+        points, scale = self.local
         return edge_lengths(points, self.edges) / scale
 
     @property
@@ -159,7 +159,7 @@ class PlanarMesh:
         return self.edge_groups == G1
 
     def triangle_areas(self):
-        (p, scale), t = self._local, self.triangles
+        (p, scale), t = self.local, self.triangles
         return 0.5 * orient(p[t[:, 0]], p[t[:, 1]], p[t[:, 2]]) / scale**2
 
 

@@ -63,11 +63,6 @@ def atomic_write_text(path, text, encoding="utf-8"):
         tmp.write_text(text, encoding=encoding)
 
 
-def atomic_write_bytes(path, data):
-    """Write ``data`` to ``path`` atomically (see :func:`atomic_paths`)."""
-    with atomic_path(path) as tmp:
-        tmp.write_bytes(data)
-
 
 def probe_folder(folder, suffix=""):
     """Create and remove a temporary file in ``folder``, exactly as a write would; raise its ``OSError``."""

@@ -32,8 +32,7 @@ def verify_planar(mesh):
       points, ``info["boundary_rings"]`` points each (one ring without it);
     * every edge in ``[(1 - REL_TOL) l, 2 (1 + REL_TOL) l]``.
     """
-    points = mesh.points if mesh.local_points is None else mesh.local_points
-    scale = 1.0 if mesh.frame is None else mesh.frame.scale
+    points, scale = mesh.local
     l, lp = mesh.length, mesh.length * scale
     n, h, t = len(points), mesh.n_boundary, mesh.triangles
     if t.size and (t.min() < 0 or t.max() >= n):

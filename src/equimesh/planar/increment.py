@@ -18,13 +18,14 @@ import numpy as np
 from ..mesh import PlanarMesh, boundary_first
 from .guarantees import verify_planar
 from .insertion import DEFAULT_ENGINE, Region, check_engine, insert
-from .limits import check_max_nodes, check_size, planar_estimate
+from .limits import MAX_NODES, check_max_nodes, check_size, planar_estimate
 from .polygon import (
     as_polygon,
     check_boundary_separation,
     check_convex_right_angles,
     check_edges_at_least,
     check_length,
+    pinned_vertices,
     resample_boundary,
 )
 
@@ -70,7 +71,7 @@ def increment(vertices, l, *, engine=DEFAULT_ENGINE, max_nodes="default"):
         returned (:func:`equimesh.planar.guarantees.verify_planar`).
     """
     check_engine(engine)
-    max_nodes = check_max_nodes(max_nodes, engine)
+    max_nodes = check_max_nodes(max_nodes, MAX_NODES[engine])
     poly, l = validate_problem1(vertices, l)
     lp = poly.local_length(l)
     check_size(*planar_estimate(poly, l, None, engine), max_nodes, l)
@@ -86,6 +87,6 @@ def increment(vertices, l, *, engine=DEFAULT_ENGINE, max_nodes="default"):
         n_ring,
         info={"n_inserted": len(result.points) - result.n_initial},
         frame=poly.frame,
-        pinned=(poly.local, poly.vertices),
+        pinned=pinned_vertices(poly),
     )
     return verify_planar(mesh)

@@ -39,11 +39,11 @@ def check_count(value, name, least=1):
     return int(value)
 
 
-def check_max_nodes(value, engine=DEFAULT_ENGINE):
-    """``max_nodes`` as an int, None for no limit, or ``"default"``: the limit of ``engine`` (:data:`MAX_NODES`)."""
+def check_max_nodes(value, default):
+    """``max_nodes`` as an int, None for no limit, or ``"default"``: then ``default``, the caller's own limit."""
     if isinstance(value, str) and value == "default":
-        return MAX_NODES[check_engine(engine)]
-    return None if value is None else check_count(value, "max_nodes (None for no limit)")
+        return default
+    return None if value is None else check_count(value, 'max_nodes (None for no limit, "default" for the default)')
 
 
 def planar_estimate(poly, l, strip, engine):

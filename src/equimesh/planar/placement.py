@@ -36,7 +36,7 @@ import numpy as np
 from ..errors import EquimeshError
 from .insertion import DEFAULT_ENGINE
 from .lattice import kept_vertices, lattice_basis, lattice_triangle_masks
-from .limits import check_count, check_max_nodes, check_size, planar_estimate
+from .limits import MAX_NODES, check_count, check_max_nodes, check_size, planar_estimate
 from .polygon import as_polygon, check_length
 from .strip import check_clearance, strip_estimate
 
@@ -128,7 +128,7 @@ def best_lattice_placement(
             f"n_angles = {n_angles}, n_offsets = {n_offsets} and refine = {refine} ask for {planned} placements "
             f"(1 + n_angles n_offsets^2 + 27 refine), more than {MAX_EVALUATIONS}; use smaller counts"
         )
-    max_nodes = check_max_nodes(max_nodes)
+    max_nodes = check_max_nodes(max_nodes, MAX_NODES[DEFAULT_ENGINE])
     poly = as_polygon(vertices, l, holes)
     check_size(*planar_estimate(poly, l, strip_estimate(poly, l, clearance), DEFAULT_ENGINE), max_nodes, l)
     evaluations = 0

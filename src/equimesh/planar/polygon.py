@@ -614,3 +614,8 @@ def _separation_error(poly, boundary, l, i, j):
             f"use l <= {d} or widen the polygon there"
         )
     return InvalidPolygonError(message, points=caller)
+
+
+def pinned_vertices(poly):
+    """``(local, caller)`` rows of every ring's vertices, so the output keeps the caller's exact coordinates."""
+    return tuple(np.vstack([getattr(ring, name) for ring in poly.rings]) for name in ("local", "vertices"))

@@ -32,12 +32,13 @@ from ..mesh import PlanarMesh, boundary_first, boundary_ring, unique_edges
 from .guarantees import verify_planar
 from .insertion import DEFAULT_ENGINE, Region, check_engine, insert
 from .lattice import lattice_adjacent, lattice_part
-from .limits import check_max_nodes, check_size, node_estimate, planar_estimate
+from .limits import MAX_NODES, check_max_nodes, check_size, node_estimate, planar_estimate
 from .polygon import (
     as_polygon,
     check_boundary_separation,
     check_edges_at_least,
     check_length,
+    pinned_vertices,
     real_array,
     real_number,
     resample_boundary,
@@ -119,7 +120,7 @@ def uniform_triangulation(
     angle = _check_scalar(angle, "angle")
     spacing = check_spacing(boundary_spacing)
     check_engine(engine)
-    max_nodes = check_max_nodes(max_nodes, engine)
+    max_nodes = check_max_nodes(max_nodes, MAX_NODES[engine])
     poly = as_polygon(vertices, l, holes)
     check_edges_at_least(poly, l)
     check_size(*planar_estimate(poly, l, strip_estimate(poly, l, clearance), engine), max_nodes, l)
@@ -178,11 +179,6 @@ def hole_seed(hole):
     """A point strictly inside a hole's ring (local frame): the seed that tells the CDT to leave the hole empty."""
     point = shapely.Polygon(hole.local).representative_point()
     return np.array([[point.x, point.y]])
-
-
-def pinned_vertices(poly):
-    """``(local, caller)`` rows of every ring's vertices, so the output keeps the caller's exact coordinates."""
-    return tuple(np.vstack([getattr(ring, name) for ring in poly.rings]) for name in ("local", "vertices"))
 
 
 def strip_estimate(poly, l, clearance):

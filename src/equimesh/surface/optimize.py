@@ -36,7 +36,7 @@ boundary-strip triangles (observed on doubly curved patches).  Two guards:
   refused, so no iterate, and no result, has a fold-over.
 """
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Callable
 
 import numpy as np
@@ -267,7 +267,6 @@ class UVOptimization:
     converged: bool
     message: str
     objective: str
-    info: dict = field(default_factory=dict, compare=False)
 
 
 def optimize_uv(

@@ -32,7 +32,7 @@ from ..mesh import G1, edge_lengths
 from .optimize import OBJECTIVES, optimize_uv
 from .outline import resample_outline
 from ..planar.insertion import DEFAULT_ENGINE, check_engine
-from ..planar.limits import check_max_nodes, check_size
+from ..planar.limits import check_max_nodes, check_size, node_estimate
 from ..planar.placement import best_lattice_placement
 from ..planar.polygon import check_length
 from .regularity import check_regular, evaluate
@@ -305,11 +305,7 @@ def _grid_pair(grid):
 
 def _node_limit(max_nodes, optimize):
     """The node limit: a positive int, None (no limit) or "default" (:data:`MAX_NODES` or :data:`MAX_OPTIMIZE_NODES`)."""
-    if isinstance(max_nodes, str) and max_nodes == "default":
-        return MAX_NODES if optimize == "none" else MAX_OPTIMIZE_NODES[optimize]
-    if isinstance(max_nodes, str):
-        raise EquimeshError(f'max_nodes must be a positive integer, None (no limit) or "default", got {max_nodes!r}')
-    return check_max_nodes(max_nodes)
+    return check_max_nodes(max_nodes, MAX_NODES if optimize == "none" else MAX_OPTIMIZE_NODES[optimize])
 
 
 def _check_size(surface_points, triangles, l, max_nodes):
@@ -326,7 +322,7 @@ def _check_size(surface_points, triangles, l, max_nodes):
     p = surface_points[triangles] * scale
     area = 0.5 * float(np.linalg.norm(np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]), axis=1).sum())
     with np.errstate(over="ignore", under="ignore", divide="ignore"):
-        estimate = float(area / np.float64(l * scale) ** 2 / (np.sqrt(3.0) / 2.0))
+        estimate = node_estimate(area, 0.0, np.float64(l * scale))  # Oler's bound, the lattice density
     check_size(f"this surface (area {number(area / scale / scale)})", estimate, max_nodes, l)
 
 
