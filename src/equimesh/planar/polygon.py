@@ -346,13 +346,19 @@ def _check_simple(poly):
 
 
 def check_edges_at_least(poly, l):
-    """Every edge of the polygon and of its holes must be at least ``l`` long (up to REL_TOL), in the local frame."""
+    """Every edge of the polygon and of its holes must be at least ``l`` long (up to REL_TOL), in the local frame.
+
+    Proven necessary for Theorems 1 and 3: both ends of a side are vertices of
+    any triangulation of P, and the mesh edges on the side add up to its length.
+    """
     for ring in poly.rings:
         short = np.flatnonzero(~at_least(ring.local_edge_lengths, poly.local_length(l)))
         if short.size:
             i = int(short[0])
             raise InvalidPolygonError(
-                f"{ring.edge_name(i)} has length {_num(ring.edge_lengths[i])}, shorter than l = {_num(l)}"
+                "no mesh with every edge in [l, 2l] exists (both ends of a side are nodes, so some mesh edge on it "
+                f"is no longer than the side): {ring.edge_name(i)} has length {_num(ring.edge_lengths[i])}, "
+                f"shorter than l = {_num(l)}"
             )
 
 
@@ -467,17 +473,23 @@ def stagger(angle, l, reach):
     on the side leaving it (counter-clockwise) and on the side arriving at it.
     For a corner of at least :data:`SHARP_CORNER` degrees both are empty.
     Otherwise the points ``k l`` for ``k = 1 .. K``, ``K = ceil(1 / sin angle)``,
-    alternate between the sides, odd ``k`` leaving, even ``k`` arriving: along
-    each side the parts are ``2l`` (``l`` for the first leaving part), and two
-    points of different sides are at least ``l`` apart at any angle because
-    their distances from the corner differ by at least ``l``; past ``K l``
-    the sides themselves are ``l`` apart (docs/proofs.md, "Sharp corners").
+    alternate between the sides (:func:`_multiples`): along each side the
+    parts are ``2l`` (``l`` for the first leaving part), and two points of
+    different sides are at least ``l`` apart at any angle because their
+    distances from the corner differ by at least ``l``; past ``K l`` the sides
+    themselves are ``l`` apart (docs/proofs.md, "Sharp corners").
+    """
+    return _multiples(angle, l, min(_stagger_count(angle), math.floor(reach / l) + 1))
+
+
+def _multiples(angle, l, count):
+    """The points ``k l``, ``k = 1 .. count``, of a sharp corner: odd ``k`` leaving, even ``k`` arriving.
+
     Where ``2 k l sin(angle / 2) > l`` the two points at ``k l`` on both sides
     are ``l`` apart already, so ``k l`` is placed on both (parts of ``l``: a
     ``2l`` part there would leave its midpoint ``l`` from every point, and
     the insertion a sliver against it).
     """
-    count = min(_stagger_count(angle), math.floor(reach / l) + 1)
     k = np.arange(1, count + 1)
     both = 2.0 * k * math.sin(math.radians(angle) / 2.0) >= 1.0 + REL_TOL
     return k[(k % 2 == 1) | both] * l, k[(k % 2 == 0) | both] * l
@@ -507,36 +519,160 @@ def side_positions(lengths, angles, l, spacing=2.0):
     * Next to a corner sharper than :data:`SHARP_CORNER` the points of
       :func:`stagger` are placed; between the last staggered point from each
       end, the middle of length ``M`` is split into ``k`` equal parts by
-      :func:`split_counts` (``l <= M / k <= 2l``).  Staggered points that
-      leave a middle shorter than ``l`` are dropped, the farthest from its
-      corner first; a side at least ``stagger_reach`` of both its corners plus
-      ``l`` long drops none.
+      :func:`split_counts` (``l <= M / k <= 2l``).  A side at least
+      ``stagger_reach`` of both its corners plus ``l`` long keeps them all.
     * A side with no staggered point is split into equal parts exactly as the
       paper's Step 2 (numerators ``0 .. k - 1``, denominator ``k``), bit for
       bit.
+    * Sides too short for all their staggered points are placed by
+      :func:`_separate_short_sides`.  Every part is in ``[l, 2l]`` in every
+      case (docs/proofs.md, "Sharp corners").
     """
     lengths = np.asarray(lengths, dtype=float)
     n = len(lengths)
     reach = [max(lengths[i - 1], lengths[i]) for i in range(n)]
     corners = [stagger(a, l, r) for a, r in zip(angles, reach)]
-    sides = []
+    sides, short = [], []
     for i, length in enumerate(lengths):
-        start, end = corners[i][0], corners[(i + 1) % n][1]
-        start, end = start[start < length], end[end < length]
-        while (len(start) or len(end)) and not at_least(length - start.max(initial=0.0) - end.max(initial=0.0), l):
-            if start.max(initial=0.0) >= end.max(initial=0.0):
-                start = start[:-1]
-            else:
-                end = end[:-1]
-        if not len(start) and not len(end):
-            k = int(split_counts([length], l, spacing)[0])
-            sides.append((np.arange(k, dtype=float), float(k)))
-            continue
-        first, last = start.max(initial=0.0), length - end.max(initial=0.0)
-        k = int(split_counts([last - first], l, spacing)[0])
-        middle = first + (last - first) * np.arange(1, k) / k
-        sides.append((np.concatenate([[0.0], start, middle, length - end[::-1]]), length))
+        start, end = _chains(corners, i, length)
+        if (len(start) or len(end)) and not at_least(length - start.max(initial=0.0) - end.max(initial=0.0), l):
+            short.append(i)
+        sides.append(_place(length, start, end, l, spacing))
+    if short:
+        _separate_short_sides(sides, short, corners, lengths, angles, l, spacing)
     return sides
+
+
+def _chains(corners, i, length):
+    """The staggered points of side ``i`` below ``length``: from its first corner, and from its last (distances from it)."""
+    start, end = corners[i][0], corners[(i + 1) % len(corners)][1]
+    return start[start < length], end[end < length]
+
+
+def _place(length, start, end, l, spacing):
+    """A side of ``length`` with the staggered points ``start`` (from its first corner) and ``end`` (from its last).
+
+    Staggered points that leave a middle shorter than ``l`` are dropped, the
+    farthest from its corner first; the middle is split by
+    :func:`split_counts`.
+    """
+    while (len(start) or len(end)) and not at_least(length - start.max(initial=0.0) - end.max(initial=0.0), l):
+        if start.max(initial=0.0) >= end.max(initial=0.0):
+            start = start[:-1]
+        else:
+            end = end[:-1]
+    if not len(start) and not len(end):
+        k = int(split_counts([length], l, spacing)[0])
+        return np.arange(k, dtype=float), float(k)
+    first, last = start.max(initial=0.0), length - end.max(initial=0.0)
+    k = int(split_counts([last - first], l, spacing)[0])
+    middle = first + (last - first) * np.arange(1, k) / k
+    return np.concatenate([[0.0], start, middle, length - end[::-1]]), length
+
+
+def _separate_short_sides(sides, short, corners, lengths, angles, l, spacing):
+    """Place the ``short`` sides (in place) so that the two sides of every sharp corner are ``l`` apart.
+
+    First each short side takes the best of its candidates
+    (:func:`_short_side`), repeatedly until none changes.  Then each sharp
+    corner still below ``l`` (:func:`_corner_gap`), in order, is tried with
+    its stagger mirrored (odd ``k`` on the arriving side): its two sides are
+    placed again and the trial is kept if it raises the smallest gap of the
+    ring.  Deterministic; the sides keep parts in ``[l, 2l]``.
+    """
+    n = len(lengths)
+    flipped = [False] * n
+
+    def settle(sides, free, flipped):
+        for _ in range(n):
+            changed = False
+            for i in free:
+                best = _short_side(i, sides, lengths, angles, l, spacing, flipped)
+                changed |= best is not sides[i]
+                sides[i] = best
+            if not changed:
+                return
+
+    def worst(sides):
+        return min(_corner_gap(sides, lengths, angles, c) for c in range(n))
+
+    settle(sides, short, flipped)
+    for c in sorted({j % n for i in short for j in (i, i + 1)}):
+        if at_least(_corner_gap(sides, lengths, angles, c), l):
+            continue
+        trial, mirrored = list(sides), list(corners)
+        mirrored[c] = corners[c][::-1]
+        for i in ((c - 1) % n, c):
+            trial[i] = _place(lengths[i], *_chains(mirrored, i, lengths[i]), l, spacing)
+        trial_flipped = flipped[:c] + [not flipped[c]] + flipped[c + 1 :]
+        free = sorted(set(short) | {(c - 1) % n, c})
+        settle(trial, free, trial_flipped)
+        if worst(trial) > worst(sides):
+            sides[:], corners[:], flipped[:], short = trial, mirrored, trial_flipped, free
+
+
+def _short_side(i, sides, lengths, angles, l, spacing, flipped):
+    """The placement of side ``i``: its current one if its sharp corners are separated, else the best candidate.
+
+    Candidates keep a prefix of the stagger of each end continued along the
+    side (:func:`_multiples` up to the side's length, mirrored where
+    ``flipped``) and a middle of ``l`` to ``3l``; they are tried in order
+    (the longest start first, then the longest end) and the first whose
+    :func:`_corner_gap` at both ends is at least ``l`` (up to REL_TOL) is
+    taken, else the one with the largest gap.
+    """
+    n = len(lengths)
+    length = lengths[i]
+
+    def gap(side):
+        trial = sides[:i] + [side] + sides[i + 1 :]
+        return min(_corner_gap(trial, lengths, angles, c % n) for c in (i, i + 1))
+
+    best, best_gap = sides[i], gap(sides[i])
+    if at_least(best_gap, l):
+        return best
+    count = math.floor(length / l * (1.0 + REL_TOL))
+    j = (i + 1) % n
+    start = _multiples(angles[i], l, count if _stagger_count(angles[i]) else 0)[int(flipped[i])]
+    end = _multiples(angles[j], l, count if _stagger_count(angles[j]) else 0)[1 - int(flipped[j])]
+    start, end = start[start < length], end[end < length]
+    for a in range(len(start), -1, -1):
+        for b in range(len(end), -1, -1):
+            middle = length - start[:a].max(initial=0.0) - end[:b].max(initial=0.0)
+            if not at_least(middle, l) or at_least(middle, 3.0 * l):
+                continue
+            side = _place(length, start[:a], end[:b], l, spacing)
+            g = gap(side)
+            if at_least(g, l):
+                return side
+            if g > best_gap:
+                best, best_gap = side, g
+    return best
+
+
+def _corner_gap(sides, lengths, angles, c):
+    """The smallest distance the criterion of docs/proofs.md ("Sharp corners") checks at corner ``c``.
+
+    With ``a`` the distances from the corner of the points on its leaving
+    side and ``b`` on its arriving side (far corners included, the corner
+    itself not), each point is paired with the first point of the other
+    side at least as far from the corner, and the smallest distance of a
+    pair is returned (``inf`` for a corner of at least
+    :data:`SHARP_CORNER`).  If it is at least ``l``, every two points of the
+    two sides are at least ``l`` apart.
+    """
+    if not _stagger_count(angles[c]):
+        return math.inf
+    (num_a, den_a), (num_b, den_b) = sides[c], sides[c - 1]
+    a = np.append(num_a[1:] / den_a * lengths[c], lengths[c])
+    b = lengths[c - 1] * (1.0 - num_b[::-1] / den_b)
+    cosine = math.cos(math.radians(angles[c]))
+    gaps = [math.inf]
+    for p, q in ((a, b), (b, a)):
+        j = np.searchsorted(q, p)
+        p, j = p[j < len(q)], j[j < len(q)]
+        gaps.append(np.sqrt(np.maximum(p**2 + q[j] ** 2 - 2.0 * p * q[j] * cosine, 0.0)).min(initial=math.inf))
+    return float(min(gaps))
 
 
 def split_counts(lengths, l, spacing=2.0):
@@ -586,7 +722,42 @@ def check_boundary_separation(poly, boundary, l):
     pairs = pairs[visible]
     gap = np.linalg.norm(pts[pairs[:, 0]] - pts[pairs[:, 1]], axis=1)
     i, j = pairs[np.lexsort((pairs[:, 1], pairs[:, 0], gap))[0]]
-    raise _separation_error(poly, boundary, l, int(i), int(j))
+    raise _unmeshable_corner(poly, l) or _separation_error(poly, boundary, l, int(i), int(j))
+
+
+def _unmeshable_corner(poly, l):
+    """The error for the first corner at which no mesh with every edge in ``[l, 2l]`` exists, or None.
+
+    A side of length ``beta < 2l`` at a corner ``v`` of angle ``theta`` is a
+    single mesh edge ``v b`` (two parts would be shorter than ``l``).  The
+    triangle on it has a third node ``q`` with ``|v q|`` in ``[l, 2l]`` and
+    the segment ``v q`` in P, so ``q`` lies in the sector of radii ``l`` to
+    ``2l`` between the two sides; its farthest point from ``b`` is at
+    radius ``l`` or ``2l`` on the other side.  When both are closer than
+    ``l`` to ``b``, the edge ``q b`` is shorter than ``l`` in every mesh:
+    that is ``beta < 2 l cos theta`` and ``beta^2 - 4 l beta cos theta + 3 l^2 < 0``
+    (docs/proofs.md, "Sharp corners", the impossibility lemma).
+    """
+    lp = poly.local_length(l)
+    for ring in poly.rings:
+        lengths = ring.local_edge_lengths
+        n = len(lengths)
+        for i in range(n):
+            theta = math.radians(ring.inner_angle(i))
+            for side, beta in ((i, lengths[i]), ((i - 1) % n, lengths[i - 1])):
+                near, far = (math.sqrt(max(r * r + beta * beta - 2.0 * r * beta * math.cos(theta), 0.0)) for r in (lp, 2.0 * lp))
+                if beta < 2.0 * lp * (1.0 - REL_TOL) and max(near, far) < (1.0 - REL_TOL) * lp:
+                    end = ring.vertex_name(i + 1 if side == i else i - 1)
+                    c = math.cos(theta)
+                    low, need = (2.0 * c - math.sqrt(4.0 * c * c - 3.0)) * l, 2.0 * c * l
+                    return InvalidPolygonError(
+                        f"no mesh with every edge in [l, 2l] exists for l = {_num(l)}: at the corner at "
+                        f"{ring.vertex_name(i)} ({math.degrees(theta):.6g} degrees) {ring.edge_name(side)} is "
+                        f"{_num(beta / poly.frame.scale)} long, a single mesh edge, and the third node of its triangle "
+                        f"would be closer than l to its other end, {end} (docs/proofs.md, 'Sharp corners'); "
+                        f"at this angle that side must be at least {need:.10g} long (or at most {low:.10g})"
+                    )
+    return None
 
 
 def _separation_error(poly, boundary, l, i, j):
@@ -603,15 +774,16 @@ def _separation_error(poly, boundary, l, i, j):
         angle = ri.inner_angle(corner)
         need = _num((stagger_reach(angle, poly.local_length(l)) / poly.frame.scale) + l)
         message = (
-            f"the corner at {ri.vertex_name(corner)} ({angle:.6g} degrees) is too sharp for l = {_num(l)}: "
-            f"{where}, closer than l; at {angle:.6g} degrees Step 2 needs both sides of the corner at least "
-            f"{need} long, longer if the next corner is sharp too (docs/proofs.md, 'Sharp corners'); "
+            f"the corner at {ri.vertex_name(corner)} ({angle:.6g} degrees) is not handled for l = {_num(l)}: "
+            f"{where}, closer than l (Lemma 3 (1)); the staggered Step 2 is proven at {angle:.6g} degrees for sides "
+            f"of at least {need}, longer if the next corner is sharp too, and found no placement for these "
+            "(a limit of this method, not a proof that no mesh exists; docs/proofs.md, 'Sharp corners'); "
             "use a smaller l, longer sides or a wider corner"
         )
     else:
         message = (
-            f"polygon is too narrow for l = {_num(l)}: {where} and see each other across the polygon; "
-            f"use l <= {d} or widen the polygon there"
+            f"polygon is too narrow for l = {_num(l)}: {where} and see each other across the polygon "
+            f"(Lemma 3 (1), a limit of this method); use l <= {d} or widen the polygon there"
         )
     return InvalidPolygonError(message, points=caller)
 
