@@ -225,3 +225,39 @@ def test_lengths_at_the_ends_of_the_range_and_numpy_scalars_are_accepted(l):
 def test_a_length_that_is_not_one_real_number_is_named(l, message):
     with pytest.raises(InvalidLengthError, match=r"^target length l must be a real number, " + re.escape(message) + "$"):
         check_length(l)
+
+
+@given(
+    st.lists(st.tuples(st.floats(1.0, 12.0), st.floats(5.0, 355.0)), min_size=3, max_size=6),
+    st.sampled_from([1.0, 1.5, 2.0]),
+)
+def test_step2_parts_stay_in_l_2l_on_sides_too_short_for_their_stagger(ring, spacing):
+    """docs/proofs.md, "Sharp corners": whatever the corner angles and however short the sides (down to l),
+    every side's Step 2 points start at its first corner, increase, and leave parts in [l, 2l]."""
+    from equimesh.planar.polygon import side_positions
+
+    lengths, angles = map(list, zip(*ring))
+    for length, (num, den) in zip(lengths, side_positions(lengths, angles, 1.0, spacing)):
+        at = np.append(num / den * length, length)
+        assert at[0] == 0.0
+        parts = np.diff(at)
+        assert parts.min() >= 1.0 - 1e-9 and parts.max() <= 2.0 + 1e-9, (length, at)
+
+
+@given(
+    st.floats(1.0, 59.9),
+    st.lists(st.floats(1.0, 2.0), min_size=1, max_size=8),
+    st.lists(st.floats(1.0, 2.0), min_size=1, max_size=8),
+)
+def test_the_corner_gap_is_the_smallest_distance_between_the_two_sides_of_a_corner(angle, parts_a, parts_b):
+    """The criterion lemma (docs/proofs.md, "Sharp corners"): pairing each point of one side with the first
+    point of the other side at least as far from the corner finds the closest pair of the two sides, so a
+    corner gap of at least l separates them all."""
+    from equimesh.planar.polygon import _corner_gap
+
+    a, b = np.cumsum(parts_a), np.cumsum(parts_b)
+    sides = [(np.append(0.0, a[:-1]) / a[-1], 1.0), (np.append(0.0, b[-1] - b[::-1][1:]) / b[-1], 1.0)]
+    gap = _corner_gap(sides, np.array([a[-1], b[-1]]), [angle, 360.0 - angle], 0)
+    t = math.radians(angle)
+    pa, pb = a[:, None] * np.array([1.0, 0.0]), b[:, None] * np.array([math.cos(t), math.sin(t)])
+    assert np.linalg.norm(pa[:, None] - pb[None], axis=2).min() == pytest.approx(gap, rel=1e-9)

@@ -614,9 +614,11 @@ def _separate_short_sides(sides, short, corners, lengths, angles, l, spacing):
 def _short_side(i, sides, lengths, angles, l, spacing, flipped):
     """The placement of side ``i``: its current one if its sharp corners are separated, else the best candidate.
 
-    Candidates keep a prefix of the stagger of each end continued along the
-    side (:func:`_multiples` up to the side's length, mirrored where
-    ``flipped``) and a middle of ``l`` to ``3l``; they are tried in order
+    Candidates keep a prefix of a chain from each end and a middle of ``l``
+    to ``3l``: at a sharp corner its stagger continued along the side
+    (:func:`_multiples` up to the side's length, mirrored where
+    ``flipped``), at another corner the multiples of ``l``, so that the last
+    part before it can be ``l``.  They are tried in order
     (the longest start first, then the longest end) and the first whose
     :func:`_corner_gap` at both ends is at least ``l`` (up to REL_TOL) is
     taken, else the one with the largest gap.
@@ -632,9 +634,13 @@ def _short_side(i, sides, lengths, angles, l, spacing, flipped):
     if at_least(best_gap, l):
         return best
     count = math.floor(length / l * (1.0 + REL_TOL))
-    j = (i + 1) % n
-    start = _multiples(angles[i], l, count if _stagger_count(angles[i]) else 0)[int(flipped[i])]
-    end = _multiples(angles[j], l, count if _stagger_count(angles[j]) else 0)[1 - int(flipped[j])]
+
+    def chain(c, arriving):
+        if not _stagger_count(angles[c]):
+            return np.arange(1, count + 1) * l
+        return _multiples(angles[c], l, count)[int(arriving) ^ int(flipped[c])]
+
+    start, end = chain(i, False), chain((i + 1) % n, True)
     start, end = start[start < length], end[end < length]
     for a in range(len(start), -1, -1):
         for b in range(len(end), -1, -1):
@@ -722,41 +728,97 @@ def check_boundary_separation(poly, boundary, l):
     pairs = pairs[visible]
     gap = np.linalg.norm(pts[pairs[:, 0]] - pts[pairs[:, 1]], axis=1)
     i, j = pairs[np.lexsort((pairs[:, 1], pairs[:, 0], gap))[0]]
-    raise _unmeshable_corner(poly, l) or _separation_error(poly, boundary, l, int(i), int(j))
+    raise _unmeshable_corner(poly, l) or _unseparable_corner(poly, l) or _separation_error(poly, boundary, l, int(i), int(j))
+
+
+def _corners(poly):
+    """Every corner of every ring: ``(ring, i, theta, leaving, arriving)``, the angle in radians, side lengths local."""
+    for ring in poly.rings:
+        lengths = ring.local_edge_lengths
+        for i in range(len(lengths)):
+            yield ring, i, math.radians(ring.inner_angle(i)), lengths[i], lengths[i - 1]
+
+
+def _chord(a, b, theta):
+    """The distance between points at distances ``a`` and ``b`` from a corner of angle ``theta``, on its two sides."""
+    return math.sqrt(max(a * a + b * b - 2.0 * a * b * math.cos(theta), 0.0))
+
+
+def _first_node(length, lp):
+    """Where the first node after a corner can lie on a side of ``length``: ``(lowest, highest)`` distance from it.
+
+    The side is split into parts in ``[l, 2l]``: the first part ``f`` is at
+    most ``2l`` and leaves 0 or at least ``l``, so ``f = length`` below
+    ``2l`` and ``f`` in ``[l, min(2l, length - l)]`` from ``2l`` on.
+    """
+    if length < 2.0 * lp * (1.0 - REL_TOL):
+        return length, length
+    return lp, min(2.0 * lp, length - lp)
 
 
 def _unmeshable_corner(poly, l):
     """The error for the first corner at which no mesh with every edge in ``[l, 2l]`` exists, or None.
 
     A side of length ``beta < 2l`` at a corner ``v`` of angle ``theta`` is a
-    single mesh edge ``v b`` (two parts would be shorter than ``l``).  The
-    triangle on it has a third node ``q`` with ``|v q|`` in ``[l, 2l]`` and
-    the segment ``v q`` in P, so ``q`` lies in the sector of radii ``l`` to
-    ``2l`` between the two sides; its farthest point from ``b`` is at
-    radius ``l`` or ``2l`` on the other side.  When both are closer than
-    ``l`` to ``b``, the edge ``q b`` is shorter than ``l`` in every mesh:
-    that is ``beta < 2 l cos theta`` and ``beta^2 - 4 l beta cos theta + 3 l^2 < 0``
-    (docs/proofs.md, "Sharp corners", the impossibility lemma).
+    single mesh edge ``v b`` (:func:`_first_node`).  The triangle on it has
+    a third node ``q`` with ``|v q|`` in ``[l, 2l]`` and the segment ``v q``
+    in P, so ``q`` lies in the sector of radii ``l`` to ``2l`` between the
+    two sides; its farthest point from ``b`` is at radius ``l`` or ``2l`` on
+    the other side.  When both are closer than ``l`` to ``b``, the edge
+    ``q b`` is shorter than ``l`` in every mesh: that is
+    ``beta < 2 l cos theta`` and ``beta^2 - 4 l beta cos theta + 3 l^2 < 0``
+    (docs/proofs.md, "Sharp corners", the sector lemma).
     """
     lp = poly.local_length(l)
-    for ring in poly.rings:
-        lengths = ring.local_edge_lengths
-        n = len(lengths)
-        for i in range(n):
-            theta = math.radians(ring.inner_angle(i))
-            for side, beta in ((i, lengths[i]), ((i - 1) % n, lengths[i - 1])):
-                near, far = (math.sqrt(max(r * r + beta * beta - 2.0 * r * beta * math.cos(theta), 0.0)) for r in (lp, 2.0 * lp))
-                if beta < 2.0 * lp * (1.0 - REL_TOL) and max(near, far) < (1.0 - REL_TOL) * lp:
-                    end = ring.vertex_name(i + 1 if side == i else i - 1)
-                    c = math.cos(theta)
-                    low, need = (2.0 * c - math.sqrt(4.0 * c * c - 3.0)) * l, 2.0 * c * l
-                    return InvalidPolygonError(
-                        f"no mesh with every edge in [l, 2l] exists for l = {_num(l)}: at the corner at "
-                        f"{ring.vertex_name(i)} ({math.degrees(theta):.6g} degrees) {ring.edge_name(side)} is "
-                        f"{_num(beta / poly.frame.scale)} long, a single mesh edge, and the third node of its triangle "
-                        f"would be closer than l to its other end, {end} (docs/proofs.md, 'Sharp corners'); "
-                        f"at this angle that side must be at least {need:.10g} long (or at most {low:.10g})"
-                    )
+    for ring, i, theta, leaving, arriving in _corners(poly):
+        for side, beta in ((i, leaving), (i - 1, arriving)):
+            far = max(_chord(lp, beta, theta), _chord(2.0 * lp, beta, theta))
+            if beta < 2.0 * lp * (1.0 - REL_TOL) and far < (1.0 - REL_TOL) * lp:
+                c = math.cos(theta)
+                low, need = (2.0 * c - math.sqrt(4.0 * c * c - 3.0)) * l, 2.0 * c * l
+                return InvalidPolygonError(
+                    f"no mesh with every edge in [l, 2l] exists for l = {_num(l)}: at the corner at "
+                    f"{ring.vertex_name(i)} ({math.degrees(theta):.6g} degrees) {ring.edge_name(side)} is "
+                    f"{_num(beta / poly.frame.scale)} long, a single mesh edge, and the third node of its triangle "
+                    f"would be closer than l to its other end, {ring.vertex_name(side if side < i else i + 1)} "
+                    f"(docs/proofs.md, 'Sharp corners'); at this angle that side must be at least {need:.10g} long "
+                    f"(or at most {low:.10g})"
+                )
+    return None
+
+
+def _unseparable_corner(poly, l):
+    """The error for the first corner at which no boundary resampling meets Lemma 3 (1), or None.
+
+    Any Step 2 places on each side a first point within :func:`_first_node`'s
+    range.  :func:`_chord` is convex in each distance, so if it is below ``l``
+    at the four ends of the two ranges, the first points of the two sides are
+    closer than ``l`` wherever they lie; when the triangle of the corner and
+    the far ends of the ranges lies in P (grown by ``REL_TOL l``, as in
+    :func:`check_boundary_separation`), they also see each other.  Then no
+    boundary resampling meets Lemma 3 (1), which this method and the paper's
+    need; it is not a proof that no mesh exists (docs/proofs.md, "Sharp
+    corners").
+    """
+    lp = poly.local_length(l)
+    grown = poly.shapely().buffer(REL_TOL * lp)
+    for ring, i, theta, leaving, arriving in _corners(poly):
+        ends = [(a, b) for a in _first_node(leaving, lp) for b in _first_node(arriving, lp)]
+        if theta < math.pi and max(_chord(a, b, theta) for a, b in ends) < (1.0 - REL_TOL) * lp:
+            v, n = ring.local[i], len(ring.local)
+            reach = [v + (ring.local[j % n] - v) * r / length for j, r, length in
+                     ((i + 1, ends[-1][0], leaving), (i - 1, ends[-1][1], arriving))]
+            if not grown.covers(shapely.Polygon([v, *reach])):
+                continue
+            need = _num((stagger_reach(math.degrees(theta), lp) + lp) / poly.frame.scale)
+            return InvalidPolygonError(
+                f"the corner at {ring.vertex_name(i)} ({math.degrees(theta):.6g} degrees) cannot meet Lemma 3 (1) "
+                f"for l = {_num(l)}: with sides of {_num(leaving / poly.frame.scale)} and "
+                f"{_num(arriving / poly.frame.scale)} the first boundary points of its two sides are closer than l "
+                "wherever they lie, so no Step 2 separates them (a limit of the paper's method, not a proof that no "
+                f"mesh exists; docs/proofs.md, 'Sharp corners'); sides of at least {need} are handled; "
+                "use a smaller l, longer sides or a wider corner"
+            )
     return None
 
 
