@@ -249,15 +249,24 @@ def test_step2_parts_stay_in_l_2l_on_sides_too_short_for_their_stagger(ring, spa
     st.lists(st.floats(1.0, 2.0), min_size=1, max_size=8),
     st.lists(st.floats(1.0, 2.0), min_size=1, max_size=8),
 )
-def test_the_corner_gap_is_the_smallest_distance_between_the_two_sides_of_a_corner(angle, parts_a, parts_b):
-    """The criterion lemma (docs/proofs.md, "Sharp corners"): pairing each point of one side with the first
-    point of the other side at least as far from the corner finds the closest pair of the two sides, so a
-    corner gap of at least l separates them all."""
+def test_the_closest_pair_of_a_corner_pairs_each_point_with_the_next_one_across(angle, parts_a, parts_b):
+    """The pairing lemma (docs/proofs.md, "Sharp corners"): the closest pair of points on the two sides of a
+    corner pairs some point with the first point of the other side at least as far from the corner; and
+    ``_corner_gap`` is that distance whenever it is below l."""
     from equimesh.planar.polygon import _corner_gap
 
     a, b = np.cumsum(parts_a), np.cumsum(parts_b)
-    sides = [(np.append(0.0, a[:-1]) / a[-1], 1.0), (np.append(0.0, b[-1] - b[::-1][1:]) / b[-1], 1.0)]
-    gap = _corner_gap(sides, np.array([a[-1], b[-1]]), [angle, 360.0 - angle], 0)
     t = math.radians(angle)
-    pa, pb = a[:, None] * np.array([1.0, 0.0]), b[:, None] * np.array([math.cos(t), math.sin(t)])
-    assert np.linalg.norm(pa[:, None] - pb[None], axis=2).min() == pytest.approx(gap, rel=1e-9)
+
+    def chord(p, q):
+        return np.sqrt(np.maximum(p**2 + q**2 - 2.0 * p * q * math.cos(t), 0.0))
+
+    nearest = chord(a[:, None], b[None, :]).min()
+    paired = np.inf
+    for p, q in ((a, b), (b, a)):
+        j = np.searchsorted(q, p)  # the first point of the other side at least as far from the corner
+        paired = min(paired, chord(p[j < len(q)], q[j[j < len(q)]]).min(initial=np.inf))
+    assert paired == pytest.approx(nearest, rel=1e-12)
+    sides = [(np.append(0.0, a[:-1]) / a[-1], 1.0), (np.append(0.0, b[-1] - b[::-1][1:]) / b[-1], 1.0)]
+    gap = _corner_gap(sides, np.array([a[-1], b[-1]]), [angle, 360.0 - angle], 1.0, 0)
+    assert min(gap, 1.0) == pytest.approx(min(nearest, 1.0), rel=1e-9)

@@ -570,56 +570,74 @@ def _place(length, start, end, l, spacing):
     return np.concatenate([[0.0], start, middle, length - end[::-1]]), length
 
 
+#: Rounds in which :func:`_separate_short_sides` lets each short side take its
+#: best candidate given its neighbours: a bound on the work, not a tolerance.
+#: One round settles a side whose neighbours are fixed; the extra rounds let
+#: two short sides of one sharp corner (thin triangles) adapt to each other.
+SETTLE_PASSES = 4
+
+
 def _separate_short_sides(sides, short, corners, lengths, angles, l, spacing):
     """Place the ``short`` sides (in place) so that the two sides of every sharp corner are ``l`` apart.
 
     First each short side takes the best of its candidates
-    (:func:`_short_side`), repeatedly until none changes.  Then each sharp
+    (:func:`_short_side`), again when a neighbour changed, for at most
+    :data:`SETTLE_PASSES` rounds.  Then each sharp
     corner still below ``l`` (:func:`_corner_gap`), in order, is tried with
     its stagger mirrored (odd ``k`` on the arriving side): its two sides are
-    placed again and the trial is kept if it raises the smallest gap of the
-    ring.  Deterministic; the sides keep parts in ``[l, 2l]``.
+    placed again (and the sides next to them, :data:`SETTLE_PASSES` rounds
+    at most) and the trial is kept if it raises the smallest gap at their
+    corners.  Both rounds run first with the staggers alone, then, if a corner
+    is still below ``l``, with multiples of ``l`` from the other corners too.
+    Deterministic; the sides keep parts in ``[l, 2l]``.
     """
     n = len(lengths)
-    flipped = [False] * n
+    flipped, free = [False] * n, list(short)
 
-    def settle(sides, free, flipped):
-        for _ in range(n):
-            changed = False
-            for i in free:
-                best = _short_side(i, sides, lengths, angles, l, spacing, flipped)
-                changed |= best is not sides[i]
-                sides[i] = best
-            if not changed:
+    def settle(sides, free, flipped, multiples):
+        dirty = set(free)
+        for _ in range(SETTLE_PASSES):
+            for i in [i for i in free if i in dirty]:
+                dirty.discard(i)
+                best = _short_side(i, sides, lengths, angles, l, spacing, flipped, multiples)
+                if best is not sides[i]:
+                    sides[i] = best
+                    dirty |= {(i - 1) % n, (i + 1) % n}
+            if not dirty & set(free):
                 return
 
-    def worst(sides):
-        return min(_corner_gap(sides, lengths, angles, c) for c in range(n))
+    def lowest(sides, changed):
+        return min(_corner_gap(sides, lengths, angles, l, c % n) for i in changed for c in (i, i + 1))
 
-    settle(sides, short, flipped)
-    for c in sorted({j % n for i in short for j in (i, i + 1)}):
-        if at_least(_corner_gap(sides, lengths, angles, c), l):
-            continue
-        trial, mirrored = list(sides), list(corners)
-        mirrored[c] = corners[c][::-1]
-        for i in ((c - 1) % n, c):
-            trial[i] = _place(lengths[i], *_chains(mirrored, i, lengths[i]), l, spacing)
-        trial_flipped = flipped[:c] + [not flipped[c]] + flipped[c + 1 :]
-        free = sorted(set(short) | {(c - 1) % n, c})
-        settle(trial, free, trial_flipped)
-        if worst(trial) > worst(sides):
-            sides[:], corners[:], flipped[:], short = trial, mirrored, trial_flipped, free
+    for multiples in (False, True):
+        settle(sides, free, flipped, multiples)
+        for c in sorted({j % n for i in short for j in (i, i + 1)}):
+            if at_least(_corner_gap(sides, lengths, angles, l, c), l):
+                continue
+            trial, mirrored = list(sides), list(corners)
+            mirrored[c] = corners[c][::-1]
+            for i in ((c - 1) % n, c):
+                trial[i] = _place(lengths[i], *_chains(mirrored, i, lengths[i]), l, spacing)
+            trial_flipped = flipped[:c] + [not flipped[c]] + flipped[c + 1 :]
+            trial_free = sorted(set(free) | {(c - 1) % n, c})
+            near = sorted({i % n for i in range(c - 2, c + 2)} & set(trial_free))
+            settle(trial, near, trial_flipped, multiples)
+            if lowest(trial, near) > lowest(sides, near):
+                sides[:], corners[:], flipped[:], free = trial, mirrored, trial_flipped, trial_free
+        if at_least(lowest(sides, range(n)), l):
+            return
 
 
-def _short_side(i, sides, lengths, angles, l, spacing, flipped):
+def _short_side(i, sides, lengths, angles, l, spacing, flipped, multiples):
     """The placement of side ``i``: its current one if its sharp corners are separated, else the best candidate.
 
     Candidates keep a prefix of a chain from each end and a middle of ``l``
     to ``3l``: at a sharp corner its stagger continued along the side
     (:func:`_multiples` up to the side's length, mirrored where
-    ``flipped``), at another corner the multiples of ``l``, so that the last
-    part before it can be ``l``.  They are tried in order
-    (the longest start first, then the longest end) and the first whose
+    ``flipped``), at another corner nothing or, with ``multiples``, the
+    multiples of ``l``, so that the last part before it can be ``l``.  They are tried in order (by start, then
+    by end; the longest stagger first, the fewest multiples first) and the
+    first whose
     :func:`_corner_gap` at both ends is at least ``l`` (up to REL_TOL) is
     taken, else the one with the largest gap.
     """
@@ -627,8 +645,8 @@ def _short_side(i, sides, lengths, angles, l, spacing, flipped):
     length = lengths[i]
 
     def gap(side):
-        trial = sides[:i] + [side] + sides[i + 1 :]
-        return min(_corner_gap(trial, lengths, angles, c % n) for c in (i, i + 1))
+        trial = {(i - 1) % n: sides[(i - 1) % n], (i + 1) % n: sides[(i + 1) % n], i: side}
+        return min(_corner_gap(trial, lengths, angles, l, c % n) for c in (i, i + 1))
 
     best, best_gap = sides[i], gap(sides[i])
     if at_least(best_gap, l):
@@ -637,14 +655,19 @@ def _short_side(i, sides, lengths, angles, l, spacing, flipped):
 
     def chain(c, arriving):
         if not _stagger_count(angles[c]):
-            return np.arange(1, count + 1) * l
+            return np.arange(1, count * multiples + 1) * l
         return _multiples(angles[c], l, count)[int(arriving) ^ int(flipped[c])]
+
+    def prefixes(c, points):
+        sizes = range(len(points) + 1)
+        return sizes[::-1] if _stagger_count(angles[c]) else sizes
 
     start, end = chain(i, False), chain((i + 1) % n, True)
     start, end = start[start < length], end[end < length]
-    for a in range(len(start), -1, -1):
-        for b in range(len(end), -1, -1):
-            middle = length - start[:a].max(initial=0.0) - end[:b].max(initial=0.0)
+    reach_start, reach_end = np.append(0.0, start), np.append(0.0, end)
+    for a in prefixes(i, start):
+        for b in prefixes((i + 1) % n, end):
+            middle = length - reach_start[a] - reach_end[b]
             if not at_least(middle, l) or at_least(middle, 3.0 * l):
                 continue
             side = _place(length, start[:a], end[:b], l, spacing)
@@ -656,29 +679,26 @@ def _short_side(i, sides, lengths, angles, l, spacing, flipped):
     return best
 
 
-def _corner_gap(sides, lengths, angles, c):
-    """The smallest distance the criterion of docs/proofs.md ("Sharp corners") checks at corner ``c``.
+def _corner_gap(sides, lengths, angles, l, c):
+    """The smallest distance between Step 2 points of the two sides of corner ``c`` (``inf`` if it is not sharp).
 
-    With ``a`` the distances from the corner of the points on its leaving
-    side and ``b`` on its arriving side (far corners included, the corner
-    itself not), each point is paired with the first point of the other
-    side at least as far from the corner, and the smallest distance of a
-    pair is returned (``inf`` for a corner of at least
-    :data:`SHARP_CORNER`).  If it is at least ``l``, every two points of the
-    two sides are at least ``l`` apart.
+    Far corners count, the corner itself not.  Points farther than ``K l >= l
+    / sin theta`` from the corner are at least ``l`` from the whole other side
+    and are left out, so a gap of at least ``l`` is reported as such but not
+    always exactly.  At a corner of at least :data:`SHARP_CORNER` degrees
+    every two such points are ``l`` apart (docs/proofs.md, "Sharp corners").
     """
-    if not _stagger_count(angles[c]):
+    reach = _stagger_count(angles[c]) * l
+    if not reach:
         return math.inf
-    (num_a, den_a), (num_b, den_b) = sides[c], sides[c - 1]
+    (num_a, den_a), (num_b, den_b) = sides[c], sides[(c - 1) % len(lengths)]
     a = np.append(num_a[1:] / den_a * lengths[c], lengths[c])
-    b = lengths[c - 1] * (1.0 - num_b[::-1] / den_b)
-    cosine = math.cos(math.radians(angles[c]))
-    gaps = [math.inf]
-    for p, q in ((a, b), (b, a)):
-        j = np.searchsorted(q, p)
-        p, j = p[j < len(q)], j[j < len(q)]
-        gaps.append(np.sqrt(np.maximum(p**2 + q[j] ** 2 - 2.0 * p * q[j] * cosine, 0.0)).min(initial=math.inf))
-    return float(min(gaps))
+    b = lengths[c - 1] * (1.0 - num_b / den_b)
+    a, b = a[a < reach], b[b < reach]
+    if not len(a) or not len(b):
+        return math.inf
+    squared = a[:, None] ** 2 + b[None, :] ** 2 - 2.0 * math.cos(math.radians(angles[c])) * a[:, None] * b[None, :]
+    return math.sqrt(max(float(squared.min()), 0.0))
 
 
 def split_counts(lengths, l, spacing=2.0):
