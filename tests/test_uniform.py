@@ -661,6 +661,7 @@ def test_short_sided_sharp_corners_are_meshed_within_every_theorem_or_refused_by
 
 SHARP_EXAMPLES = {
     "6.3-degree triangle": ([[0, 0], [10, 0], [9, 1]], []),
+    "0.52-degree triangle": ([[0, 0], [100, 0], [99.5, 0.9]], []),
     "42-degree corner, side 2.85": ([[0, 0], [13.009, 0], [2.108, 1.918]], []),
     "20-degree spike": (sharp_corner_shape("spike", 20.0, stagger_reach(20.0, 1.0) + 2.0, 0.2, 0.5, 0.5)[0], []),
     "15-degree dart hole": sharp_corner_shape("dart hole", 15.0, stagger_reach(15.0, 1.0) + 2.0, 0.3, 0.5, 0.5),

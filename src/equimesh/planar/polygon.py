@@ -732,7 +732,12 @@ def check_boundary_separation(poly, boundary, l):
     corners too sharp for the resampled points next to them.
 
     Raises :class:`InvalidPolygonError` for the closest offending pair, with
-    ``points`` the two boundary points in the caller's coordinates.
+    ``points`` the two boundary points in the caller's coordinates.  The
+    message says what is proven (docs/proofs.md, "Sharp corners"): that no
+    mesh with every edge in ``[l, 2l]`` exists (:func:`_unmeshable_corner`),
+    that no Step 2 can meet Lemma 3 (1) at a corner
+    (:func:`_unseparable_corner`), or neither (a corner or neck this method
+    does not handle).
     """
     pts = boundary.points
     lp = poly.local_length(l)
