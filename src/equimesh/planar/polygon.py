@@ -774,11 +774,14 @@ def _first_node(length, lp):
 
     The side is split into parts in ``[l, 2l]``: the first part ``f`` is at
     most ``2l`` and leaves 0 or at least ``l``, so ``f = length`` below
-    ``2l`` and ``f`` in ``[l, min(2l, length - l)]`` from ``2l`` on.
+    ``2l`` and ``f`` in ``[l, min(2l, length - l)]`` past ``2l`` (``[l, 2l]``
+    at ``2l``).  The range is widened by REL_TOL, the tolerance of the checks
+    on parts and edges, so that it contains every placement they accept.
     """
     if length < 2.0 * lp * (1.0 - REL_TOL):
         return length, length
-    return lp, min(2.0 * lp, length - lp)
+    high = 2.0 * lp if length <= 2.0 * lp * (1.0 + REL_TOL) else min(2.0 * lp, length - lp)
+    return (1.0 - REL_TOL) * lp, high * (1.0 + REL_TOL)
 
 
 def _unmeshable_corner(poly, l):
@@ -789,7 +792,8 @@ def _unmeshable_corner(poly, l):
     a third node ``q`` with ``|v q|`` in ``[l, 2l]`` and the segment ``v q``
     in P, so ``q`` lies in the sector of radii ``l`` to ``2l`` between the
     two sides; its farthest point from ``b`` is at radius ``l`` or ``2l`` on
-    the other side.  When both are closer than ``l`` to ``b``, the edge
+    the other side (radii widened by REL_TOL, the tolerance of the edge
+    checks).  When both are closer than ``l`` to ``b``, the edge
     ``q b`` is shorter than ``l`` in every mesh: that is
     ``beta < 2 l cos theta`` and ``beta^2 - 4 l beta cos theta + 3 l^2 < 0``
     (docs/proofs.md, "Sharp corners", the sector lemma).
@@ -797,7 +801,7 @@ def _unmeshable_corner(poly, l):
     lp = poly.local_length(l)
     for ring, i, theta, leaving, arriving in _corners(poly):
         for side, beta in ((i, leaving), (i - 1, arriving)):
-            far = max(_chord(lp, beta, theta), _chord(2.0 * lp, beta, theta))
+            far = max(_chord(r, beta, theta) for r in ((1.0 - REL_TOL) * lp, 2.0 * lp * (1.0 + REL_TOL)))
             if beta < 2.0 * lp * (1.0 - REL_TOL) and far < (1.0 - REL_TOL) * lp:
                 c = math.cos(theta)
                 low, need = (2.0 * c - math.sqrt(4.0 * c * c - 3.0)) * l, 2.0 * c * l
