@@ -27,6 +27,7 @@ from equimesh.planar.polygon import stagger_reach
 from equimesh.testing.shapes import flattened_square, letter_polygon, place, sharp_corner_shape
 
 import invariants_uniform as inv
+from conftest import exercised
 import strategies_sharp as sss
 import strategies_simple as ss
 
@@ -650,12 +651,14 @@ def test_short_sided_sharp_corners_are_meshed_within_every_theorem_or_refused_by
     try:
         mesh = equimesh.uniform_triangulation(vertices, l, holes=holes or None)
     except equimesh.InvalidPolygonError as error:
+        exercised("a short-sided sharp corner is meshed", False)
         kind = _refusal_kind(error)
         if kind == "impossible" and "shorter than l" not in str(error):
             assert _sector_closer_than_l(vertices, holes, l)
         if kind == "no separation":
             assert _first_points_closer_than_l(vertices, holes, l)
         return
+    exercised("a short-sided sharp corner is meshed", True)
     inv.assert_problem2_invariants(mesh, vertices, l, holes=holes)
 
 
