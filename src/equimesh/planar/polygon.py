@@ -582,14 +582,13 @@ def _separate_short_sides(sides, short, corners, lengths, angles, l, spacing):
 
     First each short side takes the best of its candidates
     (:func:`_short_side`), again when a neighbour changed, for at most
-    :data:`SETTLE_PASSES` rounds.  Then each sharp
-    corner still below ``l`` (:func:`_corner_gap`), in order, is tried with
-    its stagger mirrored (odd ``k`` on the arriving side): its two sides are
-    placed again (and the sides next to them, :data:`SETTLE_PASSES` rounds
-    at most) and the trial is kept if it raises the smallest gap at their
-    corners.  Both rounds run first with the staggers alone, then, if a corner
-    is still below ``l``, with multiples of ``l`` from the other corners too.
-    Deterministic; the sides keep parts in ``[l, 2l]``.
+    :data:`SETTLE_PASSES` rounds.  Then each sharp corner still below ``l``
+    (:func:`_corner_gap`), in order, is tried with its stagger mirrored (odd
+    ``k`` on the arriving side): its two sides are placed again (and the
+    sides next to them) and the trial is kept if it raises the smallest gap
+    at their corners.  Both rounds run first with the staggers alone, then,
+    if a corner is still below ``l``, with multiples of ``l`` from the other
+    corners too.  Deterministic; the sides keep parts in ``[l, 2l]``.
     """
     n = len(lengths)
     flipped, free = [False] * n, list(short)
@@ -635,11 +634,11 @@ def _short_side(i, sides, lengths, angles, l, spacing, flipped, multiples):
     to ``3l``: at a sharp corner its stagger continued along the side
     (:func:`_multiples` up to the side's length, mirrored where
     ``flipped``), at another corner nothing or, with ``multiples``, the
-    multiples of ``l``, so that the last part before it can be ``l``.  They are tried in order (by start, then
-    by end; the longest stagger first, the fewest multiples first) and the
-    first whose
-    :func:`_corner_gap` at both ends is at least ``l`` (up to REL_TOL) is
-    taken, else the one with the largest gap.
+    multiples of ``l``, so that the last part before it can be ``l``.  They
+    are tried in order (by start, then by end; the longest stagger first,
+    the fewest multiples first) and the first whose :func:`_corner_gap` at
+    both ends is at least ``l`` (up to REL_TOL) is taken, else the one with
+    the largest gap.
     """
     n = len(lengths)
     length = lengths[i]
