@@ -30,6 +30,7 @@ OPTIONAL_EXTRAS ?= peers rhino dask
 EXPERIMENTS := \
 	experiments/ratio_sweep.py \
 	experiments/problem2.py \
+	experiments/sharp_corners.py \
 	experiments/table1.py \
 	experiments/figures.py \
 	experiments/compare_peers.py \

@@ -49,12 +49,26 @@ def test_reported_sharp_corners_are_meshed_validly(vertices):
     inv.assert_problem2_invariants(equimesh.uniform_triangulation(vertices, 1.0), vertices, 1.0)
 
 
-def test_a_corner_beyond_the_proven_limit_is_refused_naming_corner_angle_and_limit():
-    """6.3 degrees needs sides of 11 l (K = ceil(1 / sin 6.3) = 10 staggered points, plus l); they are 10 and 9.06."""
+def test_the_thin_triangle_refused_before_is_meshed_by_the_continued_zigzag():
+    """6.3 degrees with sides of 10 and 9.06 l (the staggered points up to K l = 10 l do not fit): the
+    stagger continues along the whole short side, odd multiples of l on one side, even on the other."""
+    import invariants_uniform as inv
+
+    vertices = [[0, 0], [10, 0], [9, 1]]
+    mesh = equimesh.uniform_triangulation(vertices, 1.0)
+    inv.assert_problem2_invariants(mesh, vertices, 1.0)
+    bottom = mesh.points[: mesh.n_boundary][mesh.points[: mesh.n_boundary, 1] == 0.0, 0]
+    assert np.array_equal(np.sort(bottom), [0, 1, 3, 5, 7, 9, 10])
+
+
+def test_a_corner_beyond_this_method_is_refused_naming_corner_angle_and_limit():
+    """5.7 degrees: the staggered Step 2 is proven for sides of K l + l = 12 l (K = ceil(1 / sin 5.7) = 11);
+    with sides of 10 and 10.05 l no placement is found, which the message says is a limit of the method."""
     with pytest.raises(
-        InvalidPolygonError, match=r"corner at vertex 0 .* \(6.34019 degrees\) is too sharp for l = 1.0: .* at least 11.0 long"
+        InvalidPolygonError,
+        match=r"corner at vertex 0 .* \(5.71059 degrees\) is not handled for l = 1.0: .* at least 12.0, .*not a proof that no mesh exists",
     ) as info:
-        equimesh.uniform_triangulation([[0, 0], [10, 0], [9, 1]], 1.0)
+        equimesh.uniform_triangulation([[0, 0], [10, 0], [10, 1]], 1.0)
     p, q = np.array(info.value.points)
     assert np.linalg.norm(p - q) < 1.0
 
@@ -70,8 +84,8 @@ def test_a_neck_narrower_than_l_is_refused_naming_both_edges():
 def test_the_cause_pairs_a_rounding_error_outside_are_still_seen():
     """The cause of the issue: resampled points fall a rounding error outside P, so an exact
     ``covers`` test called the too-close pair invisible; the grown-polygon test sees it.  (The issue's
-    11-degree triangle is meshed now, its points staggered; the 6-degree one still shows the cause.)"""
-    poly = as_polygon([[0, 0], [10, 0], [9, 1]], 1.0)
+    11- and 6.3-degree triangles are meshed now, their points staggered; a 5.7-degree one still shows the cause.)"""
+    poly = as_polygon([[0, 0], [10, 0], [10, 1]], 1.0)
     boundary = resample_boundary(poly, 1.0, BOUNDARY_SPACING)
     pts = boundary.points
     pairs = cKDTree(pts).query_pairs(1.0 - REL_TOL, output_type="ndarray")

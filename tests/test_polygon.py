@@ -225,3 +225,48 @@ def test_lengths_at_the_ends_of_the_range_and_numpy_scalars_are_accepted(l):
 def test_a_length_that_is_not_one_real_number_is_named(l, message):
     with pytest.raises(InvalidLengthError, match=r"^target length l must be a real number, " + re.escape(message) + "$"):
         check_length(l)
+
+
+@given(
+    st.lists(st.tuples(st.floats(1.0, 12.0), st.floats(5.0, 355.0)), min_size=3, max_size=6),
+    st.sampled_from([1.0, 1.5, 2.0]),
+)
+def test_step2_parts_stay_in_l_2l_on_sides_too_short_for_their_stagger(ring, spacing):
+    """docs/proofs.md, "Sharp corners": whatever the corner angles and however short the sides (down to l),
+    every side's Step 2 points start at its first corner, increase, and leave parts in [l, 2l]."""
+    from equimesh.planar.polygon import side_positions
+
+    lengths, angles = map(list, zip(*ring))
+    for length, (num, den) in zip(lengths, side_positions(lengths, angles, 1.0, spacing)):
+        at = np.append(num / den * length, length)
+        assert at[0] == 0.0
+        parts = np.diff(at)
+        assert parts.min() >= 1.0 - 1e-9 and parts.max() <= 2.0 + 1e-9, (length, at)
+
+
+@given(
+    st.floats(1.0, 59.9),
+    st.lists(st.floats(1.0, 2.0), min_size=1, max_size=8),
+    st.lists(st.floats(1.0, 2.0), min_size=1, max_size=8),
+)
+def test_the_closest_pair_of_a_corner_pairs_each_point_with_the_next_one_across(angle, parts_a, parts_b):
+    """The pairing lemma (docs/proofs.md, "Sharp corners"): the closest pair of points on the two sides of a
+    corner pairs some point with the first point of the other side at least as far from the corner; and
+    ``_corner_gap`` is that distance whenever it is below l."""
+    from equimesh.planar.polygon import _corner_gap
+
+    a, b = np.cumsum(parts_a), np.cumsum(parts_b)
+    t = math.radians(angle)
+
+    def chord(p, q):
+        return np.sqrt(np.maximum(p**2 + q**2 - 2.0 * p * q * math.cos(t), 0.0))
+
+    nearest = chord(a[:, None], b[None, :]).min()
+    paired = np.inf
+    for p, q in ((a, b), (b, a)):
+        j = np.searchsorted(q, p)  # the first point of the other side at least as far from the corner
+        paired = min(paired, chord(p[j < len(q)], q[j[j < len(q)]]).min(initial=np.inf))
+    assert paired == pytest.approx(nearest, rel=1e-12)
+    sides = [(np.append(0.0, a[:-1]) / a[-1], 1.0), (np.append(0.0, b[-1] - b[::-1][1:]) / b[-1], 1.0)]
+    gap = _corner_gap(sides, np.array([a[-1], b[-1]]), [angle, 360.0 - angle], 1.0, 0)
+    assert min(gap, 1.0) == pytest.approx(min(nearest, 1.0), rel=1e-9)

@@ -23,9 +23,12 @@ from equimesh.testing.generators import random_convex_polygon, rectangle, regula
 from equimesh._geometry import orient
 from equimesh.planar.insertion._region import constrained_delaunay
 from equimesh.mesh import PlanarMesh
-from equimesh.testing.shapes import flattened_square, letter_polygon, place
+from equimesh.planar.polygon import stagger_reach
+from equimesh.testing.shapes import flattened_square, letter_polygon, place, sharp_corner_shape
 
 import invariants_uniform as inv
+from conftest import exercised
+import strategies_sharp as sss
 import strategies_simple as ss
 
 #: Largest polygon area drawn by the property tests, in units of l^2.
@@ -591,3 +594,122 @@ def test_every_invariant_holds_at_sharp_corners(case):
     "Sharp corners"): accepted, and every guarantee of Problem 2 holds (Theorem 3 included)."""
     vertices, l = case
     inv.assert_problem2_invariants(equimesh.uniform_triangulation(vertices, l), vertices, l)
+
+
+def _sector_closer_than_l(vertices, holes, l, samples=40):
+    """Sampled, independently of polygon.py: a corner with a side shorter than 2l whose far end is closer than l
+    to every point of the sector of radii l to 2l between the corner's sides (the impossibility lemma of
+    docs/proofs.md, "Sharp corners")."""
+    r, t = np.meshgrid(np.linspace(l, 2.0 * l, samples), np.linspace(0.0, 1.0, samples))
+    for ring in inv.rings(vertices, holes):
+        for prev, v, nxt in zip(np.roll(ring, 1, axis=0), ring, np.roll(ring, -1, axis=0)):
+            u, w = nxt - v, prev - v
+            theta = math.atan2(u[0] * w[1] - u[1] * w[0], float(np.dot(u, w))) % (2.0 * math.pi)
+            start = math.atan2(u[1], u[0])
+            sector = v + np.stack([r * np.cos(start + t * theta), r * np.sin(start + t * theta)], axis=-1)
+            for end in (nxt, prev):
+                if np.linalg.norm(end - v) < 2.0 * l and np.linalg.norm(sector - end, axis=-1).max() < l:
+                    return True
+    return False
+
+
+def _first_points_closer_than_l(vertices, holes, l, samples=40):
+    """Sampled, independently of polygon.py: a corner where the first boundary points of its two sides are
+    closer than l wherever a split into parts of [l, 2l] puts them (docs/proofs.md, "Sharp corners")."""
+
+    def first(length):
+        return np.array([length]) if length < 2.0 * l else np.linspace(l, min(2.0 * l, length - l), samples)
+
+    for ring in inv.rings(vertices, holes):
+        for prev, v, nxt in zip(np.roll(ring, 1, axis=0), ring, np.roll(ring, -1, axis=0)):
+            u, w = nxt - v, prev - v
+            a, b = first(np.linalg.norm(u)), first(np.linalg.norm(w))
+            pa = v + a[:, None] * u / np.linalg.norm(u)
+            pb = v + b[:, None] * w / np.linalg.norm(w)
+            if np.linalg.norm(pa[:, None] - pb[None], axis=2).max() < l:
+                return True
+    return False
+
+
+def _refusal_kind(error):
+    """The kind of a refusal at a sharp corner, named by its one-line message."""
+    text = str(error)
+    assert "\n" not in text and isinstance(error, equimesh.InvalidPolygonError), text
+    kinds = {"impossible": "no mesh with every edge in [l, 2l] exists", "no separation": "cannot meet Lemma 3 (1)", "not handled": "is not handled for l", "narrow": "is too narrow for l"}
+    found = [kind for kind, marker in kinds.items() if marker in text]
+    assert found, f"unexpected refusal: {text}"
+    return found[0]
+
+
+@given(sss.sharp_cases())
+def test_short_sided_sharp_corners_are_meshed_within_every_theorem_or_refused_by_kind(case):
+    """Corners of 10 to 60 degrees with sides from l to past the proven limit (thin triangles, short wedges,
+    spikes, dart-shaped holes): a mesh satisfies every guarantee of Problem 2; a refusal is one line saying
+    whether it is proven impossible (a side shorter than l, or the sector lemma, confirmed here by sampling)
+    or a limit of this method (docs/proofs.md, "Sharp corners")."""
+    vertices, holes, l = case
+    try:
+        mesh = equimesh.uniform_triangulation(vertices, l, holes=holes or None)
+    except equimesh.InvalidPolygonError as error:
+        exercised("a short-sided sharp corner is meshed", False)
+        kind = _refusal_kind(error)
+        if kind == "impossible" and "shorter than l" not in str(error):
+            assert _sector_closer_than_l(vertices, holes, l)
+        if kind == "no separation":
+            assert _first_points_closer_than_l(vertices, holes, l)
+        return
+    exercised("a short-sided sharp corner is meshed", True)
+    inv.assert_problem2_invariants(mesh, vertices, l, holes=holes)
+
+
+SHARP_EXAMPLES = {
+    "6.3-degree triangle": ([[0, 0], [10, 0], [9, 1]], []),
+    "0.52-degree triangle": ([[0, 0], [100, 0], [99.5, 0.9]], []),
+    "42-degree corner, side 2.85": ([[0, 0], [13.009, 0], [2.108, 1.918]], []),
+    "20-degree spike": (sharp_corner_shape("spike", 20.0, stagger_reach(20.0, 1.0) + 2.0, 0.2, 0.5, 0.5)[0], []),
+    "15-degree dart hole": sharp_corner_shape("dart hole", 15.0, stagger_reach(15.0, 1.0) + 2.0, 0.3, 0.5, 0.5),
+}
+
+
+@pytest.mark.parametrize("engine", sorted(ENGINES))
+@pytest.mark.parametrize("name", sorted(SHARP_EXAMPLES))
+def test_both_engines_mesh_short_sided_sharp_corners(name, engine):
+    """Sides shorter than the proven limit of the stagger, meshed by the continued or mirrored stagger with
+    either insertion engine, every guarantee of Problem 2 checked."""
+    vertices, holes = SHARP_EXAMPLES[name]
+    mesh = equimesh.uniform_triangulation(vertices, 1.0, holes=holes or None, engine=engine)
+    inv.assert_problem2_invariants(mesh, vertices, 1.0, holes=holes)
+
+
+def _at(angle, length):
+    return [length * math.cos(math.radians(angle)), length * math.sin(math.radians(angle))]
+
+
+PROVEN_REFUSALS = {
+    # 20 degrees with a side of 1.5 l: that side is one mesh edge and every possible third node of its
+    # triangle lies within l of its far end, so no mesh has every edge in [l, 2l]; limit 2 l cos 20.
+    "sector lemma": (
+        [[0, 0], [6, 0], [6, 3], _at(20.0, 1.5)],
+        r"^no mesh with every edge in \[l, 2l\] exists for l = 1.0: at the corner at vertex 0 at \(0, 0\) "
+        r"\(20 degrees\) edge \(3, 0\) is 1.5 long, .* at least 1.879385242 long",
+        _sector_closer_than_l,
+    ),
+    # 30 degrees with sides of 1.6 and 2.5 l: the first boundary points of the two sides are closer than l
+    # wherever they lie (at 1.6, and within [1, 1.5]): Lemma 3 (1) cannot hold, a limit of the method.
+    "no separation": (
+        [[0, 0], [1.6, 0], _at(30.0, 2.5)],
+        r"^the corner at vertex 0 at \(0, 0\) \(30 degrees\) cannot meet Lemma 3 \(1\) for l = 1.0: with sides of "
+        r"1.6 and 2.5 .* not a proof that no mesh exists.* sides of at least 3.0 are handled",
+        _first_points_closer_than_l,
+    ),
+}
+
+
+@pytest.mark.parametrize("name", sorted(PROVEN_REFUSALS))
+def test_a_refusal_proven_at_a_corner_says_what_is_proven(name):
+    """Each proven refusal names the corner, its angle and the limit, says whether no mesh exists or only no
+    Step 2 meets Lemma 3 (1), and the fact is confirmed by sampling, independently of polygon.py."""
+    vertices, message, confirm = PROVEN_REFUSALS[name]
+    with pytest.raises(equimesh.InvalidPolygonError, match=message):
+        equimesh.uniform_triangulation(vertices, 1.0)
+    assert confirm(np.array(vertices, dtype=float), [], 1.0)

@@ -346,13 +346,19 @@ def _check_simple(poly):
 
 
 def check_edges_at_least(poly, l):
-    """Every edge of the polygon and of its holes must be at least ``l`` long (up to REL_TOL), in the local frame."""
+    """Every edge of the polygon and of its holes must be at least ``l`` long (up to REL_TOL), in the local frame.
+
+    Proven necessary for Theorems 1 and 3: both ends of a side are vertices of
+    any triangulation of P, and the mesh edges on the side add up to its length.
+    """
     for ring in poly.rings:
         short = np.flatnonzero(~at_least(ring.local_edge_lengths, poly.local_length(l)))
         if short.size:
             i = int(short[0])
             raise InvalidPolygonError(
-                f"{ring.edge_name(i)} has length {_num(ring.edge_lengths[i])}, shorter than l = {_num(l)}"
+                "no mesh with every edge in [l, 2l] exists (both ends of a side are nodes, so some mesh edge on it "
+                f"is no longer than the side): {ring.edge_name(i)} has length {_num(ring.edge_lengths[i])}, "
+                f"shorter than l = {_num(l)}"
             )
 
 
@@ -467,17 +473,23 @@ def stagger(angle, l, reach):
     on the side leaving it (counter-clockwise) and on the side arriving at it.
     For a corner of at least :data:`SHARP_CORNER` degrees both are empty.
     Otherwise the points ``k l`` for ``k = 1 .. K``, ``K = ceil(1 / sin angle)``,
-    alternate between the sides, odd ``k`` leaving, even ``k`` arriving: along
-    each side the parts are ``2l`` (``l`` for the first leaving part), and two
-    points of different sides are at least ``l`` apart at any angle because
-    their distances from the corner differ by at least ``l``; past ``K l``
-    the sides themselves are ``l`` apart (docs/proofs.md, "Sharp corners").
+    alternate between the sides (:func:`_multiples`): along each side the
+    parts are ``2l`` (``l`` for the first leaving part), and two points of
+    different sides are at least ``l`` apart at any angle because their
+    distances from the corner differ by at least ``l``; past ``K l`` the sides
+    themselves are ``l`` apart (docs/proofs.md, "Sharp corners").
+    """
+    return _multiples(angle, l, min(_stagger_count(angle), math.floor(reach / l) + 1))
+
+
+def _multiples(angle, l, count):
+    """The points ``k l``, ``k = 1 .. count``, of a sharp corner: odd ``k`` leaving, even ``k`` arriving.
+
     Where ``2 k l sin(angle / 2) > l`` the two points at ``k l`` on both sides
     are ``l`` apart already, so ``k l`` is placed on both (parts of ``l``: a
     ``2l`` part there would leave its midpoint ``l`` from every point, and
     the insertion a sliver against it).
     """
-    count = min(_stagger_count(angle), math.floor(reach / l) + 1)
     k = np.arange(1, count + 1)
     both = 2.0 * k * math.sin(math.radians(angle) / 2.0) >= 1.0 + REL_TOL
     return k[(k % 2 == 1) | both] * l, k[(k % 2 == 0) | both] * l
@@ -507,36 +519,185 @@ def side_positions(lengths, angles, l, spacing=2.0):
     * Next to a corner sharper than :data:`SHARP_CORNER` the points of
       :func:`stagger` are placed; between the last staggered point from each
       end, the middle of length ``M`` is split into ``k`` equal parts by
-      :func:`split_counts` (``l <= M / k <= 2l``).  Staggered points that
-      leave a middle shorter than ``l`` are dropped, the farthest from its
-      corner first; a side at least ``stagger_reach`` of both its corners plus
-      ``l`` long drops none.
+      :func:`split_counts` (``l <= M / k <= 2l``).  A side at least
+      ``stagger_reach`` of both its corners plus ``l`` long keeps them all.
     * A side with no staggered point is split into equal parts exactly as the
       paper's Step 2 (numerators ``0 .. k - 1``, denominator ``k``), bit for
       bit.
+    * Sides too short for all their staggered points are placed by
+      :func:`_separate_short_sides`.  Every part is in ``[l, 2l]`` in every
+      case (docs/proofs.md, "Sharp corners").
     """
     lengths = np.asarray(lengths, dtype=float)
     n = len(lengths)
     reach = [max(lengths[i - 1], lengths[i]) for i in range(n)]
     corners = [stagger(a, l, r) for a, r in zip(angles, reach)]
-    sides = []
+    sides, short = [], []
     for i, length in enumerate(lengths):
-        start, end = corners[i][0], corners[(i + 1) % n][1]
-        start, end = start[start < length], end[end < length]
-        while (len(start) or len(end)) and not at_least(length - start.max(initial=0.0) - end.max(initial=0.0), l):
-            if start.max(initial=0.0) >= end.max(initial=0.0):
-                start = start[:-1]
-            else:
-                end = end[:-1]
-        if not len(start) and not len(end):
-            k = int(split_counts([length], l, spacing)[0])
-            sides.append((np.arange(k, dtype=float), float(k)))
-            continue
-        first, last = start.max(initial=0.0), length - end.max(initial=0.0)
-        k = int(split_counts([last - first], l, spacing)[0])
-        middle = first + (last - first) * np.arange(1, k) / k
-        sides.append((np.concatenate([[0.0], start, middle, length - end[::-1]]), length))
+        start, end = _chains(corners, i, length)
+        if (len(start) or len(end)) and not at_least(length - start.max(initial=0.0) - end.max(initial=0.0), l):
+            short.append(i)
+        sides.append(_place(length, start, end, l, spacing))
+    if short:
+        _separate_short_sides(sides, short, corners, lengths, angles, l, spacing)
     return sides
+
+
+def _chains(corners, i, length):
+    """The staggered points of side ``i`` below ``length``: from its first corner, and from its last (distances from it)."""
+    start, end = corners[i][0], corners[(i + 1) % len(corners)][1]
+    return start[start < length], end[end < length]
+
+
+def _place(length, start, end, l, spacing):
+    """A side of ``length`` with the staggered points ``start`` (from its first corner) and ``end`` (from its last).
+
+    Staggered points that leave a middle shorter than ``l`` are dropped, the
+    farthest from its corner first; the middle is split by
+    :func:`split_counts`.
+    """
+    while (len(start) or len(end)) and not at_least(length - start.max(initial=0.0) - end.max(initial=0.0), l):
+        if start.max(initial=0.0) >= end.max(initial=0.0):
+            start = start[:-1]
+        else:
+            end = end[:-1]
+    if not len(start) and not len(end):
+        k = int(split_counts([length], l, spacing)[0])
+        return np.arange(k, dtype=float), float(k)
+    first, last = start.max(initial=0.0), length - end.max(initial=0.0)
+    k = int(split_counts([last - first], l, spacing)[0])
+    middle = first + (last - first) * np.arange(1, k) / k
+    return np.concatenate([[0.0], start, middle, length - end[::-1]]), length
+
+
+#: Rounds in which :func:`_separate_short_sides` lets each short side take its
+#: best candidate given its neighbours: a bound on the work, not a tolerance.
+#: One round settles a side whose neighbours are fixed; the extra rounds let
+#: two short sides of one sharp corner (thin triangles) adapt to each other.
+SETTLE_PASSES = 4
+
+
+def _separate_short_sides(sides, short, corners, lengths, angles, l, spacing):
+    """Place the ``short`` sides (in place) so that the two sides of every sharp corner are ``l`` apart.
+
+    First each short side takes the best of its candidates
+    (:func:`_short_side`), again when a neighbour changed, for at most
+    :data:`SETTLE_PASSES` rounds.  Then each sharp corner still below ``l``
+    (:func:`_corner_gap`), in order, is tried with its stagger mirrored (odd
+    ``k`` on the arriving side): its two sides are placed again (and the
+    sides next to them) and the trial is kept if it raises the smallest gap
+    at their corners.  Both rounds run first with the staggers alone, then,
+    if a corner is still below ``l``, with multiples of ``l`` from the other
+    corners too.  Deterministic; the sides keep parts in ``[l, 2l]``.
+    """
+    n = len(lengths)
+    flipped, free = [False] * n, list(short)
+
+    def settle(sides, free, flipped, multiples):
+        dirty = set(free)
+        for _ in range(SETTLE_PASSES):
+            for i in [i for i in free if i in dirty]:
+                dirty.discard(i)
+                best = _short_side(i, sides, lengths, angles, l, spacing, flipped, multiples)
+                if best is not sides[i]:
+                    sides[i] = best
+                    dirty |= {(i - 1) % n, (i + 1) % n}
+            if not dirty & set(free):
+                return
+
+    def lowest(sides, changed):
+        return min(_corner_gap(sides, lengths, angles, l, c % n) for i in changed for c in (i, i + 1))
+
+    for multiples in (False, True):
+        settle(sides, free, flipped, multiples)
+        for c in sorted({j % n for i in short for j in (i, i + 1)}):
+            if at_least(_corner_gap(sides, lengths, angles, l, c), l):
+                continue
+            trial, mirrored = list(sides), list(corners)
+            mirrored[c] = corners[c][::-1]
+            for i in ((c - 1) % n, c):
+                trial[i] = _place(lengths[i], *_chains(mirrored, i, lengths[i]), l, spacing)
+            trial_flipped = flipped[:c] + [not flipped[c]] + flipped[c + 1 :]
+            trial_free = sorted(set(free) | {(c - 1) % n, c})
+            near = sorted({i % n for i in range(c - 2, c + 2)} & set(trial_free))
+            settle(trial, near, trial_flipped, multiples)
+            if lowest(trial, near) > lowest(sides, near):
+                sides[:], corners[:], flipped[:], free = trial, mirrored, trial_flipped, trial_free
+        if at_least(lowest(sides, range(n)), l):
+            return
+
+
+def _short_side(i, sides, lengths, angles, l, spacing, flipped, multiples):
+    """The placement of side ``i``: its current one if its sharp corners are separated, else the best candidate.
+
+    Candidates keep a prefix of a chain from each end and a middle of ``l``
+    to ``3l``: at a sharp corner its stagger continued along the side
+    (:func:`_multiples` up to the side's length, mirrored where
+    ``flipped``), at another corner nothing or, with ``multiples``, the
+    multiples of ``l``, so that the last part before it can be ``l``.  They
+    are tried in order (by start, then by end; the longest stagger first,
+    the fewest multiples first) and the first whose :func:`_corner_gap` at
+    both ends is at least ``l`` (up to REL_TOL) is taken, else the one with
+    the largest gap.
+    """
+    n = len(lengths)
+    length = lengths[i]
+
+    def gap(side):
+        trial = {(i - 1) % n: sides[(i - 1) % n], (i + 1) % n: sides[(i + 1) % n], i: side}
+        return min(_corner_gap(trial, lengths, angles, l, c % n) for c in (i, i + 1))
+
+    best, best_gap = sides[i], gap(sides[i])
+    if at_least(best_gap, l):
+        return best
+    count = math.floor(length / l * (1.0 + REL_TOL))
+
+    def chain(c, arriving):
+        if not _stagger_count(angles[c]):
+            return np.arange(1, count * multiples + 1) * l
+        return _multiples(angles[c], l, count)[int(arriving) ^ int(flipped[c])]
+
+    def prefixes(c, points):
+        sizes = range(len(points) + 1)
+        return sizes[::-1] if _stagger_count(angles[c]) else sizes
+
+    start, end = chain(i, False), chain((i + 1) % n, True)
+    start, end = start[start < length], end[end < length]
+    reach_start, reach_end = np.append(0.0, start), np.append(0.0, end)
+    for a in prefixes(i, start):
+        for b in prefixes((i + 1) % n, end):
+            middle = length - reach_start[a] - reach_end[b]
+            if not at_least(middle, l) or at_least(middle, 3.0 * l):
+                continue
+            side = _place(length, start[:a], end[:b], l, spacing)
+            g = gap(side)
+            if at_least(g, l):
+                return side
+            if g > best_gap:
+                best, best_gap = side, g
+    return best
+
+
+def _corner_gap(sides, lengths, angles, l, c):
+    """The smallest distance between Step 2 points of the two sides of corner ``c`` (``inf`` if it is not sharp).
+
+    Far corners count, the corner itself not.  Points farther than ``K l >= l
+    / sin theta`` from the corner are at least ``l`` from the whole other side
+    and are left out, so a gap of at least ``l`` is reported as such but not
+    always exactly.  At a corner of at least :data:`SHARP_CORNER` degrees
+    every two such points are ``l`` apart (docs/proofs.md, "Sharp corners").
+    """
+    reach = _stagger_count(angles[c]) * l
+    if not reach:
+        return math.inf
+    (num_a, den_a), (num_b, den_b) = sides[c], sides[(c - 1) % len(lengths)]
+    a = np.append(num_a[1:] / den_a * lengths[c], lengths[c])
+    b = lengths[c - 1] * (1.0 - num_b / den_b)
+    a, b = a[a < reach], b[b < reach]
+    if not len(a) or not len(b):
+        return math.inf
+    squared = a[:, None] ** 2 + b[None, :] ** 2 - 2.0 * math.cos(math.radians(angles[c])) * a[:, None] * b[None, :]
+    return math.sqrt(max(float(squared.min()), 0.0))
 
 
 def split_counts(lengths, l, spacing=2.0):
@@ -570,7 +731,12 @@ def check_boundary_separation(poly, boundary, l):
     corners too sharp for the resampled points next to them.
 
     Raises :class:`InvalidPolygonError` for the closest offending pair, with
-    ``points`` the two boundary points in the caller's coordinates.
+    ``points`` the two boundary points in the caller's coordinates.  The
+    message says what is proven (docs/proofs.md, "Sharp corners"): that no
+    mesh with every edge in ``[l, 2l]`` exists (:func:`_unmeshable_corner`),
+    that no Step 2 can meet Lemma 3 (1) at a corner
+    (:func:`_unseparable_corner`), or neither (a corner or neck this method
+    does not handle).
     """
     pts = boundary.points
     lp = poly.local_length(l)
@@ -586,7 +752,102 @@ def check_boundary_separation(poly, boundary, l):
     pairs = pairs[visible]
     gap = np.linalg.norm(pts[pairs[:, 0]] - pts[pairs[:, 1]], axis=1)
     i, j = pairs[np.lexsort((pairs[:, 1], pairs[:, 0], gap))[0]]
-    raise _separation_error(poly, boundary, l, int(i), int(j))
+    raise _unmeshable_corner(poly, l) or _unseparable_corner(poly, l) or _separation_error(poly, boundary, l, int(i), int(j))
+
+
+def _corners(poly):
+    """Every corner of every ring: ``(ring, i, theta, leaving, arriving)``, the angle in radians, side lengths local."""
+    for ring in poly.rings:
+        lengths = ring.local_edge_lengths
+        for i in range(len(lengths)):
+            yield ring, i, math.radians(ring.inner_angle(i)), lengths[i], lengths[i - 1]
+
+
+def _chord(a, b, theta):
+    """The distance between points at distances ``a`` and ``b`` from a corner of angle ``theta``, on its two sides."""
+    return math.sqrt(max(a * a + b * b - 2.0 * a * b * math.cos(theta), 0.0))
+
+
+def _first_node(length, lp):
+    """Where the first node after a corner can lie on a side of ``length``: ``(lowest, highest)`` distance from it.
+
+    The side is split into parts in ``[l, 2l]``: the first part ``f`` is at
+    most ``2l`` and leaves 0 or at least ``l``, so ``f = length`` below
+    ``2l`` and ``f`` in ``[l, min(2l, length - l)]`` past ``2l`` (``[l, 2l]``
+    at ``2l``).  The range is widened by REL_TOL, the tolerance of the checks
+    on parts and edges, so that it contains every placement they accept.
+    """
+    if length < 2.0 * lp * (1.0 - REL_TOL):
+        return length, length
+    high = 2.0 * lp if length <= 2.0 * lp * (1.0 + REL_TOL) else min(2.0 * lp, length - lp)
+    return (1.0 - REL_TOL) * lp, high * (1.0 + REL_TOL)
+
+
+def _unmeshable_corner(poly, l):
+    """The error for the first corner at which no mesh with every edge in ``[l, 2l]`` exists, or None.
+
+    A side of length ``beta < 2l`` at a corner ``v`` of angle ``theta`` is a
+    single mesh edge ``v b`` (:func:`_first_node`).  The triangle on it has
+    a third node ``q`` with ``|v q|`` in ``[l, 2l]`` and the segment ``v q``
+    in P, so ``q`` lies in the sector of radii ``l`` to ``2l`` between the
+    two sides; its farthest point from ``b`` is at radius ``l`` or ``2l`` on
+    the other side (radii widened by REL_TOL, the tolerance of the edge
+    checks).  When both are closer than ``l`` to ``b``, the edge
+    ``q b`` is shorter than ``l`` in every mesh: that is
+    ``beta < 2 l cos theta`` and ``beta^2 - 4 l beta cos theta + 3 l^2 < 0``
+    (docs/proofs.md, "Sharp corners", the sector lemma).
+    """
+    lp = poly.local_length(l)
+    for ring, i, theta, leaving, arriving in _corners(poly):
+        for side, beta in ((i, leaving), (i - 1, arriving)):
+            far = max(_chord(r, beta, theta) for r in ((1.0 - REL_TOL) * lp, 2.0 * lp * (1.0 + REL_TOL)))
+            if beta < 2.0 * lp * (1.0 - REL_TOL) and far < (1.0 - REL_TOL) * lp:
+                c = math.cos(theta)
+                low, need = (2.0 * c - math.sqrt(4.0 * c * c - 3.0)) * l, 2.0 * c * l
+                return InvalidPolygonError(
+                    f"no mesh with every edge in [l, 2l] exists for l = {_num(l)}: at the corner at "
+                    f"{ring.vertex_name(i)} ({math.degrees(theta):.6g} degrees) {ring.edge_name(side)} is "
+                    f"{_num(beta / poly.frame.scale)} long, a single mesh edge, and the third node of its triangle "
+                    f"would be closer than l to its other end, {ring.vertex_name(side if side < i else i + 1)} "
+                    f"(docs/proofs.md, 'Sharp corners'); at this angle that side must be at least {need:.10g} long "
+                    f"(or at most {low:.10g})"
+                )
+    return None
+
+
+def _unseparable_corner(poly, l):
+    """The error for the first corner at which no boundary resampling meets Lemma 3 (1), or None.
+
+    Any Step 2 places on each side a first point within :func:`_first_node`'s
+    range.  :func:`_chord` is convex in each distance, so if it is below ``l``
+    at the four ends of the two ranges, the first points of the two sides are
+    closer than ``l`` wherever they lie; when the triangle of the corner and
+    the far ends of the ranges lies in P (grown by ``REL_TOL l``, as in
+    :func:`check_boundary_separation`), they also see each other.  Then no
+    boundary resampling meets Lemma 3 (1), which this method and the paper's
+    need; it is not a proof that no mesh exists (docs/proofs.md, "Sharp
+    corners").
+    """
+    lp = poly.local_length(l)
+    grown = poly.shapely().buffer(REL_TOL * lp)
+    for ring, i, theta, leaving, arriving in _corners(poly):
+        ends = [(a, b) for a in _first_node(leaving, lp) for b in _first_node(arriving, lp)]
+        if theta < math.pi and max(_chord(a, b, theta) for a, b in ends) < (1.0 - REL_TOL) * lp:
+            v, n = ring.local[i], len(ring.local)
+            reach = [v + (ring.local[j % n] - v) * r / length for j, r, length in
+                     ((i + 1, ends[-1][0], leaving), (i - 1, ends[-1][1], arriving))]
+            if not grown.covers(shapely.Polygon([v, *reach])):
+                continue
+            need = _num((stagger_reach(math.degrees(theta), lp) + lp) / poly.frame.scale)
+            return InvalidPolygonError(
+                f"the corner at {ring.vertex_name(i)} ({math.degrees(theta):.6g} degrees) cannot meet Lemma 3 (1) "
+                f"for l = {_num(l)}: with sides of {_num(leaving / poly.frame.scale)} and "
+                f"{_num(arriving / poly.frame.scale)} the first boundary points of its two sides are closer than l "
+                "wherever they lie, so no Step 2 separates them (a limit of the paper's method, not a proof that no "
+                f"mesh exists; docs/proofs.md, 'Sharp corners'); sides of at least {need} are handled; "
+                "use a smaller l, longer sides or a wider corner"
+            )
+    return None
 
 
 def _separation_error(poly, boundary, l, i, j):
@@ -603,15 +864,16 @@ def _separation_error(poly, boundary, l, i, j):
         angle = ri.inner_angle(corner)
         need = _num((stagger_reach(angle, poly.local_length(l)) / poly.frame.scale) + l)
         message = (
-            f"the corner at {ri.vertex_name(corner)} ({angle:.6g} degrees) is too sharp for l = {_num(l)}: "
-            f"{where}, closer than l; at {angle:.6g} degrees Step 2 needs both sides of the corner at least "
-            f"{need} long, longer if the next corner is sharp too (docs/proofs.md, 'Sharp corners'); "
+            f"the corner at {ri.vertex_name(corner)} ({angle:.6g} degrees) is not handled for l = {_num(l)}: "
+            f"{where}, closer than l (Lemma 3 (1)); the staggered Step 2 is proven at {angle:.6g} degrees for sides "
+            f"of at least {need}, longer if the next corner is sharp too, and found no placement for these "
+            "(a limit of this method, not a proof that no mesh exists; docs/proofs.md, 'Sharp corners'); "
             "use a smaller l, longer sides or a wider corner"
         )
     else:
         message = (
-            f"polygon is too narrow for l = {_num(l)}: {where} and see each other across the polygon; "
-            f"use l <= {d} or widen the polygon there"
+            f"polygon is too narrow for l = {_num(l)}: {where} and see each other across the polygon "
+            f"(Lemma 3 (1), a limit of this method); use l <= {d} or widen the polygon there"
         )
     return InvalidPolygonError(message, points=caller)
 

@@ -122,6 +122,41 @@ def sharp_rhombus(angle, side):
     return np.array([[0.0, 0.0], [side, 0.0], [side * (1 + math.cos(t)), side * math.sin(t)], [side * math.cos(t), side * math.sin(t)]])
 
 
+def sharp_corner_shape(kind, angle, reach, u, v, w):
+    """``(outer, holes)``: a corner of ``angle`` degrees with sides between l and ``reach`` (``l = 1``).
+
+    ``u, v, w`` in ``[0, 1]`` pick the sizes.  Kinds (``tests/strategies_sharp.py``):
+    ``"thin triangle"`` (tip sides ``1 + u (reach - 1)`` and ``1 + v (reach - 1)``),
+    ``"short wedge"`` (:func:`sharp_wedge`, base at least 1.2), ``"spike"`` (a
+    rectangle with a spike on top, base at least 1.2, the rectangle at least
+    1.2 beyond it) and ``"dart hole"`` (a rectangle with a dart-shaped hole
+    whose notch is the sharp corner of the region, 1.2 to 3.2 from the
+    rectangle).  Corners other than the sharp one are whatever the sizes
+    make them; shapes may be beyond what Step 2 handles.
+    """
+    half = math.radians(angle) / 2.0
+    wide = 0.6 / math.sin(half)
+    side = max(wide, 1.0) + u * max(reach - max(wide, 1.0), 0.0)
+    if kind == "thin triangle":
+        a, b = 1.0 + u * (reach - 1.0), 1.0 + v * (reach - 1.0)
+        return np.array([[0.0, 0.0], [a, 0.0], [b * math.cos(2.0 * half), b * math.sin(2.0 * half)]]), []
+    if kind == "short wedge":
+        return sharp_wedge(angle, side, 1.2 + 4.8 * w), []
+    if kind == "spike":
+        h, base = side * math.cos(half), 2.0 * side * math.sin(half)
+        width, height = base + 2.4 + 6.0 * v, 2.4 + 4.0 * w
+        x0 = (width - base) / 2.0
+        outer = [[0, 0], [width, 0], [width, height], [x0 + base, height], [x0 + base / 2.0, height + h], [x0, height], [0, height]]
+        return np.array(outer, dtype=float), []
+    if kind == "dart hole":
+        d, h = side * math.cos(half), side * math.sin(half)
+        tip, gap = d + 1.2 + 3.0 * v, 1.2 + 2.0 * w
+        hole = np.array([[0.0, 0.0], [tip, h], [0.0, 2.0 * h], [d, h]])
+        outer = np.array([[-gap, -gap], [tip + gap, -gap], [tip + gap, 2.0 * h + gap], [-gap, 2.0 * h + gap]])
+        return outer, [hole]
+    raise ValueError(f"unknown kind {kind!r}")
+
+
 def perforated_rectangle(holes, gap):
     """A rectangle around ``holes`` set in a row: ``(outer, holes)``, counter-clockwise.
 
