@@ -31,6 +31,7 @@ from ..planar.polygon import side_positions
 from ..tolerance import at_least
 from ._places import corner_name, number, side_name
 from .chart import Domain
+from .remap import Loop, to_plane
 
 
 @dataclass(frozen=True)
@@ -44,12 +45,38 @@ class Outline:
     side : (n,) the side of the domain each polygon edge (i, i+1) runs along
         (index into :data:`~equimesh.surface.chart.SIDES`).
     domain : Domain, the parameter rectangle.
+    holes : tuple of :class:`Ring`, the openings (:func:`resample_holes`):
+        clockwise on the plane, ``params`` their exact (u, v) on the hole's
+        polyline, ``side`` the hole's edge (corner ``i`` of its clockwise ring).
     """
 
     vertices: np.ndarray
     uv: np.ndarray
     side: np.ndarray
     domain: Domain
+    holes: tuple = ()
+
+    @property
+    def rings(self):
+        """Plane vertices of every ring: the outer boundary, then each hole."""
+        return (self.vertices, *(hole.points for hole in self.holes))
+
+    def loop(self):
+        """All rings as one :class:`~equimesh.surface.remap.Loop` (hole segments on no side of the domain)."""
+        sizes = [len(ring) for ring in self.rings]
+        start = np.repeat(np.cumsum(sizes) - sizes, sizes)
+        succ = start + (np.arange(len(start)) - start + 1) % np.repeat(sizes, sizes)
+        return Loop(
+            np.vstack(self.rings),
+            np.vstack([self.uv, *(hole.params for hole in self.holes)]),
+            np.concatenate([self.side, *(np.full(len(hole.points), -1) for hole in self.holes)]),
+            self.domain,
+            succ,
+        )
+
+    def ring_of(self, vertex):
+        """Index into :attr:`rings` of the ring holding vertex ``vertex`` of :meth:`loop`."""
+        return int(np.searchsorted(np.cumsum([len(ring) for ring in self.rings]), vertex, side="right"))
 
 
 @dataclass(frozen=True)
@@ -141,12 +168,13 @@ def _too_short(side, arc, chord):
     )
 
 
-def resample_outline(plane, grid, l, spacing):
+def resample_outline(plane, grid, l, spacing, holes=()):
     """Resample the flattened boundary ``plane[grid.boundary]`` into a polygon (:func:`resample_ring`).
 
     ``plane`` holds the flattened nodes of the auxiliary grid ``grid`` (step
     2); the corners are the images of the corners of the grid's domain, in
-    the counter-clockwise order of ``grid.boundary``.
+    the counter-clockwise order of ``grid.boundary``.  ``holes`` are the
+    openings' rings in (u, v) (:func:`resample_holes`).
 
     Raises
     ------
@@ -168,7 +196,69 @@ def resample_outline(plane, grid, l, spacing):
 
     ring = resample_ring(plane[loop], uv, corners, l, spacing, too_short)
     sides = np.array([side_index(a, b, domain) for a, b in ends])
-    return Outline(ring.points, ring.params, sides[ring.side], domain)
+    return Outline(ring.points, ring.params, sides[ring.side], domain, resample_holes(holes, plane, grid, l, spacing))
+
+
+def resample_holes(rings, plane, grid, l, spacing):
+    """The openings on the plane: each hole's (u, v) polyline mapped and resampled (:func:`resample_ring`).
+
+    ``rings`` are the holes clockwise in (u, v) with the caller's vertex
+    indices (:attr:`~equimesh.surface.openings.Perforated.rings`).  A hole's
+    polyline is first split wherever it crosses an auxiliary edge
+    (:func:`densify`), so each piece lies in one auxiliary triangle, where
+    eqs. (2)-(3) are linear: the image (:func:`~equimesh.surface.remap.to_plane`)
+    of the densified polyline is exactly the image of the hole.  Its corners
+    are the hole's vertices, so every hole vertex is a polygon vertex and
+    every polygon vertex has its exact (u, v) on the hole's polyline.
+
+    Raises
+    ------
+    SurfaceTooSmallError
+        A hole's edge too short on the flattened surface for l, named by the
+        hole, its vertices (the caller's indices) and their (u, v).
+    """
+    holes = []
+    for k, (uv, index) in enumerate(rings):
+        dense, corners = densify(uv, grid)
+
+        def too_short(side, arc, chord, uv=uv, index=index, k=k):
+            a, b = side, (side + 1) % len(uv)
+            return SurfaceTooSmallError(
+                f"edge ({index[a]}, {index[b]}) of hole {k}, from (u, v) = ({number(uv[a, 0])}, {number(uv[a, 1])}) "
+                f"to ({number(uv[b, 0])}, {number(uv[b, 1])}), is {number(arc)} long on the flattened surface "
+                f"(its ends {number(chord)} apart), too short for l = {number(l)}; use l <= {number(round_down(chord))} "
+                "or give the hole with fewer vertices"
+            )
+
+        holes.append(resample_ring(to_plane(dense, plane, grid), dense, corners, l, spacing, too_short))
+    return tuple(holes)
+
+
+def hole_image(uv, plane, grid):
+    """The exact image on the flattened plane of a hole's closed (u, v) polyline (:func:`densify`, then eqs. (2)-(3) forward)."""
+    return to_plane(densify(uv, grid)[0], plane, grid)
+
+
+def densify(polyline, grid):
+    """The closed (u, v) ``polyline`` split at every crossing with an edge of the auxiliary triangulation.
+
+    Returns the points (the polyline's vertices and the crossings, in order)
+    and the indices of the polyline's vertices among them.  A crossing of
+    segment ``p + t (q - p)`` with auxiliary edge ``a + s (b - a)`` solves
+    ``t d - s e = a - p`` by Cramer's rule.
+    """
+    a, b = grid.uv[grid.edges[:, 0]], grid.uv[grid.edges[:, 1]]
+    e = b - a
+    points, corners = [], []
+    for p, q in zip(polyline, np.roll(polyline, -1, axis=0)):
+        corners.append(sum(len(x) for x in points))
+        d, w = q - p, a - p
+        den = cross(d, e)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            t, s = cross(w, e) / den, cross(w, d) / den
+        t = np.unique(t[(den != 0) & (t > 0) & (t < 1) & (s >= 0) & (s <= 1)])
+        points.append(np.vstack([p, p + t[:, None] * d]))
+    return np.vstack(points), np.array(corners)
 
 
 def side_index(uv_a, uv_b, domain):

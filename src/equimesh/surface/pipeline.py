@@ -30,6 +30,7 @@ from ._jacobian import signed_areas
 from .._geometry import power_of_two_scale
 from ..mesh import G1, edge_lengths
 from .optimize import OBJECTIVES, optimize_uv
+from .openings import Perforated, holes_of
 from .outline import resample_outline
 from ..planar.insertion import DEFAULT_ENGINE, check_engine
 from ..planar.limits import check_max_nodes, check_size, node_estimate
@@ -150,6 +151,7 @@ def mesh_surface(
     surface,
     l,
     *,
+    holes=None,
     grid=(15, 15),
     optimize=DEFAULT_OPTIMIZE,
     placement="best",
@@ -168,6 +170,12 @@ def mesh_surface(
         none), e.g. :class:`equimesh.BezierSurface` or :class:`equimesh.NurbsSurface`.
     l : float
         Target member length.
+    holes : sequence of (k, 2) array_like, optional
+        Openings: closed polylines in (u, v) inside the domain
+        (:class:`~equimesh.surface.openings.Perforated`, which a surface may
+        carry already, e.g. from a JSON ``"holes"`` field).  Each is mapped
+        to the flattened plane and kept open by Problem 2; its boundary nodes
+        lie on its polyline and stay fixed in the optimisation.
     grid : (int, int)
         Auxiliary grid n_u x n_v (step 1), at most :data:`MAX_GRID_CELLS` cells.
     optimize : "bounded", "paper" or "none"
@@ -218,6 +226,8 @@ def mesh_surface(
     n_u, n_v = _grid_pair(grid)
     if not (hasattr(surface, "evaluate") and hasattr(surface, "derivatives")):
         raise InvalidSurfaceError("surface must provide evaluate(u, v) and derivatives(u, v)")
+    if holes is not None:
+        surface = Perforated(surface, holes)
     seconds = {}
     clock = _Clock(seconds, progress)
 
@@ -230,14 +240,15 @@ def mesh_surface(
     flat = flatten(x_s0, aux.triangles, uv=aux.uv)
     clock("flattening (eq. 1)")
 
-    outline = resample_outline(flat.points, aux, l, boundary_spacing)
+    outline = resample_outline(flat.points, aux, l, boundary_spacing, holes_of(surface))
+    openings = [hole.points for hole in outline.holes]
     try:
         # The surface's own guard (_check_size, measured end to end) bounds the planar stage too.
-        chosen = best_lattice_placement(outline.vertices, l, max_nodes=None) if placement == "best" else None
+        chosen = best_lattice_placement(outline.vertices, l, holes=openings, max_nodes=None) if placement == "best" else None
         angle, offset = (chosen.angle, chosen.offset) if chosen else (0.0, (0.0, 0.0))
         plane = uniform_triangulation(
-            outline.vertices, l, angle=angle, offset=offset, boundary_spacing=OUTLINE_KEPT, engine=engine,
-            max_nodes=None,
+            outline.vertices, l, holes=openings, angle=angle, offset=offset, boundary_spacing=OUTLINE_KEPT,
+            engine=engine, max_nodes=None,
         )
     except InvalidPolygonError as exc:
         raise restate_polygon_error(exc, surface, flat.points, aux, outline, l) from None
@@ -250,7 +261,9 @@ def mesh_surface(
     result = None
     final_uv, final_points = mapped.uv, mapped.points
     if optimize != "none":
+        # Hole nodes stay fixed: with the whole boundary of each hole fixed and no fold-over no node can enter it.
         boundary = np.arange(plane.n_boundary)
+        outer = plane.info["boundary_rings"][0]
         slides = optimize in SLIDING_OBJECTIVES
         result = optimize_uv(
             surface,
@@ -258,8 +271,8 @@ def mesh_surface(
             plane.edges,
             plane.edge_groups,
             l,
-            fixed=boundary[:0] if slides else boundary,
-            sliding=boundary if slides else (),
+            fixed=boundary[outer:] if slides else boundary,
+            sliding=boundary[:outer] if slides else (),
             triangles=plane.triangles,
             objective=optimize,
         )
