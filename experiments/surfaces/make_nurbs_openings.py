@@ -6,12 +6,11 @@ Run ``python experiments/surfaces/make_nurbs_openings.py``; the JSON beside
 this script is its output.
 """
 
-import json
 import sys
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from make_nurbs_roof import roof  # noqa: E402
+from make_nurbs_roof import roof, write  # noqa: E402
 
 #: The openings, in (u, v) on the roof's domain [0, 1]^2.
 HOLES = [
@@ -28,10 +27,7 @@ def roof_with_openings():
 
 
 def main(argv=None):
-    out = Path(__file__).with_name("nurbs_roof_openings.json")
-    out.write_text(json.dumps(roof_with_openings(), indent=1) + "\n")
-    print(f"wrote {out}")
-    return 0
+    return write("nurbs_roof_openings.json", roof_with_openings())
 
 
 if __name__ == "__main__":
