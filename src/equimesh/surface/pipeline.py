@@ -6,8 +6,10 @@
    (:mod:`equimesh.surface.regularity`), or if the mesh would be too large
    (:data:`MAX_NODES`, :data:`MAX_OPTIMIZE_NODES`, :data:`MAX_GRID_CELLS`);
 2. flattening by eq. (1) (:mod:`equimesh.surface.flatten`);
-3. the flattened boundary as a polygon (:mod:`equimesh.surface.outline`) triangulated
-   by Problem 2 (:func:`equimesh.uniform_triangulation`), with the lattice
+3. the flattened boundary, and the images of any openings of the chart
+   (:mod:`equimesh.surface.openings`), as a polygon with holes
+   (:mod:`equimesh.surface.outline`) triangulated by Problem 2
+   (:func:`equimesh.uniform_triangulation`), with the lattice
    placement chosen by :func:`equimesh.best_lattice_placement` by default; its
    refusals are restated in the surface's terms (:mod:`equimesh.surface.restate`);
 4. remapping to (u, v) by eqs. (2)-(3) and to the surface (:mod:`equimesh.surface.remap`);
