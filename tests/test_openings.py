@@ -19,7 +19,11 @@ import equimesh
 from equimesh._cli import main
 from equimesh.errors import InvalidSurfaceError, SurfaceTooSmallError
 from equimesh.io import load_surface, surface_from_dict, surface_to_dict
+from equimesh.surface.auxiliary import auxiliary_grid
+from equimesh.surface.flatten import flatten
 from equimesh.surface.openings import Perforated
+from equimesh.surface.outline import densify
+from equimesh.surface.remap import to_plane
 
 SURFACES = Path(__file__).resolve().parent.parent / "experiments" / "surfaces"
 
@@ -31,6 +35,7 @@ CASES = {  # surface file, l, holes
     "bezier one": ("reference_dome.json", 3.3, [TRIANGLE]),
     "bezier two": ("reference_dome.json", 3.3, [SQUARE, TRIANGLE]),
     "sharp hole corner": ("nurbs_roof.json", 2.0, [[[0.3, 0.3], [0.7, 0.35], [0.3, 0.4]]]),
+    "hole along auxiliary edges": ("nurbs_roof.json", 2.0, [[[0.2, 0.2], [0.6, 0.2], [0.6, 0.6], [0.2, 0.6]]]),
 }
 
 
@@ -141,3 +146,17 @@ def test_command_line_refuses_a_bad_hole_with_exit_2_and_writes_nothing(tmp_path
     code = main(["mesh", str(path), "--length", "2", "-q", "-o", str(out)])
     err = capsys.readouterr().err
     assert code == 2 and err.count("\n") == 1 and "hole 0 is not inside" in err and not out.exists()
+
+
+@pytest.mark.parametrize("hole", [SQUARE, TRIANGLE, CASES["hole along auxiliary edges"][2][0]])
+def test_densified_hole_is_linear_on_every_piece(hole):
+    """Each piece of the densified polyline lies in one auxiliary triangle: eqs. (2)-(3) forward map its midpoint to its image's midpoint."""
+    surface = load_surface(SURFACES / "nurbs_roof.json")
+    grid = auxiliary_grid(15, 15, surface.domain)
+    flat = flatten(surface.evaluate(grid.uv[:, 0], grid.uv[:, 1]), grid.triangles, uv=grid.uv).points
+    dense, corners = densify(np.asarray(hole, dtype=float), grid)
+    assert np.array_equal(dense[corners], np.asarray(hole, dtype=float))
+    following = np.roll(dense, -1, axis=0)
+    assert np.all(np.linalg.norm(following - dense, axis=1) > 0)
+    image, image_next = to_plane(dense, flat, grid), to_plane(following, flat, grid)
+    np.testing.assert_allclose(to_plane((dense + following) / 2, flat, grid), (image + image_next) / 2, atol=1e-9)

@@ -29,7 +29,7 @@ import numpy as np
 from .._geometry import cross
 from ..errors import SurfaceTooSmallError
 from ..planar.polygon import split_counts, stagger_reach
-from ..tolerance import at_least
+from ..tolerance import REL_TOL, at_least
 from ._places import corner_name, number, side_name
 from .chart import Domain
 from .remap import Loop, to_plane
@@ -317,19 +317,26 @@ def densify(polyline, grid):
     Returns the points (the polyline's vertices and the crossings, in order)
     and the indices of the polyline's vertices among them.  A crossing of
     segment ``p + t (q - p)`` with auxiliary edge ``a + s (b - a)`` solves
-    ``t d - s e = a - p`` by Cramer's rule.
+    ``t d - s e = a - p`` by Cramer's rule.  Where the polyline passes
+    through an auxiliary node several edges give crossings a rounding error
+    apart: crossings closer than ``REL_TOL`` (as a fraction ``t`` of the
+    segment) to each other or to the segment's ends are merged, so that no
+    piece is a rounding error long (its direction would be noise, and the
+    inner angle at a vertex with it); the image then strays from the exact
+    one by at most ``REL_TOL`` of a segment.
     """
     a, b = grid.uv[grid.edges[:, 0]], grid.uv[grid.edges[:, 1]]
     e = b - a
     points, corners = [], []
     for p, q in zip(polyline, np.roll(polyline, -1, axis=0)):
-        corners.append(sum(len(x) for x in points))
         d, w = q - p, a - p
         den = cross(d, e)
         with np.errstate(divide="ignore", invalid="ignore"):
             t, s = cross(w, e) / den, cross(w, d) / den
-        t = np.unique(t[(den != 0) & (t > 0) & (t < 1) & (s >= 0) & (s <= 1)])
+        t = np.unique(t[(den != 0) & (t > REL_TOL) & (t < 1.0 - REL_TOL) & (s >= 0) & (s <= 1)])
+        t = t[np.diff(t, prepend=0.0) > REL_TOL]
         points.append(np.vstack([p, p + t[:, None] * d]))
+        corners.append(sum(len(x) for x in points[:-1]))
     return np.vstack(points), np.array(corners)
 
 
