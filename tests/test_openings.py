@@ -22,13 +22,15 @@ from equimesh.io import load_surface, surface_from_dict, surface_to_dict
 from equimesh.surface.auxiliary import auxiliary_grid
 from equimesh.surface.flatten import flatten
 from equimesh.surface.openings import Perforated
-from equimesh.surface.outline import densify
+from equimesh.planar.polygon import SHARP_CORNER
+from equimesh.surface.outline import densify, inner_angle
 from equimesh.surface.remap import to_plane
 
 SURFACES = Path(__file__).resolve().parent.parent / "experiments" / "surfaces"
 
 SQUARE = [[0.3, 0.3], [0.45, 0.3], [0.45, 0.5], [0.3, 0.5]]
 TRIANGLE = [[0.6, 0.4], [0.8, 0.45], [0.7, 0.7]]
+NOTCHED = [[0.3, 0.3], [0.7, 0.3], [0.7, 0.7], [0.3, 0.7], [0.62, 0.5]]  # the surface pokes into it, 49 degrees on the plane
 CASES = {  # surface file, l, holes
     "nurbs one": ("nurbs_roof.json", 2.0, [SQUARE]),
     "nurbs two": ("nurbs_roof.json", 2.0, [SQUARE, TRIANGLE]),
@@ -160,3 +162,12 @@ def test_densified_hole_is_linear_on_every_piece(hole):
     assert np.all(np.linalg.norm(following - dense, axis=1) > 0)
     image, image_next = to_plane(dense, flat, grid), to_plane(following, flat, grid)
     np.testing.assert_allclose(to_plane((dense + following) / 2, flat, grid), (image + image_next) / 2, atol=1e-9)
+
+
+def test_a_notched_hole_gives_the_surface_a_sharp_corner_meshed_in_l_2l():
+    """Step 3 of the brief: a corner of the meshed region below 60 degrees, on a hole; the plane members stay in [l, 2l]."""
+    surface = load_surface(SURFACES / "nurbs_roof.json")
+    mesh = equimesh.mesh_surface(surface, 2.0, holes=[NOTCHED], optimize="none")
+    ring = mesh.stages.outline.holes[0].points
+    assert min(inner_angle(ring, i) for i in range(len(ring))) < SHARP_CORNER
+    check_openings(mesh, surface, [NOTCHED], 2.0)
