@@ -120,7 +120,8 @@ class SurfaceMesh:
     edge_groups : (E,) int8, G1 (equal length on the plane) or OTHER.
     uv : (N, 2) float, the parameters of each node.
     length : the target length l.
-    n_boundary : the first ``n_boundary`` nodes lie on the surface boundary.
+    n_boundary : the first ``n_boundary`` nodes lie on the surface boundary (the
+        outer boundary, then each opening's, ``stages.plane.info["boundary_rings"]``).
     stages : Stages.
     """
 
