@@ -13,6 +13,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 import shapely
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from invariants import check_edge_lengths
 
 import equimesh
@@ -171,3 +173,17 @@ def test_a_notched_hole_gives_the_surface_a_sharp_corner_meshed_in_l_2l():
     ring = mesh.stages.outline.holes[0].points
     assert min(inner_angle(ring, i) for i in range(len(ring))) < SHARP_CORNER
     check_openings(mesh, surface, [NOTCHED], 2.0)
+
+
+@settings(max_examples=4, deadline=None)
+@given(
+    centre=st.tuples(st.floats(0.35, 0.65), st.floats(0.35, 0.65)),
+    radius=st.floats(0.12, 0.2),
+    turns=st.lists(st.floats(-5.0, 5.0), min_size=3, max_size=6),
+)
+def test_generated_openings_keep_every_invariant(centre, radius, turns):
+    """A polygonal opening built from drawn values (n vertices on a circle, each angle jittered): always valid at l = 3."""
+    angles = np.radians(360.0 * np.arange(len(turns)) / len(turns) + np.array(turns))
+    hole = np.column_stack([centre[0] + radius * np.cos(angles), centre[1] + radius * np.sin(angles)])
+    surface = load_surface(SURFACES / "nurbs_roof.json")
+    check_openings(equimesh.mesh_surface(surface, 3.0, holes=[hole], optimize="none"), surface, [hole.tolist()], 3.0)
