@@ -1,4 +1,4 @@
-"""The ring resampler (Section 4, step 3, :func:`equimesh.surface.outline.resample_ring`) and sharp corners on surfaces.
+"""The ring resampler (Section 4, step 3, :func:`equimesh.surface.ring.resample_ring`) and sharp corners on surfaces.
 
 What must hold: the corners of the polyline are kept bit for bit, every
 vertex lies on the polyline with its parameters interpolated there, every
@@ -20,7 +20,7 @@ import equimesh
 from equimesh.errors import SurfaceTooSmallError
 from equimesh.surface.bezier import BezierSurface
 from equimesh.planar.polygon import stagger_reach
-from equimesh.surface.outline import inner_angle, resample_ring
+from equimesh.surface.ring import inner_angle, resample_ring
 from equimesh.tolerance import REL_TOL
 
 

@@ -12,6 +12,7 @@ Modules, in the order of the pipeline:
 * :mod:`.auxiliary`  step 1, the auxiliary triangulation of the chart's rectangle;
 * :mod:`.regularity` after step 1, the surface refused if non-finite, singular or folding;
 * :mod:`.flatten`    step 2, eq. (1): flattening the auxiliary triangulation to the plane;
+* :mod:`.ring`       Step 2 on any closed plane polyline with corners (sharp ones kept straight for Problem 2);
 * :mod:`.outline`    step 3, the flattened boundary and holes resampled into the polygon of Problem 2;
 * :mod:`.restate`    step 3, Problem 2's refusals of that polygon restated for the surface;
 * :mod:`.remap`      step 4, eqs. (2)-(3): plane nodes to (u, v) and to the surface;

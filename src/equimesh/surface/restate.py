@@ -8,7 +8,7 @@ of the parameter rectangle they lie on and to space, and the refusal says what
 to change.
 
 Corners below ``SHARP_CORNER`` degrees get staggered boundary points
-(:func:`~equimesh.surface.outline.resample_ring`, as Step 2 of Problem 2), which
+(:func:`~equimesh.surface.ring.resample_ring`, for Problem 2 to stagger), which
 needs both sides of the corner ``stagger_reach + l`` long
 (docs/proofs.md, "Sharp corners"): the refusal there names the corner, its
 angle and the largest l for which its sides are long enough.
