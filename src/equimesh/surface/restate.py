@@ -7,9 +7,9 @@ it names are mapped back through the outline to (u, v), to the side or corner
 of the parameter rectangle they lie on and to space, and the refusal says what
 to change.
 
-Corners below ``SHARP_CORNER`` degrees get staggered boundary points
-(:func:`~equimesh.surface.ring.resample_ring`, for Problem 2 to stagger), which
-needs both sides of the corner ``stagger_reach + l`` long
+Next to a corner below ``SHARP_CORNER`` degrees the outline keeps straight
+edges (:func:`~equimesh.surface.ring.resample_ring`) on which Problem 2
+staggers its points, which needs both sides of the corner ``stagger_reach + l`` long
 (docs/proofs.md, "Sharp corners"): the refusal there names the corner, its
 angle and the largest l for which its sides are long enough.
 """
