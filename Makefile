@@ -35,7 +35,8 @@ EXPERIMENTS := \
 	experiments/figures.py \
 	experiments/compare_peers.py \
 	experiments/scaling.py \
-	experiments/bounded.py
+	experiments/bounded.py \
+	experiments/inputs.py
 
 # The hypothesis profile comes from EQUIMESH_HYPOTHESIS_PROFILE (tests/conftest.py;
 # quick "ci" when unset); `make test-thorough` selects the thorough one.

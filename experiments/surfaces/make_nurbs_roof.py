@@ -31,11 +31,16 @@ def roof():
     }
 
 
-def main(argv=None):
-    out = Path(__file__).with_name("nurbs_roof.json")
-    out.write_text(json.dumps(roof(), indent=1) + "\n")
+def write(name, description):
+    """Write the JSON ``description`` as ``name`` beside this script."""
+    out = Path(__file__).with_name(name)
+    out.write_text(json.dumps(description, indent=1) + "\n")
     print(f"wrote {out}")
     return 0
+
+
+def main(argv=None):
+    return write("nurbs_roof.json", roof())
 
 
 if __name__ == "__main__":

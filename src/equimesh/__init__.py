@@ -5,7 +5,7 @@ Public verbs
 increment(vertices, l)            Problem 1, Algorithm INCREMENT (Section 2)
 node_lower_bound(vertices, l)     lower bound on the optimum of Problem 1 (Theorem 2)
 packing_upper_bound(vertices, l)  Oler's bound on l-separated point sets
-mesh_surface(surface, l)          Section 4: uniform mesh of a parametric surface
+mesh_surface(surface, l)          Section 4: uniform mesh of a parametric surface (holes=: openings in (u, v))
 uniform_triangulation(vertices, l) Problem 2: lattice + boundary strip (Section 3)
 best_lattice_placement(vertices, l) lattice angle/offset maximising G1 (beyond the paper)
 length_classes(lengths, l, tol)   fewest member-length classes at a tolerance (beyond the paper)
@@ -53,6 +53,7 @@ _EXPORTS = {
     "Domain": ".surface.chart",
     "LengthClasses": ".classes",
     "NurbsSurface": ".surface.nurbs",
+    "Perforated": ".surface.openings",
     "Placement": ".planar.placement",
     "SurfaceMesh": ".surface.pipeline",
     "best_lattice_placement": ".planar.placement",

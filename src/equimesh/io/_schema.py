@@ -71,13 +71,29 @@ def control_net(x, where="control_points"):
     rows = number_rows(x, where, "points", 2, 2)
     for i, row in enumerate(rows):
         for j, point in enumerate(row):
-            if not isinstance(point, list) or len(point) != 3:
-                raise InvalidSurfaceError(
-                    f"{where}[{i}][{j}] must be a list [x, y, z] of 3 numbers, got {json_type(point)} {shown(point)}"
-                )
-            for k, c in enumerate(point):
-                finite_number(c, f"{where}[{i}][{j}][{k}]")
+            coordinates(point, f"{where}[{i}][{j}]", "xyz")
     return rows
+
+
+def uv_polylines(x, where="holes"):
+    """``x`` as a list of closed (u, v) polylines: lists of at least 3 ``[u, v]`` pairs of finite numbers."""
+    holes = a_list(x, f'"{where}"', "polylines", 0)
+    for k, hole in enumerate(holes):
+        a_list(hole, f"{where}[{k}]", "[u, v] points", 3)
+        for i, point in enumerate(hole):
+            coordinates(point, f"{where}[{k}][{i}]", "uv")
+    return holes
+
+
+def coordinates(point, where, names):
+    """``point`` if it is a list of ``len(names)`` finite numbers (e.g. ``[x, y, z]`` for ``names = "xyz"``)."""
+    if not isinstance(point, list) or len(point) != len(names):
+        raise InvalidSurfaceError(
+            f"{where} must be a list [{', '.join(names)}] of {len(names)} numbers, got {json_type(point)} {shown(point)}"
+        )
+    for k, c in enumerate(point):
+        finite_number(c, f"{where}[{k}]")
+    return point
 
 
 def shown_path(path):

@@ -3,7 +3,9 @@
 A surface file is read by the format of its extension (:data:`INPUT_FORMATS`);
 a JSON description names its surface type in ``"type"``
 (:data:`SURFACE_TYPES`), whose schema turns the object into a surface (step 1
-of Section 4: the map X^s(u, v)).  A new type or format is one new row in a
+of Section 4: the map X^s(u, v)).  Every type may have openings,
+``"holes": [[[u, v], ...], ...]`` (closed polylines in parameter space, see
+:class:`~equimesh.surface.openings.Perforated`), and a ``"description"``.  A new type or format is one new row in a
 table, nothing else.  Every problem, from an unreadable path to a coordinate
 that is not a finite number, is one :class:`InvalidSurfaceError` line.
 """
@@ -18,9 +20,10 @@ from typing import Callable
 from ..errors import InvalidSurfaceError
 from ..surface.bezier import BezierSurface
 from ..surface.nurbs import NurbsSurface
+from ..surface.openings import Perforated
 from . import _bezier, _nurbs
 from ._rhino import read_rhino_surface
-from ._schema import json_type, shown, shown_path
+from ._schema import json_type, shown, shown_path, uv_polylines
 
 
 @dataclass(frozen=True)
@@ -28,7 +31,7 @@ class SurfaceType:
     """One surface type: its class, its fields and its JSON schema in both directions."""
 
     cls: type
-    fields: tuple  # required, besides "type"; "description" (a string) is allowed everywhere
+    fields: tuple  # required, besides "type"; OPTIONAL_FIELDS are allowed everywhere
     from_dict: Callable  # the JSON object (fields present) -> a surface
     to_dict: Callable  # a surface -> its fields
 
@@ -41,6 +44,9 @@ class InputFormat:
     read: Callable  # read(path, **options) -> a surface
     options: tuple = ()  # keyword options of ``read``, e.g. ("object",)
 
+
+#: Fields every surface type may have: a text, and openings in (u, v).
+OPTIONAL_FIELDS = ("description", "holes")
 
 #: Surface types by their JSON ``"type"``.
 SURFACE_TYPES = {
@@ -67,7 +73,7 @@ def surface_from_dict(d):
     if kind is None:
         got = repr(shown(d["type"])) if isinstance(d["type"], str) else json_type(d["type"])
         raise InvalidSurfaceError(f'surface "type" must be one of {known}, got {got}')
-    extra = sorted(set(d) - {"type", "description", *kind.fields})
+    extra = sorted(set(d) - {"type", *OPTIONAL_FIELDS, *kind.fields})
     if extra:
         raise InvalidSurfaceError(f"surface has unknown field {shown(extra[0])!r}")
     if not isinstance(d.get("description", ""), str):
@@ -75,14 +81,19 @@ def surface_from_dict(d):
     missing = [name for name in kind.fields if name not in d]
     if missing:
         raise InvalidSurfaceError(f'surface is missing the field "{missing[0]}"')
-    return kind.from_dict(d)
+    if "holes" not in d:
+        return kind.from_dict(d)
+    holes = uv_polylines(d["holes"])
+    return Perforated(kind.from_dict(d), holes)
 
 
 def surface_to_dict(surface):
     """The JSON object describing ``surface`` (the inverse of :func:`surface_from_dict`)."""
+    holes = {"holes": [hole.tolist() for hole in surface.holes]} if isinstance(surface, Perforated) else {}
+    chart = surface.chart if holes else surface
     for name, kind in SURFACE_TYPES.items():
-        if type(surface) is kind.cls:
-            return {"type": name, **kind.to_dict(surface)}
+        if type(chart) is kind.cls:
+            return {"type": name, **kind.to_dict(chart), **holes}
     raise TypeError(f"no JSON surface type for {type(surface).__name__}")
 
 

@@ -8,10 +8,12 @@ Modules, in the order of the pipeline:
                      its JSON form is in :mod:`equimesh.io`);
 * :mod:`.nurbs`      NURBS surfaces, a chart on the span of their knot vectors (exact rational
                      first and second derivatives);
+* :mod:`.openings`   a chart with holes (closed polylines in (u, v)) cut out of its rectangle;
 * :mod:`.auxiliary`  step 1, the auxiliary triangulation of the chart's rectangle;
 * :mod:`.regularity` after step 1, the surface refused if non-finite, singular or folding;
 * :mod:`.flatten`    step 2, eq. (1): flattening the auxiliary triangulation to the plane;
-* :mod:`.outline`    step 3, the flattened boundary resampled into the polygon of Problem 2;
+* :mod:`.ring`       Step 2 on any closed plane polyline with corners (sharp ones kept straight for Problem 2);
+* :mod:`.outline`    step 3, the flattened boundary and holes resampled into the polygon of Problem 2;
 * :mod:`.restate`    step 3, Problem 2's refusals of that polygon restated for the surface;
 * :mod:`.remap`      step 4, eqs. (2)-(3): plane nodes to (u, v) and to the surface;
 * :mod:`.optimize`   final step, the (u, v) of the inner nodes (objective table ``OBJECTIVES``);

@@ -1,29 +1,28 @@
-"""Section 4, step 3: the boundary of the flattened auxiliary triangulation as a polygon.
+"""Section 4, step 3: the boundary of the flattened auxiliary triangulation, and the openings, as a polygon.
 
 The boundary of the flattened auxiliary triangulation is a closed polyline
 through the images of the boundary nodes of the parameter rectangle,
-generally not convex (paper, Fig. 2).  Its sides (between the images of the
-corners of the auxiliary grid's domain) are resampled into polygon edges between l and 2l, the
-input of Problem 2 (:func:`equimesh.uniform_triangulation`):
-
-* a side of arc length ``L`` gets ``k`` parts by the rule of Step 2
-  (:func:`equimesh.planar.polygon.split_counts`), placed at equal arc length; a part's
-  chord is at most its arc, so at most ``2l``; where curvature makes a chord
-  shorter than ``l``, ``k`` is lowered for that side;
-* every polygon vertex lies on the flattened polyline, with the boundary
-  segment and fraction it sits at, so its (u, v) is known exactly and lies on
-  the boundary of the parameter rectangle (paper, eq. (3) on a boundary edge).
+generally not convex (paper, Fig. 2).  It is resampled into the polygon of
+Problem 2 (:func:`equimesh.uniform_triangulation`) by
+:func:`~equimesh.surface.ring.resample_ring`, the corners being the images of
+the four corners of the grid's domain; every polygon vertex carries its
+(u, v), on the boundary of the parameter rectangle (paper, eq. (3) on a
+boundary edge).  The openings of a chart (:mod:`equimesh.surface.openings`)
+are mapped to the plane exactly and resampled alike, their vertices as
+corners (:func:`resample_holes`).
 """
 
 from dataclasses import dataclass
 
 import numpy as np
 
+from .._geometry import cross
 from ..errors import SurfaceTooSmallError
-from ..planar.polygon import split_counts
-from ..tolerance import at_least
+from ..tolerance import REL_TOL
 from ._places import corner_name, number, side_name
 from .chart import Domain
+from .remap import Loop, to_plane
+from .ring import resample_ring
 
 
 @dataclass(frozen=True)
@@ -37,20 +36,47 @@ class Outline:
     side : (n,) the side of the domain each polygon edge (i, i+1) runs along
         (index into :data:`~equimesh.surface.chart.SIDES`).
     domain : Domain, the parameter rectangle.
+    holes : tuple of :class:`~equimesh.surface.ring.Ring`, the openings (:func:`resample_holes`):
+        clockwise on the plane, ``params`` their exact (u, v) on the hole's
+        polyline, ``side`` the hole's edge (corner ``i`` of its clockwise ring).
     """
 
     vertices: np.ndarray
     uv: np.ndarray
     side: np.ndarray
     domain: Domain
+    holes: tuple = ()
+
+    @property
+    def rings(self):
+        """Plane vertices of every ring: the outer boundary, then each hole."""
+        return (self.vertices, *(hole.points for hole in self.holes))
+
+    def loop(self):
+        """All rings as one :class:`~equimesh.surface.remap.Loop` (hole segments on no side of the domain)."""
+        sizes = [len(ring) for ring in self.rings]
+        start = np.repeat(np.cumsum(sizes) - sizes, sizes)
+        succ = start + (np.arange(len(start)) - start + 1) % np.repeat(sizes, sizes)
+        return Loop(
+            np.vstack(self.rings),
+            np.vstack([self.uv, *(hole.params for hole in self.holes)]),
+            np.concatenate([self.side, *(np.full(len(hole.points), -1) for hole in self.holes)]),
+            self.domain,
+            succ,
+        )
+
+    def ring_of(self, vertex):
+        """Index into :attr:`rings` of the ring holding vertex ``vertex`` of :meth:`loop`."""
+        return int(np.searchsorted(np.cumsum([len(ring) for ring in self.rings]), vertex, side="right"))
 
 
-def resample_outline(plane, grid, l, spacing):
-    """Resample the flattened boundary ``plane[grid.boundary]`` side by side into a polygon.
+def resample_outline(plane, grid, l, spacing, holes=()):
+    """Resample the flattened boundary ``plane[grid.boundary]`` into a polygon (:func:`resample_ring`).
 
     ``plane`` holds the flattened nodes of the auxiliary grid ``grid`` (step
-    2); the sides run between the corners of the grid's domain, in the
-    counter-clockwise order of ``grid.boundary``.
+    2); the corners are the images of the corners of the grid's domain, in
+    the counter-clockwise order of ``grid.boundary``.  ``holes`` are the
+    openings' rings in (u, v) (:func:`resample_holes`).
 
     Raises
     ------
@@ -58,16 +84,90 @@ def resample_outline(plane, grid, l, spacing):
         A side whose corners are closer than ``l`` on the plane, named by its
         side and corners of the parameter rectangle.
     """
-    loop, uv, domain = grid.boundary, grid.uv, grid.domain
+    loop, uv, domain = grid.boundary, grid.uv[grid.boundary], grid.domain
     corners = np.flatnonzero(grid.boundary_corner)
-    vertices, params, sides = [], [], []
-    for c0, c1 in zip(corners, np.roll(corners, -1)):
-        chain = loop[c0 : c1 + 1] if c1 > c0 else np.r_[loop[c0:], loop[: c1 + 1]]
-        pts, prm = _resample_side(plane[chain], uv[chain], l, spacing, domain)
-        vertices.append(pts[:-1])
-        params.append(prm[:-1])
-        sides.append(np.full(len(pts) - 1, side_index(prm[0], prm[-1], domain)))
-    return Outline(np.vstack(vertices), np.vstack(params), np.concatenate(sides), domain)
+    ends = [(uv[c0], uv[c1]) for c0, c1 in zip(corners, np.roll(corners, -1))]
+
+    def too_short(side, arc, chord):
+        a, b = ends[side]
+        return SurfaceTooSmallError(
+            f"{side_name(side_index(a, b, domain), domain)} of the surface, from {corner_name(a)} to {corner_name(b)}, "
+            f"is {number(arc)} long on the flattened surface (its corners {number(chord)} apart), "
+            f"shorter than l = {number(l)}; use l <= {number(round_down(chord))}"
+        )
+
+    ring = resample_ring(plane[loop], uv, corners, l, spacing, too_short)
+    sides = np.array([side_index(a, b, domain) for a, b in ends])
+    return Outline(ring.points, ring.params, sides[ring.side], domain, resample_holes(holes, plane, grid, l, spacing))
+
+
+def resample_holes(rings, plane, grid, l, spacing):
+    """The openings on the plane: each hole's (u, v) polyline mapped and resampled (:func:`resample_ring`).
+
+    ``rings`` are the holes clockwise in (u, v) with the caller's vertex
+    indices (:attr:`~equimesh.surface.openings.Perforated.rings`).  A hole's
+    polyline is first split wherever it crosses an auxiliary edge
+    (:func:`densify`), so each piece lies in one auxiliary triangle, where
+    eqs. (2)-(3) are linear: the image (:func:`~equimesh.surface.remap.to_plane`)
+    of the densified polyline is exactly the image of the hole.  Its corners
+    are the hole's vertices, so every hole vertex is a polygon vertex and
+    every polygon vertex has its exact (u, v) on the hole's polyline.
+
+    Raises
+    ------
+    SurfaceTooSmallError
+        A hole's edge too short on the flattened surface for l, named by the
+        hole, its vertices (the caller's indices) and their (u, v).
+    """
+    holes = []
+    for k, (uv, index) in enumerate(rings):
+        dense, corners = densify(uv, grid)
+
+        def too_short(side, arc, chord, uv=uv, index=index, k=k):
+            a, b = side, (side + 1) % len(uv)
+            return SurfaceTooSmallError(
+                f"edge ({index[a]}, {index[b]}) of hole {k}, from (u, v) = ({number(uv[a, 0])}, {number(uv[a, 1])}) "
+                f"to ({number(uv[b, 0])}, {number(uv[b, 1])}), is {number(arc)} long on the flattened surface "
+                f"(its ends {number(chord)} apart), too short for l = {number(l)}; use l <= {number(round_down(chord))} "
+                "or give the hole with fewer vertices"
+            )
+
+        holes.append(resample_ring(to_plane(dense, plane, grid), dense, corners, l, spacing, too_short))
+    return tuple(holes)
+
+
+def hole_image(uv, plane, grid):
+    """The exact image on the flattened plane of a hole's closed (u, v) polyline (:func:`densify`, then eqs. (2)-(3) forward)."""
+    return to_plane(densify(uv, grid)[0], plane, grid)
+
+
+def densify(polyline, grid):
+    """The closed (u, v) ``polyline`` split at every crossing with an edge of the auxiliary triangulation.
+
+    Returns the points (the polyline's vertices and the crossings, in order)
+    and the indices of the polyline's vertices among them.  A crossing of
+    segment ``p + t (q - p)`` with auxiliary edge ``a + s (b - a)`` solves
+    ``t d - s e = a - p`` by Cramer's rule.  Where the polyline passes
+    through an auxiliary node several edges give crossings a rounding error
+    apart: crossings closer than ``REL_TOL`` (as a fraction ``t`` of the
+    segment) to each other or to the segment's ends are merged, so that no
+    piece is a rounding error long (its direction would be noise, and the
+    inner angle at a vertex with it); the image then strays from the exact
+    one by at most ``REL_TOL`` of a segment.
+    """
+    a, b = grid.uv[grid.edges[:, 0]], grid.uv[grid.edges[:, 1]]
+    e = b - a
+    points, corners = [], []
+    for p, q in zip(polyline, np.roll(polyline, -1, axis=0)):
+        d, w = q - p, a - p
+        den = cross(d, e)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            t, s = cross(w, e) / den, cross(w, d) / den
+        t = np.unique(t[(den != 0) & (t > REL_TOL) & (t < 1.0 - REL_TOL) & (s >= 0) & (s <= 1)])
+        t = t[np.diff(t, prepend=0.0) > REL_TOL]
+        points.append(np.vstack([p, p + t[:, None] * d]))
+        corners.append(sum(len(x) for x in points[:-1]))
+    return np.vstack(points), np.array(corners)
 
 
 def side_index(uv_a, uv_b, domain):
@@ -76,40 +176,9 @@ def side_index(uv_a, uv_b, domain):
     return 2 * axis + int(uv_a[axis] == domain.upper[axis])
 
 
-def _resample_side(xy, uv, l, spacing, domain):
-    seg = np.linalg.norm(np.diff(xy, axis=0), axis=1)
-    arc = np.concatenate([[0.0], np.cumsum(seg)])
-    k = int(split_counts([arc[-1]], l, spacing)[0])
-    while k >= 1:
-        s = arc[-1] * np.arange(k + 1) / k
-        s[-1] = arc[-1]
-        pts, prm = _at_arc(xy, uv, arc, s)
-        if np.all(at_least(np.linalg.norm(np.diff(pts, axis=0), axis=1), l)):
-            return pts, prm
-        k -= 1
-    chord = float(np.linalg.norm(xy[-1] - xy[0]))
-    raise SurfaceTooSmallError(
-        f"{side_name(side_index(uv[0], uv[-1], domain), domain)} of the surface, from {corner_name(uv[0])} to {corner_name(uv[-1])}, "
-        f"is {number(arc[-1])} long on the flattened surface (its corners {number(chord)} apart), "
-        f"shorter than l = {number(l)}; use l <= {number(round_down(chord))}"
-    )
-
-
 def round_down(x, digits=4):
     """``x`` rounded down to ``digits`` significant digits, so that a suggested bound ``l <= x`` is safe."""
     if x <= 0:
         return 0.0
     scale = 10.0 ** (np.floor(np.log10(x)) - digits + 1)
     return float(np.floor(x / scale) * scale)
-
-
-def _at_arc(xy, uv, arc, s):
-    """Points and (u, v) at arc lengths ``s`` along the polyline ``xy``, endpoints exact."""
-    idx = np.clip(np.searchsorted(arc, s, side="right") - 1, 0, len(arc) - 2)
-    t = (s - arc[idx]) / (arc[idx + 1] - arc[idx])
-    t[0], t[-1] = 0.0, 1.0
-    idx[-1] = len(arc) - 2
-    pts = xy[idx] + t[:, None] * (xy[idx + 1] - xy[idx])
-    prm = uv[idx] + t[:, None] * (uv[idx + 1] - uv[idx])
-    pts[0], prm[0], pts[-1], prm[-1] = xy[0], uv[0], xy[-1], uv[-1]
-    return pts, prm

@@ -6,8 +6,10 @@
    (:mod:`equimesh.surface.regularity`), or if the mesh would be too large
    (:data:`MAX_NODES`, :data:`MAX_OPTIMIZE_NODES`, :data:`MAX_GRID_CELLS`);
 2. flattening by eq. (1) (:mod:`equimesh.surface.flatten`);
-3. the flattened boundary as a polygon (:mod:`equimesh.surface.outline`) triangulated
-   by Problem 2 (:func:`equimesh.uniform_triangulation`), with the lattice
+3. the flattened boundary, and the images of any openings of the chart
+   (:mod:`equimesh.surface.openings`), as a polygon with holes
+   (:mod:`equimesh.surface.outline`) triangulated by Problem 2
+   (:func:`equimesh.uniform_triangulation`), with the lattice
    placement chosen by :func:`equimesh.best_lattice_placement` by default; its
    refusals are restated in the surface's terms (:mod:`equimesh.surface.restate`);
 4. remapping to (u, v) by eqs. (2)-(3) and to the surface (:mod:`equimesh.surface.remap`);
@@ -30,6 +32,7 @@ from ._jacobian import signed_areas
 from .._geometry import power_of_two_scale
 from ..mesh import G1, edge_lengths
 from .optimize import OBJECTIVES, optimize_uv
+from .openings import Perforated, holes_of
 from .outline import resample_outline
 from ..planar.insertion import DEFAULT_ENGINE, check_engine
 from ..planar.limits import check_max_nodes, check_size, node_estimate
@@ -117,7 +120,8 @@ class SurfaceMesh:
     edge_groups : (E,) int8, G1 (equal length on the plane) or OTHER.
     uv : (N, 2) float, the parameters of each node.
     length : the target length l.
-    n_boundary : the first ``n_boundary`` nodes lie on the surface boundary.
+    n_boundary : the first ``n_boundary`` nodes lie on the surface boundary (the
+        outer boundary, then each opening's, ``stages.plane.info["boundary_rings"]``).
     stages : Stages.
     """
 
@@ -142,6 +146,7 @@ def mesh_surface(
     surface,
     l,
     *,
+    holes=None,
     grid=(15, 15),
     optimize=DEFAULT_OPTIMIZE,
     placement="best",
@@ -160,6 +165,12 @@ def mesh_surface(
         none), e.g. :class:`equimesh.BezierSurface` or :class:`equimesh.NurbsSurface`.
     l : float
         Target member length.
+    holes : sequence of (k, 2) array_like, optional
+        Openings: closed polylines in (u, v) inside the domain
+        (:class:`~equimesh.surface.openings.Perforated`, which a surface may
+        carry already, e.g. from a JSON ``"holes"`` field).  Each is mapped
+        to the flattened plane and kept open by Problem 2; its boundary nodes
+        lie on its polyline and stay fixed in the optimisation.
     grid : (int, int)
         Auxiliary grid n_u x n_v (step 1), at most :data:`MAX_GRID_CELLS` cells.
     optimize : "bounded", "paper" or "none"
@@ -210,6 +221,8 @@ def mesh_surface(
     n_u, n_v = _grid_pair(grid)
     if not (hasattr(surface, "evaluate") and hasattr(surface, "derivatives")):
         raise InvalidSurfaceError("surface must provide evaluate(u, v) and derivatives(u, v)")
+    if holes is not None:
+        surface = Perforated(surface, holes)
     seconds = {}
     clock = _Clock(seconds, progress)
 
@@ -222,14 +235,15 @@ def mesh_surface(
     flat = flatten(x_s0, aux.triangles, uv=aux.uv)
     clock("flattening (eq. 1)")
 
-    outline = resample_outline(flat.points, aux, l, boundary_spacing)
+    outline = resample_outline(flat.points, aux, l, boundary_spacing, holes_of(surface))
+    openings = [hole.points for hole in outline.holes]
     try:
         # The surface's own guard (_check_size, measured end to end) bounds the planar stage too.
-        chosen = best_lattice_placement(outline.vertices, l, max_nodes=None) if placement == "best" else None
+        chosen = best_lattice_placement(outline.vertices, l, holes=openings, max_nodes=None) if placement == "best" else None
         angle, offset = (chosen.angle, chosen.offset) if chosen else (0.0, (0.0, 0.0))
         plane = uniform_triangulation(
-            outline.vertices, l, angle=angle, offset=offset, boundary_spacing=boundary_spacing, engine=engine,
-            max_nodes=None,
+            outline.vertices, l, holes=openings, angle=angle, offset=offset, boundary_spacing=boundary_spacing,
+            engine=engine, max_nodes=None,
         )
     except InvalidPolygonError as exc:
         raise restate_polygon_error(exc, surface, flat.points, aux, outline, l) from None
@@ -242,7 +256,9 @@ def mesh_surface(
     result = None
     final_uv, final_points = mapped.uv, mapped.points
     if optimize != "none":
+        # Hole nodes stay fixed: with the whole boundary of each hole fixed and no fold-over no node can enter it.
         boundary = np.arange(plane.n_boundary)
+        outer = plane.info["boundary_rings"][0]
         slides = optimize in SLIDING_OBJECTIVES
         result = optimize_uv(
             surface,
@@ -250,8 +266,8 @@ def mesh_surface(
             plane.edges,
             plane.edge_groups,
             l,
-            fixed=boundary[:0] if slides else boundary,
-            sliding=boundary if slides else (),
+            fixed=boundary[outer:] if slides else boundary,
+            sliding=boundary[:outer] if slides else (),
             triangles=plane.triangles,
             objective=optimize,
         )

@@ -19,7 +19,10 @@ boundary is the flattened auxiliary triangulation's, or, for the nodes the
 caller names, the polygon actually triangulated in step 3 (the resampled
 :class:`~equimesh.surface.outline.Outline`, whose vertices carry their exact
 (u, v)): :func:`equimesh.mesh_surface` passes it, so that its boundary nodes
-take exactly the (u, v) of the outline vertices they sit on.  Both ends of a
+take exactly the (u, v) of the outline vertices they sit on; nodes on a hole's
+ring are projected onto that ring and interpolated between its vertices'
+(u, v), which lie on the hole's polyline with every corner of it among them,
+so the node lies on the polyline too.  Both ends of a
 boundary segment share the side coordinate (exactly a bound of the chart's
 domain, 0.0 or 1.0 on [0, 1]^2), which is then set explicitly: such nodes
 land exactly on the boundary of the parameter rectangle.  No node ever fails
@@ -31,6 +34,7 @@ from dataclasses import dataclass
 import matplotlib.tri
 import numpy as np
 
+from ..errors import InternalError
 from .chart import Domain
 from .regularity import evaluate
 
@@ -156,7 +160,7 @@ def locate(plane_points, flat_points, grid, *, on_boundary=None, outline=None, s
 
     paths = [(boundary_path & ~on_outline, loop)]
     if outline is not None:
-        paths.append((on_outline, Loop(outline.vertices, outline.uv, outline.side, outline.domain)))
+        paths.append((on_outline, outline.loop()))
     for nodes, ring in paths:
         if np.any(nodes):
             segment[nodes], t[nodes], uv[nodes] = ring.project(x[nodes])
@@ -166,29 +170,57 @@ def locate(plane_points, flat_points, grid, *, on_boundary=None, outline=None, s
 
 @dataclass(frozen=True)
 class Loop:
-    """A closed boundary polyline on the plane whose vertices carry their (u, v) on the domain's boundary.
+    """Closed boundary polylines on the plane whose vertices carry their exact (u, v).
 
-    ``side[k]`` is the side (index into :data:`~equimesh.surface.chart.SIDES`)
-    of ``domain`` carried by the segment from vertex ``k`` to ``k + 1``.
+    Segment ``k`` runs from vertex ``k`` to vertex ``succ[k]`` (the next one
+    around its ring; default: one ring, ``k + 1``).  ``side[k]`` is the side
+    (index into :data:`~equimesh.surface.chart.SIDES`) of ``domain`` that
+    segment lies on, or -1 for a segment inside the domain (on a hole).
     """
 
     xy: np.ndarray
     uv: np.ndarray
     side: np.ndarray
     domain: Domain
+    succ: np.ndarray | None = None
 
     def project(self, x):
         """Nearest segment, position ``t`` on it and (u, v) there (eq. (3) on a boundary edge) for points ``x``.
 
-        ``(1 - t) uv_a + t uv_b`` is exact at both ends; the side coordinate
-        is then set to exactly the domain's bound.
+        ``(1 - t) uv_a + t uv_b`` is exact at both ends; on a side of the
+        domain the side coordinate is then set to exactly the domain's bound.
         """
-        seg, tt, _ = _nearest_segment(x, self.xy, np.roll(self.xy, -1, axis=0))
-        ua, ub = self.uv[seg], np.roll(self.uv, -1, axis=0)[seg]
+        succ = np.roll(np.arange(len(self.xy)), -1) if self.succ is None else self.succ
+        seg, tt, _ = _nearest_segment(x, self.xy, self.xy[succ])
+        ua, ub = self.uv[seg], self.uv[succ[seg]]
         uv = (1.0 - tt)[:, None] * ua + tt[:, None] * ub
-        side = self.side[seg]  # index into SIDES = (u=u0, u=u1, v=v0, v=v1)
-        uv[np.arange(len(seg)), side // 2] = self.domain.side_values[side]
+        side = self.side[seg]  # index into SIDES = (u=u0, u=u1, v=v0, v=v1), -1 inside
+        on = np.flatnonzero(side >= 0)
+        uv[on, side[on] // 2] = self.domain.side_values[side[on]]
         return seg, tt, uv
+
+
+def to_plane(uv, flat_points, grid):
+    """Eqs. (2)-(3) forward: (u, v) points to the flattened plane, by their barycentric coordinates in the auxiliary triangles.
+
+    A point on an auxiliary edge has the same image from both triangles
+    (the map is continuous and linear on each triangle).
+
+    Raises
+    ------
+    InternalError
+        A point outside the auxiliary triangulation (callers pass points of the domain).
+    """
+    uv = np.asarray(uv, dtype=float).reshape(-1, 2)
+    tri = np.asarray(grid.triangles)
+    triangulation = matplotlib.tri.Triangulation(grid.uv[:, 0], grid.uv[:, 1], tri)
+    found = np.asarray(matplotlib.tri.TrapezoidMapTriFinder(triangulation)(uv[:, 0], uv[:, 1]), dtype=np.int64)
+    if np.any(found < 0):
+        k = int(np.flatnonzero(found < 0)[0])
+        raise InternalError(f"(u, v) = ({uv[k, 0]!r}, {uv[k, 1]!r}) is in no auxiliary triangle")
+    a, b = barycentric(uv, grid.uv[tri[found]])
+    q, r, s = (flat_points[tri[found, j]] for j in range(3))
+    return q + a[:, None] * (r - q) + b[:, None] * (s - q)
 
 
 def barycentric(x, corners):
@@ -229,4 +261,4 @@ def _nearest_segment(x, a, b, chunk=4096):
     return index, tt, dist
 
 
-__all__ = ["Remap", "barycentric", "locate", "remap"]
+__all__ = ["Loop", "Remap", "barycentric", "locate", "remap", "to_plane"]

@@ -1,0 +1,201 @@
+"""Step 2 of Algorithm INCREMENT on a closed plane polyline with marked corners (Section 4, step 3, beyond the paper).
+
+A curved boundary (the flattened outline of a surface, the image of an
+opening, a boundary loop of a triangle mesh) is resampled into a polygon for
+Problem 2 (:func:`equimesh.uniform_triangulation`), parameters such as (u, v)
+carried along:
+
+* the sides between corners are split into ``k`` parts at equal arc length,
+  ``k`` by the rule of Step 2 (:func:`~equimesh.planar.polygon.split_counts`);
+  a part's chord is at most its arc, so at most ``2l``; where curvature makes
+  a chord shorter than ``l``, the side falls back to ``k - 1, k - 2, ...``
+  parts;
+* next to a corner sharper than :data:`~equimesh.planar.polygon.SHARP_CORNER`
+  each side keeps one straight edge from the corner, on which Problem 2
+  staggers its points (:func:`~equimesh.planar.polygon.side_positions`)
+  exactly as on a polygon's sides;
+* every polygon vertex lies on the polyline, with the segment and fraction
+  it sits at, so its parameters are known exactly.
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .._geometry import cross
+from ..errors import SurfaceTooSmallError
+from ..planar.polygon import split_counts, stagger_reach
+from ..tolerance import at_least
+from ._places import number
+
+
+@dataclass(frozen=True)
+class Ring:
+    """A closed polyline resampled by :func:`resample_ring`.
+
+    Attributes
+    ----------
+    points : (m, 2) the polygon's vertices, in the polyline's order, starting at its first corner.
+    params : (m, k) the parameters carried by the polyline, interpolated at each vertex.
+    side : (m,) the side (``i``: from the polyline's corner ``i`` to corner ``i + 1``)
+        each polygon edge (j, j+1) lies on.
+    """
+
+    points: np.ndarray
+    params: np.ndarray
+    side: np.ndarray
+
+
+def resample_ring(xy, params, corners, l, spacing, too_short=None):
+    """Step 2 on a closed plane polyline: a polygon on it whose edges are at least ``l`` long.
+
+    Parameters
+    ----------
+    xy : (n, 2) array
+        The polyline's points, the region on its left (counter-clockwise
+        for an outer boundary, clockwise for an opening); the first point is
+        not repeated at the end.
+    params : (n, k) array
+        Parameters carried along (e.g. (u, v)), interpolated linearly on each
+        segment; a corner's parameters are kept bit for bit.
+    corners : sequence of int
+        Increasing indices into ``xy``, at least one: the points every
+        polygon keeps.  The sides run from each corner to the next (with one
+        corner, once around the loop).
+    l, spacing : float
+        Target length and Step 2 spacing (in units of l).
+    too_short : callable, optional
+        ``too_short(side, arc, chord)`` returns the exception raised for a
+        side that no split leaves with chords of at least ``l``.
+
+    A side is split into ``k`` equal parts along its arc, ``k`` by the rule
+    of Step 2 (:func:`~equimesh.planar.polygon.split_counts`), the paper's
+    Step 2 at arc length; where a chord is shorter than ``l``, ``k - 1,
+    k - 2, ...`` parts.  Next to a corner sharper than ``SHARP_CORNER`` the
+    side keeps one straight edge from the corner, ``stagger_reach + l`` long
+    (:func:`_corner_edges`): Problem 2 staggers its points there
+    (:func:`~equimesh.planar.polygon.side_positions`) on a straight edge, where
+    the proof of their separation holds as it stands (docs/proofs.md, "Sharp
+    corners"); staggered points placed on the curve itself would be ``l``
+    apart along the arc, closer than ``l`` as chords.
+    """
+    xy, params = np.asarray(xy, dtype=float), np.asarray(params, dtype=float)
+    corners = np.asarray(corners, dtype=np.int64)
+    n = len(xy)
+    chains = [np.r_[c0 : c1 + 1] if c1 > c0 else np.r_[c0:n, : c1 + 1] for c0, c1 in zip(corners, np.roll(corners, -1))]
+    arcs = [np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(xy[c], axis=0), axis=1))]) for c in chains]
+    stretches = _corner_edges(xy, chains, arcs, corners, l)
+    points, carried, side = [], [], []
+    for i, (chain, arc, stretch) in enumerate(zip(chains, arcs, stretches)):
+        pts, prm = _split_side(xy[chain], params[chain], arc, stretch, l, spacing)
+        if pts is None:
+            chord = float(np.linalg.norm(xy[chain[-1]] - xy[chain[0]]))
+            raise (too_short or _too_short)(i, float(arc[-1]), chord)
+        points.append(pts[:-1])
+        carried.append(prm[:-1])
+        side.append(np.full(len(pts) - 1, i))
+    return Ring(np.vstack(points), np.vstack(carried), np.concatenate(side))
+
+
+#: Passes of :func:`_corner_edges` at one corner: the angle between the
+#: straight edges may be sharper than the polyline's, needing longer edges;
+#: ``stagger_reach`` is a whole multiple of l, so it settles within a pass or two.
+CORNER_PASSES = 4
+
+
+def _corner_edges(xy, chains, arcs, corners, l):
+    """Per side, the stretch ``(a, b)`` of its arc split into equal parts, or None for one straight edge.
+
+    At a corner sharper than ``SHARP_CORNER`` the sides keep straight edges
+    from the corner to the points at distance ``stagger_reach(angle) + l``
+    from it (first reached along each side), ``angle`` being the angle
+    between those two edges (recomputed until the reach no longer grows,
+    at most :data:`CORNER_PASSES` passes).  A side whose stretch between such
+    points is shorter than ``l``, or that never gets that far from the
+    corner, is one straight edge; Problem 2 then drops the staggered points
+    it has no room for, or refuses the corner.  A side with no sharp corner
+    is split whole: ``(0, length)``.
+    """
+    n = len(chains)
+    start, end = [0.0] * n, [arc[-1] for arc in arcs]
+    single = [False] * n
+    for i, c in enumerate(corners):
+        leaving, arriving = i, (i - 1) % n
+        ahead = xy[chains[leaving]]
+        back, back_arc = xy[chains[arriving]][::-1], arcs[arriving][-1] - arcs[arriving][::-1]
+        angle, reach = inner_angle(xy, c), 0.0
+        for _ in range(CORNER_PASSES):
+            need = stagger_reach(angle, l)
+            if need <= reach:
+                break
+            reach = need
+            s, t = _arc_at_distance(ahead, arcs[leaving], reach + l), _arc_at_distance(back, back_arc, reach + l)
+            if s is None or t is None:
+                single[leaving] = single[arriving] = True
+                break
+            start[leaving], end[arriving] = s, arcs[arriving][-1] - t
+            p, q = (_at_arc(pts, pts, arc, np.array([0.0, x, arc[-1]]))[0][1] for pts, arc, x in ((ahead, arcs[leaving], s), (back, back_arc, t)))
+            angle = inner_angle(np.array([q, xy[c], p]), 1)
+    return [None if one or not at_least(b - a, l) else (a, b) for one, a, b in zip(single, start, end)]
+
+
+def _arc_at_distance(pts, arc, distance):
+    """Arc length along the polyline ``pts`` at which it first reaches ``distance`` from ``pts[0]``, or None."""
+    far = np.flatnonzero(np.linalg.norm(pts - pts[0], axis=1) >= distance)
+    if not len(far):
+        return None
+    j = int(far[0])
+    p, e = pts[j - 1] - pts[0], pts[j] - pts[j - 1]
+    a, b, c = e @ e, 2.0 * (p @ e), p @ p - distance * distance
+    t = (-b + np.sqrt(b * b - 4.0 * a * c)) / (2.0 * a)
+    return float(arc[j - 1] + t * (arc[j] - arc[j - 1]))
+
+
+def inner_angle(xy, i):
+    """Inner angle (degrees, in [0, 360)) of the closed polyline ``xy`` at point ``i``, the region on its left."""
+    p = xy[i]
+    u, w = xy[i - 1] - p, xy[(i + 1) % len(xy)] - p
+    return float(np.degrees(np.arctan2(cross(w, u), np.dot(w, u))) % 360.0)
+
+
+def _split_side(xy, params, arc, stretch, l, spacing):
+    """Points of one side with chords of at least ``l``, or None: its start, the stretch split evenly, its end.
+
+    The stretch ``(a, b)`` is split into ``k`` equal parts (Step 2's count),
+    else ``k - 1, k - 2, ...``; straight edges join ``a`` and ``b`` to the
+    side's ends when they are not the ends themselves.  ``stretch`` None: one
+    straight edge, the side's chord.
+    """
+    length = arc[-1]
+    if stretch is None:
+        candidates = [np.array([0.0, length])]
+    else:
+        a, b = stretch
+        k = int(split_counts([b - a], l, spacing)[0])  # 0: the side is shorter than l
+        head, tail = [0.0] if a > 0 else [], [b] if b < length else []
+        candidates = [np.concatenate([head, a + (b - a) * np.arange(j) / j, tail, [length]]) for j in range(k, 0, -1)]
+    for s in candidates:
+        pts, prm = _at_arc(xy, params, arc, s)
+        if len(s) > 1 and np.all(at_least(np.linalg.norm(np.diff(pts, axis=0), axis=1), l)):
+            return pts, prm
+    return None, None
+
+
+def _too_short(side, arc, chord):
+    """The default refusal of :func:`resample_ring`: a side the resampling cannot split into chords of at least l."""
+    return SurfaceTooSmallError(
+        f"side {side} of the boundary polyline is {number(arc)} long (its ends {number(chord)} apart), "
+        "too short to split into parts of at least l"
+    )
+
+
+def _at_arc(xy, params, arc, s):
+    """Points and parameters at arc lengths ``s`` along the polyline ``xy``, endpoints exact."""
+    idx = np.clip(np.searchsorted(arc, s, side="right") - 1, 0, len(arc) - 2)
+    t = (s - arc[idx]) / (arc[idx + 1] - arc[idx])
+    t[0], t[-1] = 0.0, 1.0
+    idx[-1] = len(arc) - 2
+    pts = xy[idx] + t[:, None] * (xy[idx + 1] - xy[idx])
+    prm = params[idx] + t[:, None] * (params[idx + 1] - params[idx])
+    pts[0], prm[0], pts[-1], prm[-1] = xy[0], params[0], xy[-1], params[-1]
+    return pts, prm
