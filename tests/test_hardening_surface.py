@@ -226,12 +226,14 @@ def located_refusals(monkeypatch):
     monkeypatch.setattr(pipeline, "uniform_triangulation", located)
 
 
-def test_sharp_corner_is_named(located_refusals):
-    """A flat 40-degree parallelogram: the refusal names the sharp corner and its angle, not the outline."""
-    a = np.radians(40.0)
+def test_sharp_corner_is_named_with_the_largest_l_that_fits(located_refusals):
+    """A flat 20-degree parallelogram, sides 30, at l = 9: the refusal names the sharp corner, its angle and an l that works."""
+    a = np.radians(20.0)
     patch = plane_patch((30.0, 0.0), (30.0 * np.cos(a), 30.0 * np.sin(a)))
-    message = refuse(InvalidSurfaceError, patch, 3.0, r"corner \(u, v\) = \((1, 1|0, 0)\) .* is 40\.0 degrees")
-    assert "not supported yet" in message and "edge (" not in message
+    message = refuse(InvalidSurfaceError, patch, 9.0, r"corner \(u, v\) = \((1, 1|0, 0)\) .* is 20\.0 degrees")
+    assert "staggered boundary points need side" in message and "edge (" not in message
+    suggested = float(message.rsplit("use l <= ", 1)[1])
+    check_edge_lengths(equimesh.mesh_surface(patch, suggested, optimize="none").stages.plane, suggested)
 
 
 def test_waist_is_named_with_the_largest_l_that_fits(located_refusals):

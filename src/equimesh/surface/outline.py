@@ -2,25 +2,32 @@
 
 The boundary of the flattened auxiliary triangulation is a closed polyline
 through the images of the boundary nodes of the parameter rectangle,
-generally not convex (paper, Fig. 2).  Its sides (between the images of the
-corners of the auxiliary grid's domain) are resampled into polygon edges between l and 2l, the
-input of Problem 2 (:func:`equimesh.uniform_triangulation`):
+generally not convex (paper, Fig. 2).  It is resampled into polygon edges
+between l and 2l, the input of Problem 2 (:func:`equimesh.uniform_triangulation`),
+by :func:`resample_ring`, which serves any closed plane polyline with marked
+corners (here the images of the four corners of the grid's domain):
 
-* a side of arc length ``L`` gets ``k`` parts by the rule of Step 2
-  (:func:`equimesh.planar.polygon.split_counts`), placed at equal arc length; a part's
-  chord is at most its arc, so at most ``2l``; where curvature makes a chord
-  shorter than ``l``, ``k`` is lowered for that side;
-* every polygon vertex lies on the flattened polyline, with the boundary
-  segment and fraction it sits at, so its (u, v) is known exactly and lies on
-  the boundary of the parameter rectangle (paper, eq. (3) on a boundary edge).
+* the sides between corners get the points of Step 2 exactly as a polygon's
+  sides do in Problem 2 (:func:`equimesh.planar.polygon.side_positions`, at
+  arc length): ``k`` equal parts by :func:`~equimesh.planar.polygon.split_counts`,
+  or, next to a corner sharper than :data:`~equimesh.planar.polygon.SHARP_CORNER`,
+  the staggered points of :func:`~equimesh.planar.polygon.stagger`;
+  a part's chord is at most its arc, so at most ``2l``; where curvature makes
+  a chord shorter than ``l``, the side falls back to ``k - 1, k - 2, ...``
+  equal parts;
+* every polygon vertex lies on the polyline, with the segment and fraction
+  it sits at, so its parameters (for the outline its (u, v), on the boundary
+  of the parameter rectangle: paper, eq. (3) on a boundary edge) are known
+  exactly.
 """
 
 from dataclasses import dataclass
 
 import numpy as np
 
+from .._geometry import cross
 from ..errors import SurfaceTooSmallError
-from ..planar.polygon import split_counts
+from ..planar.polygon import side_positions
 from ..tolerance import at_least
 from ._places import corner_name, number, side_name
 from .chart import Domain
@@ -45,12 +52,101 @@ class Outline:
     domain: Domain
 
 
+@dataclass(frozen=True)
+class Ring:
+    """A closed polyline resampled by :func:`resample_ring`.
+
+    Attributes
+    ----------
+    points : (m, 2) the polygon's vertices, in the polyline's order, starting at its first corner.
+    params : (m, k) the parameters carried by the polyline, interpolated at each vertex.
+    side : (m,) the side (``i``: from the polyline's corner ``i`` to corner ``i + 1``)
+        each polygon edge (j, j+1) lies on.
+    """
+
+    points: np.ndarray
+    params: np.ndarray
+    side: np.ndarray
+
+
+def resample_ring(xy, params, corners, l, spacing, too_short=None):
+    """Step 2 on a closed plane polyline: a polygon on it whose edges are at least ``l`` long.
+
+    Parameters
+    ----------
+    xy : (n, 2) array
+        The polyline's points, the region on its left (counter-clockwise
+        for an outer boundary, clockwise for an opening); the first point is
+        not repeated at the end.
+    params : (n, k) array
+        Parameters carried along (e.g. (u, v)), interpolated linearly on each
+        segment; a corner's parameters are kept bit for bit.
+    corners : sequence of int
+        Increasing indices into ``xy``, at least one: the points every
+        polygon keeps.  The sides run from each corner to the next (with one
+        corner, once around the loop).
+    l, spacing : float
+        Target length and Step 2 spacing (in units of l).
+    too_short : callable, optional
+        ``too_short(side, arc, chord)`` returns the exception raised for a
+        side that no split leaves with chords of at least ``l``.
+
+    The points of side ``i`` are those of :func:`~equimesh.planar.polygon.side_positions`
+    on the ring of the sides' arc lengths and the polyline's inner angles at
+    the corners (so a corner sharper than ``SHARP_CORNER`` is staggered as in
+    Problem 2), at arc length.  Every part is at most ``2l`` along the arc,
+    so its chord is too; a side with a chord shorter than ``l`` falls back
+    to equal parts, one fewer at a time.
+    """
+    xy, params = np.asarray(xy, dtype=float), np.asarray(params, dtype=float)
+    corners = np.asarray(corners, dtype=np.int64)
+    n = len(xy)
+    chains = [np.r_[c0 : c1 + 1] if c1 > c0 else np.r_[c0:n, : c1 + 1] for c0, c1 in zip(corners, np.roll(corners, -1))]
+    arcs = [np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(xy[c], axis=0), axis=1))]) for c in chains]
+    sides = side_positions([arc[-1] for arc in arcs], [inner_angle(xy, c) for c in corners], l, spacing)
+    points, carried, side = [], [], []
+    for i, (chain, arc, (num, den)) in enumerate(zip(chains, arcs, sides)):
+        pts, prm = _split_side(xy[chain], params[chain], arc, num, den, l)
+        if pts is None:
+            chord = float(np.linalg.norm(xy[chain[-1]] - xy[chain[0]]))
+            raise (too_short or _too_short)(i, float(arc[-1]), chord)
+        points.append(pts[:-1])
+        carried.append(prm[:-1])
+        side.append(np.full(len(pts) - 1, i))
+    return Ring(np.vstack(points), np.vstack(carried), np.concatenate(side))
+
+
+def inner_angle(xy, i):
+    """Inner angle (degrees, in [0, 360)) of the closed polyline ``xy`` at point ``i``, the region on its left."""
+    p = xy[i]
+    u, w = xy[i - 1] - p, xy[(i + 1) % len(xy)] - p
+    return float(np.degrees(np.arctan2(cross(w, u), np.dot(w, u))) % 360.0)
+
+
+def _split_side(xy, params, arc, num, den, l):
+    """Points of one side at arc lengths ``arc[-1] * num / den``, else at ``k - 1, k - 2, ...`` equal parts: the first with chords >= l."""
+    length, k = arc[-1], len(num)  # k = 0: the side is shorter than l
+    for num, den in [(num, den)][:k] + [(np.arange(j, dtype=float), float(j)) for j in range(k - 1, 0, -1)]:
+        pts, prm = _at_arc(xy, params, arc, np.append(length * num / den, length))
+        if np.all(at_least(np.linalg.norm(np.diff(pts, axis=0), axis=1), l)):
+            return pts, prm
+    return None, None
+
+
+def _too_short(side, arc, chord):
+    """The default refusal of :func:`resample_ring`: a side the resampling cannot split into chords of at least l."""
+    return SurfaceTooSmallError(
+        f"side {side} of the boundary polyline is {number(arc)} long (its ends {number(chord)} apart), "
+        "too short to split into parts of at least l"
+    )
+
+
 def resample_outline(plane, grid, l, spacing):
-    """Resample the flattened boundary ``plane[grid.boundary]`` side by side into a polygon.
+    """Resample the flattened boundary ``plane[grid.boundary]`` into a polygon (:func:`resample_ring`).
 
     ``plane`` holds the flattened nodes of the auxiliary grid ``grid`` (step
-    2); the sides run between the corners of the grid's domain, in the
-    counter-clockwise order of ``grid.boundary``.
+    2); the corners are the images of the corners of the grid's domain, in
+    the counter-clockwise order of ``grid.boundary``.
 
     Raises
     ------
@@ -58,41 +154,27 @@ def resample_outline(plane, grid, l, spacing):
         A side whose corners are closer than ``l`` on the plane, named by its
         side and corners of the parameter rectangle.
     """
-    loop, uv, domain = grid.boundary, grid.uv, grid.domain
+    loop, uv, domain = grid.boundary, grid.uv[grid.boundary], grid.domain
     corners = np.flatnonzero(grid.boundary_corner)
-    vertices, params, sides = [], [], []
-    for c0, c1 in zip(corners, np.roll(corners, -1)):
-        chain = loop[c0 : c1 + 1] if c1 > c0 else np.r_[loop[c0:], loop[: c1 + 1]]
-        pts, prm = _resample_side(plane[chain], uv[chain], l, spacing, domain)
-        vertices.append(pts[:-1])
-        params.append(prm[:-1])
-        sides.append(np.full(len(pts) - 1, side_index(prm[0], prm[-1], domain)))
-    return Outline(np.vstack(vertices), np.vstack(params), np.concatenate(sides), domain)
+    ends = [(uv[c0], uv[c1]) for c0, c1 in zip(corners, np.roll(corners, -1))]
+
+    def too_short(side, arc, chord):
+        a, b = ends[side]
+        return SurfaceTooSmallError(
+            f"{side_name(side_index(a, b, domain), domain)} of the surface, from {corner_name(a)} to {corner_name(b)}, "
+            f"is {number(arc)} long on the flattened surface (its corners {number(chord)} apart), "
+            f"shorter than l = {number(l)}; use l <= {number(round_down(chord))}"
+        )
+
+    ring = resample_ring(plane[loop], uv, corners, l, spacing, too_short)
+    sides = np.array([side_index(a, b, domain) for a, b in ends])
+    return Outline(ring.points, ring.params, sides[ring.side], domain)
 
 
 def side_index(uv_a, uv_b, domain):
     """Index into :data:`~equimesh.surface.chart.SIDES` of the side of ``domain`` through two of its points."""
     axis = 0 if uv_a[0] == uv_b[0] else 1
     return 2 * axis + int(uv_a[axis] == domain.upper[axis])
-
-
-def _resample_side(xy, uv, l, spacing, domain):
-    seg = np.linalg.norm(np.diff(xy, axis=0), axis=1)
-    arc = np.concatenate([[0.0], np.cumsum(seg)])
-    k = int(split_counts([arc[-1]], l, spacing)[0])
-    while k >= 1:
-        s = arc[-1] * np.arange(k + 1) / k
-        s[-1] = arc[-1]
-        pts, prm = _at_arc(xy, uv, arc, s)
-        if np.all(at_least(np.linalg.norm(np.diff(pts, axis=0), axis=1), l)):
-            return pts, prm
-        k -= 1
-    chord = float(np.linalg.norm(xy[-1] - xy[0]))
-    raise SurfaceTooSmallError(
-        f"{side_name(side_index(uv[0], uv[-1], domain), domain)} of the surface, from {corner_name(uv[0])} to {corner_name(uv[-1])}, "
-        f"is {number(arc[-1])} long on the flattened surface (its corners {number(chord)} apart), "
-        f"shorter than l = {number(l)}; use l <= {number(round_down(chord))}"
-    )
 
 
 def round_down(x, digits=4):
@@ -103,13 +185,13 @@ def round_down(x, digits=4):
     return float(np.floor(x / scale) * scale)
 
 
-def _at_arc(xy, uv, arc, s):
-    """Points and (u, v) at arc lengths ``s`` along the polyline ``xy``, endpoints exact."""
+def _at_arc(xy, params, arc, s):
+    """Points and parameters at arc lengths ``s`` along the polyline ``xy``, endpoints exact."""
     idx = np.clip(np.searchsorted(arc, s, side="right") - 1, 0, len(arc) - 2)
     t = (s - arc[idx]) / (arc[idx + 1] - arc[idx])
     t[0], t[-1] = 0.0, 1.0
     idx[-1] = len(arc) - 2
     pts = xy[idx] + t[:, None] * (xy[idx + 1] - xy[idx])
-    prm = uv[idx] + t[:, None] * (uv[idx + 1] - uv[idx])
-    pts[0], prm[0], pts[-1], prm[-1] = xy[0], uv[0], xy[-1], uv[-1]
+    prm = params[idx] + t[:, None] * (params[idx + 1] - params[idx])
+    pts[0], prm[0], pts[-1], prm[-1] = xy[0], params[0], xy[-1], params[-1]
     return pts, prm

@@ -76,6 +76,14 @@ MAX_GRID_CELLS = 40_000
 #: The final optimisation when none is named (a key of :data:`~equimesh.surface.optimize.OBJECTIVES`, or "none").
 DEFAULT_OPTIMIZE = "bounded"
 
+#: Step 2 spacing with which Problem 2 resamples the outline: 2, so that
+#: every outline edge (already a Step 2 part of at most 2l, staggered next to
+#: sharp corners by :func:`~equimesh.surface.outline.resample_ring`) stays one
+#: edge; a smaller spacing would split the staggered 2l parts at their
+#: midpoints, which next to a corner sharper than 60 degrees are closer than
+#: l to the other side's points (docs/decisions.md, "The outline is Step 2").
+OUTLINE_KEPT = 2.0
+
 #: Lattice placements: "best" searches (beyond the paper), "default" is angle 0, offset (0, 0).
 PLACEMENTS = ("best", "default")
 
@@ -229,7 +237,7 @@ def mesh_surface(
         )
         angle, offset = (chosen.angle, chosen.offset) if chosen else (0.0, (0.0, 0.0))
         plane = uniform_triangulation(
-            steps.outline.vertices, l, holes=holes, angle=angle, offset=offset, boundary_spacing=boundary_spacing,
+            steps.outline.vertices, l, holes=holes, angle=angle, offset=offset, boundary_spacing=OUTLINE_KEPT,
             engine=engine, max_nodes=None,
         )
     except InvalidPolygonError as exc:

@@ -7,27 +7,22 @@ it names are mapped back through the outline to (u, v), to the side or corner
 of the parameter rectangle they lie on and to space, and the refusal says what
 to change.
 
-Why corners below ``SHARP_CORNER`` degrees get no suggested l: the first
-boundary points beside a corner of angle ``theta`` lie ``s, t`` in [l, 2l]
-from it and ``2 s sin(theta / 2)`` apart when ``s = t``; at ``s = t = l`` that
-is less than l exactly when ``theta < 60`` degrees.  Below 60 degrees the
-outcome depends on where the resampling of the two sides happens to put
-those points, not on the size of l (the picture only scales).
+Corners below ``SHARP_CORNER`` degrees get staggered boundary points
+(:func:`~equimesh.surface.outline.resample_ring`, as Step 2 of Problem 2), which
+needs both sides of the corner ``stagger_reach + l`` long
+(docs/proofs.md, "Sharp corners"): the refusal there names the corner, its
+angle and the largest l for which its sides are long enough.
 """
 
 import numpy as np
 import shapely
 
 from ..errors import InvalidSurfaceError
+from ..planar.polygon import SHARP_CORNER, stagger_reach
 from ._places import at, corner_name, number, side_name
 from .outline import round_down
 from .regularity import evaluate
 from .remap import Loop
-
-#: Flattened corners sharper than this (degrees) are refused as not supported
-#: yet, since no l helps there (see the module docstring).
-SHARP_CORNER = 60.0
-
 
 def restate_polygon_error(exc, surface, flat_points, grid, outline, l):
     """An :class:`~equimesh.errors.InvalidSurfaceError` saying in surface terms why Problem 2 refused ``outline``.
@@ -61,9 +56,12 @@ def restate_polygon_error(exc, surface, flat_points, grid, outline, l):
         angle = _corner_angle(flat_points, grid, corner)
         name = f"{corner_name(corner)} at point ({', '.join(number(c) for c in evaluate(surface, corner)[0])})"
         if angle < SHARP_CORNER:
+            side, length, need = min(_stagger_needs(flat_points, grid, sides), key=lambda x: x[1] / x[2])
             return InvalidSurfaceError(
-                f"the {name} is {angle:.1f} degrees on the flattened surface: {close}; corners sharper than about "
-                f"{SHARP_CORNER:.0f} degrees are not supported yet (see the issue on real surfaces); another l may or may not pass"
+                f"the {name} is {angle:.1f} degrees on the flattened surface: {close}; next to corners sharper than "
+                f"{SHARP_CORNER:.0f} degrees the staggered boundary points need {side_name(side, domain)} at least "
+                f"{number(need)} l long (docs/proofs.md, 'Sharp corners'), it is {number(length)} on the flattened "
+                f"surface; use l <= {number(round_down(length / need))}"
             )
         return InvalidSurfaceError(f"near the {name} ({angle:.1f} degrees on the flattened surface) {close}; try l < {number(round_down(gap))}")
     width = _side_distance(flat_points, grid, sides) if sides[0] != sides[1] else gap
@@ -79,6 +77,25 @@ def _corner_angle(flat_points, grid, corner):
     c = flat_points[loop[k]]
     a, b = flat_points[loop[(k + 1) % len(loop)]] - c, flat_points[loop[k - 1]] - c
     return float(np.degrees(np.arctan2(a[0] * b[1] - a[1] * b[0], a @ b)) % 360.0)
+
+
+def _stagger_needs(flat_points, grid, sides):
+    """``(side, length, need)`` for each side: its length on the plane and the staggering's need in units of l.
+
+    A side at least ``stagger_reach`` of both its corners plus ``l`` long
+    keeps every staggered point (:func:`~equimesh.planar.polygon.side_positions`).
+    """
+    a, b = flat_points[grid.boundary], flat_points[np.roll(grid.boundary, -1)]
+    domain = grid.domain
+    for side in sides:
+        length = float(np.sum(np.linalg.norm((b - a)[grid.boundary_segment_side == side], axis=1)))
+        axis, other = side // 2, 1 - side // 2
+        need = 1.0
+        for bound in (domain.lower[other], domain.upper[other]):
+            corner = np.empty(2)
+            corner[axis], corner[other] = domain.side_values[side], bound
+            need += stagger_reach(_corner_angle(flat_points, grid, corner), 1.0)
+        yield int(side), length, need
 
 
 def _side_distance(flat_points, grid, sides):
