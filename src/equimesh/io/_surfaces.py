@@ -21,7 +21,7 @@ from ..surface.nurbs import NurbsSurface
 from . import _bezier, _nurbs
 from ._rhino import read_rhino_surface
 from ._schema import json_type, shown, shown_path
-from ._trimesh import read_triangle_mesh
+from ._trimesh import TRIANGLE_MESH_FORMATS, read_triangle_mesh
 
 
 @dataclass(frozen=True)
@@ -153,14 +153,11 @@ def read_json_surface(path):
     return surface_from_dict(d)
 
 
-#: Triangle-mesh formats read with meshio (:mod:`._trimesh`), by extension.
-TRIANGLE_MESH_FORMATS = {".obj": "Wavefront OBJ", ".stl": "STL", ".ply": "PLY", ".vtk": "VTK", ".vtu": "VTK XML"}
-
 #: Input formats by file extension (lower case).
 INPUT_FORMATS = {
     ".json": InputFormat("equimesh surface JSON", read_json_surface),
     ".3dm": InputFormat("Rhino file", read_rhino_surface, ("object",)),
-    **{ext: InputFormat(f"{name} triangle mesh", read_triangle_mesh) for ext, name in TRIANGLE_MESH_FORMATS.items()},
+    **{ext: InputFormat(f"{name} triangle mesh", read_triangle_mesh) for ext, (name, _) in TRIANGLE_MESH_FORMATS.items()},
 }
 
 

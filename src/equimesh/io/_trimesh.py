@@ -10,6 +10,9 @@ corners, curved or volume cells) is refused, naming its type.  Points given in
 the plane (two coordinates) get z = 0.
 """
 
+import contextlib
+import importlib
+import io
 import warnings
 
 import numpy as np
@@ -17,6 +20,15 @@ import numpy as np
 from ..errors import InvalidSurfaceError
 from ..surface.triangulated import TriangulatedSurface
 from ._schema import shown_path
+
+#: Triangle-mesh formats by extension: a name for messages and the meshio module that reads it.
+TRIANGLE_MESH_FORMATS = {
+    ".obj": ("Wavefront OBJ", "obj"),
+    ".stl": ("STL", "stl"),
+    ".ply": ("PLY", "ply"),
+    ".vtk": ("VTK", "vtk"),
+    ".vtu": ("VTK XML", "vtu"),
+}
 
 #: meshio cell types that carry no surface and are skipped.
 IGNORED_CELLS = ("vertex", "line", "line3", "polyline")
@@ -32,13 +44,13 @@ def read_triangle_mesh(path):
         triangles or cells that are not surface triangles or quadrilaterals,
         or the mesh fails a check of :class:`TriangulatedSurface`.
     """
-    import meshio
-
     where = shown_path(path)
+    # The format's own reader, not meshio.read, which prints and calls sys.exit on a file it cannot read.
+    reader = importlib.import_module(f"meshio.{TRIANGLE_MESH_FORMATS[path.suffix.lower()][1]}")
     try:
-        with warnings.catch_warnings():
+        with warnings.catch_warnings(), contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(io.StringIO()):
             warnings.simplefilter("ignore")  # meshio's own overflow and format warnings on malformed files
-            mesh = meshio.read(str(path))
+            mesh = reader.read(str(path))
     except MemoryError:
         raise
     except Exception as exc:  # meshio raises anything from ReadError to IndexError on a malformed file
