@@ -9,6 +9,7 @@ one line (library: InvalidSurfaceError; command line: exit 2, nothing written).
 import meshio
 import numpy as np
 import pytest
+import shapely
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from test_io import assert_one_line
@@ -18,7 +19,15 @@ from equimesh._cli import main
 from equimesh.io import load_surface
 from equimesh.mesh import half_edges
 from equimesh.surface.flatten import flatten
-from equimesh.surface.mesh_chart import MeshChart, flattening_start
+from equimesh.surface.flatten import _plane_start
+from equimesh.surface.mesh_chart import (
+    MeshChart,
+    _unfolded,
+    conformal_start,
+    flatten_mesh,
+    flattening_start,
+    harmonic_start,
+)
 from equimesh.surface.mesh_outline import CORNER_TURN, loop_corners
 from equimesh.testing.meshes import roof_mesh
 
@@ -154,16 +163,33 @@ def cylinder_strip(angle, n_around=24, n_along=3, radius=5.0, length=6.0):
     return vertices, np.concatenate([np.column_stack([a, b, c]), np.column_stack([a, c, d])])
 
 
-def test_folding_projection_starts_from_tutte():
-    """A 300-degree cylinder strip folds when projected on a plane: eq. (1) starts from Tutte's embedding and develops it."""
+def test_folding_projection_starts_from_the_conformal_map():
+    """A 300-degree cylinder strip folds when projected on a plane: eq. (1) starts from the conformal map and develops it."""
     surface = TriangulatedSurface(*cylinder_strip(300.0))
-    start = flattening_start(surface)
-    assert start is not None
-    flat = flatten(surface.vertices, surface.triangles, x0=start)
-    assert flat.energy < 1e-12
+    tri = surface.triangles
+    assert not _unfolded(_plane_start(surface.vertices, tri), tri)
+    np.testing.assert_array_equal(flattening_start(surface), conformal_start(surface))
+    assert flatten_mesh(surface).energy < 1e-12
     mesh = mesh_surface(surface, 2.0, optimize="none")
     assert_on_input_surface(mesh, surface, 2.0)
-    assert flattening_start(TriangulatedSurface(*roof())) is None  # a vault projects without folding
+    roof_surface = TriangulatedSurface(*roof())  # a vault projects without folding
+    np.testing.assert_array_equal(flattening_start(roof_surface), _plane_start(roof_surface.vertices, roof_surface.triangles))
+
+
+def test_tutte_embedding_never_folds_a_disc():
+    """Tutte's embedding (the last start) of the opening-free vault and of the strip: every triangle counter-clockwise."""
+    for vertices, triangles in (roof_mesh(20.0, 14.0, (10, 7), 3.0), cylinder_strip(300.0)):
+        surface = TriangulatedSurface(vertices, triangles)
+        assert _unfolded(harmonic_start(surface), surface.triangles)
+
+
+def test_openings_stay_open_on_a_curved_fine_mesh():
+    """Eq. (1) alone lets this opening's rim cross itself; capped for the fold-over guard it stays a simple hole."""
+    surface = TriangulatedSurface(*roof_mesh(20.0, 14.0, (40, 28), 5.0, opening=(16, 24, 12, 16)))
+    bare = flatten(surface.vertices, surface.triangles)
+    assert not shapely.LinearRing(bare.points[surface.loops[1]]).is_simple
+    chart = MeshChart(surface, flatten_mesh(surface).points)  # checks that the flattening is one-to-one
+    assert chart.outer == 0
 
 
 # ------------------------------------------------------------------ the mesh as given

@@ -27,10 +27,14 @@ import matplotlib.tri
 import numpy as np
 import scipy.sparse
 import scipy.sparse.linalg
+import shapely
 
 from .._geometry import orient
+from ..errors import InvalidSurfaceError
+from ..tolerance import REL_TOL
 from .chart import Domain
-from .flatten import _plane_start
+from .flatten import _plane_start, flatten
+from ..planar.insertion._region import constrained_delaunay
 from .remap import _nearest_segment, barycentric
 from ..mesh import unique_edges
 
@@ -49,12 +53,20 @@ class MeshChart:
     ----------
     domain : Domain
         The bounding box of the flattening (the bounds of the optimisation).
+    outer : int
+        The index in ``surface.loops`` of the outer boundary on the plane.
     surface, plane
+
+    Raises
+    ------
+    InvalidSurfaceError
+        The flattening overlaps itself (:func:`check_one_to_one`).
     """
 
     def __init__(self, surface, plane):
         self.surface = surface
         self.plane = np.asarray(plane, dtype=float)
+        self.outer = check_one_to_one(surface, self.plane)
         lo, hi = self.plane.min(axis=0), self.plane.max(axis=0)
         self.domain = Domain((lo[0], hi[0]), (lo[1], hi[1]))
         tri = surface.triangles
@@ -101,17 +113,74 @@ class MeshChart:
         return jac[:, :, 0].reshape(shape + (3,)), jac[:, :, 1].reshape(shape + (3,))
 
 
+def check_one_to_one(surface, plane):
+    """The index of the loop enclosing all others on the plane; refuse a flattening that overlaps itself.
+
+    Every flattened triangle is counter-clockwise (:func:`~equimesh.surface.flatten.flatten`
+    checks it).  The flattening is then one-to-one exactly when, in addition,
+    the loops bound a valid polygon with holes (the largest loop outside, the
+    others inside it and apart) whose area is the triangles' total (up to
+    ``REL_TOL``): eq. (1) can squeeze an opening of a strongly curved mesh
+    until its rim crosses itself, with every triangle still counter-clockwise.
+    """
+    loops = [plane[loop] for loop in surface.loops]
+    outer = int(np.argmax([shapely.Polygon(xy).area for xy in loops]))
+    region = shapely.Polygon(loops[outer], [xy for k, xy in enumerate(loops) if k != outer])
+    p = plane[surface.triangles]
+    total = 0.5 * float(orient(p[:, 0], p[:, 1], p[:, 2]).sum())
+    if not region.is_valid or abs(region.area - total) > REL_TOL * total:
+        crossing = [k for k, xy in enumerate(loops) if not shapely.LinearRing(xy).is_simple]
+        which = f"boundary loop {crossing[0]} of {len(loops)} crosses itself" if crossing else "its boundary loops cross"
+        raise InvalidSurfaceError(
+            f"the flattened triangle mesh overlaps itself ({which} on the plane): the surface is too strongly curved "
+            "to flatten by eq. (1) in one piece; cut it into flatter pieces"
+        )
+    return outer
+
+
+def flatten_mesh(surface):
+    """Step 2 for a triangle mesh: eq. (1) on its edges from :func:`flattening_start`, its openings capped.
+
+    Eq. (1) alone keeps every triangle counter-clockwise (its fold-over
+    barrier) but not an opening open: on a doubly curved mesh it can squeeze
+    an opening until its rim crosses itself (a 20 x 14 vault rising 5 on 40 x
+    28 cells: its 4 x 2 opening crossed, the smallest triangle at 6 % of its
+    start area).  Each opening whose rim is simple in the start is therefore
+    covered by triangles of its rim vertices (:func:`opening_caps`), which
+    take part in the fold-over barrier and the orientation check but not in
+    the energy (``edges`` are the mesh's own): eq. (1) is minimised as
+    written, and the opening cannot close or turn over.
+    """
+    start = flattening_start(surface)
+    caps = opening_caps(surface, start)
+    return flatten(surface.vertices, np.vstack([surface.triangles, caps]), x0=start, edges=unique_edges(surface.triangles))
+
+
+def opening_caps(surface, start):
+    """Triangles (counter-clockwise in ``start``) filling every loop but the outer one whose rim is simple in ``start``."""
+    loops = [start[loop] for loop in surface.loops]
+    outer = int(np.argmax([shapely.Polygon(xy).area for xy in loops]))
+    caps = [np.empty((0, 3), dtype=np.int64)]
+    for k, loop in enumerate(surface.loops):
+        if k == outer or not shapely.LinearRing(start[loop]).is_simple:
+            continue
+        ring = np.column_stack([np.arange(len(loop)), np.roll(np.arange(len(loop)), -1)])
+        caps.append(loop[constrained_delaunay(start[loop], ring, np.empty((0, 2)))])
+    return np.vstack(caps)
+
+
 def flattening_start(surface):
     """The start of eq. (1): the first of these that folds no triangle.
 
-    None (flatten's own start, the projection onto the best-fit plane: right
-    for a roof over its plan), else the least-squares conformal map
-    (:func:`conformal_start`: exact up to scale on a developable surface),
-    else Tutte's embedding (:func:`harmonic_start`, which never folds a disc).
+    The projection onto the best-fit plane (right for a roof over its plan),
+    else the least-squares conformal map (:func:`conformal_start`: exact up to
+    scale on a developable surface), else Tutte's embedding
+    (:func:`harmonic_start`, which never folds a disc).
     """
     tri = surface.triangles
-    if _unfolded(_plane_start(surface.vertices, tri), tri):
-        return None
+    projected = _plane_start(surface.vertices, tri)
+    if _unfolded(projected, tri):
+        return projected
     conformal = conformal_start(surface)
     return conformal if conformal is not None else harmonic_start(surface)
 

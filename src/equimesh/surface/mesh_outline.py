@@ -24,9 +24,7 @@ boundary of the flattened mesh, hence on a boundary edge of the input mesh.
 from dataclasses import dataclass
 
 import numpy as np
-import shapely
 
-from .._geometry import orient
 from ..errors import InvalidSurfaceError
 from ._places import number
 from .outline import inner_angle, resample_ring, round_down
@@ -80,12 +78,10 @@ def mesh_outline(chart, l, spacing):
     Raises
     ------
     InvalidSurfaceError
-        The flattened mesh overlaps itself (its loops cross, or no loop
-        encloses the others), or a loop is shorter than l.
+        A part of a loop between two corners is shorter than l.
     """
     loops = [chart.plane[loop] for loop in chart.surface.loops]
-    outer = _outer_loop(chart, loops)
-    loops = [loops[outer]] + [loop for k, loop in enumerate(loops) if k != outer]
+    loops = [loops[chart.outer]] + [loop for k, loop in enumerate(loops) if k != chart.outer]
     rings, arcs, loop_arcs = [], [], []
     for k, xy in enumerate(loops):
         arc = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.roll(xy, -1, axis=0) - xy, axis=1))])
@@ -132,26 +128,6 @@ def _too_short(name, l):
         )
 
     return refuse
-
-
-def _outer_loop(chart, loops):
-    """Index of the loop enclosing every other one; refuse a flattening that overlaps itself.
-
-    Every flattened triangle is counter-clockwise (:func:`~equimesh.surface.flatten.flatten`
-    checks it); the flattening is one-to-one exactly when, in addition, the
-    loops bound a valid polygon with holes whose area is the triangles' total.
-    """
-    rings = [shapely.Polygon(xy) for xy in loops]
-    outer = int(np.argmax([ring.area for ring in rings]))
-    region = shapely.Polygon(loops[outer], [loops[k] for k in range(len(loops)) if k != outer])
-    p = chart.plane[chart.surface.triangles]
-    total = 0.5 * float(orient(p[:, 0], p[:, 1], p[:, 2]).sum())
-    if not region.is_valid or abs(region.area - total) > 1e-9 * total:
-        raise InvalidSurfaceError(
-            "the flattened mesh overlaps itself (its boundary loops cross on the plane): the surface is too strongly "
-            "curved to flatten by eq. (1) in one piece; cut it into flatter pieces"
-        )
-    return outer
 
 
 def boundary_uv(outline, plane):

@@ -27,7 +27,7 @@ from .auxiliary import auxiliary_grid
 from .chart import domain_of
 from ..errors import EquimeshError, InternalError, InvalidPolygonError, InvalidSurfaceError, MeshTooLargeError
 from .flatten import flatten
-from .mesh_chart import MeshChart, flattening_start
+from .mesh_chart import MeshChart, flatten_mesh
 from .mesh_outline import boundary_uv, mesh_outline, restate_mesh_error
 from ._jacobian import signed_areas
 from .._geometry import power_of_two_scale
@@ -337,15 +337,15 @@ def _mesh_front(surface, grid, l, limit, spacing, clock):
     """Steps 1-3 for a triangle mesh (:mod:`equimesh.surface.triangulated`): it is the auxiliary triangulation.
 
     ``grid`` is not used.  The flattening starts from the projection onto the
-    best-fit plane, or from Tutte's embedding if that folds
-    (:func:`~equimesh.surface.mesh_chart.flattening_start`); the flattened
+    best-fit plane, or a conformal map or Tutte's embedding if that folds, with
+    the openings capped (:func:`~equimesh.surface.mesh_chart.flatten_mesh`); the flattened
     mesh is the chart (:class:`~equimesh.surface.mesh_chart.MeshChart`) and
     its loops the outline (:mod:`equimesh.surface.mesh_outline`).
     """
     _check_size(surface.vertices, surface.triangles, l, limit)
     clock("auxiliary triangulation")
 
-    flat = flatten(surface.vertices, surface.triangles, x0=flattening_start(surface))
+    flat = flatten_mesh(surface)
     chart = MeshChart(surface, flat.points)
     clock("flattening (eq. 1)")
 
