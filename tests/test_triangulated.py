@@ -6,6 +6,8 @@ an opening of the input stays open, and every malformed mesh is refused in
 one line (library: InvalidSurfaceError; command line: exit 2, nothing written).
 """
 
+from pathlib import Path
+
 import meshio
 import numpy as np
 import pytest
@@ -190,6 +192,23 @@ def test_openings_stay_open_on_a_curved_fine_mesh():
     assert not shapely.LinearRing(bare.points[surface.loops[1]]).is_simple
     chart = MeshChart(surface, flatten_mesh(surface).points)  # checks that the flattening is one-to-one
     assert chart.outer == 0
+
+
+def test_example_roof_with_a_skylight():
+    """experiments/surfaces/roof_mesh.obj (a Triangle mesh of a vault with a round opening): the opening stays open."""
+    path = Path(__file__).resolve().parents[1] / "experiments" / "surfaces" / "roof_mesh.obj"
+    surface = load_surface(path)
+    assert [len(loop) for loop in surface.loops] == [108, 32]
+    mesh = mesh_surface(surface, 2.5, optimize="none")
+    assert_on_input_surface(mesh, surface, 2.5)
+    ratio = mesh.stages.plane.edge_lengths() / 2.5
+    assert ratio.min() >= 1 - REL_TOL and ratio.max() <= 2 * (1 + REL_TOL)
+    # The rim is a 32-gon of radius 3 about (12, 10) in plan: nothing strictly inside its inscribed circle.
+    inner = 3.0 * np.cos(np.pi / 32)
+    centre = np.array([12.0, 10.0])
+    assert np.linalg.norm(mesh.points[:, :2] - centre, axis=1).min() >= inner - 1e-9
+    centroids = mesh.points[mesh.triangles].mean(axis=1)[:, :2]
+    assert np.linalg.norm(centroids - centre, axis=1).min() > inner
 
 
 # ------------------------------------------------------------------ the mesh as given
