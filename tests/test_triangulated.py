@@ -16,10 +16,11 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from test_io import assert_one_line
 
-from equimesh import InvalidSurfaceError, REL_TOL, TriangulatedSurface, mesh_surface
+from equimesh import EquimeshError, InvalidSurfaceError, REL_TOL, TriangulatedSurface, mesh_surface
 from equimesh._cli import main
 from equimesh.io import load_surface
 from equimesh.mesh import half_edges
+from equimesh.surface import pipeline
 from equimesh.surface.flatten import flatten
 from equimesh.surface.flatten import _plane_start
 from equimesh.surface.mesh_chart import (
@@ -209,6 +210,29 @@ def test_example_roof_with_a_skylight():
     assert np.linalg.norm(mesh.points[:, :2] - centre, axis=1).min() >= inner - 1e-9
     centroids = mesh.points[mesh.triangles].mean(axis=1)[:, :2]
     assert np.linalg.norm(centroids - centre, axis=1).min() > inner
+
+
+@pytest.mark.parametrize(
+    "opening, l, match",
+    [
+        ((1, 3, 3, 5), 2.5, r"hole 0 is 2\.118.* from the boundary .*\(hole 0 \(the opening through \(2, 6, 0\.903808\)\)\)"),
+        ((4, 6, 3, 5), 9.0, r"hole 0 \(the opening through \(8, 6, 2\.78163\)\) of the mesh is too small for l = 9: its rim is"),
+        ((4, 5, 3, 4), 2.5, r"hole 0 .* too small for l = 2\.5: its rim, 7\.845.* gives fewer than 3 parts"),
+        ((4, 6, 3, 5), 30.0, r"the outer boundary of the mesh is too small for l = 30"),
+    ],
+)
+def test_openings_and_boundaries_too_small_for_l(opening, l, match):
+    """Problem 2's refusals and the rings' own, in one line, the opening located in space."""
+    surface = TriangulatedSurface(*roof_mesh(20.0, 14.0, (10, 7), 3.0, opening=opening))
+    with pytest.raises(InvalidSurfaceError, match=match) as info:
+        mesh_surface(surface, l, optimize="none")
+    assert_one_line(str(info.value))
+
+
+def test_triangle_count_limit(monkeypatch):
+    monkeypatch.setattr(pipeline, "MAX_GRID_CELLS", 60)
+    with pytest.raises(EquimeshError, match="the triangle mesh has 132 triangles, more than the limit of 120"):
+        mesh_surface(TriangulatedSurface(*roof()), L)
 
 
 # ------------------------------------------------------------------ the mesh as given

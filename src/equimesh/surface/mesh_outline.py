@@ -54,12 +54,15 @@ class MeshOutline:
         loop's length after its start), and the first one plus the length last.
     loop_arcs : tuple of (m + 1,) arrays
         Arc position of each loop vertex, and the loop's length last.
+    order : tuple of int
+        The index in ``surface.loops`` of each loop.
     """
 
     loops: tuple
     rings: tuple
     arcs: tuple
     loop_arcs: tuple
+    order: tuple
 
     @property
     def vertices(self):
@@ -80,21 +83,26 @@ def mesh_outline(chart, l, spacing):
     InvalidSurfaceError
         A part of a loop between two corners is shorter than l.
     """
-    loops = [chart.plane[loop] for loop in chart.surface.loops]
-    loops = [loops[chart.outer]] + [loop for k, loop in enumerate(loops) if k != chart.outer]
+    order = [chart.outer] + [k for k in range(len(chart.surface.loops)) if k != chart.outer]
+    loops = [chart.plane[chart.surface.loops[k]] for k in order]
     rings, arcs, loop_arcs = [], [], []
     for k, xy in enumerate(loops):
         arc = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.roll(xy, -1, axis=0) - xy, axis=1))])
         corners = loop_corners(xy, l)
-        name = "outer boundary" if k == 0 else f"opening {k}"
-        ring = resample_ring(xy, xy, corners, l, spacing, too_short=_too_short(name, l)).points
+        name = ring_name(chart, order, k)
+        ring = resample_ring(xy, xy, corners, l, spacing, too_short=_too_short(name, l, len(corners))).points
+        if len(ring) < 3:
+            raise InvalidSurfaceError(
+                f"{name} of the mesh is too small for l = {number(l)}: its rim, {number(arc[-1])} long on the flattened "
+                "surface, gives fewer than 3 parts of at least l; use a smaller l"
+            )
         seg, t, _ = _nearest_segment(ring, xy, np.roll(xy, -1, axis=0))
         at = (1.0 - t) * arc[seg] + t * arc[seg + 1]
         at[1:] += arc[-1] * np.cumsum(np.diff(at) < 0)  # the ring starts at a corner: unwrap past the loop's start
         rings.append(ring)
         arcs.append(np.append(at, at[0] + arc[-1]))
         loop_arcs.append(arc)
-    return MeshOutline(tuple(loops), tuple(rings), tuple(arcs), tuple(loop_arcs))
+    return MeshOutline(tuple(loops), tuple(rings), tuple(arcs), tuple(loop_arcs), tuple(order))
 
 
 def loop_corners(xy, l):
@@ -120,10 +128,26 @@ def loop_corners(xy, l):
     return np.array(corners, dtype=np.int64)
 
 
-def _too_short(name, l):
+def ring_name(chart, order, k):
+    """``the outer boundary``, or ``hole k - 1 (the opening through (x, y, z))``: Problem 2's hole numbers, located in space."""
+    if k == 0:
+        return "the outer boundary"
+    return f"hole {k - 1} (the opening through {_point(chart.surface.vertices[chart.surface.loops[order[k]][0]])})"
+
+
+def _point(x):
+    return f"({', '.join(number(c) for c in x)})"
+
+
+def _too_short(name, l, n_corners):
     def refuse(side, arc, chord):
+        if n_corners == 1:
+            return InvalidSurfaceError(
+                f"{name} of the mesh is too small for l = {number(l)}: its rim is {number(arc)} long on the flattened "
+                "surface, too short for parts of at least l; use a smaller l"
+            )
         return InvalidSurfaceError(
-            f"the {name} of the mesh has a part {number(arc)} long between two corners {number(chord)} apart on the "
+            f"{name} of the mesh has a part {number(arc)} long between two corners {number(chord)} apart on the "
             f"flattened surface, shorter than l = {number(l)}; use l <= {number(round_down(chord))}"
         )
 
@@ -156,18 +180,21 @@ def on_loop(xy, arc, s):
     return np.where((t == 0.0)[:, None], a, a + t[:, None] * (b - a))
 
 
-def restate_mesh_error(exc, chart, l):
+def restate_mesh_error(exc, chart, outline, l):
     """Problem 2's refusal of the rings (:class:`~equimesh.errors.InvalidPolygonError`) in terms of the mesh.
 
     The two boundary points at fault (if named) are given in space; the gap
     between them on the flattened surface bounds the l that can pass there.
+    Otherwise Problem 2's message is kept, with its holes located in space.
     """
     if not exc.points or len(exc.points) != 2:
-        return InvalidSurfaceError(f"the triangle mesh cannot be meshed with l = {number(l)}: {exc}")
+        holes = "; ".join(ring_name(chart, outline.order, k) for k in range(1, len(outline.rings)))
+        return InvalidSurfaceError(
+            f"the triangle mesh cannot be meshed with l = {number(l)}: {exc}" + (f" ({holes})" if "hole" in str(exc) else "")
+        )
     xy = np.asarray(exc.points, dtype=float)
-    space = chart.evaluate(xy[:, 0], xy[:, 1])
+    where = " and ".join(_point(p) for p in chart.evaluate(xy[:, 0], xy[:, 1]))
     gap = float(np.linalg.norm(xy[1] - xy[0]))
-    where = " and ".join(f"({', '.join(number(c) for c in p)})" for p in space)
     return InvalidSurfaceError(
         f"the triangle mesh cannot be meshed with l = {number(l)}: its boundary points at {where} are {number(gap)} "
         "apart on the flattened surface, closer than l (a neck, an opening near the boundary or another opening, "

@@ -68,7 +68,8 @@ SLIDING_OBJECTIVES = ("bounded",)
 #: solver's iteration guard at 5,840 nodes.
 MAX_OPTIMIZE_NODES = {"paper": 15_000, "bounded": 1_500}
 
-#: Limit on the auxiliary grid's cells n_u * n_v: flattening by eq. (1) took
+#: Limit on the auxiliary grid's cells n_u * n_v (a triangle mesh given as the
+#: auxiliary triangulation may have twice as many triangles): flattening by eq. (1) took
 #: 9 s at 100 x 100, 41 s (0.6 GB) at 200 x 200 and 251 s (1.3 GB) at
 #: 300 x 300 (docs/performance.md).
 MAX_GRID_CELLS = 40_000
@@ -342,6 +343,12 @@ def _mesh_front(surface, grid, l, limit, spacing, clock):
     mesh is the chart (:class:`~equimesh.surface.mesh_chart.MeshChart`) and
     its loops the outline (:mod:`equimesh.surface.mesh_outline`).
     """
+    if len(surface.triangles) > 2 * MAX_GRID_CELLS:
+        raise EquimeshError(
+            f"the triangle mesh has {len(surface.triangles)} triangles, more than the limit of {2 * MAX_GRID_CELLS} "
+            f"(those of a {MAX_GRID_CELLS}-cell auxiliary grid: flattening time and memory grow with them); "
+            "coarsen it first"
+        )
     _check_size(surface.vertices, surface.triangles, l, limit)
     clock("auxiliary triangulation")
 
@@ -357,7 +364,7 @@ def _mesh_front(surface, grid, l, limit, spacing, clock):
         return uv, evaluate(chart, uv)
 
     def restate(exc):
-        return restate_mesh_error(exc, chart, l)
+        return restate_mesh_error(exc, chart, outline, l)
 
     return _Front(chart, surface, surface.vertices, flat, outline, place, restate, True, False)
 
