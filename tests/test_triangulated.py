@@ -6,6 +6,7 @@ an opening of the input stays open, and every malformed mesh is refused in
 one line (library: InvalidSurfaceError; command line: exit 2, nothing written).
 """
 
+import importlib.util
 import re
 from pathlib import Path
 
@@ -36,6 +37,7 @@ from equimesh.surface.mesh_outline import CORNER_TURN, loop_corners
 from equimesh.testing.meshes import roof_mesh
 
 L = 1.5
+EXAMPLE = Path(__file__).resolve().parents[1] / "experiments" / "surfaces" / "roof_mesh.obj"
 OPENING = (8.0, 12.0, 6.0, 10.0)  # x0, x1, y0, y1 of the opening of ROOF
 
 
@@ -217,10 +219,17 @@ def test_openings_stay_open_on_a_curved_fine_mesh():
     assert chart.outer == 0
 
 
+def test_example_roof_file_is_what_its_script_writes(tmp_path):
+    spec = importlib.util.spec_from_file_location("make_mesh_roof", EXAMPLE.with_name("make_mesh_roof.py"))
+    script = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(script)
+    script.write_obj(tmp_path / "roof.obj", *script.roof())
+    assert (tmp_path / "roof.obj").read_bytes() == EXAMPLE.read_bytes()
+
+
 def test_example_roof_with_a_skylight():
     """experiments/surfaces/roof_mesh.obj (a Triangle mesh of a vault with a round opening): the opening stays open."""
-    path = Path(__file__).resolve().parents[1] / "experiments" / "surfaces" / "roof_mesh.obj"
-    surface = load_surface(path)
+    surface = load_surface(EXAMPLE)
     assert [len(loop) for loop in surface.loops] == [108, 32]
     mesh = mesh_surface(surface, 2.5, optimize="none")
     assert_on_input_surface(mesh, surface, 2.5)

@@ -33,14 +33,18 @@ def roof(max_area=0.5):
     return np.column_stack([xy, z]), np.asarray(out["triangles"], dtype=np.int64)
 
 
-def main(argv=None):
-    out = Path(__file__).with_name("roof_mesh.obj")
-    vertices, triangles = roof()
-    # Written by hand, not by meshio, whose OBJ header carries the date: the file is the same bytes on every run.
+def write_obj(path, vertices, triangles):
+    """The mesh as Wavefront OBJ text, shortest round-trip floats (not meshio, whose header carries the date)."""
     lines = [f"# {__doc__.splitlines()[0]}"]
     lines += [f"v {x!r} {y!r} {z!r}" for x, y, z in vertices.tolist()]
     lines += [f"f {a} {b} {c}" for a, b, c in (triangles + 1).tolist()]
-    out.write_text("\n".join(lines) + "\n")
+    path.write_text("\n".join(lines) + "\n")
+
+
+def main(argv=None):
+    out = Path(__file__).with_name("roof_mesh.obj")
+    vertices, triangles = roof()
+    write_obj(out, vertices, triangles)
     print(f"wrote {out}: {len(vertices)} vertices, {len(triangles)} triangles")
     return 0
 
