@@ -232,7 +232,7 @@ def mesh_surface(
 
     try:
         # The surface's own guard (_check_size, measured end to end) bounds the planar stage too.
-        holes = steps.outline.holes if steps.holes else None
+        holes = steps.holes
         chosen = (
             best_lattice_placement(steps.outline.vertices, l, holes=holes, max_nodes=None) if placement == "best" else None
         )
@@ -293,8 +293,9 @@ class _Front:
     ``chart`` is what the optimisation moves the nodes on; ``place(plane)``
     gives the remapped ``(uv, points)`` of a plane mesh; ``restate(exc)``
     turns Problem 2's refusal of the outline into the surface's terms;
-    ``holes`` says whether the outline has openings, ``slides`` whether the
-    boundary nodes may slide along the sides of the chart's domain.
+    ``holes`` are the rings of the openings (``holes=`` of Problem 2) or
+    None; ``slides`` says whether the boundary nodes may slide along the
+    sides of the chart's domain.
     """
 
     chart: object
@@ -304,7 +305,7 @@ class _Front:
     outline: object
     place: Callable
     restate: Callable
-    holes: bool
+    holes: list | None
     slides: bool
 
 
@@ -331,7 +332,7 @@ def _chart_front(surface, grid, l, limit, spacing, clock):
     def restate(exc):
         return restate_polygon_error(exc, surface, flat.points, aux, outline, l)
 
-    return _Front(surface, aux, x_s0, flat, outline, place, restate, False, True)
+    return _Front(surface, aux, x_s0, flat, outline, place, restate, None, True)
 
 
 def _mesh_front(surface, grid, l, limit, spacing, clock):
@@ -366,7 +367,7 @@ def _mesh_front(surface, grid, l, limit, spacing, clock):
     def restate(exc):
         return restate_mesh_error(exc, chart, outline, l)
 
-    return _Front(chart, surface, surface.vertices, flat, outline, place, restate, True, False)
+    return _Front(chart, surface, surface.vertices, flat, outline, place, restate, outline.holes, False)
 
 
 class _Clock:
