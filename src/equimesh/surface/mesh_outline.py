@@ -26,7 +26,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import InvalidSurfaceError
-from ._places import number
+from ._places import coordinates, number
 from .outline import inner_angle, resample_ring, round_down
 from .remap import _nearest_segment
 
@@ -132,11 +132,7 @@ def ring_name(chart, order, k):
     """``the outer boundary``, or ``hole k - 1 (the opening through (x, y, z))``: Problem 2's hole numbers, located in space."""
     if k == 0:
         return "the outer boundary"
-    return f"hole {k - 1} (the opening through {_point(chart.surface.vertices[chart.surface.loops[order[k]][0]])})"
-
-
-def _point(x):
-    return f"({', '.join(number(c) for c in x)})"
+    return f"hole {k - 1} (the opening through {coordinates(chart.surface.vertices[chart.surface.loops[order[k]][0]])})"
 
 
 def _too_short(name, l, n_corners):
@@ -193,7 +189,7 @@ def restate_mesh_error(exc, chart, outline, l):
             f"the triangle mesh cannot be meshed with l = {number(l)}: {exc}" + (f" ({holes})" if "hole" in str(exc) else "")
         )
     xy = np.asarray(exc.points, dtype=float)
-    where = " and ".join(_point(p) for p in chart.evaluate(xy[:, 0], xy[:, 1]))
+    where = " and ".join(coordinates(p) for p in chart.evaluate(xy[:, 0], xy[:, 1]))
     gap = float(np.linalg.norm(xy[1] - xy[0]))
     return InvalidSurfaceError(
         f"the triangle mesh cannot be meshed with l = {number(l)}: its boundary points at {where} are {number(gap)} "

@@ -38,11 +38,7 @@ import scipy.sparse.csgraph
 from ..errors import InvalidSurfaceError
 from ..mesh import edge_keys, half_edges
 from ..tolerance import SINGULAR_SIN
-from ._places import number
-
-
-def _point(x):
-    return f"({', '.join(number(c) for c in x)})"
+from ._places import coordinates
 
 
 class TriangulatedSurface:
@@ -57,7 +53,7 @@ class TriangulatedSurface:
     Attributes
     ----------
     vertices : (N', 3) float array
-        Coincident vertices merged, unused ones dropped (first occurrence order).
+        Coincident vertices merged, unused ones dropped, in their input order.
     triangles : (M, 3) int array
         Consistently oriented.
     loops : tuple of int arrays
@@ -90,10 +86,6 @@ class TriangulatedSurface:
         self.vertices, self.triangles = v, t
         self.loops = tuple(loops[k] for k in order)
 
-    @property
-    def n_nodes(self):
-        return len(self.vertices)
-
 
 def _parse(vertices, triangles):
     try:
@@ -120,7 +112,7 @@ def _parse(vertices, triangles):
 
 
 def _merge(v, t):
-    """Merge exactly coincident vertices and drop unused ones, keeping the order of first use."""
+    """Merge exactly coincident vertices (into the first of them) and drop unused ones, keeping their order."""
     _, first, inverse = np.unique(v, axis=0, return_index=True, return_inverse=True)
     t = first[inverse.ravel()][t]  # each vertex -> the first index with the same coordinates
     used, t = np.unique(t, return_inverse=True)
@@ -131,9 +123,9 @@ def _check_degenerate(v, t):
     same = np.flatnonzero((t[:, 0] == t[:, 1]) | (t[:, 1] == t[:, 2]) | (t[:, 2] == t[:, 0]))
     if same.size:
         k = int(same[0])
-        raise InvalidSurfaceError(
-            f"triangle {k} of the mesh is degenerate: two of its corners are the same point {_point(v[t[k][0] if t[k][0] in (t[k][1], t[k][2]) else t[k][1]])}"
-        )
+        a, b, c = t[k]
+        twice = a if a in (b, c) else b
+        raise InvalidSurfaceError(f"triangle {k} of the mesh is degenerate: two of its corners are the same point {coordinates(v[twice])}")
     e1, e2 = v[t[:, 1]] - v[t[:, 0]], v[t[:, 2]] - v[t[:, 0]]
     scale = np.max(np.abs(np.concatenate([e1, e2], axis=1)), axis=1, keepdims=True)
     e1, e2 = e1 / scale, e2 / scale  # no overflow or underflow in the products below
@@ -142,7 +134,7 @@ def _check_degenerate(v, t):
     if flat.size:
         k = int(flat[0])
         raise InvalidSurfaceError(
-            f"triangle {k} of the mesh is degenerate (zero area): its corners {', '.join(_point(v[i]) for i in t[k])} "
+            f"triangle {k} of the mesh is degenerate (zero area): its corners {', '.join(coordinates(v[i]) for i in t[k])} "
             "are collinear"
         )
     key = np.sort(t, axis=1)
@@ -169,7 +161,7 @@ def _check_manifold(v, t):
     if over.size:
         a, b = he[np.flatnonzero(edge == over[0])[0]]
         raise InvalidSurfaceError(
-            f"the mesh is not manifold: the edge from {_point(v[a])} to {_point(v[b])} belongs to "
+            f"the mesh is not manifold: the edge from {coordinates(v[a])} to {coordinates(v[b])} belongs to "
             f"{int(count[over[0]])} triangles (at most 2)"
         )
     # Corners (3 * triangle + slot) joined across each inner edge, at both of its ends: the corners
@@ -189,7 +181,7 @@ def _check_manifold(v, t):
     many = np.flatnonzero(np.bincount(fans, minlength=len(v)) > 1)
     if many.size:
         raise InvalidSurfaceError(
-            f"the mesh is not manifold at the vertex {_point(v[int(many[0])])}: separate fans of triangles meet there "
+            f"the mesh is not manifold at the vertex {coordinates(v[int(many[0])])}: separate fans of triangles meet there "
             "(pieces touching at one point)"
         )
     n, label = _components(tri[pairs[:, 0]], tri[pairs[:, 1]], m)
@@ -234,7 +226,7 @@ def _orient(v, t):
         x, y = he[pairs[bad[0], 0]]
         raise InvalidSurfaceError(
             "the mesh is not orientable (a Moebius strip): its triangles cannot be oriented consistently "
-            f"across the edge from {_point(v[x])} to {_point(v[y])}"
+            f"across the edge from {coordinates(v[x])} to {coordinates(v[y])}"
         )
     t = t.copy()
     t[flip == 1] = t[flip == 1][:, ::-1]
