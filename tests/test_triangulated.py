@@ -385,7 +385,10 @@ def unreadable(tmp_path):
     garbage.write_bytes(b"\x00" * 10)
     ply = tmp_path / "text.ply"
     ply.write_text("this is not a ply file\n")
+    empty = tmp_path / "empty.obj"
+    empty.write_text("")
     return {
+        "empty": (empty, "has no points and no triangles"),
         "only lines": (lines, "has no triangles"),
         "volume cells": (tetra, "cells of type 'tetra'"),
         "garbage STL": (garbage, "cannot read"),
@@ -393,7 +396,7 @@ def unreadable(tmp_path):
     }
 
 
-@pytest.mark.parametrize("case", ["only lines", "volume cells", "garbage STL", "not PLY"])
+@pytest.mark.parametrize("case", ["empty", "only lines", "volume cells", "garbage STL", "not PLY"])
 def test_unreadable_files_are_refused_in_one_line(tmp_path, case):
     path, match = unreadable(tmp_path)[case]
     with pytest.raises(InvalidSurfaceError, match=match) as info:

@@ -57,6 +57,8 @@ def read_triangle_mesh(path):
         reason = " ".join(str(exc).split())[:200] or type(exc).__name__
         raise InvalidSurfaceError(f"cannot read {where} as a {path.suffix.lower()} mesh: {reason}") from None
     points = np.asarray(mesh.points, dtype=float)
+    if not points.size:
+        raise InvalidSurfaceError(f"{where} has no points and no triangles")
     if points.ndim != 2 or points.shape[1] not in (2, 3):
         raise InvalidSurfaceError(f"{where}: mesh points must have 2 or 3 coordinates, got shape {points.shape}")
     if points.shape[1] == 2:
