@@ -33,7 +33,8 @@ from equimesh.surface.mesh_chart import (
     flattening_start,
     harmonic_start,
 )
-from equimesh.surface.mesh_outline import CORNER_TURN, loop_corners
+from equimesh.surface.mesh_outline import CORNER_TURN, FIRM_TURN, loop_corners
+from equimesh.surface.outline import inner_angle
 from equimesh.testing.meshes import roof_mesh
 
 L = 1.5
@@ -122,10 +123,10 @@ def test_roof_with_opening(roof_meshes, optimize):
     rise=st.floats(0.0, 4.0),
     corner=st.tuples(st.integers(3, 7), st.integers(3, 5)),
     size=st.tuples(st.integers(1, 2), st.integers(1, 2)),
-    l=st.floats(1.2, 2.0),
+    l=st.floats(1.2, 1.8),
 )
 def test_generated_vaults_with_an_opening(rise, corner, size, l):
-    """Vaults of any rise with an opening anywhere at least 3 cells (6) from the border: every invariant."""
+    """Vaults of any rise with an opening anywhere at least 3 cells (6) from the border, sides at least 2 > l: every invariant."""
     (i, j), (a, b) = corner, size
     v, t = roof_mesh(24.0, 16.0, (12, 8), rise, opening=(i, i + a, j, j + b))
     surface = TriangulatedSurface(v, t)
@@ -164,17 +165,20 @@ def test_corners_of_the_outline_are_kept(roof_meshes):
     side=st.floats(0.3, 3.0),
 )
 def test_loop_corners(turns, side):
-    """Corners turn by at least CORNER_TURN, are at least l apart around the loop, and there is at least one."""
-    # A closed loop built from turning angles (scaled to close it roughly; the test reads only what the function sees).
+    """Corners turn by at least CORNER_TURN and are at least l apart around the loop, at least one; or two firm corners are too close."""
+    # An open polyline from turning angles; the loop closes it with one more segment (the function reads only xy).
     heading = np.cumsum(np.radians(turns))
-    steps = side * np.column_stack([np.cos(heading), np.sin(heading)])
-    xy = np.cumsum(steps, axis=0)
-    corners = loop_corners(xy, 1.0)
+    xy = np.cumsum(side * np.column_stack([np.cos(heading), np.sin(heading)]), axis=0)
+    turn = [abs(180 - inner_angle(xy, i)) for i in range(len(xy))]
+    try:
+        corners = loop_corners(xy, 1.0, lambda i, j: ValueError(i, j))
+    except ValueError as exc:
+        i, j = exc.args
+        assert min(turn[i], turn[j]) >= FIRM_TURN and np.linalg.norm(xy[i] - xy[j]) < 1.0
+        return
     assert len(corners) >= 1 and np.all(np.diff(corners) > 0)
     if len(corners) > 1:
-        from equimesh.surface.outline import inner_angle
-
-        assert all(abs(180 - inner_angle(xy, c)) >= CORNER_TURN for c in corners)
+        assert all(turn[c] >= CORNER_TURN for c in corners)
         gaps = np.linalg.norm(xy[np.roll(corners, -1)] - xy[corners], axis=1)
         assert gaps.min() >= 1.0
 
@@ -247,17 +251,32 @@ def test_example_roof_with_a_skylight():
     "opening, l, match",
     [
         ((1, 3, 3, 5), 2.5, r"hole 0 is 2\.118.* from the boundary .*\(hole 0 \(the opening through \(2, 6, 0\.903808\)\)\)"),
-        ((4, 6, 3, 5), 9.0, r"hole 0 \(the opening through \(8, 6, 2\.78163\)\) of the mesh is too small for l = 9: its rim is"),
-        ((4, 5, 3, 4), 2.5, r"hole 0 .* too small for l = 2\.5: its rim, 7\.845.* gives fewer than 3 parts"),
-        ((4, 6, 3, 5), 30.0, r"the outer boundary of the mesh is too small for l = 30"),
+        ((4, 6, 3, 5), 9.0, r"hole 0 \(the opening through \(8, 6, 2\.78163\)\) of the mesh has corners at \(12, 6, 2\.78163\) "
+                            r"and \(8, 6, 2\.78163\) only 3\.8768 apart on the flattened surface, closer than l = 9; use l <= 3\.876$"),
+        ((4, 5, 3, 4), 2.5, r"hole 0 .* has corners at \(8, 8, 2\.78163\) and \(10, 8, 2\.92478\) only 1\.95073 apart .* use l <= 1\.95$"),
+        ((3, 4, 4, 5), 2.0, r"hole 0 .* has corners at .* only 1\.99.* apart .* closer than l = 2; use l <= 1\.99"),
+        ((4, 6, 3, 5), 30.0, r"the outer boundary of the mesh has corners at \(0, 14, 0\) and \(0, 0, 0\) only 14\.1196 apart"),
     ],
 )
 def test_openings_and_boundaries_too_small_for_l(opening, l, match):
-    """Problem 2's refusals and the rings' own, in one line, the opening located in space."""
+    """Problem 2's refusals and the rings' own, in one line, the opening located in space; the suggested l is accepted."""
     surface = TriangulatedSurface(*roof_mesh(20.0, 14.0, (10, 7), 3.0, opening=opening))
     with pytest.raises(InvalidSurfaceError, match=match) as info:
         mesh_surface(surface, l, optimize="none")
     assert_one_line(str(info.value))
+    if "corners at" in str(info.value) and "outer" not in str(info.value):
+        suggested = float(str(info.value).rsplit("use l <= ", 1)[1])
+        mesh_surface(surface, suggested, optimize="none")
+
+
+@pytest.mark.parametrize(
+    "l, match",
+    [(5.5, r"too small for l = 5\.5: its rim, 18\.389.* gives fewer than 3 parts"), (7.0, r"too small for l = 7: its rim is 18\.389")],
+)
+def test_round_opening_too_small_for_l(l, match):
+    """The example's 32-gon skylight (no corner: one chain) is refused when no ring of 3 parts of at least l fits."""
+    with pytest.raises(InvalidSurfaceError, match=r"hole 0 \(the opening through \(15, 10, 4\)\) of the mesh is " + match):
+        mesh_surface(load_surface(EXAMPLE), l, optimize="none")
 
 
 def test_triangle_count_limit(monkeypatch):

@@ -38,6 +38,15 @@ from .remap import _nearest_segment
 #: (``test_corners_of_the_outline_are_kept``).
 CORNER_TURN = 30.0
 
+#: A corner turning by this many degrees or more is never dropped: two such
+#: corners closer than l are refused ("use l <= their distance").  Dropping a
+#: corner replaces the loop near it by a chord; below 60 degrees of turn (a
+#: coarsely tessellated curve: an octagon turns by 45) the chord stays within
+#: ``(l / 2) tan(30 deg) < 0.29 l`` of the loop, beyond it a rectangular
+#: opening whose sides are shorter than l would be cut across, its corners
+#: meshed over.  Test: ``test_openings_and_boundaries_too_small_for_l``.
+FIRM_TURN = 60.0
+
 
 @dataclass(frozen=True)
 class MeshOutline:
@@ -88,8 +97,8 @@ def mesh_outline(chart, l, spacing):
     rings, arcs, loop_arcs = [], [], []
     for k, xy in enumerate(loops):
         arc = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.roll(xy, -1, axis=0) - xy, axis=1))])
-        corners = loop_corners(xy, l)
         name = ring_name(chart, order, k)
+        corners = loop_corners(xy, l, _too_close(chart, xy, name, l))
         ring = resample_ring(xy, xy, corners, l, spacing, too_short=_too_short(name, l, len(corners))).points
         if len(ring) < 3:
             raise InvalidSurfaceError(
@@ -105,12 +114,16 @@ def mesh_outline(chart, l, spacing):
     return MeshOutline(tuple(loops), tuple(rings), tuple(arcs), tuple(loop_arcs), tuple(order))
 
 
-def loop_corners(xy, l):
+def loop_corners(xy, l, too_close):
     """Indices of the corners of a closed loop: turns of at least :data:`CORNER_TURN` degrees, none closer than l.
 
     Returns at least one index (the sharpest turn when no vertex turns that
     much).  Where two consecutive corners are closer than ``l``, the one
-    that turns less (the later one on a tie) is dropped, one at a time.
+    that turns less (the later one on a tie) is dropped, one at a time,
+    unless it turns by :data:`FIRM_TURN` degrees or more: then the loop
+    cannot be followed with parts of at least l, and ``too_close(i, j)`` is
+    raised for the closest two consecutive firm corners ``i`` and ``j``
+    (any l up to their distance keeps every firm corner).
     """
     turn = np.array([abs(180.0 - inner_angle(xy, i)) for i in range(len(xy))])
     corners = list(np.flatnonzero(turn >= CORNER_TURN))
@@ -122,6 +135,11 @@ def loop_corners(xy, l):
             break
         pairs = [(k, (k + 1) % len(ends)) for k in short]
         drop = min((j for pair in pairs for j in pair), key=lambda j: (turn[ends[j]], -j))
+        if turn[ends[drop]] >= FIRM_TURN:  # then its partner is firm too: name the closest firm neighbours
+            firm = np.flatnonzero(turn >= FIRM_TURN)
+            gaps = np.linalg.norm(xy[np.roll(firm, -1)] - xy[firm], axis=1)
+            k = int(np.argmin(gaps))
+            raise too_close(int(firm[k]), int(firm[(k + 1) % len(firm)]))
         corners.pop(drop)
     if not corners:
         corners = [int(np.argmax(turn))]
@@ -133,6 +151,18 @@ def ring_name(chart, order, k):
     if k == 0:
         return "the outer boundary"
     return f"hole {k - 1} (the opening through {coordinates(chart.surface.vertices[chart.surface.loops[order[k]][0]])})"
+
+
+def _too_close(chart, xy, name, l):
+    def refuse(i, j):
+        gap = float(np.linalg.norm(xy[j] - xy[i]))
+        where = " and ".join(coordinates(p) for p in chart.evaluate(xy[[i, j], 0], xy[[i, j], 1]))
+        return InvalidSurfaceError(
+            f"{name} of the mesh has corners at {where} only {number(gap)} apart on the flattened surface, closer than "
+            f"l = {number(l)}; use l <= {number(round_down(gap))}"
+        )
+
+    return refuse
 
 
 def _too_short(name, l, n_corners):
