@@ -179,7 +179,7 @@ def test_unreadable_surface_paths(make, fragment, tmp_path):
 
 
 def test_unknown_extension_lists_the_known_ones(tmp_path):
-    with pytest.raises(InvalidSurfaceError, match=r"use one of \['\.3dm', '\.json'\]"):
+    with pytest.raises(InvalidSurfaceError, match=r"use one of \['\.3dm', '\.json', '\.obj', '\.ply', '\.stl', '\.vtk', '\.vtu'\]"):
         load_surface(tmp_path / "s.igs")
 
 

@@ -1,6 +1,7 @@
 """The ``equimesh`` command line.
 
-``equimesh mesh SURFACE.json --length L -o OUT`` meshes a surface and writes
+``equimesh mesh SURFACE.json --length L -o OUT`` meshes a surface (JSON, Rhino
+``.3dm`` or a triangle mesh ``.obj``/``.stl``/``.ply``/``.vtk``/``.vtu``) and writes
 the mesh (format by OUT's extension) and optionally a member schedule;
 ``equimesh table1`` and ``equimesh figures`` regenerate the paper's Table 1
 and figures (they run the scripts in the source checkout's ``experiments/``).
@@ -62,7 +63,7 @@ def build_parser():
 
     mesh = sub.add_parser(
         "mesh",
-        help="mesh a surface (JSON description or Rhino file) and write the mesh",
+        help="mesh a surface (JSON description, Rhino file or triangle mesh) and write the mesh",
         description=(
             "Mesh a surface: flatten its auxiliary triangulation (eq. 1), triangulate the plane with a lattice of "
             "spacing L plus a boundary strip (Problem 2), map back to the surface (eqs. 2-3) and optimise the "
@@ -70,7 +71,10 @@ def build_parser():
             'SURFACE.json: {"type": "bezier", "control_points": [[[x, y, z], ...], ...]} with rows over u and '
             'columns over v, or {"type": "nurbs", "degree": [p, q], "knots_u": [...], "knots_v": [...], '
             '"control_points": ..., "weights": ...}; SURFACE.3dm: a NURBS surface or a single-face Brep '
-            "(needs the extra [rhino])."
+            "(needs the extra [rhino]); SURFACE.obj|.stl|.ply|.vtk|.vtu: a triangle mesh (quadrilaterals are split), "
+            "connected, manifold, with a boundary, used as the auxiliary triangulation itself (--grid is not used): "
+            "its further boundary loops are kept as openings, every node lies on its triangles, and its boundary "
+            "nodes stay fixed in the optimisation."
         ),
     )
     mesh.add_argument("surface", metavar="SURFACE",
@@ -79,7 +83,7 @@ def build_parser():
                       help="which object of a Rhino file to mesh, by name or index (needed when it holds several)")
     mesh.add_argument("--length", "-l", type=float, required=True, metavar="L", help="target member length")
     mesh.add_argument("--grid", type=int, nargs=2, default=(15, 15), metavar=("NU", "NV"),
-                      help="auxiliary grid cells along u and v (default: 15 15); at most "
+                      help="auxiliary grid cells along u and v (default: 15 15; not used for triangle meshes); at most "
                            f"{MAX_GRID_CELLS} cells, because flattening time and memory grow with NU x NV "
                            "(about 40 s and 0.6 GB at 200 x 200 on a 2-core machine)")
     mesh.add_argument("--optimize", choices=["none", *OBJECTIVES], default=DEFAULT_OPTIMIZE,

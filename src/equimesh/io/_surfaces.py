@@ -24,6 +24,7 @@ from ..surface.openings import Perforated
 from . import _bezier, _nurbs
 from ._rhino import read_rhino_surface
 from ._schema import json_type, shown, shown_path, uv_polylines
+from ._trimesh import TRIANGLE_MESH_FORMATS, read_triangle_mesh
 
 
 @dataclass(frozen=True)
@@ -167,6 +168,7 @@ def read_json_surface(path):
 INPUT_FORMATS = {
     ".json": InputFormat("equimesh surface JSON", read_json_surface),
     ".3dm": InputFormat("Rhino file", read_rhino_surface, ("object",)),
+    **{ext: InputFormat(f"{name} triangle mesh", read_triangle_mesh) for ext, (name, _) in TRIANGLE_MESH_FORMATS.items()},
 }
 
 

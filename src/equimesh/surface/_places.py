@@ -12,11 +12,16 @@ def number(x):
     return f"{float(x):.6g}"
 
 
+def coordinates(x):
+    """``(1, 2, 3)``: a point in space (or any tuple of numbers)."""
+    return f"({', '.join(number(c) for c in x)})"
+
+
 def at(uv, point=None):
     """``(u, v) = (0.42, 0.5), point (x, y, z) = (1, 2, 3)``."""
     text = f"(u, v) = ({number(uv[0])}, {number(uv[1])})"
     if point is not None:
-        text += f", point ({', '.join(number(c) for c in point)})"
+        text += f", point {coordinates(point)}"
     return text
 
 

@@ -1,4 +1,9 @@
-"""Section 4 end to end: a uniform triangle mesh of a parametric surface.
+"""Section 4 end to end: a uniform triangle mesh of a parametric surface or of a triangle mesh.
+
+A triangle mesh (:class:`~equimesh.surface.triangulated.TriangulatedSurface`)
+is its own auxiliary triangulation: step 1 is skipped, its flattening is the
+chart (:mod:`equimesh.surface.mesh_chart`) and its boundary loops the outline
+(:mod:`equimesh.surface.mesh_outline`); steps 3-5 are shared.
 
 1. auxiliary triangulation of the chart's parameter rectangle (:mod:`equimesh.surface.auxiliary`,
    :mod:`equimesh.surface.chart`);
@@ -21,6 +26,7 @@ Every stage is kept in :class:`SurfaceMesh.stages` for tables and figures.
 import time
 from dataclasses import dataclass, field
 from numbers import Integral
+from typing import Callable
 
 import numpy as np
 
@@ -28,6 +34,8 @@ from .auxiliary import auxiliary_grid
 from .chart import domain_of
 from ..errors import EquimeshError, InternalError, InvalidPolygonError, InvalidSurfaceError, MeshTooLargeError
 from .flatten import flatten
+from .mesh_chart import MeshChart, flatten_mesh
+from .mesh_outline import boundary_uv, mesh_outline, restate_mesh_error
 from ._jacobian import signed_areas
 from .._geometry import power_of_two_scale
 from ..mesh import G1, edge_lengths
@@ -43,6 +51,7 @@ from .remap import remap
 from ._places import number
 from .restate import restate_polygon_error
 from ..planar.strip import BOUNDARY_SPACING, check_spacing, uniform_triangulation
+from .triangulated import TriangulatedSurface
 from ..tolerance import at_least, at_most
 
 #: Default limit on the node count of a surface mesh without the final
@@ -67,7 +76,8 @@ SLIDING_OBJECTIVES = ("bounded",)
 #: solver's iteration guard at 5,840 nodes.
 MAX_OPTIMIZE_NODES = {"paper": 15_000, "bounded": 1_500}
 
-#: Limit on the auxiliary grid's cells n_u * n_v: flattening by eq. (1) took
+#: Limit on the auxiliary grid's cells n_u * n_v (a triangle mesh given as the
+#: auxiliary triangulation may have twice as many triangles): flattening by eq. (1) took
 #: 9 s at 100 x 100, 41 s (0.6 GB) at 200 x 200 and 251 s (1.3 GB) at
 #: 300 x 300 (docs/performance.md).
 MAX_GRID_CELLS = 40_000
@@ -155,14 +165,18 @@ def mesh_surface(
     progress=None,
     engine=DEFAULT_ENGINE,
 ):
-    """Mesh a parametric surface with members as equal as possible (Section 4).
+    """Mesh a surface with members as equal as possible (Section 4).
 
     Parameters
     ----------
-    surface : Chart
+    surface : Chart or TriangulatedSurface
         An object with ``evaluate(u, v)`` and ``derivatives(u, v)`` on its
         ``domain`` (:class:`~equimesh.surface.chart.Chart`; [0, 1]^2 if it has
-        none), e.g. :class:`equimesh.BezierSurface` or :class:`equimesh.NurbsSurface`.
+        none), e.g. :class:`equimesh.BezierSurface` or :class:`equimesh.NurbsSurface`;
+        or a triangle mesh (:class:`equimesh.TriangulatedSurface`), which is
+        then the auxiliary triangulation itself: its boundary loops are the
+        outer boundary and the openings, every node lies on one of its
+        triangles, and the boundary nodes stay fixed in the optimisation.
     l : float
         Target member length.
     holes : sequence of (k, 2) array_like, optional
@@ -172,7 +186,8 @@ def mesh_surface(
         to the flattened plane and kept open by Problem 2; its boundary nodes
         lie on its polyline and stay fixed in the optimisation.
     grid : (int, int)
-        Auxiliary grid n_u x n_v (step 1), at most :data:`MAX_GRID_CELLS` cells.
+        Auxiliary grid n_u x n_v (step 1), at most :data:`MAX_GRID_CELLS`
+        cells; not used for a triangle mesh.
     optimize : "bounded", "paper" or "none"
         Final optimisation of the nodes' (u, v) (see
         :data:`equimesh.surface.optimize.OBJECTIVES`), or none.  "bounded"
@@ -218,51 +233,47 @@ def mesh_surface(
     boundary_spacing = check_spacing(boundary_spacing)  # Problem 2's own check, needed by step 3 already
     limit = _node_limit(max_nodes, optimize)
     engine = check_engine(engine)
-    n_u, n_v = _grid_pair(grid)
-    if not (hasattr(surface, "evaluate") and hasattr(surface, "derivatives")):
-        raise InvalidSurfaceError("surface must provide evaluate(u, v) and derivatives(u, v)")
     if holes is not None:
+        if isinstance(surface, TriangulatedSurface):
+            raise EquimeshError("holes= cuts openings out of a parametric surface; a triangle mesh's openings are its boundary loops")
+        if not (hasattr(surface, "evaluate") and hasattr(surface, "derivatives")):
+            raise InvalidSurfaceError("surface must provide evaluate(u, v) and derivatives(u, v) to take holes=")
         surface = Perforated(surface, holes)
     seconds = {}
     clock = _Clock(seconds, progress)
+    front = _mesh_front if isinstance(surface, TriangulatedSurface) else _chart_front
+    steps = front(surface, grid, l, limit, boundary_spacing, clock)
 
-    aux = auxiliary_grid(n_u, n_v, domain_of(surface))
-    x_s0 = evaluate(surface, aux.uv)
-    check_regular(surface, aux)
-    _check_size(x_s0, aux.triangles, l, limit)
-    clock("auxiliary triangulation")
-
-    flat = flatten(x_s0, aux.triangles, uv=aux.uv)
-    clock("flattening (eq. 1)")
-
-    outline = resample_outline(flat.points, aux, l, boundary_spacing, holes_of(surface))
-    openings = [hole.points for hole in outline.holes]
     try:
         # The surface's own guard (_check_size, measured end to end) bounds the planar stage too.
-        chosen = best_lattice_placement(outline.vertices, l, holes=openings, max_nodes=None) if placement == "best" else None
+        holes = steps.holes
+        chosen = (
+            best_lattice_placement(steps.outline.vertices, l, holes=holes, max_nodes=None) if placement == "best" else None
+        )
         angle, offset = (chosen.angle, chosen.offset) if chosen else (0.0, (0.0, 0.0))
         plane = uniform_triangulation(
-            outline.vertices, l, holes=openings, angle=angle, offset=offset, boundary_spacing=boundary_spacing,
+            steps.outline.vertices, l, holes=holes, angle=angle, offset=offset, boundary_spacing=boundary_spacing,
             engine=engine, max_nodes=None,
         )
     except InvalidPolygonError as exc:
-        raise restate_polygon_error(exc, surface, flat.points, aux, outline, l) from None
+        raise steps.restate(exc) from None
     clock("planar triangulation (Problem 2)")
 
-    mapped = remap(surface, plane.points, flat.points, aux, on_boundary=np.arange(plane.n_boundary), outline=outline)
-    _check_orientation(mapped.uv, plane.triangles, "remapping (eqs. 2-3)")
+    mapped_uv, mapped_points = steps.place(plane)
+    _check_orientation(mapped_uv, plane.triangles, "remapping (eqs. 2-3)")
     clock("remapping (eqs. 2-3)")
 
     result = None
-    final_uv, final_points = mapped.uv, mapped.points
+    chart = steps.chart
+    final_uv, final_points = mapped_uv, mapped_points
     if optimize != "none":
-        # Hole nodes stay fixed: with the whole boundary of each hole fixed and no fold-over no node can enter it.
         boundary = np.arange(plane.n_boundary)
-        outer = plane.info["boundary_rings"][0]
+        # Hole nodes stay fixed: with the whole boundary of each hole fixed and no fold-over no node can enter it.
+        outer = plane.info["boundary_rings"][0] if steps.slides else 0
         slides = optimize in SLIDING_OBJECTIVES
         result = optimize_uv(
-            surface,
-            mapped.uv,
+            chart,
+            mapped_uv,
             plane.edges,
             plane.edge_groups,
             l,
@@ -273,12 +284,12 @@ def mesh_surface(
         )
         final_uv = result.uv
         _check_orientation(final_uv, plane.triangles, "the optimisation")
-        final_points = evaluate(surface, final_uv)
+        final_points = evaluate(chart, final_uv)
         if optimize in SLIDING_OBJECTIVES:
             _check_members(final_points, plane.edges, l)
         clock("optimisation of inner nodes")
 
-    stages = Stages(aux, x_s0, flat, outline, chosen, plane, mapped.uv, mapped.points, result, seconds)
+    stages = Stages(steps.grid, steps.points, steps.flattening, steps.outline, chosen, plane, mapped_uv, mapped_points, result, seconds)
     return SurfaceMesh(
         final_points,
         plane.triangles,
@@ -289,6 +300,90 @@ def mesh_surface(
         plane.n_boundary,
         stages,
     )
+
+
+@dataclass(frozen=True)
+class _Front:
+    """Steps 1-3 done one way or another, and how to do step 4 (:func:`mesh_surface`).
+
+    ``chart`` is what the optimisation moves the nodes on; ``place(plane)``
+    gives the remapped ``(uv, points)`` of a plane mesh; ``restate(exc)``
+    turns Problem 2's refusal of the outline into the surface's terms;
+    ``holes`` are the rings of the openings (``holes=`` of Problem 2);
+    ``slides`` says whether the nodes of the outer boundary may slide along
+    the sides of the chart's domain (the openings' nodes never do).
+    """
+
+    chart: object
+    grid: object
+    points: np.ndarray
+    flattening: object
+    outline: object
+    place: Callable
+    restate: Callable
+    holes: list | None
+    slides: bool
+
+
+def _chart_front(surface, grid, l, limit, spacing, clock):
+    """Steps 1-3 for a chart: auxiliary grid of its domain, eq. (1), the outline of the flattened rectangle."""
+    n_u, n_v = _grid_pair(grid)
+    if not (hasattr(surface, "evaluate") and hasattr(surface, "derivatives")):
+        raise InvalidSurfaceError("surface must provide evaluate(u, v) and derivatives(u, v), or be a TriangulatedSurface")
+    aux = auxiliary_grid(n_u, n_v, domain_of(surface))
+    x_s0 = evaluate(surface, aux.uv)
+    check_regular(surface, aux)
+    _check_size(x_s0, aux.triangles, l, limit)
+    clock("auxiliary triangulation")
+
+    flat = flatten(x_s0, aux.triangles, uv=aux.uv)
+    clock("flattening (eq. 1)")
+
+    outline = resample_outline(flat.points, aux, l, spacing, holes_of(surface))
+
+    def place(plane):
+        mapped = remap(surface, plane.points, flat.points, aux, on_boundary=np.arange(plane.n_boundary), outline=outline)
+        return mapped.uv, mapped.points
+
+    def restate(exc):
+        return restate_polygon_error(exc, surface, flat.points, aux, outline, l)
+
+    return _Front(surface, aux, x_s0, flat, outline, place, restate, [hole.points for hole in outline.holes], True)
+
+
+def _mesh_front(surface, grid, l, limit, spacing, clock):
+    """Steps 1-3 for a triangle mesh (:mod:`equimesh.surface.triangulated`): it is the auxiliary triangulation.
+
+    ``grid`` is not used.  The flattening starts from the projection onto the
+    best-fit plane, or a conformal map or Tutte's embedding if that folds, with
+    the openings capped (:func:`~equimesh.surface.mesh_chart.flatten_mesh`); the flattened
+    mesh is the chart (:class:`~equimesh.surface.mesh_chart.MeshChart`) and
+    its loops the outline (:mod:`equimesh.surface.mesh_outline`).
+    """
+    if len(surface.triangles) > 2 * MAX_GRID_CELLS:
+        raise EquimeshError(
+            f"the triangle mesh has {len(surface.triangles)} triangles, more than the limit of {2 * MAX_GRID_CELLS} "
+            f"(those of a {MAX_GRID_CELLS}-cell auxiliary grid: flattening time and memory grow with them); "
+            "coarsen it first"
+        )
+    _check_size(surface.vertices, surface.triangles, l, limit)
+    clock("auxiliary triangulation")
+
+    flat = flatten_mesh(surface)
+    chart = MeshChart(surface, flat.points)
+    clock("flattening (eq. 1)")
+
+    outline = mesh_outline(chart, l, spacing)
+
+    def place(plane):
+        uv = plane.points.copy()
+        uv[: plane.n_boundary] = boundary_uv(outline, plane)
+        return uv, evaluate(chart, uv)
+
+    def restate(exc):
+        return restate_mesh_error(exc, chart, outline, l)
+
+    return _Front(chart, surface, surface.vertices, flat, outline, place, restate, outline.holes, False)
 
 
 class _Clock:
