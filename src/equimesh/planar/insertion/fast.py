@@ -87,13 +87,13 @@ _BROKEN = -2 - 2**62
 
 
 @njit(cache=True)
-def _circumcircle(P, t3):
-    """Circumcentre and radius of the triangle with vertex indices ``t3``, exactly as :func:`equimesh._geometry.circumcenters`.
+def _circumcircle(P, a, b, c):
+    """Circumcentre and radius of the triangle ``abc`` (vertex indices), exactly as :func:`equimesh._geometry.circumcenters`.
 
     Vertices in increasing index order; the operations (relative to the
     first vertex, then ``hypot``) are the reference's, so the bits match.
     """
-    i, j, k = np.sort(t3)
+    i, j, k = min(a, b, c), max(min(a, b), min(max(a, b), c)), max(a, b, c)
     ax, ay = P[i, 0], P[i, 1]
     bbx, bby = P[j, 0] - ax, P[j, 1] - ay
     ccx, ccy = P[k, 0] - ax, P[k, 1] - ay
@@ -165,7 +165,7 @@ def _visible_circumcentre(P, V, N, S, SA, SB, salive, n_segs, alive, n_slots, t,
 
     ``lim`` = ``(1 - REL_TOL) l, (1 + REL_TOL) l, REL_TOL l, SLIVER_GAP l``, the search reach.
     """
-    cx, cy, r, gx, gy = _circumcircle(P, V[t])
+    cx, cy, r, gx, gy = _circumcircle(P, V[t, 0], V[t, 1], V[t, 2])
     if not (math.isfinite(r) and r >= lim[0]):
         return -1.0, cx, cy, -1
     status, where = walk(P, V, N, S, t, gx, gy, cx, cy, n_slots + 1)
@@ -173,7 +173,7 @@ def _visible_circumcentre(P, V, N, S, SA, SB, salive, n_segs, alive, n_slots, t,
         for s in range(n_segs):
             if salive[s] and segments_touch(gx, gy, cx, cy, P[SA[s], 0], P[SA[s], 1], P[SB[s], 0], P[SB[s], 1]):
                 return -1.0, cx, cy, -1
-        where = locate(P, V, alive, n_slots, cx, cy)
+        where = locate(P, V, N, alive, n_slots, t, cx, cy, n_slots + 1)
     elif status == 0:
         return -1.0, cx, cy, -1
     gap = _gap(P, V, N, S, SA, SB, salive, n_segs, where, cx, cy, lim[4], seen)
