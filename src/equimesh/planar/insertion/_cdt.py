@@ -54,7 +54,7 @@ def adjacency(V, SA, SB, n_points):
     return N, S, count
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def walk(P, V, N, S, t, gx, gy, cx, cy, max_steps):
     """Walk from ``g`` (inside triangle ``t``) towards ``c``: ``(status, triangle)``.
 
@@ -105,7 +105,7 @@ def walk(P, V, N, S, t, gx, gy, cx, cy, max_steps):
     return -1, -1
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _edge_sides(P, V, t, x, y):
     """``orient`` of each edge ``e`` of triangle ``t`` with the point: all >= 0 when the closed triangle contains it."""
     a, b, c = V[t, 0], V[t, 1], V[t, 2]
@@ -174,7 +174,7 @@ def locate(P, V, N, alive, n_slots, start, x, y, max_steps):
     return -1
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def cavity(P, V, N, S, start, px, py, mark, stamp, cav):
     """Bowyer-Watson cavity of point ``p`` from triangle ``start``: its slots in ``cav[:k]``; returns ``k``.
 
@@ -204,7 +204,7 @@ def cavity(P, V, N, S, start, px, py, mark, stamp, cav):
     return k
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def cavity_boundary(V, N, S, cav, k, split, mark, stamp, edges):
     """Boundary edges of the cavity ``cav[:k]`` (without the split segment), rows ``(u, v, outer, segment)``.
 
@@ -230,7 +230,7 @@ def cavity_boundary(V, N, S, cav, k, split, mark, stamp, edges):
     return m
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def fill(P, V, N, S, edges, m, p, slots, vfan, vstamp, stamp):
     """Fan triangles ``(u, v, p)`` over the cavity boundary ``edges[:m]`` into ``slots[:m]``.
 

@@ -86,7 +86,7 @@ _OK = -1
 _BROKEN = -2 - 2**62
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _circumcircle(P, a, b, c):
     """Circumcentre and radius of the triangle ``abc`` (vertex indices), exactly as :func:`equimesh._geometry.circumcenters`.
 
@@ -117,12 +117,12 @@ def _point_segment_distance(x, y, ax, ay, bx, by):
     return math.hypot(x - (ax + t * abx), y - (ay + t * aby))
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _edge_distance(P, a, b, x, y):
     return _point_segment_distance(x, y, P[a, 0], P[a, 1], P[b, 0], P[b, 1])
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _gap(P, V, N, S, SA, SB, salive, n_segs, start, x, y, reach, seen):
     """Distance from ``(x, y)`` to the nearest constraint, exact whenever it is at most ``reach / 2``.
 
@@ -159,7 +159,7 @@ def _gap(P, V, N, S, SA, SB, salive, n_segs, start, x, y, reach, seen):
     return best
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _visible_circumcentre(P, V, N, S, SA, SB, salive, n_segs, alive, n_slots, t, lim, seen):
     """Candidate 1 of the reference for triangle ``t``: ``(value, x, y, triangle containing it)`` or value -1.
 
@@ -182,7 +182,7 @@ def _visible_circumcentre(P, V, N, S, SA, SB, salive, n_segs, alive, n_slots, t,
     return r, cx, cy, where
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _before(HK, a, b):
     """Heap order: ``HK[a]`` before ``HK[b]`` lexicographically on ``(-value, x, y)``."""
     for c in range(3):
@@ -191,14 +191,14 @@ def _before(HK, a, b):
     return False
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _swap(HK, HI, a, b):
     for c in range(3):
         HK[a, c], HK[b, c] = HK[b, c], HK[a, c]
         HI[a, c], HI[b, c] = HI[b, c], HI[a, c]
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _sift_down(HK, HI, n, i):
     while True:
         c = 2 * i + 1
@@ -212,7 +212,7 @@ def _sift_down(HK, HI, n, i):
         i = c
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _push(HK, HI, n, value, x, y, t, version, s):
     HK[n, 0], HK[n, 1], HK[n, 2] = -value, x, y
     HI[n, 0], HI[n, 1], HI[n, 2] = t, version, s
@@ -223,7 +223,7 @@ def _push(HK, HI, n, value, x, y, t, version, s):
     return n + 1
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _pop(HK, HI, n):
     """Remove the top (it is copied to row ``n - 1``); the new size."""
     _swap(HK, HI, 0, n - 1)
@@ -253,7 +253,7 @@ def _grown(a, size):
     return out
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _push_candidates(P, V, N, S, SA, SB, salive, n_segs, alive, ver, n_slots, t, lim, seen, HK, HI, nh):
     """Push the candidates of triangle ``t`` (its circumcentre, its constraint midpoints); the new heap size."""
     r, cx, cy, _ = _visible_circumcentre(P, V, N, S, SA, SB, salive, n_segs, alive, n_slots, t, lim, seen)
@@ -298,17 +298,24 @@ def _insert_all(P0, T0, SEG0, lim):
     values = np.zeros(n)
     cav = np.empty(_CAVITY, dtype=np.int64)
     edges = np.empty((_CAVITY + 2, 4), dtype=np.int64)
-    slots = np.empty(_CAVITY + 2, dtype=np.int64)
+    slots = np.arange(n_slots)
     seen = np.empty(_NEAR_TRIANGLES, dtype=np.int64)
     HK = np.empty((4 * n_slots + 16, 3))
     HI = np.empty((4 * n_slots + 16, 3), dtype=np.int64)
-    nh = 0
-    for t in range(n_slots):
-        if nh + 4 > len(HK):
-            HK, HI = _grown(HK, 2 * len(HK)), _grown(HI, 2 * len(HI))
-        nh = _push_candidates(P, V, N, S, SA, SB, salive, n_segs, alive, ver, n_slots, t, lim, seen, HK, HI, nh)
-    stamp = 0
-    while nh > 0:
+    nh, m, stamp = 0, n_slots, 0
+    while True:
+        # Push the candidates of the new triangles slots[:m] (at first: every triangle).
+        if nh + 4 * m > len(HK):
+            nh = _compact(HK, HI, nh, ver, salive)
+            if 2 * (nh + 4 * m) > len(HK):
+                HK, HI = _grown(HK, 2 * len(HK) + 4 * m), _grown(HI, 2 * len(HI) + 4 * m)
+        for f in range(m):
+            nh = _push_candidates(
+                P, V, N, S, SA, SB, salive, n_segs, alive, ver, n_slots, slots[f], lim, seen, HK, HI, nh
+            )
+        m = 0
+        if nh == 0:
+            break
         nh = _pop(HK, HI, nh)
         t, version, s = HI[nh, 0], HI[nh, 1], HI[nh, 2]
         if ver[t] != version or (s >= 0 and not salive[s]):
@@ -334,8 +341,10 @@ def _insert_all(P0, T0, SEG0, lim):
             cav = _grown(cav, 2 * len(cav))
             stamp += 1
             k = cavity(P, V, N, S, start, x, y, mark, stamp, cav)
+        if k + 2 > len(edges):
+            edges = _grown(edges, 2 * k + 2)
         if k + 2 > len(slots):
-            edges, slots = _grown(edges, 2 * k + 2), _grown(slots, 2 * k + 2)
+            slots = _grown(slots, 2 * k + 2)
         m = cavity_boundary(V, N, S, cav, k, s, mark, stamp, edges)
         if m < 0:
             return _BROKEN, P, V, SEG0, values
@@ -371,14 +380,6 @@ def _insert_all(P0, T0, SEG0, lim):
                     elif w == b:
                         S[t, e] = n_segs + 1
             n_segs += 2
-        if nh + 4 * m > len(HK):
-            nh = _compact(HK, HI, nh, ver, salive)
-            if 2 * (nh + 4 * m) > len(HK):
-                HK, HI = _grown(HK, 2 * len(HK) + 4 * m), _grown(HI, 2 * len(HI) + 4 * m)
-        for f in range(m):
-            nh = _push_candidates(
-                P, V, N, S, SA, SB, salive, n_segs, alive, ver, n_slots, slots[f], lim, seen, HK, HI, nh
-            )
     live = np.flatnonzero(alive[:n_slots])
     segs = np.flatnonzero(salive[:n_segs])
     out_segments = np.empty((len(segs), 2), dtype=np.int64)
