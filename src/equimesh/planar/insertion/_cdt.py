@@ -17,6 +17,9 @@ for none).  Every sign is decided by the exact predicates of
   a constraint is never crossed (constrained Bowyer-Watson gives the CDT of
   the new point set, Definition 1 of the paper); the cavity is then
   re-filled with a fan of triangles from the point.
+
+Every function but :func:`adjacency` is compiled without numba's reference
+counting (``_nrt=False``; the reason is in :mod:`.fast`).
 """
 
 import numpy as np
@@ -54,7 +57,7 @@ def adjacency(V, SA, SB, n_points):
     return N, S, count
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, _nrt=False)
 def walk(P, V, N, S, t, gx, gy, cx, cy, max_steps):
     """Walk from ``g`` (inside triangle ``t``) towards ``c``: ``(status, triangle)``.
 
@@ -105,7 +108,7 @@ def walk(P, V, N, S, t, gx, gy, cx, cy, max_steps):
     return -1, -1
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, _nrt=False)
 def _edge_sides(P, V, t, x, y):
     """``orient`` of each edge ``e`` of triangle ``t`` with the point: all >= 0 when the closed triangle contains it."""
     a, b, c = V[t, 0], V[t, 1], V[t, 2]
@@ -113,12 +116,12 @@ def _edge_sides(P, V, t, x, y):
     return orient2d(ax, ay, bx, by, x, y), orient2d(bx, by, cx, cy, x, y), orient2d(cx, cy, ax, ay, x, y)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _on_segment(sx, sy, tx, ty, rx, ry, d):
     return d == 0.0 and min(sx, tx) <= rx <= max(sx, tx) and min(sy, ty) <= ry <= max(sy, ty)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def segments_touch(px, py, qx, qy, ax, ay, bx, by):
     """Whether closed segments ``pq`` and ``ab`` share a point; :func:`equimesh._geometry.segments_intersect`.
 
@@ -140,7 +143,7 @@ def segments_touch(px, py, qx, qy, ax, ay, bx, by):
     )
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def locate(P, V, N, alive, n_slots, start, x, y, max_steps):
     """The lowest live slot whose closed triangle contains ``(x, y)``, or -1.
 
@@ -174,7 +177,7 @@ def locate(P, V, N, alive, n_slots, start, x, y, max_steps):
     return -1
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, _nrt=False)
 def cavity(P, V, N, S, start, px, py, mark, stamp, cav):
     """Bowyer-Watson cavity of point ``p`` from triangle ``start``: its slots in ``cav[:k]``; returns ``k``.
 
@@ -204,7 +207,7 @@ def cavity(P, V, N, S, start, px, py, mark, stamp, cav):
     return k
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, _nrt=False)
 def cavity_boundary(V, N, S, cav, k, split, mark, stamp, edges):
     """Boundary edges of the cavity ``cav[:k]`` (without the split segment), rows ``(u, v, outer, segment)``.
 
@@ -230,7 +233,7 @@ def cavity_boundary(V, N, S, cav, k, split, mark, stamp, edges):
     return m
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, _nrt=False)
 def fill(P, V, N, S, edges, m, p, slots, vfan, vstamp, stamp):
     """Fan triangles ``(u, v, p)`` over the cavity boundary ``edges[:m]`` into ``slots[:m]``.
 
