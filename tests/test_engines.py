@@ -30,7 +30,8 @@ import equimesh.planar.increment
 import equimesh.planar.strip
 from equimesh import EquimeshError
 from equimesh.planar.insertion import ENGINES, Region, insert
-from equimesh.planar.insertion._cdt import cavity_boundary
+from equimesh.planar.insertion._cdt import adjacency, cavity_boundary, locate
+from equimesh.planar.insertion._region import constrained_delaunay
 from equimesh.planar.insertion._predicates import incircle, orient2d
 from equimesh.testing.generators import rectangle, regular_polygon, rotate
 
@@ -290,3 +291,25 @@ def test_cavity_boundary_fills_its_buffer_exactly():
     # Triangle 1 first, so the last edge visited (2, 0) of triangle 0 is interior.
     assert cavity_boundary(V, N, S, np.array([1, 0]), 2, -1, mark, 1, edges) == 4
     assert {tuple(e[:2]) for e in edges.tolist()} == {(2, 3), (3, 0), (0, 1), (1, 2)}
+
+
+@given(st.integers(3, 7), st.integers(3, 7), st.data())
+def test_local_locate_gives_the_lowest_slot_like_the_scan(nx, ny, data):
+    """The local walk of :func:`_cdt.locate` answers what scanning every slot answers.
+
+    On a lattice (cocircular everywhere) and for query points at vertices,
+    edge midpoints and inside triangles; ``max_steps=0`` forces the scan.
+    """
+    xy = np.array([[x, y] for y in range(ny) for x in range(nx)], dtype=float)
+    ring = [i for i in range(nx)] + [i * nx + nx - 1 for i in range(1, ny)]
+    ring += [(ny - 1) * nx + i for i in range(nx - 2, -1, -1)] + [i * nx for i in range(ny - 2, 0, -1)]
+    segments = np.array([[ring[i], ring[(i + 1) % len(ring)]] for i in range(len(ring))], dtype=np.int64)
+    V = constrained_delaunay(xy, segments, np.empty((0, 2)))
+    N, _, _ = adjacency(V, segments[:, 0].copy(), segments[:, 1].copy(), len(xy))
+    alive = np.ones(len(V), dtype=np.bool_)
+    t = data.draw(st.integers(0, len(V) - 1))
+    weights = np.array(data.draw(st.sampled_from([(1, 0, 0), (1, 1, 0), (0, 1, 1), (1, 1, 1), (2, 1, 1)])), dtype=float)
+    x, y = (weights @ xy[V[data.draw(st.integers(0, len(V) - 1))]]) / weights.sum()
+    scan = locate(xy, V, N, alive, len(V), t, x, y, 0)
+    assert scan >= 0
+    assert locate(xy, V, N, alive, len(V), t, x, y, len(V) + 1) == scan

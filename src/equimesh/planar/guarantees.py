@@ -11,9 +11,9 @@ breaks them: that would be a bug in equimesh, never a fault of the input.
 
 import numpy as np
 
-from .._geometry import orient, signed_area
+from .._geometry import signed_area
 from ..errors import InternalError
-from ..mesh import edge_lengths
+from ..mesh import edge_lengths, triangle_orient
 from ..tolerance import REL_TOL, at_least, at_most
 
 _REPORT = "a bug in equimesh, please report it with the input"
@@ -38,7 +38,7 @@ def verify_planar(mesh):
     if t.size and (t.min() < 0 or t.max() >= n):
         k = int(np.flatnonzero(np.any((t < 0) | (t >= n), axis=1))[0])
         raise InternalError(f"triangle {k} {tuple(map(int, t[k]))} refers to a point outside 0..{n - 1}: {_REPORT}")
-    area = 0.5 * orient(points[t[:, 0]], points[t[:, 1]], points[t[:, 2]])
+    area = 0.5 * triangle_orient(points, t)
     flat = np.flatnonzero(~(area > 0))
     if flat.size:
         k = int(flat[0])

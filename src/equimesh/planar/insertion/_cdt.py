@@ -17,6 +17,9 @@ for none).  Every sign is decided by the exact predicates of
   a constraint is never crossed (constrained Bowyer-Watson gives the CDT of
   the new point set, Definition 1 of the paper); the cavity is then
   re-filled with a fan of triangles from the point.
+
+Every function but :func:`adjacency` is compiled without numba's reference
+counting (``_nrt=False``; the reason is in :mod:`.fast`).
 """
 
 import numpy as np
@@ -54,7 +57,7 @@ def adjacency(V, SA, SB, n_points):
     return N, S, count
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def walk(P, V, N, S, t, gx, gy, cx, cy, max_steps):
     """Walk from ``g`` (inside triangle ``t``) towards ``c``: ``(status, triangle)``.
 
@@ -70,30 +73,32 @@ def walk(P, V, N, S, t, gx, gy, cx, cy, max_steps):
         i, j = V[t, e], V[t, (e + 1) % 3]
         if orient2d(P[i, 0], P[i, 1], P[j, 0], P[j, 1], gx, gy) <= 0.0:
             return -1, -1
-    o = np.empty(3)
-    s = np.empty(3)
     for _ in range(max_steps):
-        for e in range(3):
-            i, j = V[t, e], V[t, (e + 1) % 3]
-            o[e] = orient2d(P[i, 0], P[i, 1], P[j, 0], P[j, 1], cx, cy)
-        if o[0] >= 0.0 and o[1] >= 0.0 and o[2] >= 0.0:
-            zeros = (o[0] == 0.0) + (o[1] == 0.0) + (o[2] == 0.0)
+        o0, o1, o2 = _edge_sides(P, V, t, cx, cy)
+        if o0 >= 0.0 and o1 >= 0.0 and o2 >= 0.0:
+            zeros = (o0 == 0.0) + (o1 == 0.0) + (o2 == 0.0)
             if zeros == 0:
                 return 1, t
             if zeros > 1:
                 return -1, -1
-            e = 0 if o[0] == 0.0 else (1 if o[1] == 0.0 else 2)
+            e = 0 if o0 == 0.0 else (1 if o1 == 0.0 else 2)
             return (0 if S[t, e] >= 0 else 1), t
-        for e in range(3):
-            v = V[t, e]
-            s[e] = orient2d(gx, gy, cx, cy, P[v, 0], P[v, 1])
-            if s[e] == 0.0:
-                return -1, -1
-        out = -1
-        for e in range(3):
-            if s[e] < 0.0 and s[(e + 1) % 3] > 0.0:
-                out = e
-        if out < 0 or o[out] >= 0.0:
+        a, b, c = V[t, 0], V[t, 1], V[t, 2]
+        s0 = orient2d(gx, gy, cx, cy, P[a, 0], P[a, 1])
+        s1 = orient2d(gx, gy, cx, cy, P[b, 0], P[b, 1])
+        s2 = orient2d(gx, gy, cx, cy, P[c, 0], P[c, 1])
+        if s0 == 0.0 or s1 == 0.0 or s2 == 0.0:
+            return -1, -1
+        # The edge the segment leaves t by: its start vertex right of the line gc, its end vertex left.
+        if s2 < 0.0 and s0 > 0.0:
+            out, o_out = 2, o2
+        elif s1 < 0.0 and s2 > 0.0:
+            out, o_out = 1, o1
+        elif s0 < 0.0 and s1 > 0.0:
+            out, o_out = 0, o0
+        else:
+            return -1, -1
+        if o_out >= 0.0:
             return -1, -1
         if S[t, out] >= 0:
             return 0, t
@@ -103,14 +108,27 @@ def walk(P, V, N, S, t, gx, gy, cx, cy, max_steps):
     return -1, -1
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
+def _edge_sides(P, V, t, x, y):
+    """``orient`` of each edge ``e`` of triangle ``t`` with the point: all >= 0 when the closed triangle contains it."""
+    a, b, c = V[t, 0], V[t, 1], V[t, 2]
+    ax, ay, bx, by, cx, cy = P[a, 0], P[a, 1], P[b, 0], P[b, 1], P[c, 0], P[c, 1]
+    return orient2d(ax, ay, bx, by, x, y), orient2d(bx, by, cx, cy, x, y), orient2d(cx, cy, ax, ay, x, y)
+
+
+@njit(cache=True, _nrt=False)
 def _on_segment(sx, sy, tx, ty, rx, ry, d):
     return d == 0.0 and min(sx, tx) <= rx <= max(sx, tx) and min(sy, ty) <= ry <= max(sy, ty)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def segments_touch(px, py, qx, qy, ax, ay, bx, by):
-    """Whether closed segments ``pq`` and ``ab`` share a point; :func:`equimesh._geometry.segments_intersect`."""
+    """Whether closed segments ``pq`` and ``ab`` share a point; :func:`equimesh._geometry.segments_intersect`.
+
+    Segments whose bounding boxes are disjoint are answered by comparisons alone.
+    """
+    if max(px, qx) < min(ax, bx) or max(ax, bx) < min(px, qx) or max(py, qy) < min(ay, by) or max(ay, by) < min(py, qy):
+        return False
     d1 = np.sign(orient2d(ax, ay, bx, by, px, py))
     d2 = np.sign(orient2d(ax, ay, bx, by, qx, qy))
     d3 = np.sign(orient2d(px, py, qx, qy, ax, ay))
@@ -125,22 +143,41 @@ def segments_touch(px, py, qx, qy, ax, ay, bx, by):
     )
 
 
-@njit(cache=True)
-def locate(P, V, alive, n_slots, x, y):
-    """The first live triangle slot whose closed triangle contains ``(x, y)``, or -1 (brute force)."""
+@njit(cache=True, _nrt=False)
+def locate(P, V, N, alive, n_slots, start, x, y, max_steps):
+    """The lowest live slot whose closed triangle contains ``(x, y)``, or -1.
+
+    Walks from triangle ``start``, each step across the first edge that has
+    the point strictly on its outer side (a visibility walk), to a triangle
+    containing the point; the answer is the lower of it and, when the point
+    lies on one of its edges, the triangle across that edge: those are all
+    the triangles containing it.  When the walk leaves the triangulation,
+    runs out of steps or stops with the point on a vertex, every slot is
+    scanned instead; the answer is the same.
+    """
+    t = start
+    for _ in range(max_steps):
+        o0, o1, o2 = _edge_sides(P, V, t, x, y)
+        if o0 >= 0.0 and o1 >= 0.0 and o2 >= 0.0:
+            zeros = (o0 == 0.0) + (o1 == 0.0) + (o2 == 0.0)
+            if zeros == 0:
+                return t
+            if zeros > 1:
+                break
+            n = N[t, 0 if o0 == 0.0 else (1 if o1 == 0.0 else 2)]
+            return t if n < 0 else min(t, n)
+        t = N[t, 0 if o0 < 0.0 else (1 if o1 < 0.0 else 2)]
+        if t < 0:
+            break
     for t in range(n_slots):
         if alive[t]:
-            inside = True
-            for e in range(3):
-                i, j = V[t, e], V[t, (e + 1) % 3]
-                if orient2d(P[i, 0], P[i, 1], P[j, 0], P[j, 1], x, y) < 0.0:
-                    inside = False
-            if inside:
+            o0, o1, o2 = _edge_sides(P, V, t, x, y)
+            if o0 >= 0.0 and o1 >= 0.0 and o2 >= 0.0:
                 return t
     return -1
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def cavity(P, V, N, S, start, px, py, mark, stamp, cav):
     """Bowyer-Watson cavity of point ``p`` from triangle ``start``: its slots in ``cav[:k]``; returns ``k``.
 
@@ -170,7 +207,7 @@ def cavity(P, V, N, S, start, px, py, mark, stamp, cav):
     return k
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def cavity_boundary(V, N, S, cav, k, split, mark, stamp, edges):
     """Boundary edges of the cavity ``cav[:k]`` (without the split segment), rows ``(u, v, outer, segment)``.
 
@@ -196,7 +233,7 @@ def cavity_boundary(V, N, S, cav, k, split, mark, stamp, edges):
     return m
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def fill(P, V, N, S, edges, m, p, slots, vfan, vstamp, stamp):
     """Fan triangles ``(u, v, p)`` over the cavity boundary ``edges[:m]`` into ``slots[:m]``.
 

@@ -15,7 +15,9 @@ The fallback is exact for the given doubles as long as no product overflows
 or underflows (coordinates are moderate: the caller works in a frame where
 ``l`` is about 1).
 
-Compiled without fast-math, so no fused multiply-add can change a rounding.
+Compiled without fast-math, so no fused multiply-add can change a rounding,
+and with numba's runtime (``_nrt=True``, the exact fallback allocates its
+expansions) even when called from the engine's helpers compiled without it.
 """
 
 import numpy as np
@@ -30,7 +32,7 @@ _CCW_BOUND = (3.0 + 16.0 * _EPS) * _EPS
 _ICC_BOUND = (10.0 + 96.0 * _EPS) * _EPS
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=True)
 def _two_sum(a, b):
     """``a + b = x + y`` exactly, ``x`` the rounded sum (Knuth)."""
     x = a + b
@@ -39,7 +41,7 @@ def _two_sum(a, b):
     return x, (a - av) + (b - bv)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=True)
 def _split(a):
     """``a = hi + lo`` with both halves of at most 26 significant bits (Dekker)."""
     c = _SPLITTER * a
@@ -47,7 +49,7 @@ def _split(a):
     return hi, a - hi
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=True)
 def _two_product(a, b):
     """``a * b = x + y`` exactly, ``x`` the rounded product (Dekker)."""
     x = a * b
@@ -59,7 +61,7 @@ def _two_product(a, b):
     return x, alo * blo - err
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=True)
 def _grow(h, n, b):
     """Add ``b`` to the expansion ``h[:n]`` in place (Grow-Expansion, zero elimination); the new length.
 
@@ -79,7 +81,7 @@ def _grow(h, n, b):
     return k
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=True)
 def _add_product(h, n, e, ne, f, nf, sign):
     """``h[:n] += sign * (e[:ne] * f[:nf])`` exactly; the new length (room for ``n + 2 ne nf``)."""
     for i in range(ne):
@@ -90,7 +92,7 @@ def _add_product(h, n, e, ne, f, nf, sign):
     return n
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=True)
 def _difference(a, b):
     """``a - b`` as an expansion of one or two components."""
     h = np.empty(2)
@@ -98,7 +100,7 @@ def _difference(a, b):
     return h, _grow(h, 1, -b)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=True)
 def _orient_exact(ax, ay, bx, by, cx, cy):
     h = np.empty(13)
     n = 0
@@ -109,7 +111,7 @@ def _orient_exact(ax, ay, bx, by, cx, cy):
     return h[n - 1]
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=True)
 def orient2d(ax, ay, bx, by, cx, cy):
     """A value whose sign is the exact sign of ``orient(a, b, c)`` (> 0: counter-clockwise)."""
     left = (ax - cx) * (by - cy)
@@ -120,7 +122,7 @@ def orient2d(ax, ay, bx, by, cx, cy):
     return _orient_exact(ax, ay, bx, by, cx, cy)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=True)
 def _cross_exact(ux, nux, vy, nvy, uy, nuy, vx, nvx):
     """``u x v = ux vy - uy vx`` for expansions, as an expansion ``(h, n)``."""
     h = np.empty(2 * (nux * nvy + nuy * nvx) + 1)
@@ -128,7 +130,7 @@ def _cross_exact(ux, nux, vy, nvy, uy, nuy, vx, nvx):
     return h, _add_product(h, n, uy, nuy, vx, nvx, -1.0)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=True)
 def _lift_exact(ux, nux, uy, nuy):
     """``ux^2 + uy^2`` for expansions, as an expansion ``(h, n)``."""
     h = np.empty(2 * (nux * nux + nuy * nuy) + 1)
@@ -136,7 +138,7 @@ def _lift_exact(ux, nux, uy, nuy):
     return h, _add_product(h, n, uy, nuy, uy, nuy, 1.0)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=True)
 def _incircle_exact(ax, ay, bx, by, cx, cy, dx, dy):
     adx, nadx = _difference(ax, dx)
     ady, nady = _difference(ay, dy)
@@ -157,7 +159,7 @@ def _incircle_exact(ax, ay, bx, by, cx, cy, dx, dy):
     return h[n - 1]
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=True)
 def incircle(ax, ay, bx, by, cx, cy, dx, dy):
     """A value whose sign is the exact sign of the in-circle determinant.
 

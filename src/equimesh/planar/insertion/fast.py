@@ -51,6 +51,15 @@ deterministic (exact predicates, fixed slot order).
 The engine requires every constraint to bound the region (a triangle on one
 side only), as in Problems 1 and 2.
 
+Compilation.  The helpers that take arrays only index them, never allocate,
+and are compiled without numba's reference counting (``_nrt=False``):
+with it, every call increments and decrements the count of each array
+argument atomically, a quarter of the engine's time at 10^5 points (perf,
+docs/performance.md).  numba hands that flag down to the functions they
+call, so the predicates, whose exact fallback allocates, ask for the
+runtime explicitly (``_nrt=True`` in :mod:`._predicates`).  The heap's
+sift loops call no helper that takes an array for the same reason.
+
 numba's on-disk cache (``cache=True``) is keyed by the source file of each
 compiled function, not by the functions it calls: after an edit of
 :mod:`._cdt` or :mod:`._predicates` alone, the cached :func:`_insert_all`
@@ -86,14 +95,14 @@ _OK = -1
 _BROKEN = -2 - 2**62
 
 
-@njit(cache=True)
-def _circumcircle(P, t3):
-    """Circumcentre and radius of the triangle with vertex indices ``t3``, exactly as :func:`equimesh._geometry.circumcenters`.
+@njit(cache=True, _nrt=False)
+def _circumcircle(P, a, b, c):
+    """Circumcentre and radius of the triangle ``abc`` (vertex indices), exactly as :func:`equimesh._geometry.circumcenters`.
 
     Vertices in increasing index order; the operations (relative to the
     first vertex, then ``hypot``) are the reference's, so the bits match.
     """
-    i, j, k = np.sort(t3)
+    i, j, k = min(a, b, c), max(min(a, b), min(max(a, b), c)), max(a, b, c)
     ax, ay = P[i, 0], P[i, 1]
     bbx, bby = P[j, 0] - ax, P[j, 1] - ay
     ccx, ccy = P[k, 0] - ax, P[k, 1] - ay
@@ -107,7 +116,7 @@ def _circumcircle(P, t3):
     return ax + ux, ay + uy, math.hypot(ux, uy), gx, gy
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _point_segment_distance(x, y, ax, ay, bx, by):
     """:func:`equimesh._geometry.point_segment_distance` for one point and segment, same operations."""
     abx, aby = bx - ax, by - ay
@@ -117,12 +126,12 @@ def _point_segment_distance(x, y, ax, ay, bx, by):
     return math.hypot(x - (ax + t * abx), y - (ay + t * aby))
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _edge_distance(P, a, b, x, y):
     return _point_segment_distance(x, y, P[a, 0], P[a, 1], P[b, 0], P[b, 1])
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _gap(P, V, N, S, SA, SB, salive, n_segs, start, x, y, reach, seen):
     """Distance from ``(x, y)`` to the nearest constraint, exact whenever it is at most ``reach / 2``.
 
@@ -159,13 +168,13 @@ def _gap(P, V, N, S, SA, SB, salive, n_segs, start, x, y, reach, seen):
     return best
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _visible_circumcentre(P, V, N, S, SA, SB, salive, n_segs, alive, n_slots, t, lim, seen):
     """Candidate 1 of the reference for triangle ``t``: ``(value, x, y, triangle containing it)`` or value -1.
 
     ``lim`` = ``(1 - REL_TOL) l, (1 + REL_TOL) l, REL_TOL l, SLIVER_GAP l``, the search reach.
     """
-    cx, cy, r, gx, gy = _circumcircle(P, V[t])
+    cx, cy, r, gx, gy = _circumcircle(P, V[t, 0], V[t, 1], V[t, 2])
     if not (math.isfinite(r) and r >= lim[0]):
         return -1.0, cx, cy, -1
     status, where = walk(P, V, N, S, t, gx, gy, cx, cy, n_slots + 1)
@@ -173,7 +182,7 @@ def _visible_circumcentre(P, V, N, S, SA, SB, salive, n_segs, alive, n_slots, t,
         for s in range(n_segs):
             if salive[s] and segments_touch(gx, gy, cx, cy, P[SA[s], 0], P[SA[s], 1], P[SB[s], 0], P[SB[s], 1]):
                 return -1.0, cx, cy, -1
-        where = locate(P, V, alive, n_slots, cx, cy)
+        where = locate(P, V, N, alive, n_slots, t, cx, cy, n_slots + 1)
     elif status == 0:
         return -1.0, cx, cy, -1
     gap = _gap(P, V, N, S, SA, SB, salive, n_segs, where, cx, cy, lim[4], seen)
@@ -182,48 +191,64 @@ def _visible_circumcentre(P, V, N, S, SA, SB, salive, n_segs, alive, n_slots, t,
     return r, cx, cy, where
 
 
-@njit(cache=True)
-def _before(HK, a, b):
-    """Heap order: ``HK[a]`` before ``HK[b]`` lexicographically on ``(-value, x, y)``."""
-    for c in range(3):
-        if HK[a, c] != HK[b, c]:
-            return HK[a, c] < HK[b, c]
-    return False
+@njit(cache=True, _nrt=False)
+def _before(a0, a1, a2, b0, b1, b2):
+    """Heap order: key ``(a0, a1, a2)`` before ``(b0, b1, b2)``, lexicographically on ``(-value, x, y)``."""
+    if a0 != b0:
+        return a0 < b0
+    if a1 != b1:
+        return a1 < b1
+    return a2 < b2
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _swap(HK, HI, a, b):
     for c in range(3):
         HK[a, c], HK[b, c] = HK[b, c], HK[a, c]
         HI[a, c], HI[b, c] = HI[b, c], HI[a, c]
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _sift_down(HK, HI, n, i):
+    """Move the entry at ``i`` down to its place among ``[:n]``.
+
+    The entries it passes move up one level each and it is written once at
+    the end: the same array as swapping it down level by level.
+    """
+    k0, k1, k2 = HK[i, 0], HK[i, 1], HK[i, 2]
+    t, version, s = HI[i, 0], HI[i, 1], HI[i, 2]
     while True:
         c = 2 * i + 1
         if c >= n:
-            return
-        if c + 1 < n and _before(HK, c + 1, c):
+            break
+        if c + 1 < n and _before(HK[c + 1, 0], HK[c + 1, 1], HK[c + 1, 2], HK[c, 0], HK[c, 1], HK[c, 2]):
             c += 1
-        if not _before(HK, c, i):
-            return
-        _swap(HK, HI, c, i)
+        if not _before(HK[c, 0], HK[c, 1], HK[c, 2], k0, k1, k2):
+            break
+        for q in range(3):  # (no helper call in the loop: numba would count references to HK and HI)
+            HK[i, q], HI[i, q] = HK[c, q], HI[c, q]
         i = c
+    HK[i, 0], HK[i, 1], HK[i, 2] = k0, k1, k2
+    HI[i, 0], HI[i, 1], HI[i, 2] = t, version, s
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _push(HK, HI, n, value, x, y, t, version, s):
-    HK[n, 0], HK[n, 1], HK[n, 2] = -value, x, y
-    HI[n, 0], HI[n, 1], HI[n, 2] = t, version, s
+    """Add an entry to the heap ``[:n]``, moving the entries above it down as in :func:`_sift_down`; the new size."""
     i = n
-    while i > 0 and _before(HK, i, (i - 1) // 2):
-        _swap(HK, HI, i, (i - 1) // 2)
-        i = (i - 1) // 2
+    while i > 0:
+        parent = (i - 1) // 2
+        if not _before(-value, x, y, HK[parent, 0], HK[parent, 1], HK[parent, 2]):
+            break
+        for q in range(3):
+            HK[i, q], HI[i, q] = HK[parent, q], HI[parent, q]
+        i = parent
+    HK[i, 0], HK[i, 1], HK[i, 2] = -value, x, y
+    HI[i, 0], HI[i, 1], HI[i, 2] = t, version, s
     return n + 1
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _pop(HK, HI, n):
     """Remove the top (it is copied to row ``n - 1``); the new size."""
     _swap(HK, HI, 0, n - 1)
@@ -253,7 +278,7 @@ def _grown(a, size):
     return out
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _push_candidates(P, V, N, S, SA, SB, salive, n_segs, alive, ver, n_slots, t, lim, seen, HK, HI, nh):
     """Push the candidates of triangle ``t`` (its circumcentre, its constraint midpoints); the new heap size."""
     r, cx, cy, _ = _visible_circumcentre(P, V, N, S, SA, SB, salive, n_segs, alive, n_slots, t, lim, seen)
@@ -298,17 +323,24 @@ def _insert_all(P0, T0, SEG0, lim):
     values = np.zeros(n)
     cav = np.empty(_CAVITY, dtype=np.int64)
     edges = np.empty((_CAVITY + 2, 4), dtype=np.int64)
-    slots = np.empty(_CAVITY + 2, dtype=np.int64)
+    slots = np.arange(n_slots)
     seen = np.empty(_NEAR_TRIANGLES, dtype=np.int64)
     HK = np.empty((4 * n_slots + 16, 3))
     HI = np.empty((4 * n_slots + 16, 3), dtype=np.int64)
-    nh = 0
-    for t in range(n_slots):
-        if nh + 4 > len(HK):
-            HK, HI = _grown(HK, 2 * len(HK)), _grown(HI, 2 * len(HI))
-        nh = _push_candidates(P, V, N, S, SA, SB, salive, n_segs, alive, ver, n_slots, t, lim, seen, HK, HI, nh)
-    stamp = 0
-    while nh > 0:
+    nh, m, stamp = 0, n_slots, 0
+    while True:
+        # Push the candidates of the new triangles slots[:m] (at first: every triangle).
+        if nh + 4 * m > len(HK):
+            nh = _compact(HK, HI, nh, ver, salive)
+            if 2 * (nh + 4 * m) > len(HK):
+                HK, HI = _grown(HK, 2 * len(HK) + 4 * m), _grown(HI, 2 * len(HI) + 4 * m)
+        for f in range(m):
+            nh = _push_candidates(
+                P, V, N, S, SA, SB, salive, n_segs, alive, ver, n_slots, slots[f], lim, seen, HK, HI, nh
+            )
+        m = 0
+        if nh == 0:
+            break
         nh = _pop(HK, HI, nh)
         t, version, s = HI[nh, 0], HI[nh, 1], HI[nh, 2]
         if ver[t] != version or (s >= 0 and not salive[s]):
@@ -334,8 +366,10 @@ def _insert_all(P0, T0, SEG0, lim):
             cav = _grown(cav, 2 * len(cav))
             stamp += 1
             k = cavity(P, V, N, S, start, x, y, mark, stamp, cav)
+        if k + 2 > len(edges):
+            edges = _grown(edges, 2 * k + 2)
         if k + 2 > len(slots):
-            edges, slots = _grown(edges, 2 * k + 2), _grown(slots, 2 * k + 2)
+            slots = _grown(slots, 2 * k + 2)
         m = cavity_boundary(V, N, S, cav, k, s, mark, stamp, edges)
         if m < 0:
             return _BROKEN, P, V, SEG0, values
@@ -371,14 +405,6 @@ def _insert_all(P0, T0, SEG0, lim):
                     elif w == b:
                         S[t, e] = n_segs + 1
             n_segs += 2
-        if nh + 4 * m > len(HK):
-            nh = _compact(HK, HI, nh, ver, salive)
-            if 2 * (nh + 4 * m) > len(HK):
-                HK, HI = _grown(HK, 2 * len(HK) + 4 * m), _grown(HI, 2 * len(HI) + 4 * m)
-        for f in range(m):
-            nh = _push_candidates(
-                P, V, N, S, SA, SB, salive, n_segs, alive, ver, n_slots, slots[f], lim, seen, HK, HI, nh
-            )
     live = np.flatnonzero(alive[:n_slots])
     segs = np.flatnonzero(salive[:n_segs])
     out_segments = np.empty((len(segs), 2), dtype=np.int64)
