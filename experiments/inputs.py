@@ -58,6 +58,7 @@ INPUTS = (
     Input("NURBS roof (JSON)", "nurbs_roof.json", 3.0),
     Input("NURBS roof (Rhino .3dm)", "roof.3dm", 3.0, object="roof"),
     Input("NURBS roof with two openings (JSON holes)", "nurbs_roof_openings.json", 3.0),
+    Input("vault mesh with a skylight (.obj)", "roof_mesh.obj", 1.5),
 )
 
 #: The full run: the default optimisation on the default grid.  The quick run
