@@ -78,7 +78,7 @@ LM_DIAGONAL_FLOOR = 1e-12
 #: times the factorised one is solved by conjugate gradients preconditioned
 #: with the kept factor, to a relative residual ``LM_RETRY_RTOL`` within
 #: ``LM_RETRY_ITERATIONS`` iterations (else the system is factorised anew).
-#: Tests: tests/test_optimize.py.
+#: Tests: tests/test_solver.py.
 LM_RETRY_RATIO = 8.0
 LM_RETRY_RTOL = 1e-6
 LM_RETRY_ITERATIONS = 30
