@@ -12,7 +12,13 @@ instead of an inner iterative solve:
 * step: ``(J_F^T J_F + lambda D_F) s_F = -g_F`` over the free variables ``F``,
   ``D = diag(J^T J)`` (Marquardt's scaling, floored at :data:`~equimesh.tolerance.LM_DIAGONAL_FLOOR`
   of its largest entry so that a variable no residual sees stays regular),
-  factorised by SuperLU with a minimum-degree ordering of ``A + A^T``;
+  factorised by SuperLU in symmetric mode, in a minimum-degree order of the
+  normal matrix's structure computed once (:class:`_Ordering`: the
+  structure is the mesh's at every iteration);
+* a rejected step is retried with a larger ``lambda``; up to
+  ``LM_RETRY_RATIO`` times the factorised damping, the retry is solved by
+  conjugate gradients preconditioned with the kept factor instead of a new
+  factorisation (:class:`_DampedSystem`);
 * bounds by projection: a variable on a bound whose gradient points outwards is
   held there for the step (it leaves ``F``), and the step is clipped to the box;
 * acceptance: the gain ratio ``rho = actual / predicted reduction`` of the
@@ -34,7 +40,9 @@ import numpy as np
 import scipy.sparse
 import scipy.sparse.linalg
 
-from ..tolerance import LM_DIAGONAL_FLOOR, LM_INITIAL_DAMPING
+from ..tolerance import (
+    LM_DIAGONAL_FLOOR, LM_INITIAL_DAMPING, LM_RETRY_ITERATIONS, LM_RETRY_RATIO, LM_RETRY_RTOL,
+)
 
 
 @dataclass(frozen=True)
@@ -60,23 +68,26 @@ def least_squares(residuals, jacobian, x0, lower, upper, *, accept=None, gtol=1e
     r = residuals(x)
     cost = 0.5 * float(r @ r)
     evaluations, nu, lam = 1, 2.0, LM_INITIAL_DAMPING
+    ordering = _Ordering()
     for iteration in range(max_iterations):
         jac = jacobian(x)
         g = jac.T @ r
         projected = x - np.clip(x - g, lower, upper)
         if np.all(np.abs(projected) <= gtol):
             return Solution(x, cost, iteration, evaluations, True, "projected gradient below gtol")
-        normal = (jac.T @ jac).tocsc()
-        diag = normal.diagonal()
-        diag = np.maximum(diag, LM_DIAGONAL_FLOOR * max(float(diag.max()), 1.0))
         held = ((x <= lower) & (g > 0)) | ((x >= upper) & (g < 0))
         free = np.flatnonzero(~held)
-        reduced = normal[free][:, free] if held.any() else normal
+        order = ordering.of(jac, free)
+        permuted = jac[:, free[order]]
+        normal = (permuted.T @ permuted).tocsc()
+        diag = normal.diagonal()
+        diag = np.maximum(diag, LM_DIAGONAL_FLOOR * max(float(diag.max()), 1.0))
+        rhs = -g[free[order]]
+        damped = _DampedSystem(normal, diag)
         retried = False
         while True:
-            system = (reduced + scipy.sparse.diags(lam * diag[free])).tocsc()
             step = np.zeros_like(x)
-            step[free] = _solve(system, -g[free])
+            step[free[order]] = damped.solve(lam, rhs)
             x_new = np.clip(x + step, lower, upper)
             s = x_new - x
             js = jac @ s
@@ -104,9 +115,64 @@ def least_squares(residuals, jacobian, x0, lower, upper, *, accept=None, gtol=1e
     return Solution(x, cost, max_iterations, evaluations, False, f"stopped after {max_iterations} iterations")
 
 
-def _solve(matrix, rhs):
-    """``matrix^-1 rhs`` for a sparse symmetric positive definite ``matrix`` (SuperLU, symmetric mode)."""
-    lu = scipy.sparse.linalg.splu(
-        matrix, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0, options={"SymmetricMode": True}
-    )
-    return lu.solve(rhs)
+class _DampedSystem:
+    """Solves of ``(N + lambda D) s = b`` for one normal matrix ``N`` and several dampings ``lambda``.
+
+    The first solve factorises ``N + lambda_0 D`` (SuperLU in symmetric
+    mode, diagonal pivots, the natural order: the matrix comes in
+    :class:`_Ordering`'s fill-reducing order).  A retry after a rejected
+    step only raises ``lambda``; for ``lambda <= LM_RETRY_RATIO lambda_0``
+    the kept factor preconditions conjugate gradients on the new system
+    (the preconditioned matrix has its eigenvalues in ``[1, lambda / lambda_0]``,
+    so a few iterations reach ``LM_RETRY_RTOL``) instead of a new
+    factorisation; otherwise, or if CG does not get there in
+    ``LM_RETRY_ITERATIONS``, the new system is factorised.
+    """
+
+    def __init__(self, normal, diag):
+        self.normal, self.diag = normal, diag
+        self._lu, self._lam = None, None
+
+    def solve(self, lam, rhs):
+        if self._lu is not None and lam <= LM_RETRY_RATIO * self._lam:
+            system = self.normal + scipy.sparse.diags(lam * self.diag)
+            pre = scipy.sparse.linalg.LinearOperator(system.shape, matvec=self._lu.solve, dtype=float)
+            z, info = scipy.sparse.linalg.cg(
+                system, rhs, x0=self._lu.solve(rhs), rtol=LM_RETRY_RTOL, atol=0.0, maxiter=LM_RETRY_ITERATIONS, M=pre
+            )
+            if info == 0:
+                return z
+        self._lu = _factorise((self.normal + scipy.sparse.diags(lam * self.diag)).tocsc(), "NATURAL")
+        self._lam = lam
+        return self._lu.solve(rhs)
+
+
+class _Ordering:
+    """A fill-reducing order of the free variables, computed once and reused.
+
+    The normal matrix ``J_F^T J_F`` has the sparsity of the mesh (two
+    variables per node, coupled through the residuals' elements), the same
+    at every iteration up to entries that happen to vanish (an inactive
+    barrier row), so one minimum-degree ordering of its structure (SuperLU's
+    ``MMD_AT_PLUS_A``) serves every iteration; it is recomputed only when
+    the set of free variables changes (a bound becomes held or released).
+    Measured on the reference dome at 101,654 members: the ordering was
+    about a third of each factorisation's time.
+    """
+
+    def __init__(self):
+        self._free, self._order = None, None
+
+    def of(self, jac, free):
+        """Positions of ``free`` in elimination order, for the Jacobian ``jac`` (structure only)."""
+        if self._free is None or not np.array_equal(free, self._free):
+            structure = abs(jac[:, free]).tocsc()
+            structure.data[:] = 1.0
+            pattern = (structure.T @ structure + scipy.sparse.identity(len(free))).tocsc()
+            self._free, self._order = free, np.argsort(_factorise(pattern, "MMD_AT_PLUS_A").perm_c)
+        return self._order
+
+
+def _factorise(matrix, ordering):
+    """SuperLU of a symmetric positive definite CSC ``matrix`` in symmetric mode (diagonal pivots), ``ordering`` its ``permc_spec``."""
+    return scipy.sparse.linalg.splu(matrix, permc_spec=ordering, diag_pivot_thresh=0.0, options={"SymmetricMode": True})

@@ -132,14 +132,21 @@ def edge_length_terms(problem, edges):
     assemble = ElementJacobian(e, len(problem.uv), 2, problem.variables)
     surface = problem.surface
 
+    last = {}
+
+    def points(x):
+        """``X^s`` at every node for ``x``; the last is kept: the solver evaluates the Jacobian where it last evaluated the residuals."""
+        if "x" not in last or not np.array_equal(last["x"], x):
+            last.update(x=np.array(x), points=evaluate(surface, problem.uv_of(x)))
+        return last["points"]
+
     def lengths(x):
-        p = evaluate(surface, problem.uv_of(x))
+        p = points(x)
         return np.linalg.norm(p[e[:, 1]] - p[e[:, 0]], axis=1)
 
     def jacobian(x):
-        uv = problem.uv_of(x)
-        p = evaluate(surface, uv)
-        su, sv = derivatives(surface, uv)
+        p = points(x)
+        su, sv = derivatives(surface, problem.uv_of(x))
         d = p[e[:, 1]] - p[e[:, 0]]
         length = np.linalg.norm(d, axis=1)
         unit = d / np.maximum(length, np.finfo(float).tiny)[:, None]

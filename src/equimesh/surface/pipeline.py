@@ -70,8 +70,10 @@ SLIDING_OBJECTIVES = ("bounded",)
 #: Default node limits with an optimisation, per objective, measured with the
 #: sparse Levenberg-Marquardt solver on the reference dome (15 x 15 grid,
 #: default placement) on this project's busy 2-core machine (docs/decisions.md,
-#: "A solver that scales"): "paper" took 11 s at 5,840 nodes (17,333 members)
-#: and 344 s at 34,031 nodes (101,654 members); "bounded" 3 s at about 370
+#: "A solver that scales", load average 10 to 12): "paper" took 21.5 s at 5,840
+#: nodes (17,333 members) and 496 s at 34,031 nodes (101,654 members), n^1.78,
+#: so about 2 minutes at 15,000 nodes (an idle machine is 3-5 times faster:
+#: 118.8 s at 34,031 nodes before the last speed-up); "bounded" 3 s at about 370
 #: nodes and 100 s at 1,438 nodes, and did not reach [l, 2l] within the
 #: solver's iteration guard at 5,840 nodes.
 MAX_OPTIMIZE_NODES = {"paper": 15_000, "bounded": 1_500}
