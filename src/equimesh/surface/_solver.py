@@ -47,10 +47,11 @@ class Solution:
     evaluations: int
     converged: bool
     message: str
+    damping: float
 
 
 def least_squares(residuals, jacobian, x0, lower, upper, *, accept=None, gtol=1e-10, xtol=1e-10, ftol=1e-12,
-                  max_iterations=500):
+                  max_iterations=500, damping=LM_INITIAL_DAMPING):
     """Minimise ``|residuals(x)|^2 / 2`` over the box ``[lower, upper]`` (see the module docstring).
 
     ``x0`` must lie in the box and satisfy ``accept`` (if given); every
@@ -59,13 +60,13 @@ def least_squares(residuals, jacobian, x0, lower, upper, *, accept=None, gtol=1e
     x = np.clip(np.asarray(x0, dtype=float), lower, upper)
     r = residuals(x)
     cost = 0.5 * float(r @ r)
-    evaluations, nu, lam = 1, 2.0, LM_INITIAL_DAMPING
+    evaluations, nu, lam = 1, 2.0, damping
     for iteration in range(max_iterations):
         jac = jacobian(x)
         g = jac.T @ r
         projected = x - np.clip(x - g, lower, upper)
         if np.all(np.abs(projected) <= gtol):
-            return Solution(x, cost, iteration, evaluations, True, "projected gradient below gtol")
+            return Solution(x, cost, iteration, evaluations, True, "projected gradient below gtol", lam)
         normal = (jac.T @ jac).tocsc()
         diag = normal.diagonal()
         diag = np.maximum(diag, LM_DIAGONAL_FLOOR * max(float(diag.max()), 1.0))
@@ -92,16 +93,16 @@ def least_squares(residuals, jacobian, x0, lower, upper, *, accept=None, gtol=1e
                 nu = 2.0
                 x, r, old, cost = x_new, r_new, cost, cost_new
                 if small_step and not retried:
-                    return Solution(x, cost, iteration + 1, evaluations, True, "step below xtol")
+                    return Solution(x, cost, iteration + 1, evaluations, True, "step below xtol", lam)
                 if actual <= ftol * old and predicted <= ftol * old and not retried:
-                    return Solution(x, cost, iteration + 1, evaluations, True, "relative reduction below ftol")
+                    return Solution(x, cost, iteration + 1, evaluations, True, "relative reduction below ftol", lam)
                 break
             if small_step and lam >= 1.0 / LM_DIAGONAL_FLOOR:
-                return Solution(x, cost, iteration + 1, evaluations, True, "no further reduction: step below xtol")
+                return Solution(x, cost, iteration + 1, evaluations, True, "no further reduction: step below xtol", lam)
             lam *= nu
             nu *= 2.0
             retried = True
-    return Solution(x, cost, max_iterations, evaluations, False, f"stopped after {max_iterations} iterations")
+    return Solution(x, cost, max_iterations, evaluations, False, f"stopped after {max_iterations} iterations", lam)
 
 
 def _solve(matrix, rhs):
