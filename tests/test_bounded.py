@@ -28,37 +28,31 @@ def in_bounds(mesh):
     return bool(np.all((ratio >= 1.0) & (ratio <= 2.0)))
 
 
-#: The smallest share within 0.5 % of l measured on the generated domes below
-#: (0.477 at rise 12 to 15, l = 4.5; docs/decisions.md, "The bounded objective").
-GENERATED_FLOOR = 0.4
-
-
 @settings(max_examples=3, deadline=None)
 @given(
     rise=st.floats(min_value=2.0, max_value=15.0),
     seed=st.integers(0, 2**32 - 1),
     l=st.floats(min_value=4.5, max_value=5.0),
 )
-def test_bounded_keeps_members_in_bounds(rise, seed, l):
-    """Mildly curved Bezier patches: 100 % of the members in [l, 2l], and a large share within 0.5 % of l.
+def test_bounded_keeps_members_in_bounds_and_reaches_the_papers_share(rise, seed, l):
+    """Mildly curved Bezier patches: 100 % of the members in [l, 2l], and at least the paper's share within 0.5 % of l.
 
-    Not asserted (the issue asks for it, it does not hold): a share at least
-    the paper's.  On domes of rise 4 to 8 over 60 the paper's objective
-    reaches 0.73 and 0.65 with members from 0.64 l to 2.4 l; the bounded one,
-    which must keep them in [l, 2l], 0.70 and 0.54 (docs/decisions.md).
+    On the domes of rise 2, 4, 8, 12, 15 over 60 (seed 0, l = 4.5) the paper's
+    objective reaches 0.73, 0.73, 0.65, 0.31, 0.20 with members from 0.6 l to
+    2.4 l, the bounded one 0.78, 0.75, 0.71, 0.66, 0.64 (docs/decisions.md).
     """
     surface = dome(rise=rise, seed=seed, jitter=1.0)
-    bounded = mesh_surface(surface, l, optimize="bounded", placement="default")
+    bounded, paper = (mesh_surface(surface, l, optimize=o, placement="default") for o in ("bounded", "paper"))
     assert in_bounds(bounded)
-    assert share_exact(bounded) >= GENERATED_FLOOR
+    assert share_exact(bounded) >= share_exact(paper)
 
 
 def test_bounded_beats_paper_on_a_doubly_curved_dome():
-    """Rise 15 over 60: the paper's objective leaves 0.18 of the members within 0.5 % of l, bounded 0.48."""
+    """Rise 15 over 60: the paper's objective leaves 0.20 of the members within 0.5 % of l, bounded 0.64."""
     surface = dome(rise=15.0, seed=0, jitter=1.0)
     bounded, paper = (mesh_surface(surface, 4.5, optimize=o, placement="default") for o in ("bounded", "paper"))
     assert in_bounds(bounded) and not in_bounds(paper)
-    assert share_exact(bounded) >= share_exact(paper) + 0.2
+    assert share_exact(bounded) >= share_exact(paper) + 0.4
 
 
 def test_developable_vault_reaches_three_quarters():

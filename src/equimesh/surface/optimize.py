@@ -51,7 +51,7 @@ from ..mesh import G1
 from .chart import domain_of
 from .regularity import derivatives, evaluate
 from ..tolerance import (
-    BOUNDED_FTOL, BOUNDED_OFFSET, BOUNDED_PENALTY, BOUNDED_PULL, BOUNDED_ROUND_ITERATIONS, BOUNDED_ROUNDS,
+    BOUNDED_FTOL, BOUNDED_LOSS_TOL, BOUNDED_OFFSET, BOUNDED_PENALTY, BOUNDED_PULL, BOUNDED_ROUND_ITERATIONS, BOUNDED_ROUNDS,
     BOUNDED_SCALE, LM_INITIAL_DAMPING, PAPER_FTOL,
 )
 
@@ -182,20 +182,25 @@ def bounded_objective(problem):
     from the target ``t = 1 + BOUNDED_OFFSET`` (in units of l):
 
     * the hard constraint ``l <= L_e <= 2 l`` for every member (Theorems 1 and
-      3 kept on the surface), as :attr:`Objective.feasible`; the solver never
-      leaves it once reached, and the result must satisfy it;
+      3 kept on the surface): the result must satisfy it (checked here, and
+      again by the pipeline);
     * rounds of iteratively reweighted least squares, each ``r_e = w_e (L_e / l - t_e)``
       with weights and targets frozen at the round's start: a member outside
       ``[t, 2 - BOUNDED_OFFSET]`` is pulled to the nearer end with the weight
       :data:`~equimesh.tolerance.BOUNDED_PULL`, a member inside is pulled to
       ``t`` with the Cauchy weight ``1 / sqrt(1 + (d_e / s)^2)``,
-      ``d_e = L_e / l - t``, ``s = BOUNDED_SCALE``.  A member that cannot be
+      ``d_e = L_e / l - t``, ``s = BOUNDED_SCALE`` (majorise-minimise for the
+      Cauchy loss ``sum log(1 + (d_e / s)^2)``).  A member that cannot be
       made exact ends far outside ``s`` with a small weight and stops pulling
       on the others; a member pushed below ``t`` is pulled back up, ten times
       harder, next round.  Each round takes at most
       :data:`~equimesh.tolerance.BOUNDED_ROUND_ITERATIONS` solver iterations
-      (warm-started damping), and the rounds stop at the first one that ends
-      with every member in [l, 2l];
+      (the damping warm-started from the previous round).  The rounds do not
+      lock the bounds in (a step may push a member out, the next round pulls
+      it back; locking them in stalled the sparsity, docs/decisions.md), and
+      they stop at the first round that ends with every member in [l, 2l] and
+      a Cauchy loss less than :data:`~equimesh.tolerance.BOUNDED_LOSS_TOL`
+      (relative) below its start;
     * after :data:`~equimesh.tolerance.BOUNDED_ROUNDS` rounds without that, a
       last stage adds to the Cauchy terms a smoothed one-sided penalty of slope
       ``BOUNDED_PENALTY`` below ``1 + BOUNDED_OFFSET / 2`` and above
@@ -217,6 +222,10 @@ def bounded_objective(problem):
         ratio = lengths(x) / l
         out = int(np.count_nonzero((ratio < 1.0) | (ratio > 2.0)))
         return f"{out} of {len(ratio)} members outside [l, 2l] (lengths from {ratio.min():.6g} l to {ratio.max():.6g} l)"
+
+    def cauchy_loss(x):
+        """The loss that the rounds decrease (majorise-minimise): ``sum log(1 + (d_e / s)^2)``."""
+        return float(np.sum(np.log1p(((lengths(x) / l - target) / BOUNDED_SCALE) ** 2)))
 
     def cauchy_weight(ratio):
         return 1.0 / np.sqrt(1.0 + ((ratio - target) / BOUNDED_SCALE) ** 2)
@@ -245,13 +254,13 @@ def bounded_objective(problem):
         weight = np.where(goal == ratio, cauchy_weight(ratio), BOUNDED_PULL)
 
         def refine(x):
-            if feasible(x):
+            if feasible(x) and cauchy_loss(x) >= (1.0 - BOUNDED_LOSS_TOL) * cauchy_loss(x_start):
                 return None
             return round_(k + 1, x) if k + 1 < BOUNDED_ROUNDS else last_stage(x)
 
         return Objective(
             *weighted(weight, np.where(goal == ratio, target, goal)),
-            f"members into [l, 2l] and to {target:g} l, round {k + 1}", feasible, violation, refine, BOUNDED_FTOL,
+            f"members into [l, 2l] and to {target:g} l, round {k + 1}", None, None, refine, BOUNDED_FTOL,
             BOUNDED_ROUND_ITERATIONS,
         )
 
@@ -379,10 +388,10 @@ def optimize_uv(
         cost0 = _cost(obj, x0)
         return UVOptimization(uv, cost0, cost0, 0, 0, True, "no free nodes", objective)
     tri = None if triangles is None else np.asarray(triangles, dtype=np.int64).reshape(-1, 3)
-    guard = _Guard(problem, tri, obj.feasible)
     box = (np.tile(lower, len(uv))[problem.variables], np.tile(upper, len(uv))[problem.variables])
     x, nfev, njev, damping = x0, 0, 0, LM_INITIAL_DAMPING
     while True:
+        guard = _Guard(problem, tri, obj.feasible, x)
         solve = obj if tri is None or area_floor <= 0 else _with_barrier(problem, obj, tri, area_floor, x)
         tol = obj.ftol if ftol is None else ftol
         while True:
@@ -438,9 +447,9 @@ class _Guard:
     it tracks whether the current iterate is feasible.
     """
 
-    def __init__(self, problem, triangles, feasible):
+    def __init__(self, problem, triangles, feasible, x):
         self.problem, self.triangles, self.feasible = problem, triangles, feasible
-        self.inside = feasible is not None and feasible(problem.x0)
+        self.inside = feasible is not None and feasible(x)
 
     def __call__(self, x):
         if self.triangles is not None and len(flipped_triangles(self.problem.uv, self.problem.uv_of(x), self.triangles)):
