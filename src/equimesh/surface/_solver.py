@@ -39,7 +39,7 @@ from ..tolerance import LM_DIAGONAL_FLOOR, LM_INITIAL_DAMPING
 
 @dataclass(frozen=True)
 class Solution:
-    """Result of :func:`least_squares`: the point, its cost and why the solver stopped."""
+    """Result of :func:`least_squares`: the point, its cost, why the solver stopped and its last damping ``lambda``."""
 
     x: np.ndarray
     cost: float
@@ -55,7 +55,9 @@ def least_squares(residuals, jacobian, x0, lower, upper, *, accept=None, gtol=1e
     """Minimise ``|residuals(x)|^2 / 2`` over the box ``[lower, upper]`` (see the module docstring).
 
     ``x0`` must lie in the box and satisfy ``accept`` (if given); every
-    iterate, and so the result, then does too.
+    iterate, and so the result, then does too.  ``damping`` is the initial
+    ``lambda``; a continuation passes the previous solve's final
+    :attr:`Solution.damping` so that it does not pay again for rejected steps.
     """
     x = np.clip(np.asarray(x0, dtype=float), lower, upper)
     r = residuals(x)
