@@ -81,8 +81,10 @@ LM_DIAGONAL_FLOOR = 1e-12
 #: ``BOUNDED_PULL`` and the others with a Cauchy weight of scale
 #: ``BOUNDED_SCALE`` (a relative deviation); each round takes at most
 #: ``BOUNDED_ROUND_ITERATIONS`` solver iterations with the tolerance
-#: ``BOUNDED_FTOL``, and after ``BOUNDED_ROUNDS`` rounds without every member in
-#: [l, 2l] a last stage adds a one-sided penalty of slope ``BOUNDED_PENALTY``
+#: ``BOUNDED_FTOL``; they stop once every member is in [l, 2l] and a round changes
+#: the Cauchy loss by less than ``BOUNDED_LOSS_TOL`` (relative).  After
+#: ``BOUNDED_ROUNDS`` rounds without that, a last stage restarts from the
+#: remapped mesh with a one-sided penalty of slope ``BOUNDED_PENALTY``
 #: (below ``l (1 + BOUNDED_OFFSET / 2)``, above ``l (2 - BOUNDED_OFFSET)``, a hinge
 #: smoothed over ``BOUNDED_OFFSET / 4``), solved to convergence.  The paper's
 #: objective is solved to ``PAPER_FTOL``.  Measured on the reference dome at

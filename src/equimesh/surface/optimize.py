@@ -110,6 +110,8 @@ class Objective:
     continuation from the solution ``x`` of this one, or None when done.
     ``ftol`` is the solver's relative-reduction tolerance for this objective and
     ``max_iterations`` its iteration limit (a round of a continuation need not converge).
+    ``start`` (optional) restarts the solve there instead of at the previous
+    objective's solution (a fallback that gives up the continuation's path).
     """
 
     residuals: Callable[[np.ndarray], np.ndarray]
@@ -120,6 +122,7 @@ class Objective:
     refine: Callable[[np.ndarray], object] = None
     ftol: float = PAPER_FTOL
     max_iterations: int = 500
+    start: np.ndarray = None
 
 
 def edge_length_terms(problem, edges):
@@ -199,13 +202,15 @@ def bounded_objective(problem):
       lock the bounds in (a step may push a member out, the next round pulls
       it back; locking them in stalled the sparsity, docs/decisions.md), and
       they stop at the first round that ends with every member in [l, 2l] and
-      a Cauchy loss less than :data:`~equimesh.tolerance.BOUNDED_LOSS_TOL`
-      (relative) below its start;
+      a Cauchy loss within :data:`~equimesh.tolerance.BOUNDED_LOSS_TOL`
+      (relative) of its start's;
     * after :data:`~equimesh.tolerance.BOUNDED_ROUNDS` rounds without that, a
-      last stage adds to the Cauchy terms a smoothed one-sided penalty of slope
-      ``BOUNDED_PENALTY`` below ``1 + BOUNDED_OFFSET / 2`` and above
-      ``2 - BOUNDED_OFFSET`` and is solved to convergence; if it ends outside
-      [l, 2l] too, :func:`optimize_uv` refuses the surface.
+      last stage restarts from the remapped mesh (a member the rounds cannot
+      pull in was observed): Cauchy terms plus a smoothed one-sided penalty of
+      slope ``BOUNDED_PENALTY`` below ``1 + BOUNDED_OFFSET / 2`` and above
+      ``2 - BOUNDED_OFFSET``, solved to convergence with the bounds locked in
+      once reached; if it ends outside [l, 2l] too, :func:`optimize_uv`
+      refuses the surface.
 
     The target is ``l (1 + BOUNDED_OFFSET)``, not ``l``: exact members sit at
     the lower bound otherwise, where any rounding would put them outside [l, 2l].
@@ -254,9 +259,10 @@ def bounded_objective(problem):
         weight = np.where(goal == ratio, cauchy_weight(ratio), BOUNDED_PULL)
 
         def refine(x):
-            if feasible(x) and cauchy_loss(x) >= (1.0 - BOUNDED_LOSS_TOL) * cauchy_loss(x_start):
+            settled = abs(cauchy_loss(x) - cauchy_loss(x_start)) <= BOUNDED_LOSS_TOL * cauchy_loss(x_start)
+            if feasible(x) and settled:
                 return None
-            return round_(k + 1, x) if k + 1 < BOUNDED_ROUNDS else last_stage(x)
+            return round_(k + 1, x) if k + 1 < BOUNDED_ROUNDS else last_stage()
 
         return Objective(
             *weighted(weight, np.where(goal == ratio, target, goal)),
@@ -264,7 +270,7 @@ def bounded_objective(problem):
             BOUNDED_ROUND_ITERATIONS,
         )
 
-    def last_stage(x_start):
+    def last_stage():
         low, smooth = 1.0 + 0.5 * BOUNDED_OFFSET, 0.25 * BOUNDED_OFFSET
 
         def penalty(ratio):
@@ -277,9 +283,9 @@ def bounded_objective(problem):
             return BOUNDED_PENALTY * value, BOUNDED_PENALTY * slope
 
         return Objective(
-            *weighted(cauchy_weight(lengths(x_start) / l), target, penalty),
+            *weighted(cauchy_weight(lengths(problem.x0) / l), target, penalty),
             f"members in [l, 2l] by a penalty, Cauchy loss on L / l - {target:g}", feasible, violation, None,
-            BOUNDED_FTOL,
+            BOUNDED_FTOL, start=problem.x0,
         )
 
     return round_(0, problem.x0)
@@ -391,6 +397,7 @@ def optimize_uv(
     box = (np.tile(lower, len(uv))[problem.variables], np.tile(upper, len(uv))[problem.variables])
     x, nfev, njev, damping = x0, 0, 0, LM_INITIAL_DAMPING
     while True:
+        x = x if obj.start is None else obj.start
         guard = _Guard(problem, tri, obj.feasible, x)
         solve = obj if tri is None or area_floor <= 0 else _with_barrier(problem, obj, tri, area_floor, x)
         tol = obj.ftol if ftol is None else ftol
