@@ -28,8 +28,9 @@ def in_bounds(mesh):
     return bool(np.all((ratio >= 1.0) & (ratio <= 2.0)))
 
 
-#: The smallest share within 0.5 % of l measured on the generated domes below
-#: (0.477 at rise 12 to 15, l = 4.5; docs/decisions.md, "The bounded objective").
+#: The smallest share within 0.5 % of l measured on 25 generated domes like
+#: those below (0.462, the one that needs the last stage; docs/decisions.md,
+#: "The bounded objective").
 GENERATED_FLOOR = 0.4
 
 
@@ -42,10 +43,9 @@ GENERATED_FLOOR = 0.4
 def test_bounded_keeps_members_in_bounds(rise, seed, l):
     """Mildly curved Bezier patches: 100 % of the members in [l, 2l], and a large share within 0.5 % of l.
 
-    Not asserted (the issue asks for it, it does not hold): a share at least
-    the paper's.  On domes of rise 4 to 8 over 60 the paper's objective
-    reaches 0.73 and 0.65 with members from 0.64 l to 2.4 l; the bounded one,
-    which must keep them in [l, 2l], 0.70 and 0.54 (docs/decisions.md).
+    Not asserted here: a share at least the paper's.  It held on 23 of 25
+    generated patches; on the other two bounded reached 0.699 against 0.714
+    and 0.462 against 0.654 (the last stage's case; docs/decisions.md).
     """
     surface = dome(rise=rise, seed=seed, jitter=1.0)
     bounded = mesh_surface(surface, l, optimize="bounded", placement="default")
@@ -53,12 +53,29 @@ def test_bounded_keeps_members_in_bounds(rise, seed, l):
     assert share_exact(bounded) >= GENERATED_FLOOR
 
 
+@pytest.mark.parametrize("rise", [2.0, 4.0, 8.0, 12.0, 15.0])
+def test_bounded_reaches_the_papers_share_on_the_stand_in_domes(rise):
+    """Rise 2 to 15 over 60, l = 4.5: paper 0.73, 0.73, 0.65, 0.31, 0.20; bounded 0.80, 0.77, 0.72, 0.67, 0.66."""
+    surface = dome(rise=rise, seed=0, jitter=1.0)
+    bounded, paper = (mesh_surface(surface, 4.5, optimize=o, placement="default") for o in ("bounded", "paper"))
+    assert in_bounds(bounded)
+    assert share_exact(bounded) >= share_exact(paper)
+
+
+def test_a_member_the_rounds_cannot_pull_in_goes_to_the_last_stage():
+    """A generated dome on which one member stays above 2 l through every round (refused when the last stage
+    continued from the rounds' end): the last stage restarts from the remapped mesh and reaches [l, 2l]."""
+    surface = dome(rise=8.623446459779622, seed=2893441600, jitter=1.0)
+    mesh = mesh_surface(surface, 4.876515103851089, placement="default")
+    assert in_bounds(mesh)
+
+
 def test_bounded_beats_paper_on_a_doubly_curved_dome():
-    """Rise 15 over 60: the paper's objective leaves 0.18 of the members within 0.5 % of l, bounded 0.48."""
+    """Rise 15 over 60: the paper's objective leaves 0.20 of the members within 0.5 % of l, bounded 0.66."""
     surface = dome(rise=15.0, seed=0, jitter=1.0)
     bounded, paper = (mesh_surface(surface, 4.5, optimize=o, placement="default") for o in ("bounded", "paper"))
     assert in_bounds(bounded) and not in_bounds(paper)
-    assert share_exact(bounded) >= share_exact(paper) + 0.2
+    assert share_exact(bounded) >= share_exact(paper) + 0.4
 
 
 def test_developable_vault_reaches_three_quarters():

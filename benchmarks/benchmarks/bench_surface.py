@@ -99,9 +99,7 @@ class Optimisation:
     Input: the reference dome remapped (``optimize="none"``, default placement,
     15 x 15 grid) at l = 5, 2.5 and 1.25: about 1,000, 4,200 and 17,300
     members (370, 1,440 and 5,840 nodes).  "paper": G1 members, boundary
-    fixed; "bounded": every member in [l, 2l], boundary sliding.  "bounded" at
-    l = 1.25 is skipped: it does not reach [l, 2l] within the solver's
-    iteration guard (docs/decisions.md).
+    fixed; "bounded": every member in [l, 2l], boundary sliding.
     """
 
     params = (["paper", "bounded"], [5.0, 2.5, 1.25])
@@ -112,10 +110,6 @@ class Optimisation:
         surface = _surface()
         return surface, {l: equimesh.mesh_surface(surface, l, grid=SURFACE_GRID, optimize="none",
                                                    placement="default", max_nodes=None) for l in self.params[1]}
-
-    def setup(self, cache, objective, l):
-        if objective == "bounded" and l < 2.5:
-            raise NotImplementedError("bounded does not converge at this size yet")
 
     def _run(self, cache, objective, l):
         surface, meshes = cache

@@ -47,7 +47,7 @@ from ..tolerance import (
 
 @dataclass(frozen=True)
 class Solution:
-    """Result of :func:`least_squares`: the point, its cost and why the solver stopped."""
+    """Result of :func:`least_squares`: the point, its cost, why the solver stopped and its last damping ``lambda``."""
 
     x: np.ndarray
     cost: float
@@ -55,26 +55,31 @@ class Solution:
     evaluations: int
     converged: bool
     message: str
+    damping: float
 
 
 def least_squares(residuals, jacobian, x0, lower, upper, *, accept=None, gtol=1e-10, xtol=1e-10, ftol=1e-12,
-                  max_iterations=500):
+                  max_iterations=500, damping=LM_INITIAL_DAMPING, inexact_retries=True):
     """Minimise ``|residuals(x)|^2 / 2`` over the box ``[lower, upper]`` (see the module docstring).
 
     ``x0`` must lie in the box and satisfy ``accept`` (if given); every
-    iterate, and so the result, then does too.
+    iterate, and so the result, then does too.  ``damping`` is the initial
+    ``lambda``; a continuation passes the previous solve's final
+    :attr:`Solution.damping` so that it does not pay again for rejected steps.
+    ``inexact_retries=False`` factorises every retried step instead of solving
+    it by preconditioned CG (:class:`_DampedSystem`).
     """
     x = np.clip(np.asarray(x0, dtype=float), lower, upper)
     r = residuals(x)
     cost = 0.5 * float(r @ r)
-    evaluations, nu, lam = 1, 2.0, LM_INITIAL_DAMPING
+    evaluations, nu, lam = 1, 2.0, damping
     ordering = _Ordering()
     for iteration in range(max_iterations):
         jac = jacobian(x)
         g = jac.T @ r
         projected = x - np.clip(x - g, lower, upper)
         if np.all(np.abs(projected) <= gtol):
-            return Solution(x, cost, iteration, evaluations, True, "projected gradient below gtol")
+            return Solution(x, cost, iteration, evaluations, True, "projected gradient below gtol", lam)
         held = ((x <= lower) & (g > 0)) | ((x >= upper) & (g < 0))
         free = np.flatnonzero(~held)
         order = ordering.of(jac, free)
@@ -83,7 +88,7 @@ def least_squares(residuals, jacobian, x0, lower, upper, *, accept=None, gtol=1e
         diag = normal.diagonal()
         diag = np.maximum(diag, LM_DIAGONAL_FLOOR * max(float(diag.max()), 1.0))
         rhs = -g[free[order]]
-        damped = _DampedSystem(normal, diag)
+        damped = _DampedSystem(normal, diag, LM_RETRY_RATIO if inexact_retries else 0.0)
         retried = False
         while True:
             step = np.zeros_like(x)
@@ -103,16 +108,16 @@ def least_squares(residuals, jacobian, x0, lower, upper, *, accept=None, gtol=1e
                 nu = 2.0
                 x, r, old, cost = x_new, r_new, cost, cost_new
                 if small_step and not retried:
-                    return Solution(x, cost, iteration + 1, evaluations, True, "step below xtol")
+                    return Solution(x, cost, iteration + 1, evaluations, True, "step below xtol", lam)
                 if actual <= ftol * old and predicted <= ftol * old and not retried:
-                    return Solution(x, cost, iteration + 1, evaluations, True, "relative reduction below ftol")
+                    return Solution(x, cost, iteration + 1, evaluations, True, "relative reduction below ftol", lam)
                 break
             if small_step and lam >= 1.0 / LM_DIAGONAL_FLOOR:
-                return Solution(x, cost, iteration + 1, evaluations, True, "no further reduction: step below xtol")
+                return Solution(x, cost, iteration + 1, evaluations, True, "no further reduction: step below xtol", lam)
             lam *= nu
             nu *= 2.0
             retried = True
-    return Solution(x, cost, max_iterations, evaluations, False, f"stopped after {max_iterations} iterations")
+    return Solution(x, cost, max_iterations, evaluations, False, f"stopped after {max_iterations} iterations", lam)
 
 
 class _DampedSystem:
@@ -121,7 +126,8 @@ class _DampedSystem:
     The first solve factorises ``N + lambda_0 D`` (SuperLU in symmetric
     mode, diagonal pivots, the natural order: the matrix comes in
     :class:`_Ordering`'s fill-reducing order).  A retry after a rejected
-    step only raises ``lambda``; for ``lambda <= LM_RETRY_RATIO lambda_0``
+    step only raises ``lambda``; for ``lambda <= retry_ratio lambda_0``
+    (``LM_RETRY_RATIO``; 0 factorises every retry)
     the kept factor preconditions conjugate gradients on the new system
     (the preconditioned matrix has its eigenvalues in ``[1, lambda / lambda_0]``,
     so a few iterations reach ``LM_RETRY_RTOL``) instead of a new
@@ -129,12 +135,12 @@ class _DampedSystem:
     ``LM_RETRY_ITERATIONS``, the new system is factorised.
     """
 
-    def __init__(self, normal, diag):
-        self.normal, self.diag = normal, diag
+    def __init__(self, normal, diag, retry_ratio=LM_RETRY_RATIO):
+        self.normal, self.diag, self.retry_ratio = normal, diag, retry_ratio
         self._lu, self._lam = None, None
 
     def solve(self, lam, rhs):
-        if self._lu is not None and lam <= LM_RETRY_RATIO * self._lam:
+        if self._lu is not None and lam <= self.retry_ratio * self._lam:
             system = self.normal + scipy.sparse.diags(lam * self.diag)
             pre = scipy.sparse.linalg.LinearOperator(system.shape, matvec=self._lu.solve, dtype=float)
             z, info = scipy.sparse.linalg.cg(

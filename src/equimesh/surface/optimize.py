@@ -19,8 +19,9 @@ constraint (``feasible``) and a continuation (``refine``).
 * ``"bounded"`` (beyond the paper, the default of
   :func:`~equimesh.surface.pipeline.mesh_surface`): every member in [l, 2l]
   as a hard constraint, and as many members as possible at the target
-  ``l (1 + BOUNDED_OFFSET)`` by a reweighted (Cauchy) least squares with a
-  decreasing scale (:func:`bounded_objective`), boundary nodes sliding.
+  ``l (1 + BOUNDED_OFFSET)`` by rounds of reweighted (Cauchy) least squares
+  that also pull the members outside the bounds in (:func:`bounded_objective`),
+  boundary nodes sliding.
 
 Fold-over.  Lengths do not see orientation, and the G1 edges do not see the
 triangles between the lattice and the boundary at all: minimising the G1
@@ -49,7 +50,10 @@ from ..errors import EquimeshError, InvalidSurfaceError
 from ..mesh import G1
 from .chart import domain_of
 from .regularity import derivatives, evaluate
-from ..tolerance import BOUNDED_FTOL, BOUNDED_OFFSET, BOUNDED_PENALTY, BOUNDED_SCALES, PAPER_FTOL
+from ..tolerance import (
+    BOUNDED_FTOL, BOUNDED_LOSS_TOL, BOUNDED_OFFSET, BOUNDED_PENALTY, BOUNDED_PULL, BOUNDED_ROUND_ITERATIONS, BOUNDED_ROUNDS,
+    BOUNDED_SCALE, LM_INITIAL_DAMPING, PAPER_FTOL,
+)
 
 
 @dataclass(frozen=True)
@@ -104,7 +108,13 @@ class Objective:
     raises ``InvalidSurfaceError`` with ``violation(x)``, a phrase naming what
     is violated).  ``refine(x)`` (optional) gives the next objective of a
     continuation from the solution ``x`` of this one, or None when done.
-    ``ftol`` is the solver's relative-reduction tolerance for this objective.
+    ``ftol`` is the solver's relative-reduction tolerance for this objective and
+    ``max_iterations`` its iteration limit (a round of a continuation need not converge).
+    ``start`` (optional) restarts the solve there instead of at the previous
+    objective's solution (a fallback that gives up the continuation's path).
+    ``exact_retries`` solves a retried step by a new factorisation instead of
+    preconditioned CG (:func:`~equimesh.surface._solver.least_squares`): the
+    bounded objective's short rounds are sensitive to the inexact steps.
     """
 
     residuals: Callable[[np.ndarray], np.ndarray]
@@ -114,6 +124,9 @@ class Objective:
     violation: Callable[[np.ndarray], str] = None
     refine: Callable[[np.ndarray], object] = None
     ftol: float = PAPER_FTOL
+    max_iterations: int = 500
+    start: np.ndarray = None
+    exact_retries: bool = False
 
 
 def edge_length_terms(problem, edges):
@@ -179,29 +192,43 @@ def bounded_objective(problem):
     Counting (the issue's argument): each free node has 2 parameters and each
     member is one equation, so on a doubly curved surface about 2 of every 3
     members can be exact, on a developable one all lattice members can.  Which
-    ones is not known in advance, so the objective seeks a sparse deviation:
+    ones is not known in advance, so the objective seeks a sparse deviation
+    from the target ``t = 1 + BOUNDED_OFFSET`` (in units of l):
 
     * the hard constraint ``l <= L_e <= 2 l`` for every member (Theorems 1 and
-      3 kept on the surface), as :attr:`Objective.feasible`; the solver never
-      leaves it once reached;
-    * a one-sided penalty ``BOUNDED_PENALTY`` times the distance of ``L_e / l``
-      below ``1 + BOUNDED_OFFSET / 2`` or above ``2 - BOUNDED_OFFSET``, which
-      drives an infeasible start into the bounds and keeps iterates off them;
-    * iteratively reweighted least squares for the Cauchy loss on
-      ``d_e = L_e / l - 1 - BOUNDED_OFFSET``: weights ``1 / (1 + (d_e / s)^2)``
-      frozen at the start of each stage, the scale ``s`` decreasing through
-      :data:`~equimesh.tolerance.BOUNDED_SCALES` (continuation).  A member
-      that cannot be made exact ends far outside ``s`` with a small weight and
-      stops pulling on the others, which then reach the target to solver
-      precision.
+      3 kept on the surface): the result must satisfy it (checked here, and
+      again by the pipeline);
+    * rounds of iteratively reweighted least squares, each ``r_e = w_e (L_e / l - t_e)``
+      with weights and targets frozen at the round's start: a member outside
+      ``[t, 2 - BOUNDED_OFFSET]`` is pulled to the nearer end with the weight
+      :data:`~equimesh.tolerance.BOUNDED_PULL`, a member inside is pulled to
+      ``t`` with the Cauchy weight ``1 / sqrt(1 + (d_e / s)^2)``,
+      ``d_e = L_e / l - t``, ``s = BOUNDED_SCALE`` (majorise-minimise for the
+      Cauchy loss ``sum log(1 + (d_e / s)^2)``).  A member that cannot be
+      made exact ends far outside ``s`` with a small weight and stops pulling
+      on the others; a member pushed below ``t`` is pulled back up, ten times
+      harder, next round.  Each round takes at most
+      :data:`~equimesh.tolerance.BOUNDED_ROUND_ITERATIONS` solver iterations
+      (the damping warm-started from the previous round).  The rounds do not
+      lock the bounds in (a step may push a member out, the next round pulls
+      it back; locking them in stalled the sparsity, docs/decisions.md), and
+      they stop at the first round that ends with every member in [l, 2l] and
+      a Cauchy loss within :data:`~equimesh.tolerance.BOUNDED_LOSS_TOL`
+      (relative) of its start's;
+    * after :data:`~equimesh.tolerance.BOUNDED_ROUNDS` rounds without that, a
+      last stage restarts from the remapped mesh (a member the rounds cannot
+      pull in was observed): Cauchy terms plus a smoothed one-sided penalty of
+      slope ``BOUNDED_PENALTY`` below ``1 + BOUNDED_OFFSET / 2`` and above
+      ``2 - BOUNDED_OFFSET``, solved to convergence with the bounds locked in
+      once reached; if it ends outside [l, 2l] too, :func:`optimize_uv`
+      refuses the surface.
 
     The target is ``l (1 + BOUNDED_OFFSET)``, not ``l``: exact members sit at
     the lower bound otherwise, where any rounding would put them outside [l, 2l].
     """
     l = problem.length
     lengths, length_jacobian = edge_length_terms(problem, problem.edges)
-    low, high = 1.0 + 0.5 * BOUNDED_OFFSET, 2.0 - BOUNDED_OFFSET
-    smooth = 0.25 * BOUNDED_OFFSET
+    target, high = 1.0 + BOUNDED_OFFSET, 2.0 - BOUNDED_OFFSET
 
     def feasible(x):
         ratio = lengths(x) / l
@@ -212,37 +239,67 @@ def bounded_objective(problem):
         out = int(np.count_nonzero((ratio < 1.0) | (ratio > 2.0)))
         return f"{out} of {len(ratio)} members outside [l, 2l] (lengths from {ratio.min():.6g} l to {ratio.max():.6g} l)"
 
-    def penalty(ratio):
-        """Smoothed hinge ``psi(h)`` of the depth ``h`` outside the band and its derivative in ``ratio``."""
-        depth = np.maximum(0.0, low - ratio) + np.maximum(0.0, ratio - high)
-        side = np.where(ratio > high, 1.0, -1.0)
-        inner = depth < smooth
-        value = np.where(inner, depth**2 / (2 * smooth), depth - smooth / 2)
-        slope = np.where(inner, depth / smooth, 1.0) * side
-        return BOUNDED_PENALTY * value, BOUNDED_PENALTY * slope
+    def cauchy_loss(x):
+        """The loss that the rounds decrease (majorise-minimise): ``sum log(1 + (d_e / s)^2)``."""
+        return float(np.sum(np.log1p(((lengths(x) / l - target) / BOUNDED_SCALE) ** 2)))
 
-    def stage(k, x_start):
-        scale = BOUNDED_SCALES[k]
-        weight = 1.0 / np.sqrt(1.0 + ((lengths(x_start) / l - 1.0 - BOUNDED_OFFSET) / scale) ** 2)
+    def cauchy_weight(ratio):
+        return 1.0 / np.sqrt(1.0 + ((ratio - target) / BOUNDED_SCALE) ** 2)
+
+    def weighted(weight, goal, extra=None):
+        """Residuals ``weight (L / l - goal)`` (and ``extra(ratio)``: values, slopes) with their Jacobian."""
 
         def residuals(x):
             ratio = lengths(x) / l
-            return np.concatenate([weight * (ratio - 1.0 - BOUNDED_OFFSET), penalty(ratio)[0]])
+            r = weight * (ratio - goal)
+            return r if extra is None else np.concatenate([r, extra(ratio)[0]])
 
         def jacobian(x):
             length, jac = length_jacobian(x)
             jac = jac / l
-            return scipy.sparse.vstack(
-                [scipy.sparse.diags(weight) @ jac, scipy.sparse.diags(penalty(length / l)[1]) @ jac], format="csr"
+            rows = scipy.sparse.diags(weight) @ jac
+            return rows if extra is None else scipy.sparse.vstack(
+                [rows, scipy.sparse.diags(extra(length / l)[1]) @ jac], format="csr"
             )
 
-        refine = (lambda x: stage(k + 1, x)) if k + 1 < len(BOUNDED_SCALES) else None
+        return residuals, jacobian
+
+    def round_(k, x_start):
+        ratio = lengths(x_start) / l
+        goal = np.clip(ratio, target, high)
+        weight = np.where(goal == ratio, cauchy_weight(ratio), BOUNDED_PULL)
+
+        def refine(x):
+            settled = abs(cauchy_loss(x) - cauchy_loss(x_start)) <= BOUNDED_LOSS_TOL * cauchy_loss(x_start)
+            if feasible(x) and settled:
+                return None
+            return round_(k + 1, x) if k + 1 < BOUNDED_ROUNDS else last_stage()
+
         return Objective(
-            residuals, jacobian, f"members in [l, 2l], Cauchy loss on L / l - 1 - {BOUNDED_OFFSET:g} at scale {scale:g}",
-            feasible, violation, refine, BOUNDED_FTOL,
+            *weighted(weight, np.where(goal == ratio, target, goal)),
+            f"members into [l, 2l] and to {target:g} l, round {k + 1}", None, None, refine, BOUNDED_FTOL,
+            BOUNDED_ROUND_ITERATIONS, exact_retries=True,
         )
 
-    return stage(0, problem.x0)
+    def last_stage():
+        low, smooth = 1.0 + 0.5 * BOUNDED_OFFSET, 0.25 * BOUNDED_OFFSET
+
+        def penalty(ratio):
+            """Smoothed hinge ``psi(h)`` of the depth ``h`` outside ``[low, high]`` and its derivative in ``ratio``."""
+            depth = np.maximum(0.0, low - ratio) + np.maximum(0.0, ratio - high)
+            side = np.where(ratio > high, 1.0, -1.0)
+            inner = depth < smooth
+            value = np.where(inner, depth**2 / (2 * smooth), depth - smooth / 2)
+            slope = np.where(inner, depth / smooth, 1.0) * side
+            return BOUNDED_PENALTY * value, BOUNDED_PENALTY * slope
+
+        return Objective(
+            *weighted(cauchy_weight(lengths(problem.x0) / l), target, penalty),
+            f"members in [l, 2l] by a penalty, Cauchy loss on L / l - {target:g}", feasible, violation, None,
+            BOUNDED_FTOL, start=problem.x0, exact_retries=True,
+        )
+
+    return round_(0, problem.x0)
 
 
 #: Objective builders by name, each ``builder(problem: UVProblem) -> Objective``.
@@ -348,21 +405,27 @@ def optimize_uv(
         cost0 = _cost(obj, x0)
         return UVOptimization(uv, cost0, cost0, 0, 0, True, "no free nodes", objective)
     tri = None if triangles is None else np.asarray(triangles, dtype=np.int64).reshape(-1, 3)
-    guard = _Guard(problem, tri, obj.feasible)
     box = (np.tile(lower, len(uv))[problem.variables], np.tile(upper, len(uv))[problem.variables])
-    x, nfev, njev = x0, 0, 0
+    x, nfev, njev, damping = x0, 0, 0, LM_INITIAL_DAMPING
     while True:
+        x = x if obj.start is None else obj.start
+        guard = _Guard(problem, tri, obj.feasible, x)
         solve = obj if tri is None or area_floor <= 0 else _with_barrier(problem, obj, tri, area_floor, x)
         tol = obj.ftol if ftol is None else ftol
         while True:
-            solution = least_squares(solve.residuals, solve.jacobian, x, *box, accept=guard, gtol=gtol, xtol=xtol, ftol=tol)
+            solution = least_squares(
+                solve.residuals, solve.jacobian, x, *box, accept=guard, gtol=gtol, xtol=xtol, ftol=tol,
+                max_iterations=obj.max_iterations, damping=damping, inexact_retries=not obj.exact_retries,
+            )
             x, nfev, njev = solution.x, nfev + solution.evaluations, njev + solution.iterations + 1
-            if obj.feasible is None or obj.feasible(x) or tol <= PAPER_FTOL:
+            damping = solution.damping  # warm start: the next solve begins where this one's damping ended
+            if obj.feasible is None or obj.refine is not None or obj.feasible(x) or tol <= PAPER_FTOL:
                 break
-            tol = PAPER_FTOL  # a stage that ends outside the hard constraint goes on to the tight tolerance
-        if obj.refine is None:
+            tol = PAPER_FTOL  # a last stage that ends outside the hard constraint goes on to the tight tolerance
+        following = None if obj.refine is None else obj.refine(x)
+        if following is None:
             break
-        obj = obj.refine(x)
+        obj = following
     if obj.feasible is not None and not obj.feasible(x):
         raise InvalidSurfaceError(
             f"optimisation ({objective}): no mesh with every member in [l, 2l] found, {obj.violation(x)}; "
@@ -402,9 +465,9 @@ class _Guard:
     it tracks whether the current iterate is feasible.
     """
 
-    def __init__(self, problem, triangles, feasible):
+    def __init__(self, problem, triangles, feasible, x):
         self.problem, self.triangles, self.feasible = problem, triangles, feasible
-        self.inside = feasible is not None and feasible(problem.x0)
+        self.inside = feasible is not None and feasible(x)
 
     def __call__(self, x):
         if self.triangles is not None and len(flipped_triangles(self.problem.uv, self.problem.uv_of(x), self.triangles)):

@@ -70,13 +70,14 @@ SLIDING_OBJECTIVES = ("bounded",)
 #: Default node limits with an optimisation, per objective, measured with the
 #: sparse Levenberg-Marquardt solver on the reference dome (15 x 15 grid,
 #: default placement) on this project's busy 2-core machine (docs/decisions.md,
-#: "A solver that scales", load average 10 to 12): "paper" took 21.5 s at 5,840
-#: nodes (17,333 members) and 496 s at 34,031 nodes (101,654 members), n^1.78,
-#: so about 2 minutes at 15,000 nodes (an idle machine is 3-5 times faster:
-#: 118.8 s at 34,031 nodes before the last speed-up); "bounded" 3 s at about 370
-#: nodes and 100 s at 1,438 nodes, and did not reach [l, 2l] within the
-#: solver's iteration guard at 5,840 nodes.
-MAX_OPTIMIZE_NODES = {"paper": 15_000, "bounded": 1_500}
+#: "A solver that scales" and "The bounded objective", load average 10 to 12):
+#: "paper" took 21.5 s at 5,840 nodes (17,333 members) and 496 s at 34,031
+#: nodes (101,654 members), n^1.78, so about 2 minutes at 15,000 nodes (an
+#: idle machine is 3-5 times faster: 118.8 s at 34,031 nodes before the last
+#: speed-up); "bounded" (rounds of reweighted least squares) 14 s at 1,438
+#: nodes and 143 s at 5,840 nodes (load about 10), and did not finish within
+#: 17 minutes at 34,031 nodes.
+MAX_OPTIMIZE_NODES = {"paper": 15_000, "bounded": 6_000}
 
 #: Limit on the auxiliary grid's cells n_u * n_v (a triangle mesh given as the
 #: auxiliary triangulation may have twice as many triangles): flattening by eq. (1) took
