@@ -258,6 +258,11 @@ def test_placement_counts_must_be_integers(kwargs):
         equimesh.best_lattice_placement(SQUARE10, 1.0, **kwargs)
 
 
+def test_count_messages_show_plain_numbers():
+    with pytest.raises(EquimeshError, match=r"n_angles must be an integer of at least 1, got 2\.5$"):
+        equimesh.best_lattice_placement(SQUARE10, 1.0, n_angles=np.float64(2.5))
+
+
 @pytest.mark.parametrize("kwargs", [{"n_offsets": 10**6}, {"refine": 10**9}, {"n_angles": 4096}])
 def test_placement_search_is_bounded(kwargs):
     with pytest.raises(EquimeshError, match=r"placements \(1 \+ n_angles n_offsets\^2 \+ 27 refine\), more than 4096"):

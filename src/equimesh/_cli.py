@@ -158,13 +158,12 @@ def _max_nodes(text):
     """``--max-nodes``: a positive whole number, or 'none' for no limit."""
     if text.strip().lower() == "none":
         return None
+    from .planar.polygon import check_count
+
     try:
-        value = int(text)
-    except ValueError:
-        value = 0
-    if value < 1:
-        raise argparse.ArgumentTypeError(f"expected a positive whole number or 'none', got {text!r}")
-    return value
+        return check_count(int(text), "--max-nodes")
+    except ValueError:  # not a whole number, or below 1 (EquimeshError is a ValueError)
+        raise argparse.ArgumentTypeError(f"expected a positive whole number or 'none', got {text!r}") from None
 
 
 def _tolerance(text):

@@ -23,7 +23,7 @@ import shapely
 from scipy.spatial import cKDTree
 
 from .._geometry import Frame, cross, orient_sign, power_of_two_scale, segments_intersect, signed_area
-from ..errors import InvalidLengthError, InvalidPolygonError
+from ..errors import EquimeshError, InvalidLengthError, InvalidPolygonError
 from ..tolerance import MAX_EXTENT, MAX_LENGTH, MIN_LENGTH, REL_TOL, at_least
 
 
@@ -34,9 +34,24 @@ def real_number(value, name, error):
     ):
         boolean = isinstance(value, (bool, np.bool_))
         kind = "boolean " if boolean else "complex value " if isinstance(value, numbers.Complex) or np.iscomplexobj(value) else ""
-        shown = value.item() if isinstance(value, np.generic) else value
-        raise error(f"{name} must be a real number, got {kind}{shown!r}")
+        raise error(f"{name} must be a real number, got {kind}{_plain(value)!r}")
     return float(value)
+
+
+def check_count(value, name, least=1):
+    """``value`` as an int, refusing anything but an integer of at least ``least`` (bool, 2.5, nan included).
+
+    Beyond the paper: the one check of every count a caller gives (grid
+    sizes, search counts, ``max_nodes``); numpy integers are accepted.
+    """
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral) or value < least:
+        raise EquimeshError(f"{name} must be an integer of at least {least}, got {_plain(value)!r}")
+    return int(value)
+
+
+def _plain(value):
+    """``value`` with a numpy scalar as the Python number it holds, so that a message shows ``2.5``, not its numpy repr."""
+    return value.item() if isinstance(value, np.generic) else value
 
 
 def check_length(l):
