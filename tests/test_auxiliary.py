@@ -64,5 +64,5 @@ def test_node_numbering_and_diagonal():
 
 @pytest.mark.parametrize("bad", [0, -1, 2.5, True, "3"])
 def test_invalid_sizes(bad):
-    with pytest.raises(EquimeshError, match="positive integer"):
+    with pytest.raises(EquimeshError, match="n_u must be an integer of at least 1"):
         auxiliary_grid(bad, 3)

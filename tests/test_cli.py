@@ -20,6 +20,7 @@ import pytest
 
 from equimesh import InternalError, InvalidLengthError
 from equimesh._cli import main
+from equimesh.io import _meshes as io_meshes
 from equimesh.surface import pipeline
 
 from hostile_paths import fifo, name_max, unwritable_folder
@@ -214,6 +215,16 @@ def test_members_write_failure_leaves_no_mesh(tmp_path, capsys, monkeypatch):
                           "-o", tmp_path / "m.obj", "--members", tmp_path / "m.csv"], capsys)
     assert code == 3 and "No space left on device" in captured.err and captured.err.count("\n") == 1
     assert list(tmp_path.iterdir()) == []
+
+
+def test_each_output_is_probed_once(tmp_path, capsys, monkeypatch):
+    """The outputs are checked before meshing and not again: one probe per file (mesh, schedule, classes)."""
+    probed = []
+    monkeypatch.setattr(io_meshes, "probe_folder", lambda folder, suffix="": probed.append(suffix))
+    code, captured = run(["mesh", SADDLE, "--length", 6, "--grid", 6, 6, "--optimize", "none", "-q",
+                          "-o", tmp_path / "m.obj", "--members", tmp_path / "m.csv"], capsys)
+    assert code == 0, captured.err
+    assert probed == [".obj", ".csv", ".csv"]
 
 
 def _never_called(*args, **kwargs):

@@ -90,7 +90,7 @@ def test_the_cause_pairs_a_rounding_error_outside_are_still_seen():
     pts = boundary.points
     pairs = cKDTree(pts).query_pairs(1.0 - REL_TOL, output_type="ndarray")
     lines = shapely.linestrings(np.stack([pts[pairs[:, 0]], pts[pairs[:, 1]]], axis=1))
-    assert not np.all(shapely.covers(poly.shapely(), lines))  # the old, exact test misses some pair
+    assert not np.all(shapely.covers(poly.region, lines))  # the old, exact test misses some pair
     with pytest.raises(InvalidPolygonError):
         check_boundary_separation(poly, boundary, 1.0)
 
@@ -256,6 +256,11 @@ def test_placement_counts_must_be_integers(kwargs):
     name = next(iter(kwargs))
     with pytest.raises(EquimeshError, match=rf"{name} must be an integer of at least"):
         equimesh.best_lattice_placement(SQUARE10, 1.0, **kwargs)
+
+
+def test_count_messages_show_plain_numbers():
+    with pytest.raises(EquimeshError, match=r"n_angles must be an integer of at least 1, got 2\.5$"):
+        equimesh.best_lattice_placement(SQUARE10, 1.0, n_angles=np.float64(2.5))
 
 
 @pytest.mark.parametrize("kwargs", [{"n_offsets": 10**6}, {"refine": 10**9}, {"n_angles": 4096}])

@@ -182,7 +182,7 @@ def test_size_is_checked_before_flattening():
         ({"boundary_spacing": float("nan")}, "boundary_spacing must be finite"),
         ({"boundary_spacing": "x"}, "boundary_spacing must be a real number"),
         ({"optimize": []}, "optimize must be"),
-        ({"grid": (np.float64(2.5), 3)}, r"n_u must be a positive integer, got 2\.5$"),
+        ({"grid": (np.float64(2.5), 3)}, r"n_u must be an integer of at least 1, got 2\.5$"),
     ],
 )
 def test_bad_keywords_are_refused_before_any_stage(kwargs, match):

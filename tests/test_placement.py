@@ -34,7 +34,7 @@ MAX_AREA = 400.0
 def kept_by_every_vertex(poly, l, angle, offset, clearance):
     """The scorer before the row-by-row clearance (the oracle): every lattice vertex tested against the boundary with shapely."""
     ii, _, pts, kept = kept_vertices(poly, l, angle, offset, clearance)
-    shape = poly.shapely()
+    shape = poly.region
     inside = shapely.contains_xy(shape, pts[:, 0], pts[:, 1])
     far = np.zeros(len(pts), dtype=bool)
     far[inside] = at_least(shapely.distance(shapely.points(pts[inside]), shape.exterior), clearance * poly.local_length(l))
@@ -125,3 +125,11 @@ def test_gain_when_no_lattice_triangle_fits():
     p = equimesh.best_lattice_placement(rectangle(1.5, 1.5), 1.0)
     assert p.lattice_edges == p.default_lattice_edges == 0
     assert p.gain == 0.0
+
+
+def test_search_builds_the_region_once(monkeypatch):
+    """Every evaluation of a search measures against the same shapely region (``Polygon.region``, built once)."""
+    built = []
+    monkeypatch.setattr(shapely, "Polygon", lambda *a: built.append(a) or shapely.geometry.Polygon(*a))
+    equimesh.best_lattice_placement(regular_polygon(6, 6.0), 1.0, n_angles=2, n_offsets=2, refine=1)
+    assert len(built) == 1

@@ -158,13 +158,12 @@ def _max_nodes(text):
     """``--max-nodes``: a positive whole number, or 'none' for no limit."""
     if text.strip().lower() == "none":
         return None
+    from .planar.polygon import check_count
+
     try:
-        value = int(text)
-    except ValueError:
-        value = 0
-    if value < 1:
-        raise argparse.ArgumentTypeError(f"expected a positive whole number or 'none', got {text!r}")
-    return value
+        return check_count(int(text), "--max-nodes")
+    except ValueError:  # not a whole number, or below 1 (EquimeshError is a ValueError)
+        raise argparse.ArgumentTypeError(f"expected a positive whole number or 'none', got {text!r}") from None
 
 
 def _tolerance(text):
@@ -178,13 +177,10 @@ def _tolerance(text):
 
 
 def _run_mesh(args):
-    from .io import MEMBER_FORMATS, MESH_FORMATS, check_output_path, classes_path, load_surface, write_surface_mesh
+    from .io import classes_path, load_surface, surface_mesh_writer
     from .surface.pipeline import mesh_surface
 
-    check_output_path(args.output, MESH_FORMATS)
-    if args.members:
-        check_output_path(args.members, MEMBER_FORMATS)
-        check_output_path(classes_path(args.members), MEMBER_FORMATS)
+    write = surface_mesh_writer(args.output, args.members)
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", SurfaceWarning)
         surface = load_surface(args.surface, **({"object": args.object} if args.object is not None else {}))
@@ -199,7 +195,7 @@ def _run_mesh(args):
     with _library_quiet():
         mesh = mesh_surface(surface, args.length, grid=tuple(args.grid), optimize=args.optimize,
                             placement=args.placement, engine=args.engine, progress=progress, **limit)
-    write_surface_mesh(mesh, args.output, args.members, args.tolerance)
+    write(mesh, args.tolerance)
     if not args.quiet:
         n_g1 = int(mesh.g1_mask.sum())
         also = f" and {args.members} (+ {classes_path(args.members)})" if args.members else ""

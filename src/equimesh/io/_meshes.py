@@ -5,7 +5,8 @@ Meshes are written through meshio in the format given by the file extension
 their length classes (:mod:`equimesh.classes`) in a second CSV beside them.
 :func:`check_output_path` tries everything a write will need (folder, name
 length, permission) so that a run can refuse a bad output before its expensive
-part; every output of one call is written to a temporary file and the files
+part (:func:`surface_mesh_writer` checks every file of a run once, before it,
+and writes them after it); every output of one call is written to a temporary file and the files
 are renamed together at the end (:func:`equimesh.io._atomic.atomic_paths`), so a
 failure never leaves a partial file or half a set of files.
 """
@@ -87,7 +88,7 @@ def check_output_path(path, formats):
 
 def write_mesh(path, points, triangles):
     """Write a triangle mesh to ``path`` (format by extension, see :data:`MESH_FORMATS`), atomically."""
-    _write_all([_mesh_output(path, points, triangles)])
+    _write_all([_mesh_output(path, check_output_path(path, MESH_FORMATS), points, triangles)])
 
 
 def member_schedule(points, edges, groups, l, classes=None):
@@ -119,6 +120,7 @@ def classes_path(members):
 
 def write_members(path, points, edges, groups, l, tolerance=DEFAULT_TOLERANCE):
     """Write :func:`member_schedule` as CSV to ``path`` and its length classes to :func:`classes_path`, atomically."""
+    _check_members_paths(path)
     _write_all(_members_outputs(path, points, edges, groups, l, tolerance))
 
 
@@ -131,14 +133,30 @@ def write_surface_mesh(mesh, path, members=None, tolerance=DEFAULT_TOLERANCE):
     completely or none is touched (a failure of a later write removes the
     earlier temporary files before any rename).
     """
-    outputs = [_mesh_output(path, mesh.points, mesh.triangles)]
-    if members is not None:
-        outputs += _members_outputs(members, mesh.points, mesh.edges, mesh.edge_groups, mesh.length, tolerance)
-    _write_all(outputs)
+    surface_mesh_writer(path, members)(mesh, tolerance)
 
 
-def _mesh_output(path, points, triangles):
+def surface_mesh_writer(path, members=None):
+    """Check every file :func:`write_surface_mesh` writes (:func:`check_output_path`); return the writer.
+
+    The checks run now, before a run's expensive part, and only now: the
+    returned ``write(mesh, tolerance=DEFAULT_TOLERANCE)`` writes ``mesh`` as
+    :func:`write_surface_mesh` does, to the paths checked here.
+    """
     fmt = check_output_path(path, MESH_FORMATS)
+    if members is not None:
+        _check_members_paths(members)
+
+    def write(mesh, tolerance=DEFAULT_TOLERANCE):
+        outputs = [_mesh_output(path, fmt, mesh.points, mesh.triangles)]
+        if members is not None:
+            outputs += _members_outputs(members, mesh.points, mesh.edges, mesh.edge_groups, mesh.length, tolerance)
+        _write_all(outputs)
+
+    return write
+
+
+def _mesh_output(path, fmt, points, triangles):
     cells = np.asarray(triangles, dtype=np.int32)
     zeros = np.zeros(len(cells), dtype=np.int32)
     cell_data = {name: [zeros] for name in _REQUIRED_CELL_DATA.get(fmt, ())}
@@ -147,15 +165,19 @@ def _mesh_output(path, points, triangles):
 
 
 def _members_outputs(path, points, edges, groups, l, tolerance):
-    """The schedule and the classes CSV; floats as the shortest text that reads back to the same bits."""
-    check_output_path(path, MEMBER_FORMATS)
-    check_output_path(classes_path(path), MEMBER_FORMATS)
+    """The schedule and the classes CSV (paths checked by the caller); floats as the shortest text that reads back to the same bits."""
     classes = length_classes(edge_lengths(points, edges), l, tolerance)
     schedule = member_schedule(points, edges, groups, l, classes)
     return [
         (path, lambda tmp: schedule.to_csv(tmp, index=False)),
         (classes_path(path), lambda tmp: classes.table().to_csv(tmp, index=False)),
     ]
+
+
+def _check_members_paths(path):
+    """:func:`check_output_path` of a member schedule and of its classes CSV."""
+    check_output_path(path, MEMBER_FORMATS)
+    check_output_path(classes_path(path), MEMBER_FORMATS)
 
 
 def _write_all(outputs):

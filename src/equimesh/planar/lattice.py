@@ -123,7 +123,7 @@ def kept_vertices(poly, l, angle=0.0, offset=(0.0, 0.0), clearance=1.0):
     i1, j1 = np.ceil(coords.max(axis=0)).astype(int) + 1
     ii, jj = np.meshgrid(np.arange(i0, i1 + 1), np.arange(j0, j1 + 1), indexing="ij")
     pts = lattice_points(np.column_stack([ii.ravel(), jj.ravel()]), lp, angle, offset)
-    kept = clear_of_boundary(poly.shapely(), pts, (i0, j0), ii.shape, offset, basis, clearance * lp)
+    kept = clear_of_boundary(poly.region, pts, (i0, j0), ii.shape, offset, basis, clearance * lp)
     return ii, jj, pts, kept
 
 

@@ -20,23 +20,16 @@ run has to place; its default depends on the insertion engine
 """
 
 import math
-import numbers
 
-from ..errors import EquimeshError, MeshTooLargeError
+from ..errors import MeshTooLargeError
 from .insertion import DEFAULT_ENGINE, check_engine
+from .polygon import check_count
 
 #: Default of ``max_nodes`` (``max_nodes="default"``) for each insertion engine,
 #: in the nodes it counts (module docstring).  Reference: a run at 2500 takes
 #: about a minute; fast: 10^6 nodes take about 20 s and stay under 1 GB (the
 #: memory, not the time, sets it; docs/decisions.md).  ``None`` means no limit.
 MAX_NODES = {"reference": 2500, "fast": 1_000_000}
-
-
-def check_count(value, name, least=1):
-    """``value`` as an int, refusing anything but an integer of at least ``least`` (bool, 2.5, nan included)."""
-    if isinstance(value, bool) or not isinstance(value, numbers.Integral) or value < least:
-        raise EquimeshError(f"{name} must be an integer of at least {least}, got {value!r}")
-    return int(value)
 
 
 def check_max_nodes(value, default):

@@ -36,8 +36,8 @@ import numpy as np
 from ..errors import EquimeshError
 from .insertion import DEFAULT_ENGINE
 from .lattice import kept_vertices, lattice_basis, lattice_triangle_masks
-from .limits import MAX_NODES, check_count, check_max_nodes, check_size, planar_estimate
-from .polygon import as_polygon, check_length
+from .limits import MAX_NODES, check_max_nodes, check_size, planar_estimate
+from .polygon import as_polygon, check_count, check_length
 from .strip import check_clearance, strip_estimate
 
 

@@ -17,13 +17,14 @@ O(n log n) in the number of vertices.
 import math
 import numbers
 from dataclasses import dataclass, replace
+from functools import cached_property
 
 import numpy as np
 import shapely
 from scipy.spatial import cKDTree
 
 from .._geometry import Frame, cross, orient_sign, power_of_two_scale, segments_intersect, signed_area
-from ..errors import InvalidLengthError, InvalidPolygonError
+from ..errors import EquimeshError, InvalidLengthError, InvalidPolygonError
 from ..tolerance import MAX_EXTENT, MAX_LENGTH, MIN_LENGTH, REL_TOL, at_least
 
 
@@ -34,9 +35,24 @@ def real_number(value, name, error):
     ):
         boolean = isinstance(value, (bool, np.bool_))
         kind = "boolean " if boolean else "complex value " if isinstance(value, numbers.Complex) or np.iscomplexobj(value) else ""
-        shown = value.item() if isinstance(value, np.generic) else value
-        raise error(f"{name} must be a real number, got {kind}{shown!r}")
+        raise error(f"{name} must be a real number, got {kind}{_plain(value)!r}")
     return float(value)
+
+
+def check_count(value, name, least=1):
+    """``value`` as an int, refusing anything but an integer of at least ``least`` (bool, 2.5, nan included).
+
+    Beyond the paper: the one check of every count a caller gives (grid
+    sizes, search counts, ``max_nodes``); numpy integers are accepted.
+    """
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral) or value < least:
+        raise EquimeshError(f"{name} must be an integer of at least {least}, got {_plain(value)!r}")
+    return int(value)
+
+
+def _plain(value):
+    """``value`` with a numpy scalar as the Python number it holds, so that a message shows ``2.5``, not its numpy repr."""
+    return value.item() if isinstance(value, np.generic) else value
 
 
 def check_length(l):
@@ -78,7 +94,7 @@ class Polygon:
     label : ``""`` for the outer boundary, ``"hole k"`` for the caller's hole k.
 
     ``local_area``, ``local_perimeter``, ``area``, ``perimeter`` and
-    :meth:`shapely` are those of the region (outer boundary minus the holes);
+    :attr:`region` are those of the region (outer boundary minus the holes);
     the edge properties and names are those of this ring.
     """
 
@@ -143,8 +159,9 @@ class Polygon:
         w = self.local[(i + 1) % n] - self.local[i % n]
         return float(np.degrees(np.arctan2(cross(w, u), np.dot(w, u))) % 360.0)
 
-    def shapely(self):
-        """The region (outer boundary minus the holes) in its local frame."""
+    @cached_property
+    def region(self):
+        """The region (outer boundary minus the holes) in its local frame, a shapely polygon built once."""
         return shapely.Polygon(self.local, [hole.local for hole in self.holes])
 
 
@@ -743,7 +760,7 @@ def check_boundary_separation(poly, boundary, l):
     pairs = cKDTree(pts).query_pairs((1.0 - REL_TOL) * lp, output_type="ndarray")
     if not len(pairs):
         return
-    grown = poly.shapely().buffer(REL_TOL * lp)
+    grown = poly.region.buffer(REL_TOL * lp)
     shapely.prepare(grown)
     lines = shapely.linestrings(np.stack([pts[pairs[:, 0]], pts[pairs[:, 1]]], axis=1))
     visible = shapely.covers(grown, lines)
@@ -829,7 +846,7 @@ def _unseparable_corner(poly, l):
     corners").
     """
     lp = poly.local_length(l)
-    grown = poly.shapely().buffer(REL_TOL * lp)
+    grown = poly.region.buffer(REL_TOL * lp)
     for ring, i, theta, leaving, arriving in _corners(poly):
         ends = [(a, b) for a in _first_node(leaving, lp) for b in _first_node(arriving, lp)]
         if theta < math.pi and max(_chord(a, b, theta) for a, b in ends) < (1.0 - REL_TOL) * lp:

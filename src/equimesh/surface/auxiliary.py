@@ -12,8 +12,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import EquimeshError
 from ..mesh import unique_edges
+from ..planar.polygon import check_count
 from .chart import UNIT, Domain
 
 
@@ -99,7 +99,7 @@ def auxiliary_grid(n_u, n_v, domain=UNIT):
     domain : Domain
         The chart's parameter rectangle (:func:`~equimesh.surface.chart.domain_of`).
     """
-    n_u, n_v = _check_count("n_u", n_u), _check_count("n_v", n_v)
+    n_u, n_v = check_grid_size(n_u, n_v)
     i, j = np.meshgrid(np.arange(n_u + 1), np.arange(n_v + 1), indexing="ij")
     uv = domain.at_fractions(i.ravel() / n_u, j.ravel() / n_v)
 
@@ -123,8 +123,6 @@ def auxiliary_grid(n_u, n_v, domain=UNIT):
     return AuxiliaryGrid(n_u, n_v, uv, triangles, unique_edges(triangles), boundary, sides, domain)
 
 
-def _check_count(name, value):
-    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < 1:
-        shown = value.item() if isinstance(value, np.generic) else value
-        raise EquimeshError(f"auxiliary grid size {name} must be a positive integer, got {shown!r}")
-    return int(value)
+def check_grid_size(n_u, n_v):
+    """``(n_u, n_v)`` as ints, each a positive integer (the cell counts of step 1)."""
+    return tuple(check_count(n, f"auxiliary grid size {name}") for name, n in (("n_u", n_u), ("n_v", n_v)))

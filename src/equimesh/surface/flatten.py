@@ -50,9 +50,8 @@ import scipy.sparse
 import scipy.sparse.linalg
 
 from ._jacobian import AreaBarrier, ElementJacobian
-from .._geometry import orient
 from ..errors import InvalidSurfaceError
-from ..mesh import edge_lengths, unique_edges
+from ..mesh import edge_lengths, triangle_orient, unique_edges
 from ._places import at
 
 
@@ -159,13 +158,13 @@ def flatten(
             points = None
             continue
         nfev += n
-        if np.all(orient(*(points[tri[:, k]] for k in range(3))) > 0):
+        if np.all(triangle_orient(points, tri) > 0):
             lp = edge_lengths(points, e)
             energy = 0.5 * float(np.sum(((lp - ls) / ls) ** 2))
             return Flattening(points, energy, ls, lp, e, np.array([g0, g1]), nfev, start)
     if points is None:
         raise InvalidSurfaceError("flattening failed: the auxiliary triangulation is degenerate on the surface")
-    bad = np.flatnonzero(orient(*(points[tri[:, k]] for k in range(3))) <= 0)
+    bad = np.flatnonzero(triangle_orient(points, tri) <= 0)
     near = "" if uv is None else f", first near {at(np.asarray(uv, dtype=float)[tri[bad[0]]].mean(axis=0))}"
     raise InvalidSurfaceError(
         f"flattening folds {bad.size} of {len(tri)} auxiliary triangles over{near}; "
@@ -335,6 +334,6 @@ def _plane_start(x3, tri):
     c = x3 - x3.mean(axis=0)
     axes = np.linalg.svd(c, full_matrices=False)[2][:2]
     x = c @ axes.T
-    if np.sum(orient(*(x[tri[:, k]] for k in range(3)))) < 0:
+    if np.sum(triangle_orient(x, tri)) < 0:
         x[:, 1] = -x[:, 1]
     return x

@@ -36,7 +36,7 @@ from .chart import Domain
 from .flatten import _plane_start, flatten
 from ..planar.insertion._region import constrained_delaunay
 from .remap import _nearest_segment, barycentric
-from ..mesh import unique_edges
+from ..mesh import triangle_orient, unique_edges
 
 
 class MeshChart:
@@ -186,7 +186,7 @@ def flattening_start(surface):
 
 
 def _unfolded(x, tri):
-    return bool(np.all(orient(*(x[tri[:, k]] for k in range(3))) > 0))
+    return bool(np.all(triangle_orient(x, tri) > 0))
 
 
 def conformal_start(surface):

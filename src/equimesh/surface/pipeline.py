@@ -25,12 +25,11 @@ Every stage is kept in :class:`SurfaceMesh.stages` for tables and figures.
 
 import time
 from dataclasses import dataclass, field
-from numbers import Integral
 from typing import Callable
 
 import numpy as np
 
-from .auxiliary import auxiliary_grid
+from .auxiliary import auxiliary_grid, check_grid_size
 from .chart import domain_of
 from ..errors import EquimeshError, InternalError, InvalidPolygonError, InvalidSurfaceError, MeshTooLargeError
 from .flatten import flatten
@@ -404,12 +403,13 @@ class _Clock:
 
 
 def _grid_pair(grid):
-    """(n_u, n_v) from ``grid``, at most :data:`MAX_GRID_CELLS` cells (the counts are checked by ``auxiliary_grid``)."""
+    """(n_u, n_v) from ``grid``, positive integers with at most :data:`MAX_GRID_CELLS` cells."""
     try:
         n_u, n_v = grid
     except (TypeError, ValueError):
         raise EquimeshError(f"grid must be a pair (n_u, n_v), got {grid!r}") from None
-    if all(isinstance(n, Integral) and not isinstance(n, bool) for n in (n_u, n_v)) and n_u * n_v > MAX_GRID_CELLS:
+    n_u, n_v = check_grid_size(n_u, n_v)
+    if n_u * n_v > MAX_GRID_CELLS:
         raise EquimeshError(
             f"auxiliary grid {n_u} x {n_v} has {n_u * n_v} cells, more than the limit of {MAX_GRID_CELLS} "
             "(flattening time and memory grow with it); use a coarser grid"
