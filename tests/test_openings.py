@@ -82,6 +82,16 @@ def test_optimisation_leaves_hole_nodes_fixed():
     assert np.array_equal(mesh.uv[rings[0] : sum(rings)], mesh.stages.remapped_uv[rings[0] : sum(rings)])
 
 
+def test_bounded_slides_hole_nodes_along_their_edges():
+    """Item 60: under "bounded" a hole's nodes slide along its edges in (u, v), its vertices fixed, members in [l, 2l]."""
+    surface = load_surface(SURFACES / "nurbs_roof.json")
+    mesh = equimesh.mesh_surface(surface, 3.0, holes=[SQUARE, TRIANGLE], optimize="bounded")
+    check_openings(mesh, surface, [SQUARE, TRIANGLE], 3.0)  # on the polygons, every vertex a node bit for bit
+    check_edge_lengths(mesh, 3.0)  # on the surface
+    rings = mesh.stages.plane.info["boundary_rings"]
+    assert np.any(mesh.uv[rings[0] : sum(rings)] != mesh.stages.remapped_uv[rings[0] : sum(rings)])
+
+
 def test_holes_round_trip_through_json_for_every_type():
     for name in ("nurbs_roof.json", "reference_dome.json"):
         d = json.loads((SURFACES / name).read_text())

@@ -9,6 +9,8 @@ from section4_standin import CircularVault, dome, flat_patch, parabolic_vault, s
 from equimesh import EquimeshError
 from equimesh.mesh import edge_lengths
 from equimesh.surface import optimize
+from equimesh.surface._slide import between_corners, loop_arc
+from equimesh.surface.remap import _nearest_segment
 from equimesh.surface.optimize import (
     OBJECTIVES,
     Objective,
@@ -70,6 +72,30 @@ def test_paper_objective_and_barrier_jacobians_match_finite_differences():
     np.testing.assert_allclose(
         barrier.jacobian(squeezed).toarray(), finite_difference(barrier.residuals, squeezed), atol=1e-5
     )
+
+
+def test_sliding_nodes_jacobians_match_finite_differences():
+    """Item 60: boundary nodes sliding along the domain's outline by arc position; the chain rule through ``d uv / d s``."""
+    mesh, plain = problem_for(dome(rise=15.0), 12.0, 3)
+    square = np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]])
+    arc = loop_arc(square)
+    nodes = np.arange(mesh.n_boundary)
+    seg, t, _ = _nearest_segment(plain.uv[nodes], square, np.roll(square, -1, axis=0))
+    slide, corners = between_corners(nodes, square, arc, (1.0 - t) * arc[seg] + t * arc[seg + 1], arc[:-1])
+    assert len(corners) == 4 and len(slide.nodes) == mesh.n_boundary - 4
+    problem = UVProblem(plain.surface, plain.uv, mesh.edges, mesh.edge_groups, 12.0, plain.free, (slide,))
+    x = problem.x0
+    assert len(x) == len(plain.x0) + len(slide.nodes)
+    np.testing.assert_allclose(problem.uv_of(x), plain.uv, rtol=0, atol=1e-15)
+    x = x + np.concatenate([np.zeros(len(plain.x0)), 0.01 * np.random.default_rng(4).standard_normal(len(slide.nodes))])
+    obj = paper_objective(problem)
+    lengths, jacobian = edge_length_terms(problem, mesh.edges)
+    np.testing.assert_allclose(jacobian(x)[1].toarray(), finite_difference(lengths, x), atol=1e-5 * lengths(x).max())
+    barrier = _with_barrier(problem, obj, mesh.triangles, 0.9, x)
+    squeezed = x + 0.03 * np.random.default_rng(2).standard_normal(x.shape)
+    assert np.any(barrier.residuals(squeezed)[len(obj.residuals(x)) :] > 0)
+    expected = finite_difference(barrier.residuals, squeezed)
+    np.testing.assert_allclose(barrier.jacobian(squeezed).toarray(), expected, atol=1e-5)
 
 
 def check_invariants(mesh, r, opt):

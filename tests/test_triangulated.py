@@ -24,6 +24,7 @@ from equimesh.io import load_surface
 from equimesh.mesh import half_edges
 from equimesh.surface import pipeline
 from equimesh.surface.flatten import flatten
+from equimesh.surface.optimize import optimize_uv
 from equimesh.surface.flatten import _plane_start
 from equimesh.surface.mesh_chart import (
     MeshChart,
@@ -35,7 +36,8 @@ from equimesh.surface.mesh_chart import (
 )
 from equimesh.surface.mesh_outline import CORNER_TURN, FIRM_TURN, loop_corners
 from equimesh.surface.ring import inner_angle
-from equimesh.testing.meshes import roof_mesh
+from equimesh.surface._slide import on_loop
+from equimesh.testing.meshes import roof_mesh, wedge_mesh
 
 L = 1.5
 EXAMPLE = Path(__file__).resolve().parents[1] / "experiments" / "surfaces" / "roof_mesh.obj"
@@ -116,6 +118,55 @@ def test_roof_with_opening(roof_meshes, optimize):
     if optimize == "bounded":
         members = mesh.edge_lengths() / L
         assert members.min() >= 1 - REL_TOL and members.max() <= 2 * (1 + REL_TOL)
+
+
+def assert_boundary_slid_along_the_loops(mesh):
+    """Boundary nodes on their flattened loops (to 1e-12 of its length), corners where they were, some moved."""
+    outline, plane = mesh.stages.outline, mesh.stages.plane
+    start, moved = 0, 0
+    for loop, arc, corners, count in zip(outline.loops, outline.loop_arcs, outline.corners, plane.info["boundary_rings"]):
+        nodes = np.arange(start, start + count)
+        start += count
+        assert np.all(shapely.distance(shapely.LinearRing(loop), shapely.points(mesh.uv[nodes])) <= 1e-12 * arc[-1])
+        before = mesh.stages.remapped_uv[nodes]
+        for corner in on_loop(loop, arc, corners):
+            at = np.linalg.norm(before - corner, axis=1) <= REL_TOL * arc[-1]
+            assert at.sum() == 1 and np.array_equal(mesh.uv[nodes[at]], before[at])
+        moved += int(np.count_nonzero(np.any(mesh.uv[nodes] != before, axis=1)))
+    assert moved > 0
+
+
+@pytest.mark.parametrize(
+    "case, l",
+    [
+        ("steep vault", 1.2),  # 20 x 14 rising 8 (item 54's known limit)
+        ("warped wedge", 1.0),  # refused with the boundary fixed: 1 of 588 members a hair over 2l
+    ],
+)
+def test_bounded_slides_the_boundary_along_the_loops(case, l):
+    """Item 60: under "bounded" every boundary node but the corners slides along its loop; every member in [l, 2l]."""
+    v, t = roof_mesh(20.0, 14.0, (20, 14), 8.0) if case == "steep vault" else wedge_mesh()
+    surface = TriangulatedSurface(v, t)
+    mesh = mesh_surface(surface, l, optimize="bounded")
+    members = mesh.edge_lengths() / l
+    assert members.min() >= 1 - REL_TOL and members.max() <= 2 * (1 + REL_TOL)
+    assert_on_input_surface(mesh, surface, l)
+    assert_boundary_slid_along_the_loops(mesh)
+
+
+def test_roof_boundary_slides_under_bounded(roof_meshes):
+    assert_boundary_slid_along_the_loops(roof_meshes[1]["bounded"])
+
+
+def test_infeasible_mesh_refusal_suggests_what_refines_a_mesh():
+    """The refusal names the input mesh (not an auxiliary grid) and the objective that always meshes."""
+    surface = TriangulatedSurface(*roof_mesh(10.0, 10.0, (2, 2), 0.0))
+    chart = MeshChart(surface, surface.vertices[:, :2])
+    uv, edges = np.array([[0.0, 0.0], [0.5, 0.0], [0.5, 0.5]]), np.array([[0, 1], [1, 2], [0, 2]])
+    with pytest.raises(InvalidSurfaceError) as info:
+        optimize_uv(chart, uv, edges, np.zeros(3), 1.0, fixed=[0, 1], objective="bounded")
+    assert_one_line(str(info.value))
+    assert re.search(r"members outside \[l, 2l\].*use a smaller l, a finer input mesh, or optimize='paper'", str(info.value))
 
 
 @settings(max_examples=8, deadline=None)

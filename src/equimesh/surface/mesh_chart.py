@@ -56,12 +56,17 @@ class MeshChart:
     outer : int
         The index in ``surface.loops`` of the outer boundary on the plane.
     surface, plane
+    finer : str
+        What refines this chart, for refusals (:func:`~equimesh.surface.optimize.optimize_uv`):
+        the input mesh, where a parametric chart has its auxiliary grid.
 
     Raises
     ------
     InvalidSurfaceError
         The flattening overlaps itself (:func:`check_one_to_one`).
     """
+
+    finer = "a finer input mesh"
 
     def __init__(self, surface, plane):
         self.surface = surface

@@ -30,6 +30,8 @@ from ._places import coordinates, number
 from .outline import round_down
 from .ring import inner_angle, resample_ring
 from .remap import _nearest_segment
+from ._slide import between_corners, loop_arc, on_loop
+from ..tolerance import REL_TOL
 
 #: A flattened boundary loop keeps a polygon vertex where it turns by at least
 #: this many degrees (inner angle at most 150 or at least 210 degrees): the
@@ -66,6 +68,8 @@ class MeshOutline:
         Arc position of each loop vertex, and the loop's length last.
     order : tuple of int
         The index in ``surface.loops`` of each loop.
+    corners : tuple of (c,) arrays
+        Arc position along its loop of each corner kept (:func:`loop_corners`), increasing.
     """
 
     loops: tuple
@@ -73,6 +77,7 @@ class MeshOutline:
     arcs: tuple
     loop_arcs: tuple
     order: tuple
+    corners: tuple
 
     @property
     def vertices(self):
@@ -95,9 +100,9 @@ def mesh_outline(chart, l, spacing):
     """
     order = [chart.outer] + [k for k in range(len(chart.surface.loops)) if k != chart.outer]
     loops = [chart.plane[chart.surface.loops[k]] for k in order]
-    rings, arcs, loop_arcs = [], [], []
+    rings, arcs, loop_arcs, corner_arcs = [], [], [], []
     for k, xy in enumerate(loops):
-        arc = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.roll(xy, -1, axis=0) - xy, axis=1))])
+        arc = loop_arc(xy)
         name = ring_name(chart, order, k)
         corners = loop_corners(xy, l, _too_close(chart, xy, name, l))
         ring = resample_ring(xy, xy, corners, l, spacing, too_short=_too_short(name, l, len(corners))).points
@@ -112,7 +117,8 @@ def mesh_outline(chart, l, spacing):
         rings.append(ring)
         arcs.append(np.append(at, at[0] + arc[-1]))
         loop_arcs.append(arc)
-    return MeshOutline(tuple(loops), tuple(rings), tuple(arcs), tuple(loop_arcs), tuple(order))
+        corner_arcs.append(arc[np.sort(corners)])
+    return MeshOutline(tuple(loops), tuple(rings), tuple(arcs), tuple(loop_arcs), tuple(order), tuple(corner_arcs))
 
 
 def loop_corners(xy, l, too_close):
@@ -187,24 +193,44 @@ def boundary_uv(outline, plane):
     ``plane`` is the :class:`~equimesh.mesh.PlanarMesh` of Problem 2 on
     ``outline`` (the rings in the order of ``info["boundary_rings"]``).
     """
-    uv, start = [], 0
-    for ring, arcs, loop, loop_arc, count in zip(
-        outline.rings, outline.arcs, outline.loops, outline.loop_arcs, plane.info["boundary_rings"]
+    rings = _ring_arcs(outline, plane)
+    return np.vstack([on_loop(loop, arc, np.where(s >= arc[-1], s - arc[-1], s)) for _, loop, arc, s, _ in rings])
+
+
+def boundary_slides(outline, plane):
+    """The boundary nodes of ``plane`` sliding along their loops in the final optimisation (item 60).
+
+    Each node not at a corner of its loop slides between the corners before
+    and after it (:func:`~equimesh.surface._slide.between_corners`).
+
+    Returns
+    -------
+    slides : list of Slide, one per loop
+    fixed : (c,) int array
+        The boundary nodes at a corner.
+    """
+    pairs = [between_corners(*ring) for ring in _ring_arcs(outline, plane)]
+    return [slide for slide, _ in pairs], np.concatenate([fixed for _, fixed in pairs])
+
+
+def _ring_arcs(outline, plane):
+    """Per loop: the boundary nodes of ``plane`` on it, the loop, its arc positions, the nodes', its corners'.
+
+    A node at the fraction ``t`` of the ring edge between ring vertices at arc
+    positions ``s_a``, ``s_b`` is at ``(1 - t) s_a + t s_b`` (step 4).  The
+    ring starts at a corner, so its arc positions run from ``s_0`` to
+    ``s_0 + length``; the corners are taken into that range.
+    """
+    start = 0
+    for ring, arcs, loop, loop_arc, corner, count in zip(
+        outline.rings, outline.arcs, outline.loops, outline.loop_arcs, outline.corners, plane.info["boundary_rings"]
     ):
-        nodes = plane.points[start : start + count]
+        nodes = np.arange(start, start + count)
         start += count
-        seg, t, _ = _nearest_segment(nodes, ring, np.roll(ring, -1, axis=0))
+        seg, t, _ = _nearest_segment(plane.points[nodes], ring, np.roll(ring, -1, axis=0))
         s = (1.0 - t) * arcs[seg] + t * arcs[seg + 1]
-        uv.append(on_loop(loop, loop_arc, np.where(s >= loop_arc[-1], s - loop_arc[-1], s)))
-    return np.vstack(uv)
-
-
-def on_loop(xy, arc, s):
-    """Points of the closed loop ``xy`` (vertex arc positions ``arc``, its length last) at arc positions ``s``."""
-    k = np.clip(np.searchsorted(arc, s, side="right") - 1, 0, len(xy) - 1)
-    t = (s - arc[k]) / (arc[k + 1] - arc[k])
-    a, b = xy[k], np.roll(xy, -1, axis=0)[k]
-    return np.where((t == 0.0)[:, None], a, a + t[:, None] * (b - a))
+        first = arcs[0] - REL_TOL * loop_arc[-1]  # the ring's first vertex, a corner, up to rounding
+        yield nodes, loop, loop_arc, s, np.sort(np.where(corner < first, corner + loop_arc[-1], corner))
 
 
 def restate_mesh_error(exc, chart, outline, l):

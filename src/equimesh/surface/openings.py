@@ -24,6 +24,8 @@ from ..errors import InvalidPolygonError, InvalidSurfaceError
 from ..planar.polygon import as_polygon
 from ._places import number
 from .chart import domain_of
+from .remap import _nearest_segment
+from ._slide import between_corners, loop_arc
 
 
 class Perforated:
@@ -80,6 +82,27 @@ def _as_given(ring):
     out = np.empty_like(ring.vertices)
     out[ring.input_index] = ring.vertices
     return out
+
+
+def hole_slides(surface, uv, nodes):
+    """The openings' nodes sliding along the holes' (u, v) polygons in the final optimisation (item 60).
+
+    ``nodes[k]`` are the nodes on hole ``k`` (:func:`holes_of`'s order), at
+    ``uv``.  Every vertex of a hole is a corner: a node slides along the hole
+    edge it lies on (:func:`~equimesh.surface._slide.between_corners`).
+
+    Returns
+    -------
+    slides : list of Slide, one per hole
+    fixed : (c,) int array
+        The nodes at a hole's vertex.
+    """
+    pairs = []
+    for (ring, _), on_hole in zip(holes_of(surface), nodes):
+        arc = loop_arc(ring)
+        seg, t, _ = _nearest_segment(uv[on_hole], ring, np.roll(ring, -1, axis=0))
+        pairs.append(between_corners(on_hole, ring, arc, (1.0 - t) * arc[seg] + t * arc[seg + 1], arc[:-1]))
+    return [slide for slide, _ in pairs], np.concatenate([np.zeros(0, dtype=np.int64), *(fixed for _, fixed in pairs)])
 
 
 def holes_of(surface):

@@ -3,9 +3,12 @@
 "Finally, the deviation of the edge lengths in G1 from the target value is
 minimized by considering (u_i, v_i) of inner nodes as variables."  The
 variables are the (u, v) of the free nodes, kept in the chart's parameter domain by
-bounds (:func:`parameter_box`), and for "sliding" boundary nodes the one
+bounds (:func:`parameter_box`), for "sliding" boundary nodes the one
 parameter along the side they lie on (the other stays on the side; corners
-stay fixed).  The least-squares problem is solved by the sparse bounded
+stay fixed), and for nodes sliding along a polyline (the flattened loops of a
+triangle mesh, the openings' edges) their arc position ``s``
+(:class:`~equimesh.surface._slide.Slide`, ``uv = loop(s)``, the Jacobian by
+the chain rule through ``d uv / d s``, :meth:`UVProblem.chain`).  The least-squares problem is solved by the sparse bounded
 Levenberg-Marquardt of :mod:`equimesh.surface._solver` with an analytic sparse
 Jacobian (chain rule through the surface's first derivatives).
 
@@ -73,6 +76,9 @@ class UVProblem:
     free : (N,) or (N, 2) bool array
         True for the variable nodes (both parameters), or per parameter
         (a sliding boundary node varies one of u and v).
+    slides : tuple of :class:`~equimesh.surface._slide.Slide`
+        Nodes that slide along a polyline by their arc position (their
+        ``free`` entries False): one variable each, after the free parameters.
     """
 
     surface: object
@@ -81,22 +87,70 @@ class UVProblem:
     edge_groups: np.ndarray
     length: float
     free: np.ndarray
+    slides: tuple = ()
 
     @property
     def variables(self):
-        """(2N,) bool mask of the variable entries of ``uv.ravel()``."""
+        """(2N,) bool mask of the entries of ``uv.ravel()`` that are variables themselves."""
         return np.broadcast_to(np.asarray(self.free, dtype=bool).reshape(len(self.uv), -1), self.uv.shape).ravel()
 
     @property
+    def moving(self):
+        """(2N,) bool mask of the entries of ``uv.ravel()`` that depend on the variables (the Jacobians' columns)."""
+        moving = self.variables.copy()
+        for slide in self.slides:
+            moving[2 * slide.nodes] = moving[2 * slide.nodes + 1] = True
+        return moving
+
+    @property
     def x0(self):
-        """The start as a variable vector ``(u_0, v_0, u_1, v_1, ...)`` over free nodes."""
-        return self.uv.ravel()[self.variables]
+        """The start as a variable vector: ``(u_0, v_0, u_1, v_1, ...)`` over free nodes, then the arc positions."""
+        return np.concatenate([self.uv.ravel()[self.variables], *(slide.s for slide in self.slides)])
 
     def uv_of(self, x):
         """All nodes' (u, v) with the free ones taken from the variable vector ``x``."""
+        variables = self.variables
         full = self.uv.ravel().copy()
-        full[self.variables] = x
-        return full.reshape(-1, 2)
+        n = int(variables.sum())
+        full[variables] = x[:n]
+        full = full.reshape(-1, 2)
+        for slide in self.slides:
+            full[slide.nodes] = slide.uv(x[n : n + len(slide.nodes)])
+            n += len(slide.nodes)
+        return full
+
+    def chain(self, jacobian, x):
+        """``jacobian`` over the :attr:`moving` entries as one over the variables ``x`` (chain rule).
+
+        A sliding node's column pair ``(d/du, d/dv)`` becomes one column, its
+        dot product with the loop's direction ``d uv / d s`` at its ``s``.
+        """
+        if not self.slides:
+            return jacobian
+        moving, variables = self.moving, self.variables
+        n = int(variables.sum())
+        row = np.cumsum(moving) - 1  # column of each moving entry in ``jacobian``
+        rows, cols, vals = [row[variables]], [np.arange(n)], [np.ones(n)]
+        for slide in self.slides:
+            k = len(slide.nodes)
+            rows += [row[2 * slide.nodes], row[2 * slide.nodes + 1]]
+            cols += [np.arange(n, n + k)] * 2
+            vals += list(slide.direction(x[n : n + k]).T)
+            n += k
+        chain = scipy.sparse.csr_matrix(
+            (np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(int(moving.sum()), n)
+        )
+        return (jacobian @ chain).tocsr()
+
+    @property
+    def bounds(self):
+        """``(lower, upper)`` of the variables: the parameter domain, and each sliding node's range of arc positions."""
+        lower, upper = parameter_box(self.surface)
+        variables = self.variables
+        return (
+            np.concatenate([np.tile(lower, len(self.uv))[variables], *(slide.lower for slide in self.slides)]),
+            np.concatenate([np.tile(upper, len(self.uv))[variables], *(slide.upper for slide in self.slides)]),
+        )
 
 
 @dataclass(frozen=True)
@@ -142,7 +196,7 @@ def edge_length_terms(problem, edges):
     jacobian : callable ``x -> (lengths (K,), csr_matrix (K, n_variables))``
     """
     e = np.asarray(edges, dtype=np.int64).reshape(-1, 2)
-    assemble = ElementJacobian(e, len(problem.uv), 2, problem.variables)
+    assemble = ElementJacobian(e, len(problem.uv), 2, problem.moving)
     surface = problem.surface
 
     last = {}
@@ -166,7 +220,7 @@ def edge_length_terms(problem, edges):
         a, b = e[:, 0], e[:, 1]
         grad_b = np.column_stack([np.sum(unit * su[b], axis=1), np.sum(unit * sv[b], axis=1)])
         grad_a = -np.column_stack([np.sum(unit * su[a], axis=1), np.sum(unit * sv[a], axis=1)])
-        return length, assemble(grad_a, grad_b)
+        return length, problem.chain(assemble(grad_a, grad_b), x)
 
     return lengths, jacobian
 
@@ -342,6 +396,7 @@ def optimize_uv(
     *,
     fixed,
     sliding=(),
+    slides=(),
     triangles=None,
     objective="paper",
     area_floor=0.5,
@@ -367,6 +422,9 @@ def optimize_uv(
         Nodes on the boundary of the parameter domain that move along it:
         the parameter(s) at a side of :func:`parameter_box` stay, the other
         varies (a node at a corner stays put).
+    slides : sequence of :class:`~equimesh.surface._slide.Slide`
+        Nodes that slide along a polyline in (u, v) by their arc position,
+        within their bounds (the boundary loops of a triangle-mesh chart).
     triangles : (M, 3) int array_like, optional
         For the fold-over guards (recommended): without them neither the
         barrier nor the acceptance test is applied.
@@ -389,7 +447,9 @@ def optimize_uv(
     ------
     InvalidSurfaceError
         The objective has a hard constraint (``"bounded"``: every member in
-        [l, 2l]) and no point satisfying it was found.
+        [l, 2l]) and no point satisfying it was found; the message suggests a
+        smaller l, a finer grid (``surface.finer`` names what refines a chart,
+        "a finer auxiliary grid" by default) or ``optimize='paper'``.
     """
     try:
         builder = OBJECTIVES[objective]
@@ -397,15 +457,20 @@ def optimize_uv(
         raise EquimeshError(f"unknown objective {objective!r}; choose from {sorted(OBJECTIVES)}") from None
     lower, upper = parameter_box(surface)
     uv = np.clip(np.array(uv, dtype=float).reshape(-1, 2), lower, upper)
+    slides = tuple(slides)
     free = _free_parameters(uv, fixed, sliding, lower, upper)
-    problem = UVProblem(surface, uv, np.asarray(edges, dtype=np.int64), np.asarray(edge_groups), float(length), free)
+    for slide in slides:
+        free[slide.nodes] = False
+    problem = UVProblem(
+        surface, uv, np.asarray(edges, dtype=np.int64), np.asarray(edge_groups), float(length), free, slides
+    )
     obj = builder(problem)
     x0 = problem.x0
     if len(x0) == 0:
         cost0 = _cost(obj, x0)
         return UVOptimization(uv, cost0, cost0, 0, 0, True, "no free nodes", objective)
     tri = None if triangles is None else np.asarray(triangles, dtype=np.int64).reshape(-1, 3)
-    box = (np.tile(lower, len(uv))[problem.variables], np.tile(upper, len(uv))[problem.variables])
+    box = problem.bounds
     x, nfev, njev, damping = x0, 0, 0, LM_INITIAL_DAMPING
     while True:
         x = x if obj.start is None else obj.start
@@ -429,7 +494,8 @@ def optimize_uv(
     if obj.feasible is not None and not obj.feasible(x):
         raise InvalidSurfaceError(
             f"optimisation ({objective}): no mesh with every member in [l, 2l] found, {obj.violation(x)}; "
-            "use a smaller l or a finer auxiliary grid"
+            f"use a smaller l, {getattr(surface, 'finer', 'a finer auxiliary grid')}, or optimize='paper' "
+            "(which does not bound the members on the surface)"
         )
     return UVOptimization(
         problem.uv_of(x), _cost(obj, x0), _cost(obj, x), nfev, njev, solution.converged, solution.message, objective
@@ -488,13 +554,13 @@ def _with_barrier(problem, obj, triangles, fraction, x):
     folded triangle alone costs more than the start of the solve.
     """
     weight = 1.0 + 2.0 * np.sqrt(_cost(obj, x))
-    barrier = AreaBarrier(triangles, problem.uv, fraction, weight, problem.variables, power=2)
+    barrier = AreaBarrier(triangles, problem.uv, fraction, weight, problem.moving, power=2)
 
     def residuals(y):
         return np.concatenate([obj.residuals(y), barrier.residuals(problem.uv_of(y))])
 
     def jacobian(y):
-        return scipy.sparse.vstack([obj.jacobian(y), barrier.jacobian(problem.uv_of(y))], format="csr")
+        return scipy.sparse.vstack([obj.jacobian(y), problem.chain(barrier.jacobian(problem.uv_of(y)), y)], format="csr")
 
     return Objective(residuals, jacobian, obj.description + " + fold-over barrier")
 

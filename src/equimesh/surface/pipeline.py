@@ -34,12 +34,12 @@ from .chart import domain_of
 from ..errors import EquimeshError, InternalError, InvalidPolygonError, InvalidSurfaceError, MeshTooLargeError
 from .flatten import flatten
 from .mesh_chart import MeshChart, flatten_mesh
-from .mesh_outline import boundary_uv, mesh_outline, restate_mesh_error
+from .mesh_outline import boundary_slides, boundary_uv, mesh_outline, restate_mesh_error
 from ._jacobian import signed_areas
 from .._geometry import power_of_two_scale
 from ..mesh import G1, edge_lengths
 from .optimize import OBJECTIVES, optimize_uv
-from .openings import Perforated, holes_of
+from .openings import Perforated, hole_slides, holes_of
 from .outline import resample_outline
 from ..planar.insertion import DEFAULT_ENGINE, check_engine
 from ..planar.limits import check_max_nodes, check_size, node_estimate
@@ -178,7 +178,8 @@ def mesh_surface(
         or a triangle mesh (:class:`equimesh.TriangulatedSurface`), which is
         then the auxiliary triangulation itself: its boundary loops are the
         outer boundary and the openings, every node lies on one of its
-        triangles, and the boundary nodes stay fixed in the optimisation.
+        triangles, and its boundary nodes stay fixed in the optimisation, or
+        under "bounded" slide along their loops (corners fixed).
     l : float
         Target member length.
     holes : sequence of (k, 2) array_like, optional
@@ -186,7 +187,8 @@ def mesh_surface(
         (:class:`~equimesh.surface.openings.Perforated`, which a surface may
         carry already, e.g. from a JSON ``"holes"`` field).  Each is mapped
         to the flattened plane and kept open by Problem 2; its boundary nodes
-        lie on its polyline and stay fixed in the optimisation.
+        lie on its polyline and stay fixed in the optimisation, or under
+        "bounded" slide along its edges (its vertices fixed).
     grid : (int, int)
         Auxiliary grid n_u x n_v (step 1), at most :data:`MAX_GRID_CELLS`
         cells; not used for a triangle mesh.
@@ -195,7 +197,7 @@ def mesh_surface(
         :data:`equimesh.surface.optimize.OBJECTIVES`), or none.  "bounded"
         (beyond the paper, the default) keeps every member in [l, 2l] with as
         many as possible at one length, boundary nodes sliding along their
-        side; "paper" is the paper's (G1 members only, boundary fixed).
+        side, loop or hole edge; "paper" is the paper's (G1 members only, boundary fixed).
     placement : "best" or "default"
         Lattice placement of Problem 2.
     boundary_spacing : float
@@ -269,20 +271,11 @@ def mesh_surface(
     chart = steps.chart
     final_uv, final_points = mapped_uv, mapped_points
     if optimize != "none":
-        boundary = np.arange(plane.n_boundary)
-        # Hole nodes stay fixed: with the whole boundary of each hole fixed and no fold-over no node can enter it.
-        outer = plane.info["boundary_rings"][0] if steps.slides else 0
-        slides = optimize in SLIDING_OBJECTIVES
+        boundary = {"fixed": np.arange(plane.n_boundary)}
+        if optimize in SLIDING_OBJECTIVES:
+            boundary = steps.boundary(plane, mapped_uv)
         result = optimize_uv(
-            chart,
-            mapped_uv,
-            plane.edges,
-            plane.edge_groups,
-            l,
-            fixed=boundary[outer:] if slides else boundary,
-            sliding=boundary[:outer] if slides else (),
-            triangles=plane.triangles,
-            objective=optimize,
+            chart, mapped_uv, plane.edges, plane.edge_groups, l, triangles=plane.triangles, objective=optimize, **boundary
         )
         final_uv = result.uv
         _check_orientation(final_uv, plane.triangles, "the optimisation")
@@ -312,8 +305,9 @@ class _Front:
     gives the remapped ``(uv, points)`` of a plane mesh; ``restate(exc)``
     turns Problem 2's refusal of the outline into the surface's terms;
     ``holes`` are the rings of the openings (``holes=`` of Problem 2);
-    ``slides`` says whether the nodes of the outer boundary may slide along
-    the sides of the chart's domain (the openings' nodes never do).
+    ``boundary(plane, uv)`` gives the keywords ``fixed``, ``sliding`` and
+    ``slides`` of :func:`~equimesh.surface.optimize.optimize_uv` for the
+    boundary nodes under a sliding objective.
     """
 
     chart: object
@@ -324,7 +318,7 @@ class _Front:
     place: Callable
     restate: Callable
     holes: list | None
-    slides: bool
+    boundary: Callable
 
 
 def _chart_front(surface, grid, l, limit, spacing, clock):
@@ -350,7 +344,16 @@ def _chart_front(surface, grid, l, limit, spacing, clock):
     def restate(exc):
         return restate_polygon_error(exc, surface, flat.points, aux, outline, l)
 
-    return _Front(surface, aux, x_s0, flat, outline, place, restate, [hole.points for hole in outline.holes], True)
+    def boundary(plane, uv):
+        """The outer boundary's nodes slide along the sides of the domain, the openings' along their edges.
+
+        With every opening's vertices fixed, its other nodes on its edges and no fold-over no node can enter it.
+        """
+        ends = np.cumsum(plane.info["boundary_rings"])
+        slides, fixed = hole_slides(surface, uv, [np.arange(a, b) for a, b in zip(ends[:-1], ends[1:])])
+        return {"fixed": fixed, "sliding": np.arange(ends[0]), "slides": slides}
+
+    return _Front(surface, aux, x_s0, flat, outline, place, restate, [hole.points for hole in outline.holes], boundary)
 
 
 def _mesh_front(surface, grid, l, limit, spacing, clock):
@@ -385,7 +388,12 @@ def _mesh_front(surface, grid, l, limit, spacing, clock):
     def restate(exc):
         return restate_mesh_error(exc, chart, outline, l)
 
-    return _Front(chart, surface, surface.vertices, flat, outline, place, restate, outline.holes, False)
+    def boundary(plane, uv):
+        """Every boundary node slides along its loop between the loop's corners, which stay fixed (item 60)."""
+        slides, corners = boundary_slides(outline, plane)
+        return {"fixed": corners, "slides": slides}
+
+    return _Front(chart, surface, surface.vertices, flat, outline, place, restate, outline.holes, boundary)
 
 
 class _Clock:

@@ -1,6 +1,7 @@
 """Triangle meshes of roofs, for the triangle-mesh input of Section 4 (tests, examples, benchmarks)."""
 
 import numpy as np
+import triangle
 
 
 def roof_mesh(width, depth, cells, rise, opening=None):
@@ -35,3 +36,30 @@ def roof_mesh(width, depth, cells, rise, opening=None):
     a, b, c, d = (n[keep] for n in (node[:-1, :-1], node[1:, :-1], node[1:, 1:], node[:-1, 1:]))
     triangles = np.concatenate([np.column_stack([a, b, c]), np.column_stack([a, c, d])])
     return vertices, triangles
+
+
+def wedge_mesh(angle=25.0, radius=30.0, opening=((15.0, 2.0), (18.0, 3.2)), warp=0.01, max_area=0.3):
+    """A circular sector of ``angle`` degrees with a rectangular opening, warped to ``z = warp x y``.
+
+    Triangulated by Triangle (quality 30 degrees, triangles of at most
+    ``max_area``); the arc is a 9-point polyline.  With the defaults, the
+    sharp corner's staggered boundary parts of exactly 2l come out a hair
+    longer than 2l on the surface at l = 1 (docs/decisions.md, items 54 and 60).
+
+    Returns
+    -------
+    vertices : (N, 3) float array, triangles : (M, 3) int array
+    """
+    a = np.radians(angle)
+    t = np.linspace(0.0, a, 9)
+    (x0, y0), (x1, y1) = opening
+    arc = np.column_stack([radius * np.cos(t), radius * np.sin(t)])
+    points = np.vstack([[0.0, 0.0], arc, [[x0, y0], [x1, y0], [x1, y1], [x0, y1]]])
+    n = len(t) + 1
+    segments = [(i, (i + 1) % n) for i in range(n)] + [(n + i, n + (i + 1) % 4) for i in range(4)]
+    mesh = triangle.triangulate(
+        {"vertices": points, "segments": np.array(segments), "holes": np.array([[(x0 + x1) / 2, (y0 + y1) / 2]])},
+        f"pq30a{max_area}",
+    )
+    v = mesh["vertices"]
+    return np.column_stack([v, warp * v[:, 0] * v[:, 1]]), mesh["triangles"]
