@@ -55,11 +55,11 @@ ROOT = Path(__file__).resolve().parent.parent
 #: kept small so that one mutant costs a few seconds.
 MODULES = {
     "src/equimesh/planar/bounds.py": ["tests/test_bounds.py"],
-    "src/equimesh/planar/lattice.py": ["tests/test_uniform.py"],
+    "src/equimesh/planar/lattice.py": ["tests/test_lattice.py"],
     "src/equimesh/planar/polygon.py": ["tests/test_polygon.py", "tests/test_hardening_planar.py"],
     "src/equimesh/planar/increment.py": ["tests/test_increment.py", "tests/test_reference_engine.py"],
     "src/equimesh/planar/insertion/reference.py": ["tests/test_reference_engine.py", "tests/test_increment.py"],
-    "src/equimesh/planar/strip.py": ["tests/test_uniform.py"],
+    "src/equimesh/planar/strip.py": ["tests/test_strip.py"],
 }
 
 #: Equivalent mutants: (module, the mutated line as mutmut prints it after
