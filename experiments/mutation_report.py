@@ -57,7 +57,7 @@ MODULES = {
     "src/equimesh/planar/bounds.py": ["tests/test_bounds.py"],
     "src/equimesh/planar/lattice.py": ["tests/test_lattice.py"],
     "src/equimesh/planar/polygon.py": ["tests/test_polygon.py", "tests/test_hardening_planar.py"],
-    "src/equimesh/planar/increment.py": ["tests/test_increment.py", "tests/test_reference_engine.py"],
+    "src/equimesh/planar/increment.py": ["tests/test_increment_steps.py"],
     "src/equimesh/planar/insertion/reference.py": ["tests/test_reference_engine.py", "tests/test_increment.py"],
     "src/equimesh/planar/strip.py": ["tests/test_strip.py"],
 }

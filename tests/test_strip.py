@@ -155,3 +155,14 @@ def test_parameters_at_their_limits_are_accepted(check, value):
     """Clearance exactly 1, spacing exactly 1 or 2: allowed, returned as plain floats."""
     out = check(value)
     assert out == value and type(out) is float
+
+
+def test_the_callers_vertices_are_kept_bit_for_bit():
+    """The local frame rounds these vertices on the way back; the output pins them to the caller's coordinates."""
+    vertices = np.array([[0.0, 0.0], [4.0, 0.0], [5.0, 2.5], [2.0, 4.5], [-1.0, 2.5]]) * 1.7 + np.array([0.1, 0.7])
+    poly = as_polygon(vertices, 1.0)
+    assert not np.array_equal(poly.frame.to_caller(poly.local), vertices)  # the round trip alone would not do
+    mesh = equimesh.uniform_triangulation(vertices, 1.0)
+    found = {tuple(p) for p in mesh.points}
+    assert all(tuple(v) in found for v in vertices)
+    np.testing.assert_allclose(mesh.frame.to_caller(mesh.local_points), mesh.points, rtol=0, atol=1e-12)
