@@ -24,7 +24,9 @@ comes from the ``[mutation]`` extra (``make mutation`` installs it).  The
 report is rewritten after each module, and modules already in
 ``results/mutation.json`` from an earlier run are kept, so the modules can be
 run one at a time; ``--resume`` continues an interrupted module where mutmut
-stopped instead of starting it afresh.
+stopped instead of starting it afresh, and ``--survivors`` runs only the
+survivors of the module's last run again, against the current tests (after
+adding the tests that should kill them), keeping every other verdict.
 
 Usage::
 
@@ -58,7 +60,7 @@ MODULES = {
     "src/equimesh/planar/lattice.py": ["tests/test_lattice.py"],
     "src/equimesh/planar/polygon.py": ["tests/test_polygon.py", "tests/test_hardening_planar.py"],
     "src/equimesh/planar/increment.py": ["tests/test_increment_steps.py"],
-    "src/equimesh/planar/insertion/reference.py": ["tests/test_reference_engine.py", "tests/test_increment.py"],
+    "src/equimesh/planar/insertion/reference.py": ["tests/test_reference_engine.py", "tests/test_increment_steps.py"],
     "src/equimesh/planar/strip.py": ["tests/test_strip.py"],
 }
 
@@ -87,6 +89,8 @@ def parse_args(argv=None):
     p.add_argument("--max-children", type=int, default=2, help="parallel mutant runs (default 2)")
     p.add_argument("--work-dir", type=Path, default=ROOT / ".mutation", help="scratch folder (default .mutation/)")
     p.add_argument("--resume", action="store_true", help="keep the scratch copy of a module and its finished mutants")
+    p.add_argument("--survivors", action="store_true",
+                   help="run only the last run's survivors again, against the current tests (keeps the other verdicts)")
     _common.add_output_options(p, fig_dir=False)
     args = p.parse_args(argv)
     unknown = [m for m in args.modules if m not in MODULES]
@@ -108,15 +112,21 @@ def mutmut_table(module):
     ])
 
 
-def prepare(module, work_dir, resume=False):
-    """A fresh copy of the project for ``module``'s mutants (kept as it is with ``resume``); returns its folder."""
+def prepare(module, work_dir, keep=None):
+    """The copy of the project for ``module``'s mutants; returns its folder.
+
+    ``keep=None`` makes a fresh copy; ``"resume"`` keeps an existing one as it
+    is; ``"survivors"`` keeps it with the current tests and test selection.
+    """
     folder = work_dir / re.sub(r"[^A-Za-z0-9]+", "_", module)
-    if resume and folder.exists():
+    if keep == "resume" and folder.exists():
         return folder
-    shutil.rmtree(folder, ignore_errors=True)
-    folder.mkdir(parents=True)
-    for name in ("src", "tests"):
-        shutil.copytree(ROOT / name, folder / name, ignore=shutil.ignore_patterns("__pycache__", "*.pyc"))
+    if keep != "survivors" or not folder.exists():
+        shutil.rmtree(folder, ignore_errors=True)
+        folder.mkdir(parents=True)
+        shutil.copytree(ROOT / "src", folder / "src", ignore=shutil.ignore_patterns("__pycache__", "*.pyc"))
+    shutil.copytree(ROOT / "tests", folder / "tests", ignore=shutil.ignore_patterns("__pycache__", "*.pyc"),
+                    dirs_exist_ok=True)
     text = (ROOT / "pyproject.toml").read_text()
     (folder / "pyproject.toml").write_text(text + mutmut_table(module))
     return folder
@@ -139,14 +149,28 @@ def mutated_line(folder, name):
     return ""
 
 
-def run_module(module, work_dir, max_children, resume=False, progress=print):
-    """Mutate ``module``, run its tests on every mutant; its counts and survivors."""
-    folder = prepare(module, work_dir, resume)
-    progress(f"{NAME}: {module} against {' '.join(MODULES[module])}")
+def statuses(folder):
+    """Mutant name -> status (killed, survived, ...) of the mutants in ``folder``."""
+    return dict(re.findall(r"^\s*(\S+): (.+)$", mutmut(folder, "results", "--all", "true"), re.M))
+
+
+def run_module(module, work_dir, max_children, keep=None, seconds=None, progress=print):
+    """Mutate ``module``, run its tests on every mutant; its counts and survivors.
+
+    With ``keep="survivors"`` only the survivors of the last run are run again
+    (:func:`prepare`; the test selection must be the same, or mutmut resets
+    every verdict), and ``seconds`` is the time of that last full run.
+    """
+    folder = prepare(module, work_dir, keep)
+    full = keep != "survivors" or not (folder / "mutants").exists()
+    again = [] if full else sorted(n for n, s in statuses(folder).items() if s == "survived")
+    progress(f"{NAME}: {module} against {' '.join(MODULES[module])}" + ("" if full else f", {len(again)} survivors again"))
     start = time.perf_counter()
-    mutmut(folder, "run", "--max-children", str(max_children))
-    seconds = time.perf_counter() - start
-    status = dict(re.findall(r"^\s*(\S+): (.+)$", mutmut(folder, "results", "--all", "true"), re.M))
+    if full or again:
+        mutmut(folder, "run", "--max-children", str(max_children), *again)
+    if full or seconds is None:
+        seconds = time.perf_counter() - start
+    status = statuses(folder)
     counts = {s: sum(v == s for v in status.values()) for s in STATUSES}
     survivors = []
     for name in sorted((n for n, s in status.items() if s == "survived"), key=_natural):
@@ -197,7 +221,8 @@ def main(argv=None):
     done = {m["module"]: m for m in previous if m["module"] in MODULES}
     args.out_dir.mkdir(parents=True, exist_ok=True)
     for module in wanted:
-        done[module] = run_module(module, args.work_dir, args.max_children, args.resume)
+        keep = "survivors" if args.survivors else "resume" if args.resume else None
+        done[module] = run_module(module, args.work_dir, args.max_children, keep, done.get(module, {}).get("seconds"))
         modules = [done[m] for m in MODULES if m in done]
         atomic_write_text(json_path, json.dumps({"modules": modules}, indent=1) + "\n")
         parameters = {"modules": [m["module"] for m in modules], "max_children": args.max_children, "pytest_args": PYTEST_ARGS}
