@@ -58,7 +58,7 @@ ROOT = Path(__file__).resolve().parent.parent
 MODULES = {
     "src/equimesh/planar/bounds.py": ["tests/test_bounds.py"],
     "src/equimesh/planar/lattice.py": ["tests/test_lattice.py"],
-    "src/equimesh/planar/polygon.py": ["tests/test_polygon.py", "tests/test_hardening_planar.py"],
+    "src/equimesh/planar/polygon.py": ["tests/test_polygon.py", "tests/test_polygon_validation.py", "tests/test_hardening_planar.py"],
     "src/equimesh/planar/increment.py": ["tests/test_increment_steps.py"],
     "src/equimesh/planar/insertion/reference.py": ["tests/test_reference_engine.py", "tests/test_increment_steps.py"],
     "src/equimesh/planar/strip.py": ["tests/test_strip.py"],
@@ -75,6 +75,22 @@ EQUIVALENT = {
     (_POLYGON, "def resample_boundary(poly, l, spacing=3.0):"): _SPACING_ABOVE_2,
     (_POLYGON, "lengths = np.asarray(lengths, dtype=None)"): _FLOAT_ANYWAY,
     (_POLYGON, "lengths = np.asarray(lengths, )"): _FLOAT_ANYWAY,
+    (_POLYGON, "other = int(np.flatnonzero(np.any(local != local[0], axis=1))[1])"):
+        "equivalent: a ring has at least 3 distinct vertices (checked before), so a second vertex unlike the first "
+        "exists, and the vertices are all collinear with the first and that one, or not, whichever it is",
+    (_POLYGON, "spike = (orient_sign(a, b, np.roll(b, -1, axis=0)) == 0) & (np.sum(e_in * e_out, axis=1) <= 0)"):
+        "equivalent: two consecutive collinear edges with dot product exactly 0 need an edge of length 0, a "
+        "repeated vertex, refused before",
+    (_POLYGON, "if len(v) > 2 and np.array_equal(v[0], v[-1]):"):
+        "equivalent: two equal vertices are one distinct vertex whether the closing copy is dropped or not: the same error",
+    (_POLYGON, 'if raw.dtype.kind not in "XXiufOXX":'): "equivalent: no numpy dtype kind is X",
+    (_POLYGON, 'isinstance(value, numbers.Real) or (np.ndim(value) == 0 and np.asarray(value).dtype.kind in "XXiufXX")'):
+        "equivalent: no numpy dtype kind is X",
+    (_POLYGON, "_check_simple(Polygon(v, index, None, local, label=label))"):
+        "equivalent: _check_simple reads the local coordinates, the vertices, their indices and the label, never the frame",
+    (_POLYGON, "counter_clockwise = orient_sign(local[low - 1], local[low], local[(low + 1) % len(v)]) >= 0"):
+        "equivalent: the turn at the lowest-leftmost vertex is never straight: its neighbours lie in the closed "
+        "half-plane right of or above it, so collinear neighbours would be on one ray from it, a fold refused before",
 }
 
 #: pytest options for every mutant run: stop at the first failure.
