@@ -70,7 +70,13 @@ _POLYGON = "src/equimesh/planar/polygon.py"
 _SPACING_ABOVE_2 = ("equivalent: for any spacing >= 2 the lower bound ceil(L / 2l) of split_counts decides, "
                     "so a default of 3 gives the same parts as 2")
 _FLOAT_ANYWAY = "equivalent: the division by l that follows makes the counts' arithmetic float for any real input"
+_REFERENCE = "src/equimesh/planar/insertion/reference.py"
+_KEY_BASE = ("equivalent: the keys a n + b of sorted pairs a < b <= m (m the largest index) are unique for any "
+             "n >= m: for each a they fill [a n + a + 1, a n + m], disjoint intervals; only equality is used")
 EQUIVALENT = {
+    (_REFERENCE, "n = int(max(t.max(), pairs.max(initial=0))) - 1"): _KEY_BASE,
+    (_REFERENCE, "n = int(max(t.max(), pairs.max(initial=0))) + 2"): _KEY_BASE,
+    (_REFERENCE, "n = int(max(t.max(), pairs.max(initial=1))) + 1"): _KEY_BASE,
     (_POLYGON, "def split_counts(lengths, l, spacing=3.0):"): _SPACING_ABOVE_2,
     (_POLYGON, "def resample_boundary(poly, l, spacing=3.0):"): _SPACING_ABOVE_2,
     (_POLYGON, "lengths = np.asarray(lengths, dtype=None)"): _FLOAT_ANYWAY,

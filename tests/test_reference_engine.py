@@ -98,6 +98,14 @@ def test_midpoint_value_is_capped_by_the_apex(apex_y, value):
     assert values.tolist() == [value]
 
 
+def test_apex_is_the_third_vertex_of_the_triangle_on_each_pair():
+    """Either direction of the pair; -1 for a pair on no triangle, and for every pair when there is no triangle."""
+    tri = np.array([[0, 1, 2], [2, 1, 3]])
+    assert reference._apex(tri, np.array([[1, 0], [0, 2], [3, 1], [0, 3], [4, 5]])).tolist() == [2, 1, 2, -1, -1]
+    assert reference._apex(np.empty((0, 3), dtype=np.int64), np.array([[0, 1]])).tolist() == [-1]
+    assert reference._apex(tri, np.empty((0, 2), dtype=np.int64)).tolist() == []
+
+
 def test_best_candidate_prefers_the_largest_value_and_reports_the_split():
     """A right triangle on its hypotenuse: the circumcentre is on the constraint, so the midpoint wins and splits it."""
     points = np.array([[0.0, 0.0], [2.0, 0.0], [0.0, 2.0]])
