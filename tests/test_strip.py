@@ -166,3 +166,17 @@ def test_the_callers_vertices_are_kept_bit_for_bit():
     found = {tuple(p) for p in mesh.points}
     assert all(tuple(v) in found for v in vertices)
     np.testing.assert_allclose(mesh.frame.to_caller(mesh.local_points), mesh.points, rtol=0, atol=1e-12)
+
+
+def test_size_guard_counts_what_the_engine_pays_for():
+    """The reference engine's default limit (2500) counts the boundary strip; max_nodes counts the polygon for the fast one.
+
+    A square of side 400 l: strip area min(160000, 2 * 1600) = 3200 l^2, Oler's bound 3695.0 + 801 plus 1600
+    vertices on the boundary of K, about 6.1e3 > 2500; with max_nodes = 10 the fast engine counts the polygon.
+    """
+    big = SQUARE / 6.0 * 400.0
+    with pytest.raises(equimesh.MeshTooLargeError, match=r"about 6.1e\+03 nodes in the boundary strip, more than max_nodes = 2500;"):
+        equimesh.uniform_triangulation(big, 1.0, engine="reference")
+    with pytest.raises(equimesh.MeshTooLargeError, match=r"nodes in the polygon, more than max_nodes = 10;"):
+        equimesh.uniform_triangulation(SQUARE, 1.0, max_nodes=10)
+    assert equimesh.uniform_triangulation(SQUARE, 1.0, max_nodes=None, offset=OFFSET).info["n_lattice_vertices"] == 22
