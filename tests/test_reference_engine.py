@@ -101,9 +101,17 @@ def test_midpoint_value_is_capped_by_the_apex(apex_y, value):
 def test_apex_is_the_third_vertex_of_the_triangle_on_each_pair():
     """Either direction of the pair; -1 for a pair on no triangle, and for every pair when there is no triangle."""
     tri = np.array([[0, 1, 2], [2, 1, 3]])
-    assert reference._apex(tri, np.array([[1, 0], [0, 2], [3, 1], [0, 3], [4, 5]])).tolist() == [2, 1, 2, -1, -1]
+    assert reference._apex(tri, np.array([[1, 0], [0, 2], [3, 1], [3, 2], [0, 3], [4, 5]])).tolist() == [2, 1, 2, 1, -1, -1]
     assert reference._apex(np.empty((0, 3), dtype=np.int64), np.array([[0, 1]])).tolist() == [-1]
     assert reference._apex(tri, np.empty((0, 2), dtype=np.int64)).tolist() == []
+
+
+def test_points_and_segments_have_the_engines_dtypes_whatever_the_callers():
+    """Integer coordinates and int32 segments in, float points and int64 segments out (as from the fast engine),
+    even when nothing is inserted (a unit square)."""
+    segments = np.array([[0, 1], [1, 2], [2, 3], [3, 0]], dtype=np.int32)
+    result = reference.run(Region(np.array([[0, 0], [1, 0], [1, 1], [0, 1]]), segments, np.empty((0, 2))), 1.0)
+    assert len(result.points) == 4 and result.points.dtype == float and result.segments.dtype == np.int64
 
 
 def test_best_candidate_prefers_the_largest_value_and_reports_the_split():
