@@ -113,6 +113,12 @@ EQUIVALENT = {
 #: pytest options for every mutant run: stop at the first failure.
 PYTEST_ARGS = ["-p", "no:cacheprovider", "-q", "-x"]
 
+#: mutmut stops a mutant after ``2 * TIMEOUT_MULTIPLIER * (its tests' time + 1 s)``
+#: of CPU time (timed out, counted as killed).  mutmut's default, 15, let a
+#: mutant that never stops inserting run for 4 minutes on a loaded machine; a
+#: surviving mutant runs its tests in their own time, so 3 leaves a margin of 6.
+TIMEOUT_MULTIPLIER = 3.0
+
 STATUSES = ("killed", "survived", "timeout", "no tests", "suspicious", "skipped", "segfault")
 
 
@@ -141,25 +147,27 @@ def mutmut_table(module):
         "", "[tool.mutmut]", 'source_paths = ["src"]',
         f"only_mutate = {toml_list([module])}",
         f"pytest_add_cli_args_test_selection = {toml_list(MODULES[module])}",
-        f"pytest_add_cli_args = {toml_list(PYTEST_ARGS)}", "",
+        f"pytest_add_cli_args = {toml_list(PYTEST_ARGS)}", f"timeout_multiplier = {TIMEOUT_MULTIPLIER}", "",
     ])
 
 
 def prepare(module, work_dir, keep=None):
     """The copy of the project for ``module``'s mutants; returns its folder.
 
-    ``keep=None`` makes a fresh copy; ``"resume"`` keeps an existing one as it
-    is; ``"survivors"`` keeps it with the current tests and test selection.
+    ``keep=None`` makes a fresh copy; ``"resume"`` keeps an existing one with
+    its tests; ``"survivors"`` keeps it with the current tests.  Either way the
+    ``[tool.mutmut]`` table is the current one (mutmut resets the verdicts its
+    change can alter).
     """
     folder = work_dir / re.sub(r"[^A-Za-z0-9]+", "_", module)
-    if keep == "resume" and folder.exists():
-        return folder
-    if keep != "survivors" or not folder.exists():
+    fresh = keep is None or not folder.exists()
+    if fresh:
         shutil.rmtree(folder, ignore_errors=True)
         folder.mkdir(parents=True)
         shutil.copytree(ROOT / "src", folder / "src", ignore=shutil.ignore_patterns("__pycache__", "*.pyc"))
-    shutil.copytree(ROOT / "tests", folder / "tests", ignore=shutil.ignore_patterns("__pycache__", "*.pyc"),
-                    dirs_exist_ok=True)
+    if fresh or keep == "survivors":
+        shutil.copytree(ROOT / "tests", folder / "tests", ignore=shutil.ignore_patterns("__pycache__", "*.pyc"),
+                        dirs_exist_ok=True)
     text = (ROOT / "pyproject.toml").read_text()
     (folder / "pyproject.toml").write_text(text + mutmut_table(module))
     return folder
