@@ -73,7 +73,7 @@ _FLOAT_ANYWAY = "equivalent: the division by l that follows makes the counts' ar
 _REFERENCE = "src/equimesh/planar/insertion/reference.py"
 _KEY_BASE = ("equivalent: the keys a n + b of sorted pairs a < b <= m (m the largest index) are unique for any "
              "n >= m: for each a they fill [a n + a + 1, a n + m], disjoint intervals; only equality is used")
-_LAST_AXIS = "equivalent: np.sort sorts along the last axis by default, axis 1 of these (k, 2) arrays"
+_LAST_AXIS = "equivalent: np.sort sorts along the last axis by default, axis 1 of these 2-D arrays"
 _ONE_TRIANGLE = ("equivalent: the pairs looked up are constraint segments, each an edge of exactly one triangle of "
                  "the region (it lies on one side of every constraint), so no two equal keys meet a query and the "
                  "order among equal keys is never seen")
@@ -83,6 +83,9 @@ EQUIVALENT = {
     (_REFERENCE, "n = int(max(t.max(), pairs.max(initial=1))) + 1"): _KEY_BASE,
     (_REFERENCE, "edges = np.sort(half_edges(t), )"): _LAST_AXIS,
     (_REFERENCE, "p = np.sort(pairs, )"): _LAST_AXIS,
+    (_REFERENCE, "t = np.sort(triangles, )"): _LAST_AXIS,
+    (_REFERENCE, "split = np.concatenate([np.full(len(radii), -2), mid_segments])"):
+        "equivalent: the sentinel is only compared with 0 (split[best] < 0), and -2 is as negative as -1",
     (_REFERENCE, "segments = np.array(region.segments, dtype=np.int64).reshape(-2, 2)"):
         "equivalent: numpy (2.x) reads any negative dimension of reshape as the one it infers",
     (_REFERENCE, "order = np.argsort(keys, kind=None)"): _ONE_TRIANGLE,

@@ -83,7 +83,7 @@ def test_midpoint_threshold_is_2l_up_to_rel_tol(half, listed):
     """Candidate 2: only constraints of length at least 2 (1 - REL_TOL) l have their midpoint listed."""
     points = np.array([[0.0, 0.0], [2.0 * half, 0.0], *FAR_POINTS])
     mids, values, index = reference.midpoint_candidates(points, FAR, np.array([[0, 1]]), 1.0)
-    assert len(mids) == listed
+    assert len(mids) == len(values) == len(index) == listed and index.dtype == np.int64
     if listed:
         np.testing.assert_array_equal(mids, [[half, 0.0]])
         assert values.tolist() == [half] and index.tolist() == [0]
@@ -96,6 +96,14 @@ def test_midpoint_value_is_capped_by_the_apex(apex_y, value):
     triangles = np.vstack([FAR, [[0, 1, 5]]]) if apex_y is not None else FAR
     _, values, _ = reference.midpoint_candidates(points, triangles, np.array([[0, 1]]), 1.0)
     assert values.tolist() == [value]
+
+
+def test_each_midpoint_is_capped_by_its_own_apex():
+    """Two constraints, each with its triangle: values min(1.25, 0.5) and min(1.25, 3); the first apex is point 0."""
+    points = np.array([[1.25, 0.5], [0.0, 0.0], [2.5, 0.0], [10.0, 0.0], [12.5, 0.0], [11.25, 3.0]])
+    triangles, segments = np.array([[1, 2, 0], [3, 4, 5]]), np.array([[1, 2], [3, 4]])
+    _, values, index = reference.midpoint_candidates(points, triangles, segments, 1.0)
+    assert values.tolist() == [0.5, 1.25] and index.tolist() == [0, 1]
 
 
 def test_apex_is_the_third_vertex_of_the_triangle_on_each_pair():
