@@ -15,6 +15,7 @@ import pytest
 from hypothesis import given
 
 from equimesh import REL_TOL
+from equimesh._geometry import circumcenters, point_segment_distance
 from equimesh.planar.increment import validate_problem1
 from equimesh.planar.insertion import reference
 from equimesh.planar.insertion._region import Region
@@ -67,6 +68,25 @@ def test_near_constraint_and_sliver_gap_rules(gap, radius, listed):
     points, segments = circle_triangle(gap, radius)
     centers, _ = reference.circle_candidates(points, ONE, segments, 1.0)
     assert len(centers) == listed
+
+
+@pytest.mark.parametrize("tol, radius", [(REL_TOL, 3.0), (SLIVER_GAP, 1.0)])
+def test_near_rules_are_inclusive_at_any_l(tol, radius):
+    """A gap of exactly REL_TOL l (any value), or exactly SLIVER_GAP l with value l, is left out, at l far from 1.
+
+    The triangle has gap 1/2 and circumradius ``radius / (2 tol)``; l is the float for which ``tol * l`` is the
+    computed gap exactly.
+    """
+    points, segments = circle_triangle(0.5, radius * 0.5 / tol)
+    centre, _ = circumcenters(points[[0]], points[[1]], points[[2]])
+    gap = float(point_segment_distance(centre, points[0], points[1])[0])
+    l = gap / tol
+    while tol * l != gap:
+        l = np.nextafter(l, np.inf if tol * l < gap else -np.inf)
+    centers, radii = reference.circle_candidates(points, ONE, segments, l)
+    assert len(centers) == 0
+    centers, _ = reference.circle_candidates(points, ONE, segments, np.nextafter(l, 0.0) * (1.0 - 4.0 * REL_TOL))
+    assert len(centers) == 1  # a hair farther than tol l: listed
 
 
 def test_circumcentre_behind_a_constraint_is_hidden():
