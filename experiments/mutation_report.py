@@ -77,7 +77,15 @@ _LAST_AXIS = "equivalent: np.sort sorts along the last axis by default, axis 1 o
 _ONE_TRIANGLE = ("equivalent: the pairs looked up are constraint segments, each an edge of exactly one triangle of "
                  "the region (it lies on one side of every constraint), so no two equal keys meet a query and the "
                  "order among equal keys is never seen")
+_LATTICE = "src/equimesh/planar/lattice.py"
+_NEGATIVE_RESHAPE = "equivalent: numpy (2.x) reads any negative dimension of reshape as the one it infers"
 EQUIVALENT = {
+    (_LATTICE, "tri = tri.reshape(-2, 3)"): _NEGATIVE_RESHAPE,
+    (_LATTICE, "undirected = np.sort(half_edges(tri), )"): _LAST_AXIS,
+    (_LATTICE, "owner = np.tile(np.arange(n), 4)"):
+        "equivalent: only the first 3 n entries are read (order indexes the 3 n half-edges), the same as with 3 copies",
+    (_LATTICE, "_, labels = connected_components(graph, directed=None)"):
+        "equivalent: scipy reads directed as a truth value, and None is false",
     (_REFERENCE, "n = int(max(t.max(), pairs.max(initial=0))) - 1"): _KEY_BASE,
     (_REFERENCE, "n = int(max(t.max(), pairs.max(initial=0))) + 2"): _KEY_BASE,
     (_REFERENCE, "n = int(max(t.max(), pairs.max(initial=1))) + 1"): _KEY_BASE,
@@ -86,8 +94,7 @@ EQUIVALENT = {
     (_REFERENCE, "t = np.sort(triangles, )"): _LAST_AXIS,
     (_REFERENCE, "split = np.concatenate([np.full(len(radii), -2), mid_segments])"):
         "equivalent: the sentinel is only compared with 0 (split[best] < 0), and -2 is as negative as -1",
-    (_REFERENCE, "segments = np.array(region.segments, dtype=np.int64).reshape(-2, 2)"):
-        "equivalent: numpy (2.x) reads any negative dimension of reshape as the one it infers",
+    (_REFERENCE, "segments = np.array(region.segments, dtype=np.int64).reshape(-2, 2)"): _NEGATIVE_RESHAPE,
     (_REFERENCE, "order = np.argsort(keys, kind=None)"): _ONE_TRIANGLE,
     (_REFERENCE, "order = np.argsort(keys, )"): _ONE_TRIANGLE,
     (_REFERENCE, 'order = np.argsort(keys, kind="STABLE")'): _ONE_TRIANGLE,

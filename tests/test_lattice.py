@@ -221,4 +221,16 @@ def test_lattice_adjacent_is_exactly_the_six_steps():
     assert lattice.lattice_adjacent(base + steps, base).all()
     others = np.array([[0, 0], [1, 1], [2, 0], [-1, -1], [2, -1], [1, -2]])
     assert not lattice.lattice_adjacent(base, base + others).any()
+    mixed = np.array([[1, 0], [1, 1], [0, -1], [2, 0]])
+    assert lattice.lattice_adjacent(base[:4], base[:4] + mixed).tolist() == [True, False, True, False]
     assert sorted(map(tuple, steps.tolist())) == [(-1, 0), (-1, 1), (0, -1), (0, 1), (1, -1), (1, 0)]
+
+
+def test_defaults_are_angle_0_offset_origin_clearance_1():
+    """The paper's lattice: first vector along x, vertex (0, 0) at the origin, vertices kept at distance l."""
+    poly = as_polygon(SQUARE, 1.0)
+    explicit = lattice.lattice_part(poly, 1.0, 0.0, (0.0, 0.0), 1.0)
+    default = lattice.lattice_part(poly, 1.0)
+    assert np.array_equal(default.points, explicit.points) and np.array_equal(default.triangles, explicit.triangles)
+    for a, b in zip(lattice.kept_vertices(poly, 1.0), lattice.kept_vertices(poly, 1.0, 0.0, (0.0, 0.0), 1.0)):
+        assert np.array_equal(a, b)
