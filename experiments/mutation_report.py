@@ -79,6 +79,10 @@ _ONE_TRIANGLE = ("equivalent: the pairs looked up are constraint segments, each 
                  "order among equal keys is never seen")
 _LATTICE = "src/equimesh/planar/lattice.py"
 _NEGATIVE_RESHAPE = "equivalent: numpy (2.x) reads any negative dimension of reshape as the one it infers"
+_WEAK = ("equivalent: scipy's connected_components has connection='weak' by default, and the weak components "
+         "of a directed graph are those of the undirected one")
+_LOCAL_ORIGIN = ("equivalent: in the polygon's local frame the lower-left corner of its bounding box is the origin "
+                 "(Frame), so lo[0] == lo[1] == 0")
 EQUIVALENT = {
     (_LATTICE, "tri = tri.reshape(-2, 3)"): _NEGATIVE_RESHAPE,
     (_LATTICE, "undirected = np.sort(half_edges(tri), )"): _LAST_AXIS,
@@ -86,6 +90,12 @@ EQUIVALENT = {
         "equivalent: only the first 3 n entries are read (order indexes the 3 n half-edges), the same as with 3 copies",
     (_LATTICE, "_, labels = connected_components(graph, directed=None)"):
         "equivalent: scipy reads directed as a truth value, and None is false",
+    (_LATTICE, "_, labels = connected_components(graph, )"): _WEAK,
+    (_LATTICE, "_, labels = connected_components(graph, directed=True)"): _WEAK,
+    (_LATTICE, "corners = np.array([[lo[1], lo[1]], [hi[0], lo[1]], [lo[0], hi[1]], [hi[0], hi[1]]])"): _LOCAL_ORIGIN,
+    (_LATTICE, "corners = np.array([[lo[0], lo[1]], [hi[0], lo[1]], [lo[1], hi[1]], [hi[0], hi[1]]])"): _LOCAL_ORIGIN,
+    (_LATTICE, "return np.asarray(offset, dtype=None) + np.asarray(ij, dtype=float) @ lattice_basis(l, angle)"):
+        "equivalent: added to the float product, an integer offset is converted to float as dtype=float would",
     (_REFERENCE, "n = int(max(t.max(), pairs.max(initial=0))) - 1"): _KEY_BASE,
     (_REFERENCE, "n = int(max(t.max(), pairs.max(initial=0))) + 2"): _KEY_BASE,
     (_REFERENCE, "n = int(max(t.max(), pairs.max(initial=1))) + 1"): _KEY_BASE,

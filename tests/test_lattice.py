@@ -89,7 +89,7 @@ def test_local_offset_in_a_scaled_and_translated_frame():
     np.testing.assert_allclose(steps, np.round(steps), atol=1e-6)
 
 
-POLYGONS = {"square": (SQUARE, None), "dumbbell": (DUMBBELL, None), "square with a hole": (SQUARE * 2.0, [HOLE * 2.0])}
+POLYGONS = {"square from its top-right corner": (np.roll(SQUARE, 2, axis=0), None), "dumbbell": (DUMBBELL, None), "square with a hole": (SQUARE * 2.0, [HOLE * 2.0])}
 
 
 @pytest.mark.parametrize("name", sorted(POLYGONS))
@@ -122,6 +122,7 @@ def test_kept_vertices_grid_by_hand():
     ii, jj, pts, kept = lattice.kept_vertices(as_polygon(SQUARE, 1.0), 1.0, 0.0, (0.5, 1.0))
     assert (ii.min(), ii.max(), jj.min(), jj.max()) == (-5, 8, -3, 7)
     assert ii.shape == jj.shape == kept.shape == (14, 11) and pts.shape == (154, 2)
+    assert ii.dtype.kind == jj.dtype.kind == "i"
     assert kept.sum() == 22
 
 
@@ -234,3 +235,13 @@ def test_defaults_are_angle_0_offset_origin_clearance_1():
     assert np.array_equal(default.points, explicit.points) and np.array_equal(default.triangles, explicit.triangles)
     for a, b in zip(lattice.kept_vertices(poly, 1.0), lattice.kept_vertices(poly, 1.0, 0.0, (0.0, 0.0), 1.0)):
         assert np.array_equal(a, b)
+
+
+def test_a_far_offset_is_the_same_lattice_as_its_near_equivalent():
+    """Offsets 1000 a1 + 1000 a2 apart give the same lattice, so the same kept vertices, at any angle."""
+    poly = as_polygon(SQUARE, 1.0)
+    a1, a2 = lattice.lattice_basis(1.0, 30.0)
+    near = lattice.kept_vertices(poly, 1.0, 30.0, (0.3, 0.2))
+    far = lattice.kept_vertices(poly, 1.0, 30.0, np.array([0.3, 0.2]) + 1000.0 * (a1 + a2))
+    assert near[3].sum() == far[3].sum() > 0
+    np.testing.assert_allclose(near[2][near[3].ravel()], far[2][far[3].ravel()], atol=1e-9)
