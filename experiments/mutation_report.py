@@ -83,6 +83,8 @@ _WEAK = ("equivalent: scipy's connected_components has connection='weak' by defa
          "of a directed graph are those of the undirected one")
 _LOCAL_ORIGIN = ("equivalent: in the polygon's local frame the lower-left corner of its bounding box is the origin "
                  "(Frame), so lo[0] == lo[1] == 0")
+_FLOAT_OFFSET = "equivalent: added to the float product, an integer offset is converted to float as dtype=float would"
+_FLOAT_IJ = "equivalent: multiplied by the float basis, integer indices are converted to float as dtype=float would"
 EQUIVALENT = {
     (_LATTICE, "tri = tri.reshape(-2, 3)"): _NEGATIVE_RESHAPE,
     (_LATTICE, "undirected = np.sort(half_edges(tri), )"): _LAST_AXIS,
@@ -94,8 +96,10 @@ EQUIVALENT = {
     (_LATTICE, "_, labels = connected_components(graph, directed=True)"): _WEAK,
     (_LATTICE, "corners = np.array([[lo[1], lo[1]], [hi[0], lo[1]], [lo[0], hi[1]], [hi[0], hi[1]]])"): _LOCAL_ORIGIN,
     (_LATTICE, "corners = np.array([[lo[0], lo[1]], [hi[0], lo[1]], [lo[1], hi[1]], [hi[0], hi[1]]])"): _LOCAL_ORIGIN,
-    (_LATTICE, "return np.asarray(offset, dtype=None) + np.asarray(ij, dtype=float) @ lattice_basis(l, angle)"):
-        "equivalent: added to the float product, an integer offset is converted to float as dtype=float would",
+    (_LATTICE, "return np.asarray(offset, dtype=None) + np.asarray(ij, dtype=float) @ lattice_basis(l, angle)"): _FLOAT_OFFSET,
+    (_LATTICE, "return np.asarray(offset, ) + np.asarray(ij, dtype=float) @ lattice_basis(l, angle)"): _FLOAT_OFFSET,
+    (_LATTICE, "return np.asarray(offset, dtype=float) + np.asarray(ij, dtype=None) @ lattice_basis(l, angle)"): _FLOAT_IJ,
+    (_LATTICE, "return np.asarray(offset, dtype=float) + np.asarray(ij, ) @ lattice_basis(l, angle)"): _FLOAT_IJ,
     (_REFERENCE, "n = int(max(t.max(), pairs.max(initial=0))) - 1"): _KEY_BASE,
     (_REFERENCE, "n = int(max(t.max(), pairs.max(initial=0))) + 2"): _KEY_BASE,
     (_REFERENCE, "n = int(max(t.max(), pairs.max(initial=1))) + 1"): _KEY_BASE,
