@@ -85,7 +85,27 @@ _LOCAL_ORIGIN = ("equivalent: in the polygon's local frame the lower-left corner
                  "(Frame), so lo[0] == lo[1] == 0")
 _FLOAT_OFFSET = "equivalent: added to the float product, an integer offset is converted to float as dtype=float would"
 _FLOAT_IJ = "equivalent: multiplied by the float basis, integer indices are converted to float as dtype=float would"
+_STRIP = "src/equimesh/planar/strip.py"
+_INT64_DEFAULT = "equivalent: np.full of a Python int makes int64 arrays without dtype too (numpy 2, 64-bit platforms)"
+_OFF_LATTICE = ("equivalent: a point off the lattice has ij = (min int64, min int64), so an edge with one such end "
+                "has an ij difference of magnitude about 2^63 (wrapping) and one with two has (0, 0): neither is a "
+                "neighbour step, so lattice_adjacent drops it as the & did")
+_NOT_ZERO = ("equivalent: lattice vertices on the boundary of K are numbered after the boundary points of P (at least 3), "
+             "so no entry of lat_index is 0")
 EQUIVALENT = {
+    (_STRIP, "lat_index = np.full(len(lat.points), -1, dtype=None)"): _INT64_DEFAULT,
+    (_STRIP, "lat_index = np.full(len(lat.points), -1, )"): _INT64_DEFAULT,
+    (_STRIP, "ij = np.full((len(points), 2), np.iinfo(np.int64).min, dtype=None)"): _INT64_DEFAULT,
+    (_STRIP, "ij = np.full((len(points), 2), np.iinfo(np.int64).min, )"): _INT64_DEFAULT,
+    (_STRIP, "lat_index = np.full(len(lat.points), -2, dtype=np.int64)"):
+        "equivalent: the sentinel is only compared with 0 (lat_index < 0), and every entry is overwritten before use",
+    (_STRIP, "np.vstack([boundary.segments, lat_index[lat.boundary_edges]]).astype(None),"):
+        "equivalent: both engines convert the region's segments to int64 first (np.array(region.segments, dtype=np.int64))",
+    (_STRIP, "interior = np.flatnonzero(lat_index <= 0)"): _NOT_ZERO,
+    (_STRIP, "interior = np.flatnonzero(lat_index < 1)"): _NOT_ZERO,
+    (_STRIP, "both = is_lattice[mesh_edges[:, 0]] | is_lattice[mesh_edges[:, 1]]"): _OFF_LATTICE,
+    (_STRIP, "both = is_lattice[mesh_edges[:, 1]] & is_lattice[mesh_edges[:, 1]]"): _OFF_LATTICE,
+    (_STRIP, "v = real_array(value, name, EquimeshError).reshape(-2)"): _NEGATIVE_RESHAPE,
     (_LATTICE, "tri = tri.reshape(-2, 3)"): _NEGATIVE_RESHAPE,
     (_LATTICE, "undirected = np.sort(half_edges(tri), )"): _LAST_AXIS,
     (_LATTICE, "owner = np.tile(np.arange(n), 4)"):

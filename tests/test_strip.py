@@ -21,6 +21,7 @@ import shapely
 import equimesh
 from equimesh import G1, EquimeshError
 from equimesh.planar import lattice, strip
+from equimesh.planar.insertion import ENGINES
 from equimesh.planar.limits import node_estimate
 from equimesh.planar.polygon import as_polygon
 
@@ -45,8 +46,9 @@ def lattice_edges(mesh, part):
     return adjacent
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture
 def square_mesh():
+    """Function-scoped: mutmut maps a test to the functions it calls, and a module-scoped fixture calls once."""
     return equimesh.uniform_triangulation(SQUARE, 1.0, offset=OFFSET)
 
 
@@ -126,12 +128,13 @@ def test_hole_seed_lies_inside_a_non_convex_hole():
     assert shapely.Polygon(poly.holes[0].local).contains(shapely.Point(seed[0]))
 
 
-@pytest.mark.parametrize("side, clearance, area", [(6.0, 1.0, 36.0), (100.0, 1.0, 2 * 400.0), (100.0, 2.0, 3 * 400.0)])
-def test_strip_estimate_by_hand(side, clearance, area):
+@pytest.mark.parametrize("side, clearance, l, area", [
+    (6.0, 1.0, 1.0, 36.0), (100.0, 1.0, 1.5, 2 * 1.5 * 400.0), (100.0, 2.0, 1.0, 3 * 400.0)])
+def test_strip_estimate_by_hand(side, clearance, l, area):
     """min(A, (clearance + 1) l perimeter) under Oler's bound, plus perimeter / l boundary vertices of K."""
-    poly = as_polygon(SQUARE / 6.0 * side, 1.0)
-    expected = node_estimate(area, 4 * side, 1.0) + 4 * side
-    assert strip.strip_estimate(poly, 1.0, clearance) == pytest.approx(expected, rel=1e-14)
+    poly = as_polygon(SQUARE / 6.0 * side, l)
+    expected = node_estimate(area, 4 * side, l) + 4 * side / l
+    assert strip.strip_estimate(poly, l, clearance) == pytest.approx(expected, rel=1e-14)
 
 
 @pytest.mark.parametrize("kwargs, message", [
@@ -142,6 +145,9 @@ def test_strip_estimate_by_hand(side, clearance, area):
     ({"angle": math.nan}, "angle must be finite, got nan"),
     ({"offset": (1.0, 2.0, 3.0)}, "offset must be a pair of finite numbers, got (1.0, 2.0, 3.0)"),
     ({"offset": (1.0, math.inf)}, "offset must be a pair of finite numbers, got (1.0, inf)"),
+    ({"offset": "ab"}, "offset must be an array of numbers"),
+    ({"boundary_spacing": math.nan}, "boundary_spacing must be finite, got nan"),
+    ({"clearance": "a"}, "clearance must be a real number, got 'a'"),
 ])
 def test_parameters_outside_the_paper_are_refused(kwargs, message):
     """One line, naming the parameter and the value."""
@@ -175,8 +181,23 @@ def test_size_guard_counts_what_the_engine_pays_for():
     vertices on the boundary of K, about 6.1e3 > 2500; with max_nodes = 10 the fast engine counts the polygon.
     """
     big = SQUARE / 6.0 * 400.0
-    with pytest.raises(equimesh.MeshTooLargeError, match=r"about 6.1e\+03 nodes in the boundary strip, more than max_nodes = 2500;"):
+    with pytest.raises(equimesh.MeshTooLargeError, match=r"^l = 1.0 would need about 6.1e\+03 nodes in the boundary strip, more than max_nodes = 2500;"):
         equimesh.uniform_triangulation(big, 1.0, engine="reference")
     with pytest.raises(equimesh.MeshTooLargeError, match=r"nodes in the polygon, more than max_nodes = 10;"):
         equimesh.uniform_triangulation(SQUARE, 1.0, max_nodes=10)
     assert equimesh.uniform_triangulation(SQUARE, 1.0, max_nodes=None, offset=OFFSET).info["n_lattice_vertices"] == 22
+
+
+def test_an_offset_given_as_a_row_is_a_pair():
+    """Any array of two numbers is a pair: (2,), (1, 2) or (2, 1)."""
+    for offset in ([[0.5, 1.0]], [[0.5], [1.0]]):
+        assert equimesh.uniform_triangulation(SQUARE, 1.0, offset=offset).info["offset"] == (0.5, 1.0)
+
+
+def test_the_engine_argument_chooses_the_engine(monkeypatch):
+    """engine="reference" runs the reference engine on the boundary strip (seen through a spy in ENGINES)."""
+    calls = []
+    reference = ENGINES["reference"]
+    monkeypatch.setitem(ENGINES, "reference", lambda region, l: calls.append(l) or reference(region, l))
+    mesh = equimesh.uniform_triangulation(SQUARE, 1.0, offset=OFFSET, engine="reference")
+    assert calls == [1.0] and (mesh.edge_groups == G1).sum() == 49
