@@ -64,95 +64,94 @@ MODULES = {
     "src/equimesh/planar/strip.py": ["tests/test_strip.py"],
 }
 
-#: Equivalent mutants: (module, the mutated line as mutmut prints it after
-#: "+", stripped) -> why no test can tell it from the original.
-_POLYGON = "src/equimesh/planar/polygon.py"
-_SPACING_ABOVE_2 = ("equivalent: for any spacing >= 2 the lower bound ceil(L / 2l) of split_counts decides, "
-                    "so a default of 3 gives the same parts as 2")
-_FLOAT_ANYWAY = "equivalent: the division by l that follows makes the counts' arithmetic float for any real input"
-_REFERENCE = "src/equimesh/planar/insertion/reference.py"
-_KEY_BASE = ("equivalent: the keys a n + b of sorted pairs a < b <= m (m the largest index) are unique for any "
-             "n >= m: for each a they fill [a n + a + 1, a n + m], disjoint intervals; only equality is used")
+#: Equivalent mutants, by module: (why no test can tell them from the
+#: original, the mutated lines as mutmut prints them after "+", stripped).
 _LAST_AXIS = "equivalent: np.sort sorts along the last axis by default, axis 1 of these 2-D arrays"
-_ONE_TRIANGLE = ("equivalent: the pairs looked up are constraint segments, each an edge of exactly one triangle of "
-                 "the region (it lies on one side of every constraint), so no two equal keys meet a query and the "
-                 "order among equal keys is never seen")
-_LATTICE = "src/equimesh/planar/lattice.py"
 _NEGATIVE_RESHAPE = "equivalent: numpy (2.x) reads any negative dimension of reshape as the one it infers"
-_WEAK = ("equivalent: scipy's connected_components has connection='weak' by default, and the weak components "
-         "of a directed graph are those of the undirected one")
-_LOCAL_ORIGIN = ("equivalent: in the polygon's local frame the lower-left corner of its bounding box is the origin "
-                 "(Frame), so lo[0] == lo[1] == 0")
-_FLOAT_OFFSET = "equivalent: added to the float product, an integer offset is converted to float as dtype=float would"
-_FLOAT_IJ = "equivalent: multiplied by the float basis, integer indices are converted to float as dtype=float would"
-_STRIP = "src/equimesh/planar/strip.py"
-_INT64_DEFAULT = "equivalent: np.full of a Python int makes int64 arrays without dtype too (numpy 2, 64-bit platforms)"
-_OFF_LATTICE = ("equivalent: a point off the lattice has ij = (min int64, min int64), so an edge with one such end "
-                "has an ij difference of magnitude about 2^63 (wrapping) and one with two has (0, 0): neither is a "
-                "neighbour step, so lattice_adjacent drops it as the & did")
-_NOT_ZERO = ("equivalent: lattice vertices on the boundary of K are numbered after the boundary points of P (at least 3), "
-             "so no entry of lat_index is 0")
-EQUIVALENT = {
-    (_STRIP, "lat_index = np.full(len(lat.points), -1, dtype=None)"): _INT64_DEFAULT,
-    (_STRIP, "lat_index = np.full(len(lat.points), -1, )"): _INT64_DEFAULT,
-    (_STRIP, "ij = np.full((len(points), 2), np.iinfo(np.int64).min, dtype=None)"): _INT64_DEFAULT,
-    (_STRIP, "ij = np.full((len(points), 2), np.iinfo(np.int64).min, )"): _INT64_DEFAULT,
-    (_STRIP, "lat_index = np.full(len(lat.points), -2, dtype=np.int64)"):
-        "equivalent: the sentinel is only compared with 0 (lat_index < 0), and every entry is overwritten before use",
-    (_STRIP, "np.vstack([boundary.segments, lat_index[lat.boundary_edges]]).astype(None),"):
-        "equivalent: both engines convert the region's segments to int64 first (np.array(region.segments, dtype=np.int64))",
-    (_STRIP, "interior = np.flatnonzero(lat_index <= 0)"): _NOT_ZERO,
-    (_STRIP, "interior = np.flatnonzero(lat_index < 1)"): _NOT_ZERO,
-    (_STRIP, "both = is_lattice[mesh_edges[:, 0]] | is_lattice[mesh_edges[:, 1]]"): _OFF_LATTICE,
-    (_STRIP, "both = is_lattice[mesh_edges[:, 1]] & is_lattice[mesh_edges[:, 1]]"): _OFF_LATTICE,
-    (_STRIP, "v = real_array(value, name, EquimeshError).reshape(-2)"): _NEGATIVE_RESHAPE,
-    (_LATTICE, "tri = tri.reshape(-2, 3)"): _NEGATIVE_RESHAPE,
-    (_LATTICE, "undirected = np.sort(half_edges(tri), )"): _LAST_AXIS,
-    (_LATTICE, "owner = np.tile(np.arange(n), 4)"):
-        "equivalent: only the first 3 n entries are read (order indexes the 3 n half-edges), the same as with 3 copies",
-    (_LATTICE, "_, labels = connected_components(graph, directed=None)"):
-        "equivalent: scipy reads directed as a truth value, and None is false",
-    (_LATTICE, "_, labels = connected_components(graph, )"): _WEAK,
-    (_LATTICE, "_, labels = connected_components(graph, directed=True)"): _WEAK,
-    (_LATTICE, "corners = np.array([[lo[1], lo[1]], [hi[0], lo[1]], [lo[0], hi[1]], [hi[0], hi[1]]])"): _LOCAL_ORIGIN,
-    (_LATTICE, "corners = np.array([[lo[0], lo[1]], [hi[0], lo[1]], [lo[1], hi[1]], [hi[0], hi[1]]])"): _LOCAL_ORIGIN,
-    (_LATTICE, "return np.asarray(offset, dtype=None) + np.asarray(ij, dtype=float) @ lattice_basis(l, angle)"): _FLOAT_OFFSET,
-    (_LATTICE, "return np.asarray(offset, ) + np.asarray(ij, dtype=float) @ lattice_basis(l, angle)"): _FLOAT_OFFSET,
-    (_LATTICE, "return np.asarray(offset, dtype=float) + np.asarray(ij, dtype=None) @ lattice_basis(l, angle)"): _FLOAT_IJ,
-    (_LATTICE, "return np.asarray(offset, dtype=float) + np.asarray(ij, ) @ lattice_basis(l, angle)"): _FLOAT_IJ,
-    (_REFERENCE, "n = int(max(t.max(), pairs.max(initial=0))) - 1"): _KEY_BASE,
-    (_REFERENCE, "n = int(max(t.max(), pairs.max(initial=0))) + 2"): _KEY_BASE,
-    (_REFERENCE, "n = int(max(t.max(), pairs.max(initial=1))) + 1"): _KEY_BASE,
-    (_REFERENCE, "edges = np.sort(half_edges(t), )"): _LAST_AXIS,
-    (_REFERENCE, "p = np.sort(pairs, )"): _LAST_AXIS,
-    (_REFERENCE, "t = np.sort(triangles, )"): _LAST_AXIS,
-    (_REFERENCE, "split = np.concatenate([np.full(len(radii), -2), mid_segments])"):
-        "equivalent: the sentinel is only compared with 0 (split[best] < 0), and -2 is as negative as -1",
-    (_REFERENCE, "segments = np.array(region.segments, dtype=np.int64).reshape(-2, 2)"): _NEGATIVE_RESHAPE,
-    (_REFERENCE, "order = np.argsort(keys, kind=None)"): _ONE_TRIANGLE,
-    (_REFERENCE, "order = np.argsort(keys, )"): _ONE_TRIANGLE,
-    (_REFERENCE, 'order = np.argsort(keys, kind="STABLE")'): _ONE_TRIANGLE,
-    (_POLYGON, "def split_counts(lengths, l, spacing=3.0):"): _SPACING_ABOVE_2,
-    (_POLYGON, "def resample_boundary(poly, l, spacing=3.0):"): _SPACING_ABOVE_2,
-    (_POLYGON, "lengths = np.asarray(lengths, dtype=None)"): _FLOAT_ANYWAY,
-    (_POLYGON, "lengths = np.asarray(lengths, )"): _FLOAT_ANYWAY,
-    (_POLYGON, "other = int(np.flatnonzero(np.any(local != local[0], axis=1))[1])"):
-        "equivalent: a ring has at least 3 distinct vertices (checked before), so a second vertex unlike the first "
-        "exists, and the vertices are all collinear with the first and that one, or not, whichever it is",
-    (_POLYGON, "spike = (orient_sign(a, b, np.roll(b, -1, axis=0)) == 0) & (np.sum(e_in * e_out, axis=1) <= 0)"):
-        "equivalent: two consecutive collinear edges with dot product exactly 0 need an edge of length 0, a "
-        "repeated vertex, refused before",
-    (_POLYGON, "if len(v) > 2 and np.array_equal(v[0], v[-1]):"):
-        "equivalent: two equal vertices are one distinct vertex whether the closing copy is dropped or not: the same error",
-    (_POLYGON, 'if raw.dtype.kind not in "XXiufOXX":'): "equivalent: no numpy dtype kind is X",
-    (_POLYGON, 'isinstance(value, numbers.Real) or (np.ndim(value) == 0 and np.asarray(value).dtype.kind in "XXiufXX")'):
-        "equivalent: no numpy dtype kind is X",
-    (_POLYGON, "_check_simple(Polygon(v, index, None, local, label=label))"):
-        "equivalent: _check_simple reads the local coordinates, the vertices, their indices and the label, never the frame",
-    (_POLYGON, "counter_clockwise = orient_sign(local[low - 1], local[low], local[(low + 1) % len(v)]) >= 0"):
-        "equivalent: the turn at the lowest-leftmost vertex is never straight: its neighbours lie in the closed "
-        "half-plane right of or above it, so collinear neighbours would be on one ray from it, a fold refused before",
+_EQUIVALENT_GROUPS = {
+    "src/equimesh/planar/polygon.py": [
+        ("equivalent: for any spacing >= 2 the lower bound ceil(L / 2l) of split_counts decides, so a default of 3 "
+         "gives the same parts as 2",
+         ["def split_counts(lengths, l, spacing=3.0):", "def resample_boundary(poly, l, spacing=3.0):"]),
+        ("equivalent: the division by l that follows makes the counts' arithmetic float for any real input",
+         ["lengths = np.asarray(lengths, dtype=None)", "lengths = np.asarray(lengths, )"]),
+        ("equivalent: a ring has at least 3 distinct vertices (checked before), so a second vertex unlike the first "
+         "exists, and the vertices are all collinear with the first and that one, or not, whichever it is",
+         ["other = int(np.flatnonzero(np.any(local != local[0], axis=1))[1])"]),
+        ("equivalent: two consecutive collinear edges with dot product exactly 0 need an edge of length 0, a "
+         "repeated vertex, refused before",
+         ["spike = (orient_sign(a, b, np.roll(b, -1, axis=0)) == 0) & (np.sum(e_in * e_out, axis=1) <= 0)"]),
+        ("equivalent: two equal vertices are one distinct vertex whether the closing copy is dropped or not: the "
+         "same error", ["if len(v) > 2 and np.array_equal(v[0], v[-1]):"]),
+        ("equivalent: no numpy dtype kind is X",
+         ['if raw.dtype.kind not in "XXiufOXX":',
+          'isinstance(value, numbers.Real) or (np.ndim(value) == 0 and np.asarray(value).dtype.kind in "XXiufXX")']),
+        ("equivalent: _check_simple reads the local coordinates, the vertices, their indices and the label, never "
+         "the frame", ["_check_simple(Polygon(v, index, None, local, label=label))"]),
+        ("equivalent: the turn at the lowest-leftmost vertex is never straight: its neighbours lie in the closed "
+         "half-plane right of or above it, so collinear neighbours would be on one ray from it, a fold refused before",
+         ["counter_clockwise = orient_sign(local[low - 1], local[low], local[(low + 1) % len(v)]) >= 0"]),
+    ],
+    "src/equimesh/planar/insertion/reference.py": [
+        ("equivalent: the keys a n + b of sorted pairs a < b <= m (m the largest index) are unique for any n >= m: "
+         "for each a they fill [a n + a + 1, a n + m], disjoint intervals; only equality is used",
+         ["n = int(max(t.max(), pairs.max(initial=0))) - 1", "n = int(max(t.max(), pairs.max(initial=0))) + 2",
+          "n = int(max(t.max(), pairs.max(initial=1))) + 1"]),
+        (_LAST_AXIS,
+         ["edges = np.sort(half_edges(t), )", "p = np.sort(pairs, )", "t = np.sort(triangles, )"]),
+        ("equivalent: the sentinel is only compared with 0 (split[best] < 0), and -2 is as negative as -1",
+         ["split = np.concatenate([np.full(len(radii), -2), mid_segments])"]),
+        (_NEGATIVE_RESHAPE,
+         ["segments = np.array(region.segments, dtype=np.int64).reshape(-2, 2)"]),
+        ("equivalent: the pairs looked up are constraint segments, each an edge of exactly one triangle of the "
+         "region (it lies on one side of every constraint), so no two equal keys meet a query and the order among "
+         "equal keys is never seen",
+         ["order = np.argsort(keys, kind=None)", "order = np.argsort(keys, )", 'order = np.argsort(keys, kind="STABLE")']),
+    ],
+    "src/equimesh/planar/lattice.py": [
+        (_NEGATIVE_RESHAPE, ["tri = tri.reshape(-2, 3)"]),
+        (_LAST_AXIS, ["undirected = np.sort(half_edges(tri), )"]),
+        ("equivalent: only the first 3 n entries are read (order indexes the 3 n half-edges), the same as with 3 "
+         "copies", ["owner = np.tile(np.arange(n), 4)"]),
+        ("equivalent: scipy reads directed as a truth value, and None is false",
+         ["_, labels = connected_components(graph, directed=None)"]),
+        ("equivalent: scipy's connected_components has connection='weak' by default, and the weak components of a "
+         "directed graph are those of the undirected one",
+         ["_, labels = connected_components(graph, )", "_, labels = connected_components(graph, directed=True)"]),
+        ("equivalent: in the polygon's local frame the lower-left corner of its bounding box is the origin (Frame), "
+         "so lo[0] == lo[1] == 0",
+         ["corners = np.array([[lo[1], lo[1]], [hi[0], lo[1]], [lo[0], hi[1]], [hi[0], hi[1]]])",
+          "corners = np.array([[lo[0], lo[1]], [hi[0], lo[1]], [lo[1], hi[1]], [hi[0], hi[1]]])"]),
+        ("equivalent: added to the float product, an integer offset is converted to float as dtype=float would",
+         ["return np.asarray(offset, dtype=None) + np.asarray(ij, dtype=float) @ lattice_basis(l, angle)",
+          "return np.asarray(offset, ) + np.asarray(ij, dtype=float) @ lattice_basis(l, angle)"]),
+        ("equivalent: multiplied by the float basis, integer indices are converted to float as dtype=float would",
+         ["return np.asarray(offset, dtype=float) + np.asarray(ij, dtype=None) @ lattice_basis(l, angle)",
+          "return np.asarray(offset, dtype=float) + np.asarray(ij, ) @ lattice_basis(l, angle)"]),
+    ],
+    "src/equimesh/planar/strip.py": [
+        ("equivalent: np.full of a Python int makes int64 arrays without dtype too (numpy 2, 64-bit platforms)",
+         ["lat_index = np.full(len(lat.points), -1, dtype=None)", "lat_index = np.full(len(lat.points), -1, )",
+          "ij = np.full((len(points), 2), np.iinfo(np.int64).min, dtype=None)",
+          "ij = np.full((len(points), 2), np.iinfo(np.int64).min, )"]),
+        ("equivalent: the sentinel is only compared with 0 (lat_index < 0), and every entry is overwritten before use",
+         ["lat_index = np.full(len(lat.points), -2, dtype=np.int64)"]),
+        ("equivalent: both engines convert the region's segments to int64 first "
+         "(np.array(region.segments, dtype=np.int64))",
+         ["np.vstack([boundary.segments, lat_index[lat.boundary_edges]]).astype(None),"]),
+        ("equivalent: lattice vertices on the boundary of K are numbered after the boundary points of P (at least "
+         "3), so no entry of lat_index is 0",
+         ["interior = np.flatnonzero(lat_index <= 0)", "interior = np.flatnonzero(lat_index < 1)"]),
+        ("equivalent: a point off the lattice has ij = (min int64, min int64), so an edge with one such end has an "
+         "ij difference of magnitude about 2^63 (wrapping) and one with two has (0, 0): neither is a neighbour "
+         "step, so lattice_adjacent drops it as the & did",
+         ["both = is_lattice[mesh_edges[:, 0]] | is_lattice[mesh_edges[:, 1]]",
+          "both = is_lattice[mesh_edges[:, 1]] & is_lattice[mesh_edges[:, 1]]"]),
+        (_NEGATIVE_RESHAPE, ["v = real_array(value, name, EquimeshError).reshape(-2)"]),
+    ],
 }
+EQUIVALENT = {(module, line): why for module, groups in _EQUIVALENT_GROUPS.items()
+              for why, lines in groups for line in lines}
 
 #: pytest options for every mutant run: stop at the first failure.
 PYTEST_ARGS = ["-p", "no:cacheprovider", "-q", "-x"]
