@@ -83,7 +83,7 @@ def test_default_size_guard_is_the_engines(engine, side, refused):
     """Oler's estimate of a square of side s l is 2/sqrt(3) s^2 + 2 s + 1: 4278 at 60 (over the reference's 2500), 1929 at 40."""
     vertices = rectangle(side, side)
     if refused:
-        with pytest.raises(MeshTooLargeError, match="about 4.28e\\+03 nodes in the polygon, more than max_nodes = 2500"):
+        with pytest.raises(MeshTooLargeError, match="^l = 1.0 would need about 4.28e\\+03 nodes in the polygon, more than max_nodes = 2500"):
             equimesh.increment(vertices, 1.0, engine=engine)
     else:
         with pytest.raises(MeshTooLargeError, match="more than max_nodes = 10;"):
@@ -102,3 +102,12 @@ def test_max_nodes_none_is_no_limit():
     mesh = equimesh.increment(rectangle(2.0, 2.0), 1.0, max_nodes=None)
     assert mesh.n_nodes == 9 and mesh.info["n_inserted"] == 5 and mesh.n_boundary == 8
     np.testing.assert_allclose(mesh.points[-1], [1.0, 1.0], atol=1e-12)
+
+
+def test_the_engine_argument_chooses_the_engine(monkeypatch):
+    """engine="reference" runs the reference engine (seen through a spy in ENGINES), once, at the local l."""
+    calls = []
+    reference = ENGINES["reference"]
+    monkeypatch.setitem(ENGINES, "reference", lambda region, l: calls.append(l) or reference(region, l))
+    mesh = equimesh.increment(CASES["square 4l"] * 3.0, 3.0, engine="reference")
+    assert calls == [1.5] and mesh.n_nodes == 25
