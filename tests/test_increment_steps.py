@@ -19,6 +19,7 @@ import equimesh
 from equimesh import EquimeshError, InvalidLengthError, InvalidPolygonError, MeshTooLargeError
 from equimesh.planar.increment import validate_problem1
 from equimesh.planar.insertion import ENGINES
+from equimesh.planar.limits import MAX_NODES
 from equimesh.planar.polygon import resample_boundary
 from equimesh.testing.generators import rectangle
 from invariants import assert_problem1_invariants
@@ -78,17 +79,21 @@ def test_input_outside_problem1_is_refused(vertices, l, error, message):
     assert str(err.value) == message
 
 
-@pytest.mark.parametrize("engine, side, refused", [("reference", 60.0, True), ("fast", 60.0, False), ("reference", 40.0, False)])
-def test_default_size_guard_is_the_engines(engine, side, refused):
-    """Oler's estimate of a square of side s l is 2/sqrt(3) s^2 + 2 s + 1: 4278 at 60 (over the reference's 2500), 1929 at 40."""
-    vertices = rectangle(side, side)
-    if refused:
-        with pytest.raises(MeshTooLargeError, match="^l = 1.0 would need about 4.28e\\+03 nodes in the polygon, more than max_nodes = 2500"):
+@pytest.mark.parametrize("engine", sorted(ENGINES))
+def test_default_size_guard_is_the_engines(engine, monkeypatch):
+    """The default max_nodes is the engine's (MAX_NODES, made small here, so that a broken guard costs a small run):
+    Oler's estimate of a square of side 6 l, 2/sqrt(3) 36 + 12 + 1 = 54.6 nodes, is over 50 and under 100."""
+    monkeypatch.setitem(MAX_NODES, "reference", 50)
+    monkeypatch.setitem(MAX_NODES, "fast", 100)
+    vertices = rectangle(6.0, 6.0)
+    if engine == "reference":
+        with pytest.raises(MeshTooLargeError) as err:
             equimesh.increment(vertices, 1.0, engine=engine)
+        assert str(err.value).startswith("l = 1.0 would need about 54.6 nodes in the polygon, more than max_nodes = 50;")
     else:
+        assert equimesh.increment(vertices, 1.0, engine=engine).n_nodes > 0
         with pytest.raises(MeshTooLargeError, match="more than max_nodes = 10;"):
             equimesh.increment(vertices, 1.0, engine=engine, max_nodes=10)
-        assert validate_problem1(vertices, 1.0)[1] == 1.0
 
 
 def test_unknown_engine_is_refused_before_anything_else():

@@ -22,6 +22,7 @@ import equimesh
 from equimesh import G1, EquimeshError
 from equimesh.planar import lattice, strip
 from equimesh.planar.insertion import ENGINES
+from equimesh.planar.limits import MAX_NODES
 from equimesh.planar.limits import node_estimate
 from equimesh.planar.polygon import as_polygon
 
@@ -174,18 +175,22 @@ def test_the_callers_vertices_are_kept_bit_for_bit():
     np.testing.assert_allclose(mesh.frame.to_caller(mesh.local_points), mesh.points, rtol=0, atol=1e-12)
 
 
-def test_size_guard_counts_what_the_engine_pays_for():
-    """The reference engine's default limit (2500) counts the boundary strip; max_nodes counts the polygon for the fast one.
+def test_size_guard_counts_what_the_engine_pays_for(monkeypatch):
+    """The reference engine's default limit counts the boundary strip, the fast engine's the polygon (MAX_NODES, made
+    small here, so that a broken guard costs a small run).
 
-    A square of side 400 l: strip area min(160000, 2 * 1600) = 3200 l^2, Oler's bound 3695.0 + 801 plus 1600
-    vertices on the boundary of K, about 6.1e3 > 2500; with max_nodes = 10 the fast engine counts the polygon.
+    The 6 l square: strip area min(36, 2 * 24) = 36 l^2, Oler's bound 41.57 + 12 + 1, plus 24 vertices on the
+    boundary of K: 78.6 > 50; the whole polygon 54.6 < 100.
     """
-    big = SQUARE / 6.0 * 400.0
-    with pytest.raises(equimesh.MeshTooLargeError, match=r"^l = 1.0 would need about 6.1e\+03 nodes in the boundary strip, more than max_nodes = 2500;"):
-        equimesh.uniform_triangulation(big, 1.0, engine="reference")
+    monkeypatch.setitem(MAX_NODES, "reference", 50)
+    monkeypatch.setitem(MAX_NODES, "fast", 100)
+    with pytest.raises(equimesh.MeshTooLargeError) as err:
+        equimesh.uniform_triangulation(SQUARE, 1.0, engine="reference")
+    assert str(err.value).startswith("l = 1.0 would need about 78.6 nodes in the boundary strip, more than max_nodes = 50;")
+    assert equimesh.uniform_triangulation(SQUARE, 1.0, offset=OFFSET).info["n_lattice_vertices"] == 22
     with pytest.raises(equimesh.MeshTooLargeError, match=r"nodes in the polygon, more than max_nodes = 10;"):
         equimesh.uniform_triangulation(SQUARE, 1.0, max_nodes=10)
-    assert equimesh.uniform_triangulation(SQUARE, 1.0, max_nodes=None, offset=OFFSET).info["n_lattice_vertices"] == 22
+    assert equimesh.uniform_triangulation(SQUARE, 1.0, max_nodes=None, engine="reference").info["n_lattice_vertices"] > 0
 
 
 def test_an_offset_given_as_a_row_is_a_pair():
