@@ -253,7 +253,10 @@ def run_module(module, work_dir, max_children, keep=None, seconds=None, progress
 
     With ``keep="survivors"`` only the survivors of the last run are run again
     (:func:`prepare`; the test selection must be the same, or mutmut resets
-    every verdict), and ``seconds`` is the time of that last full run.
+    every verdict), and ``seconds`` is the time of that last full run.  mutmut
+    maps each test to the functions it calls once, when it first sees the
+    test: a survivor is run against new tests and the tests that reached its
+    function before, so kill it with a new test (or run the module afresh).
     """
     folder = prepare(module, work_dir, keep)
     full = keep != "survivors" or not (folder / "mutants").exists()

@@ -206,3 +206,9 @@ def test_the_engine_argument_chooses_the_engine(monkeypatch):
     monkeypatch.setitem(ENGINES, "reference", lambda region, l: calls.append(l) or reference(region, l))
     mesh = equimesh.uniform_triangulation(SQUARE, 1.0, offset=OFFSET, engine="reference")
     assert calls == [1.0] and (mesh.edge_groups == G1).sum() == 49
+
+
+def test_info_reports_the_parameters_as_used():
+    """angle (taken as given), offset and clearance, as floats, in info."""
+    mesh = equimesh.uniform_triangulation(SQUARE, 1.0, angle=7.5, offset=(0.25, 0.5), clearance=1.25)
+    assert (mesh.info["angle"], mesh.info["offset"], mesh.info["clearance"]) == (7.5, (0.25, 0.5), 1.25)
