@@ -61,16 +61,6 @@ MODULES = {
     "src/equimesh/planar/polygon.py": ["tests/test_polygon.py", "tests/test_polygon_validation.py", "tests/test_hardening_planar.py"],
     "src/equimesh/planar/increment.py": ["tests/test_increment_steps.py"],
     "src/equimesh/planar/insertion/reference.py": ["tests/test_reference_engine.py", "tests/test_increment_steps.py"],
-    "src/equimesh/planar/increment.py": [
-        ("equivalent: for Problem 1 (no strip estimate) planar_estimate returns the polygon's estimate without "
-         "reading the engine", ["check_size(*planar_estimate(poly, l, None, None), max_nodes, l)"]),
-        ("equivalent: a list of no hole seeds is empty whatever its width",
-         ["region = Region(boundary.points, boundary.segments, np.zeros((0, 3)))  # convex: no hole"]),
-        ("equivalent in effect: the seed (0, 0) is the lower-left corner of the bounding box in the local frame, "
-         "a vertex of the convex polygon or a point outside it, in the interior of no triangle; Triangle carves "
-         "nothing from it (every test passes with it)",
-         ["region = Region(boundary.points, boundary.segments, np.zeros((1, 2)))  # convex: no hole"]),
-    ],
     "src/equimesh/planar/strip.py": ["tests/test_strip.py"],
 }
 
@@ -138,6 +128,16 @@ _EQUIVALENT_GROUPS = {
         ("equivalent: multiplied by the float basis, integer indices are converted to float as dtype=float would",
          ["return np.asarray(offset, dtype=float) + np.asarray(ij, dtype=None) @ lattice_basis(l, angle)",
           "return np.asarray(offset, dtype=float) + np.asarray(ij, ) @ lattice_basis(l, angle)"]),
+    ],
+    "src/equimesh/planar/increment.py": [
+        ("equivalent: for Problem 1 (no strip estimate) planar_estimate returns the polygon's estimate without "
+         "reading the engine", ["check_size(*planar_estimate(poly, l, None, None), max_nodes, l)"]),
+        ("equivalent: a list of no hole seeds is empty whatever its width",
+         ["region = Region(boundary.points, boundary.segments, np.zeros((0, 3)))  # convex: no hole"]),
+        ("equivalent in effect: the seed (0, 0) is the lower-left corner of the bounding box in the local frame, "
+         "a vertex of the convex polygon or a point outside it, in the interior of no triangle; Triangle carves "
+         "nothing from it (every test passes with it)",
+         ["region = Region(boundary.points, boundary.segments, np.zeros((1, 2)))  # convex: no hole"]),
     ],
     "src/equimesh/planar/strip.py": [
         ("equivalent: np.full of a Python int makes int64 arrays without dtype too (numpy 2, 64-bit platforms)",
