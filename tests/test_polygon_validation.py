@@ -131,3 +131,40 @@ def test_problem1_angles_twice_the_tolerance_away_are_refused(vertices, message)
     with pytest.raises(InvalidPolygonError) as err:
         validate_problem1(vertices, 1.0)
     assert str(err.value) == message
+
+
+def _square(x, y, side):
+    return [[x, y], [x + side, y], [x + side, y + side], [x, y + side]]
+
+
+OUTER = [[0, 0], [10, 0], [10, 10], [0, 10]]
+L_SHAPE = [[0, 0], [10, 0], [10, 4], [4, 4], [4, 10], [0, 10]]
+
+HOLES_REFUSED = [
+    (OUTER, 5, None, "holes must be a list of polygons, got int"),
+    (OUTER, [_square(8, 8, 3)], 1.0, "hole 0 is not inside the polygon: its vertex 1 at (11, 8) lies outside"),
+    (OUTER, [[[0, 4], [2, 4], [2, 6]]], None, "hole 0 overlaps the boundary of the polygon (their edges cross or touch)"),
+    (L_SHAPE, [_square(6, 6, 2)], None, "hole 0 lies outside the polygon"),
+    (OUTER, [_square(2, 2, 3), _square(4, 4, 3)], None, "hole 0 and hole 1 overlap"),
+    (OUTER, [_square(0.5, 4, 2)], 1.0,
+     "hole 0 is 0.5 from the boundary of the polygon, closer than l = 1.0 (Lemma 3 (1)); move it or use l <= 0.5"),
+    (OUTER, [_square(6, 6, 2), _square(1.5, 1.5, 2), _square(4.25, 1.5, 2)], 1.0,
+     "hole 1 and hole 2 are 0.75 apart, closer than l = 1.0 (Lemma 3 (1)); move them apart or use l <= 0.75"),
+]
+
+
+@pytest.mark.parametrize("outer, holes, l, message", HOLES_REFUSED)
+def test_holes_refused_naming_the_hole(outer, holes, l, message):
+    with pytest.raises(InvalidPolygonError) as err:
+        as_polygon(outer, l, holes)
+    assert str(err.value) == message
+
+
+def test_holes_are_clockwise_rings_in_the_outer_frame():
+    """Two holes 2 apart (>= l), either orientation given: clockwise, same frame, labelled; no l, no distance check."""
+    poly = as_polygon(OUTER, 1.0, [_square(2, 2, 2), _square(6, 6, 2)[::-1]])
+    assert [h.label for h in poly.holes] == ["hole 0", "hole 1"]
+    assert [h.vertices.tolist() for h in poly.holes] == [[[2, 4], [4, 4], [4, 2], [2, 2]], [[6, 8], [8, 8], [8, 6], [6, 6]]]
+    assert all(h.frame == poly.frame for h in poly.holes)
+    assert len(as_polygon(OUTER, None, [_square(2, 2, 2), _square(4.5, 2, 2)]).holes) == 2
+    assert as_polygon(OUTER, 1.0, []).holes == ()
