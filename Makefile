@@ -58,6 +58,8 @@ BASE ?=
 FACTOR ?= 1.2
 # `make mutation`: modules to mutate (default: all of experiments/mutation_report.py's table).
 MODULES ?=
+# and options of experiments/mutation_report.py (e.g. --survivors, --max-children 1).
+MUTATION_ARGS ?=
 MUTATION_STAMP := $(VENV)/.equimesh-mutation-installed
 
 .PHONY: test test-thorough reproduce bench bench-history bench-compare bench-publish mutation venv clean-venv
@@ -117,7 +119,7 @@ bench-publish: $(STAMP)
 # Mutation testing of the algorithm modules (not part of `make test`; about
 # an hour on 2 cores, see README): writes results/mutation.md.
 mutation: $(MUTATION_STAMP)
-	$(PY) experiments/mutation_report.py $(MODULES)
+	$(PY) experiments/mutation_report.py $(MUTATION_ARGS) $(MODULES)
 
 $(MUTATION_STAMP): $(STAMP)
 	$(PY) -m pip install -e '.[test,bench,mutation]'

@@ -24,7 +24,9 @@ comes from the ``[mutation]`` extra (``make mutation`` installs it).  The
 report is rewritten after each module, and modules already in
 ``results/mutation.json`` from an earlier run are kept, so the modules can be
 run one at a time; ``--resume`` continues an interrupted module where mutmut
-stopped instead of starting it afresh.
+stopped instead of starting it afresh, and ``--survivors`` runs only the
+survivors of the module's last run again, against the current tests (after
+adding the tests that should kill them), keeping every other verdict.
 
 Usage::
 
@@ -55,28 +57,120 @@ ROOT = Path(__file__).resolve().parent.parent
 #: kept small so that one mutant costs a few seconds.
 MODULES = {
     "src/equimesh/planar/bounds.py": ["tests/test_bounds.py"],
-    "src/equimesh/planar/lattice.py": ["tests/test_uniform.py"],
-    "src/equimesh/planar/polygon.py": ["tests/test_polygon.py", "tests/test_hardening_planar.py"],
-    "src/equimesh/planar/increment.py": ["tests/test_increment.py", "tests/test_reference_engine.py"],
-    "src/equimesh/planar/insertion/reference.py": ["tests/test_reference_engine.py", "tests/test_increment.py"],
-    "src/equimesh/planar/strip.py": ["tests/test_uniform.py"],
+    "src/equimesh/planar/lattice.py": ["tests/test_lattice.py"],
+    "src/equimesh/planar/polygon.py": ["tests/test_polygon.py", "tests/test_polygon_validation.py", "tests/test_hardening_planar.py"],
+    "src/equimesh/planar/increment.py": ["tests/test_increment_steps.py"],
+    "src/equimesh/planar/insertion/reference.py": ["tests/test_reference_engine.py", "tests/test_increment_steps.py"],
+    "src/equimesh/planar/strip.py": ["tests/test_strip.py"],
 }
 
-#: Equivalent mutants: (module, the mutated line as mutmut prints it after
-#: "+", stripped) -> why no test can tell it from the original.
-_POLYGON = "src/equimesh/planar/polygon.py"
-_SPACING_ABOVE_2 = ("equivalent: for any spacing >= 2 the lower bound ceil(L / 2l) of split_counts decides, "
-                    "so a default of 3 gives the same parts as 2")
-_FLOAT_ANYWAY = "equivalent: the division by l that follows makes the counts' arithmetic float for any real input"
-EQUIVALENT = {
-    (_POLYGON, "def split_counts(lengths, l, spacing=3.0):"): _SPACING_ABOVE_2,
-    (_POLYGON, "def resample_boundary(poly, l, spacing=3.0):"): _SPACING_ABOVE_2,
-    (_POLYGON, "lengths = np.asarray(lengths, dtype=None)"): _FLOAT_ANYWAY,
-    (_POLYGON, "lengths = np.asarray(lengths, )"): _FLOAT_ANYWAY,
+#: Equivalent mutants, by module: (why no test can tell them from the
+#: original, the mutated lines as mutmut prints them after "+", stripped).
+_LAST_AXIS = "equivalent: np.sort sorts along the last axis by default, axis 1 of these 2-D arrays"
+_NEGATIVE_RESHAPE = "equivalent: numpy (2.x) reads any negative dimension of reshape as the one it infers"
+_EQUIVALENT_GROUPS = {
+    "src/equimesh/planar/polygon.py": [
+        ("equivalent: for any spacing >= 2 the lower bound ceil(L / 2l) of split_counts decides, so a default of 3 "
+         "gives the same parts as 2",
+         ["def split_counts(lengths, l, spacing=3.0):", "def resample_boundary(poly, l, spacing=3.0):"]),
+        ("equivalent: the division by l that follows makes the counts' arithmetic float for any real input",
+         ["lengths = np.asarray(lengths, dtype=None)", "lengths = np.asarray(lengths, )"]),
+        ("equivalent: a ring has at least 3 distinct vertices (checked before), so a second vertex unlike the first "
+         "exists, and the vertices are all collinear with the first and that one, or not, whichever it is",
+         ["other = int(np.flatnonzero(np.any(local != local[0], axis=1))[1])"]),
+        ("equivalent: two consecutive collinear edges with dot product exactly 0 need an edge of length 0, a "
+         "repeated vertex, refused before",
+         ["spike = (orient_sign(a, b, np.roll(b, -1, axis=0)) == 0) & (np.sum(e_in * e_out, axis=1) <= 0)"]),
+        ("equivalent: two equal vertices are one distinct vertex whether the closing copy is dropped or not: the "
+         "same error", ["if len(v) > 2 and np.array_equal(v[0], v[-1]):"]),
+        ("equivalent: no numpy dtype kind is X",
+         ['if raw.dtype.kind not in "XXiufOXX":',
+          'isinstance(value, numbers.Real) or (np.ndim(value) == 0 and np.asarray(value).dtype.kind in "XXiufXX")']),
+        ("equivalent: _check_simple reads the local coordinates, the vertices, their indices and the label, never "
+         "the frame", ["_check_simple(Polygon(v, index, None, local, label=label))"]),
+        ("equivalent: the turn at the lowest-leftmost vertex is never straight: its neighbours lie in the closed "
+         "half-plane right of or above it, so collinear neighbours would be on one ray from it, a fold refused before",
+         ["counter_clockwise = orient_sign(local[low - 1], local[low], local[(low + 1) % len(v)]) >= 0"]),
+    ],
+    "src/equimesh/planar/insertion/reference.py": [
+        ("equivalent: the keys a n + b of sorted pairs a < b <= m (m the largest index) are unique for any n >= m: "
+         "for each a they fill [a n + a + 1, a n + m], disjoint intervals; only equality is used",
+         ["n = int(max(t.max(), pairs.max(initial=0))) - 1", "n = int(max(t.max(), pairs.max(initial=0))) + 2",
+          "n = int(max(t.max(), pairs.max(initial=1))) + 1"]),
+        (_LAST_AXIS,
+         ["edges = np.sort(half_edges(t), )", "p = np.sort(pairs, )", "t = np.sort(triangles, )"]),
+        ("equivalent: the sentinel is only compared with 0 (split[best] < 0), and -2 is as negative as -1",
+         ["split = np.concatenate([np.full(len(radii), -2), mid_segments])"]),
+        (_NEGATIVE_RESHAPE,
+         ["segments = np.array(region.segments, dtype=np.int64).reshape(-2, 2)"]),
+        ("equivalent: the pairs looked up are constraint segments, each an edge of exactly one triangle of the "
+         "region (it lies on one side of every constraint), so no two equal keys meet a query and the order among "
+         "equal keys is never seen",
+         ["order = np.argsort(keys, kind=None)", "order = np.argsort(keys, )", 'order = np.argsort(keys, kind="STABLE")']),
+    ],
+    "src/equimesh/planar/lattice.py": [
+        (_NEGATIVE_RESHAPE, ["tri = tri.reshape(-2, 3)"]),
+        (_LAST_AXIS, ["undirected = np.sort(half_edges(tri), )"]),
+        ("equivalent: only the first 3 n entries are read (order indexes the 3 n half-edges), the same as with 3 "
+         "copies", ["owner = np.tile(np.arange(n), 4)"]),
+        ("equivalent: scipy reads directed as a truth value, and None is false",
+         ["_, labels = connected_components(graph, directed=None)"]),
+        ("equivalent: scipy's connected_components has connection='weak' by default, and the weak components of a "
+         "directed graph are those of the undirected one",
+         ["_, labels = connected_components(graph, )", "_, labels = connected_components(graph, directed=True)"]),
+        ("equivalent: in the polygon's local frame the lower-left corner of its bounding box is the origin (Frame), "
+         "so lo[0] == lo[1] == 0",
+         ["corners = np.array([[lo[1], lo[1]], [hi[0], lo[1]], [lo[0], hi[1]], [hi[0], hi[1]]])",
+          "corners = np.array([[lo[0], lo[1]], [hi[0], lo[1]], [lo[1], hi[1]], [hi[0], hi[1]]])"]),
+        ("equivalent: added to the float product, an integer offset is converted to float as dtype=float would",
+         ["return np.asarray(offset, dtype=None) + np.asarray(ij, dtype=float) @ lattice_basis(l, angle)",
+          "return np.asarray(offset, ) + np.asarray(ij, dtype=float) @ lattice_basis(l, angle)"]),
+        ("equivalent: multiplied by the float basis, integer indices are converted to float as dtype=float would",
+         ["return np.asarray(offset, dtype=float) + np.asarray(ij, dtype=None) @ lattice_basis(l, angle)",
+          "return np.asarray(offset, dtype=float) + np.asarray(ij, ) @ lattice_basis(l, angle)"]),
+    ],
+    "src/equimesh/planar/increment.py": [
+        ("equivalent: for Problem 1 (no strip estimate) planar_estimate returns the polygon's estimate without "
+         "reading the engine", ["check_size(*planar_estimate(poly, l, None, None), max_nodes, l)"]),
+        ("equivalent: a list of no hole seeds is empty whatever its width",
+         ["region = Region(boundary.points, boundary.segments, np.zeros((0, 3)))  # convex: no hole"]),
+        ("equivalent in effect: the seed (0, 0) is the lower-left corner of the bounding box in the local frame, "
+         "a vertex of the convex polygon or a point outside it, in the interior of no triangle; Triangle carves "
+         "nothing from it (every test passes with it)",
+         ["region = Region(boundary.points, boundary.segments, np.zeros((1, 2)))  # convex: no hole"]),
+    ],
+    "src/equimesh/planar/strip.py": [
+        ("equivalent: np.full of a Python int makes int64 arrays without dtype too (numpy 2, 64-bit platforms)",
+         ["lat_index = np.full(len(lat.points), -1, dtype=None)", "lat_index = np.full(len(lat.points), -1, )",
+          "ij = np.full((len(points), 2), np.iinfo(np.int64).min, dtype=None)",
+          "ij = np.full((len(points), 2), np.iinfo(np.int64).min, )"]),
+        ("equivalent: the sentinel is only compared with 0 (lat_index < 0), and every entry is overwritten before use",
+         ["lat_index = np.full(len(lat.points), -2, dtype=np.int64)"]),
+        ("equivalent: both engines convert the region's segments to int64 first "
+         "(np.array(region.segments, dtype=np.int64))",
+         ["np.vstack([boundary.segments, lat_index[lat.boundary_edges]]).astype(None),"]),
+        ("equivalent: lattice vertices on the boundary of K are numbered after the boundary points of P (at least "
+         "3), so no entry of lat_index is 0",
+         ["interior = np.flatnonzero(lat_index <= 0)", "interior = np.flatnonzero(lat_index < 1)"]),
+        ("equivalent: a point off the lattice has ij = (min int64, min int64), so an edge with one such end has an "
+         "ij difference of magnitude about 2^63 (wrapping) and one with two has (0, 0): neither is a neighbour "
+         "step, so lattice_adjacent drops it as the & did",
+         ["both = is_lattice[mesh_edges[:, 0]] | is_lattice[mesh_edges[:, 1]]",
+          "both = is_lattice[mesh_edges[:, 1]] & is_lattice[mesh_edges[:, 1]]"]),
+        (_NEGATIVE_RESHAPE, ["v = real_array(value, name, EquimeshError).reshape(-2)"]),
+    ],
 }
+EQUIVALENT = {(module, line): why for module, groups in _EQUIVALENT_GROUPS.items()
+              for why, lines in groups for line in lines}
 
 #: pytest options for every mutant run: stop at the first failure.
 PYTEST_ARGS = ["-p", "no:cacheprovider", "-q", "-x"]
+
+#: mutmut stops a mutant after ``2 * TIMEOUT_MULTIPLIER * (its tests' time + 1 s)``
+#: of CPU time (timed out, counted as killed).  mutmut's default, 15, let a
+#: mutant that never stops inserting run for 4 minutes on a loaded machine; a
+#: surviving mutant runs its tests in their own time, so 3 leaves a margin of 6.
+TIMEOUT_MULTIPLIER = 3.0
 
 STATUSES = ("killed", "survived", "timeout", "no tests", "suspicious", "skipped", "segfault")
 
@@ -87,6 +181,8 @@ def parse_args(argv=None):
     p.add_argument("--max-children", type=int, default=2, help="parallel mutant runs (default 2)")
     p.add_argument("--work-dir", type=Path, default=ROOT / ".mutation", help="scratch folder (default .mutation/)")
     p.add_argument("--resume", action="store_true", help="keep the scratch copy of a module and its finished mutants")
+    p.add_argument("--survivors", action="store_true",
+                   help="run only the last run's survivors again, against the current tests (keeps the other verdicts)")
     _common.add_output_options(p, fig_dir=False)
     args = p.parse_args(argv)
     unknown = [m for m in args.modules if m not in MODULES]
@@ -104,19 +200,27 @@ def mutmut_table(module):
         "", "[tool.mutmut]", 'source_paths = ["src"]',
         f"only_mutate = {toml_list([module])}",
         f"pytest_add_cli_args_test_selection = {toml_list(MODULES[module])}",
-        f"pytest_add_cli_args = {toml_list(PYTEST_ARGS)}", "",
+        f"pytest_add_cli_args = {toml_list(PYTEST_ARGS)}", f"timeout_multiplier = {TIMEOUT_MULTIPLIER}", "",
     ])
 
 
-def prepare(module, work_dir, resume=False):
-    """A fresh copy of the project for ``module``'s mutants (kept as it is with ``resume``); returns its folder."""
+def prepare(module, work_dir, keep=None):
+    """The copy of the project for ``module``'s mutants; returns its folder.
+
+    ``keep=None`` makes a fresh copy; ``"resume"`` keeps an existing one with
+    its tests; ``"survivors"`` keeps it with the current tests.  Either way the
+    ``[tool.mutmut]`` table is the current one (mutmut resets the verdicts its
+    change can alter).
+    """
     folder = work_dir / re.sub(r"[^A-Za-z0-9]+", "_", module)
-    if resume and folder.exists():
-        return folder
-    shutil.rmtree(folder, ignore_errors=True)
-    folder.mkdir(parents=True)
-    for name in ("src", "tests"):
-        shutil.copytree(ROOT / name, folder / name, ignore=shutil.ignore_patterns("__pycache__", "*.pyc"))
+    fresh = keep is None or not folder.exists()
+    if fresh:
+        shutil.rmtree(folder, ignore_errors=True)
+        folder.mkdir(parents=True)
+        shutil.copytree(ROOT / "src", folder / "src", ignore=shutil.ignore_patterns("__pycache__", "*.pyc"))
+    if fresh or keep == "survivors":
+        shutil.copytree(ROOT / "tests", folder / "tests", ignore=shutil.ignore_patterns("__pycache__", "*.pyc"),
+                        dirs_exist_ok=True)
     text = (ROOT / "pyproject.toml").read_text()
     (folder / "pyproject.toml").write_text(text + mutmut_table(module))
     return folder
@@ -139,14 +243,31 @@ def mutated_line(folder, name):
     return ""
 
 
-def run_module(module, work_dir, max_children, resume=False, progress=print):
-    """Mutate ``module``, run its tests on every mutant; its counts and survivors."""
-    folder = prepare(module, work_dir, resume)
-    progress(f"{NAME}: {module} against {' '.join(MODULES[module])}")
+def statuses(folder):
+    """Mutant name -> status (killed, survived, ...) of the mutants in ``folder``."""
+    return dict(re.findall(r"^\s*(\S+): (.+)$", mutmut(folder, "results", "--all", "true"), re.M))
+
+
+def run_module(module, work_dir, max_children, keep=None, seconds=None, progress=print):
+    """Mutate ``module``, run its tests on every mutant; its counts and survivors.
+
+    With ``keep="survivors"`` only the survivors of the last run are run again
+    (:func:`prepare`; the test selection must be the same, or mutmut resets
+    every verdict), and ``seconds`` is the time of that last full run.  mutmut
+    maps each test to the functions it calls once, when it first sees the
+    test: a survivor is run against new tests and the tests that reached its
+    function before, so kill it with a new test (or run the module afresh).
+    """
+    folder = prepare(module, work_dir, keep)
+    full = keep != "survivors" or not (folder / "mutants").exists()
+    again = [] if full else sorted(n for n, s in statuses(folder).items() if s == "survived")
+    progress(f"{NAME}: {module} against {' '.join(MODULES[module])}" + ("" if full else f", {len(again)} survivors again"))
     start = time.perf_counter()
-    mutmut(folder, "run", "--max-children", str(max_children))
-    seconds = time.perf_counter() - start
-    status = dict(re.findall(r"^\s*(\S+): (.+)$", mutmut(folder, "results", "--all", "true"), re.M))
+    if full or again:
+        mutmut(folder, "run", "--max-children", str(max_children), *again)
+    if full or seconds is None:
+        seconds = time.perf_counter() - start
+    status = statuses(folder)
     counts = {s: sum(v == s for v in status.values()) for s in STATUSES}
     survivors = []
     for name in sorted((n for n, s in status.items() if s == "survived"), key=_natural):
@@ -197,7 +318,8 @@ def main(argv=None):
     done = {m["module"]: m for m in previous if m["module"] in MODULES}
     args.out_dir.mkdir(parents=True, exist_ok=True)
     for module in wanted:
-        done[module] = run_module(module, args.work_dir, args.max_children, args.resume)
+        keep = "survivors" if args.survivors else "resume" if args.resume else None
+        done[module] = run_module(module, args.work_dir, args.max_children, keep, done.get(module, {}).get("seconds"))
         modules = [done[m] for m in MODULES if m in done]
         atomic_write_text(json_path, json.dumps({"modules": modules}, indent=1) + "\n")
         parameters = {"modules": [m["module"] for m in modules], "max_children": args.max_children, "pytest_args": PYTEST_ARGS}

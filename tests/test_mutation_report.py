@@ -24,6 +24,7 @@ def test_mutmut_table_mutates_one_module_against_its_tests(mutation):
     table = tomllib.loads(mutation.mutmut_table(module))["tool"]["mutmut"]
     assert table["only_mutate"] == [module]
     assert table["pytest_add_cli_args_test_selection"] == mutation.MODULES[module]
+    assert table["timeout_multiplier"] == mutation.TIMEOUT_MULTIPLIER
 
 
 def test_unknown_module_is_refused(mutation, capsys):

@@ -15,6 +15,7 @@ import pytest
 from hypothesis import given
 
 from equimesh import REL_TOL
+from equimesh._geometry import circumcenters, point_segment_distance
 from equimesh.planar.increment import validate_problem1
 from equimesh.planar.insertion import reference
 from equimesh.planar.insertion._region import Region
@@ -69,6 +70,25 @@ def test_near_constraint_and_sliver_gap_rules(gap, radius, listed):
     assert len(centers) == listed
 
 
+@pytest.mark.parametrize("tol, radius", [(REL_TOL, 3.0), (SLIVER_GAP, 1.0)])
+def test_near_rules_are_inclusive_at_any_l(tol, radius):
+    """A gap of exactly REL_TOL l (any value), or exactly SLIVER_GAP l with value l, is left out, at l far from 1.
+
+    The triangle has gap 1/2 and circumradius ``radius / (2 tol)``; l is the float for which ``tol * l`` is the
+    computed gap exactly.
+    """
+    points, segments = circle_triangle(0.5, radius * 0.5 / tol)
+    centre, _ = circumcenters(points[[0]], points[[1]], points[[2]])
+    gap = float(point_segment_distance(centre, points[0], points[1])[0])
+    l = gap / tol
+    while tol * l != gap:
+        l = np.nextafter(l, np.inf if tol * l < gap else -np.inf)
+    centers, radii = reference.circle_candidates(points, ONE, segments, l)
+    assert len(centers) == 0
+    centers, _ = reference.circle_candidates(points, ONE, segments, np.nextafter(l, 0.0) * (1.0 - 4.0 * REL_TOL))
+    assert len(centers) == 1  # a hair farther than tol l: listed
+
+
 def test_circumcentre_behind_a_constraint_is_hidden():
     """An obtuse triangle on a constraint: its circumcentre lies behind the constraint and is not visible."""
     points = np.array([[-1.0, 0.0], [1.0, 0.0], [0.0, 0.2], [10.0, 10.0], [12.0, 10.0]])
@@ -83,7 +103,7 @@ def test_midpoint_threshold_is_2l_up_to_rel_tol(half, listed):
     """Candidate 2: only constraints of length at least 2 (1 - REL_TOL) l have their midpoint listed."""
     points = np.array([[0.0, 0.0], [2.0 * half, 0.0], *FAR_POINTS])
     mids, values, index = reference.midpoint_candidates(points, FAR, np.array([[0, 1]]), 1.0)
-    assert len(mids) == listed
+    assert len(mids) == len(values) == len(index) == listed and index.dtype == np.int64
     if listed:
         np.testing.assert_array_equal(mids, [[half, 0.0]])
         assert values.tolist() == [half] and index.tolist() == [0]
@@ -96,6 +116,30 @@ def test_midpoint_value_is_capped_by_the_apex(apex_y, value):
     triangles = np.vstack([FAR, [[0, 1, 5]]]) if apex_y is not None else FAR
     _, values, _ = reference.midpoint_candidates(points, triangles, np.array([[0, 1]]), 1.0)
     assert values.tolist() == [value]
+
+
+def test_each_midpoint_is_capped_by_its_own_apex():
+    """Two constraints, each with its triangle: values min(1.25, 0.5) and min(1.25, 3); the first apex is point 0."""
+    points = np.array([[1.25, 0.5], [0.0, 0.0], [2.5, 0.0], [10.0, 0.0], [12.5, 0.0], [11.25, 3.0]])
+    triangles, segments = np.array([[1, 2, 0], [3, 4, 5]]), np.array([[1, 2], [3, 4]])
+    _, values, index = reference.midpoint_candidates(points, triangles, segments, 1.0)
+    assert values.tolist() == [0.5, 1.25] and index.tolist() == [0, 1]
+
+
+def test_apex_is_the_third_vertex_of_the_triangle_on_each_pair():
+    """Either direction of the pair; -1 for a pair on no triangle, and for every pair when there is no triangle."""
+    tri = np.array([[0, 1, 2], [2, 1, 3]])
+    assert reference._apex(tri, np.array([[1, 0], [0, 2], [3, 1], [3, 2], [0, 3], [4, 5]])).tolist() == [2, 1, 2, 1, -1, -1]
+    assert reference._apex(np.empty((0, 3), dtype=np.int64), np.array([[0, 1]])).tolist() == [-1]
+    assert reference._apex(tri, np.empty((0, 2), dtype=np.int64)).tolist() == []
+
+
+def test_points_and_segments_have_the_engines_dtypes_whatever_the_callers():
+    """Integer coordinates and int32 segments in, float points and int64 segments out (as from the fast engine),
+    even when nothing is inserted (a unit square)."""
+    segments = np.array([[0, 1], [1, 2], [2, 3], [3, 0]], dtype=np.int32)
+    result = reference.run(Region(np.array([[0, 0], [1, 0], [1, 1], [0, 1]]), segments, np.empty((0, 2))), 1.0)
+    assert len(result.points) == 4 and result.points.dtype == float and result.segments.dtype == np.int64
 
 
 def test_best_candidate_prefers_the_largest_value_and_reports_the_split():

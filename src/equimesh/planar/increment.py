@@ -77,7 +77,7 @@ def increment(vertices, l, *, engine=DEFAULT_ENGINE, max_nodes="default"):
     check_size(*planar_estimate(poly, l, None, engine), max_nodes, l)
     boundary = resample_boundary(poly, l)
     check_boundary_separation(poly, boundary, l)
-    region = Region(boundary.points, boundary.segments, np.empty((0, 2)))
+    region = Region(boundary.points, boundary.segments, np.zeros((0, 2)))  # convex: no hole
     result = insert(region, lp, engine=engine)
     order, inverse, n_ring = boundary_first(result.segments, len(result.points))
     mesh = PlanarMesh.build(

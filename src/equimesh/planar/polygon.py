@@ -197,7 +197,7 @@ def _parse_vertices(vertices, what="polygon"):
 def _local_frame(v, l):
     """The frame of ``v``: origin at its bounding box's lower-left corner, l (or the extent) scaled into [1, 2)."""
     origin = v.min(axis=0)
-    with np.errstate(over="ignore", invalid="ignore"):
+    with np.errstate(over="ignore"):  # finite coordinates: the span may overflow, never be invalid
         extent = float(np.max(v.max(axis=0) - origin))
     if not np.isfinite(extent):
         raise InvalidPolygonError("polygon coordinates span more than the floating-point range")
@@ -205,8 +205,8 @@ def _local_frame(v, l):
         return Frame(origin, power_of_two_scale(extent))
     if not extent <= MAX_EXTENT * l:
         raise InvalidPolygonError(
-            f"polygon spans {extent:.6g} = {extent / l:.6g} l, more than the {MAX_EXTENT:.0f} l within which "
-            f"edge lengths are exact to REL_TOL; use l >= {extent / MAX_EXTENT:.6g}"
+            f"polygon spans {_num(extent)} = {_num(extent / l)} l, more than the {MAX_EXTENT:.0f} l within which "
+            f"edge lengths are exact to REL_TOL; use l >= {_num(extent / MAX_EXTENT)}"
         )
     return Frame(origin, power_of_two_scale(l))
 
@@ -401,7 +401,7 @@ def check_convex_right_angles(poly):
     if acute.size:
         i = int(acute[0])
         raise InvalidPolygonError(
-            f"inner angle {poly.inner_angle(i):.4g} degrees at {poly.vertex_name(i)} is below 90 degrees"
+            f"inner angle {poly.inner_angle(i):.10g} degrees at {poly.vertex_name(i)} is below 90 degrees"
         )
 
 

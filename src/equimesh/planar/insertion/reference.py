@@ -122,7 +122,9 @@ def midpoint_candidates(points, triangles, segments, l):
 def _apex(triangles, pairs):
     """Third vertex of the triangle that has edge ``pairs[i]``, or -1 (vectorised)."""
     t = np.asarray(triangles)
-    n = int(max(t.max(initial=0), pairs.max(initial=0))) + 1
+    if not len(t):
+        return np.full(len(pairs), -1)
+    n = int(max(t.max(), pairs.max(initial=0))) + 1
     edges = np.sort(half_edges(t), axis=1)
     third = np.concatenate([t[:, 2], t[:, 0], t[:, 1]])
     keys = edges[:, 0] * n + edges[:, 1]
@@ -130,6 +132,5 @@ def _apex(triangles, pairs):
     keys, third = keys[order], third[order]
     p = np.sort(pairs, axis=1)
     want = p[:, 0] * n + p[:, 1]
-    pos = np.clip(np.searchsorted(keys, want), 0, max(len(keys) - 1, 0))
-    found = len(keys) > 0
-    return np.where(found & (keys[pos] == want), third[pos], -1)
+    pos = np.minimum(np.searchsorted(keys, want), len(keys) - 1)
+    return np.where(keys[pos] == want, third[pos], -1)
