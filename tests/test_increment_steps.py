@@ -69,7 +69,10 @@ def test_far_from_the_origin_the_vertices_are_the_callers_bits():
 @pytest.mark.parametrize("vertices, l, error, message", [
     (np.array([[0, 0], [4, 0], [2, 1], [4, 4], [0, 4]], float), 1.0, InvalidPolygonError, "polygon is not convex: reflex angle at vertex 2 at (2, 1)"),
     (np.array([[0, 0], [4, 0], [0, 4]], float), 1.0, InvalidPolygonError, "inner angle 45 degrees at vertex 1 at (4, 0) is below 90 degrees"),
-    (rectangle(4.0, 0.5), 1.0, InvalidPolygonError, "edge (1, 2) has length 0.5, shorter than l = 1.0"),
+    (rectangle(4.0, 0.5), 1.0, InvalidPolygonError, (
+        "no mesh with every edge in [l, 2l] exists (both ends of a side are nodes, so some mesh edge on it is no "
+        "longer than the side): edge (1, 2) has length 0.5, shorter than l = 1.0"
+    )),
     (rectangle(4.0, 4.0), -1.0, InvalidLengthError, "target length l must be positive and finite, got -1.0"),
 ])
 def test_input_outside_problem1_is_refused(vertices, l, error, message):

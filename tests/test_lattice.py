@@ -33,7 +33,7 @@ def brute_force_kept(poly, l, angle, offset, clearance, ij):
     """Which lattice vertices ``ij`` lie inside ``poly`` at least ``clearance l`` from its boundary (shapely, one by one)."""
     lp = poly.local_length(l)
     pts = lattice.lattice_points(ij, lp, angle, lattice.local_offset(poly, l, angle, offset))
-    shape = poly.shapely()
+    shape = poly.region
     inside = shapely.contains_xy(shape, pts[:, 0], pts[:, 1])
     far = at_least(shapely.distance(shapely.points(pts), shape.boundary), clearance * lp)
     return inside & far
