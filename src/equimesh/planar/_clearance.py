@@ -74,7 +74,7 @@ def clear_of_boundary(shape, points, first, grid_shape, offset, basis, distance)
     seg, row = _expand(np.maximum(np.ceil(vlo - w), j0).astype(np.int64), np.minimum(np.floor(vhi + w), j0 + nj - 1).astype(np.int64))
     dv = ub[seg, 1] - ua[seg, 1]
     flat = dv == 0.0
-    with np.errstate(divide="ignore", invalid="ignore"):
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):  # a nearly flat segment: t is clipped to [0, 1]
         t1 = np.where(flat, 0.0, (row - w - ua[seg, 1]) / np.where(flat, 1.0, dv))
         t2 = np.where(flat, 1.0, (row + w - ua[seg, 1]) / np.where(flat, 1.0, dv))
     t_lo, t_hi = np.clip(np.minimum(t1, t2), 0.0, 1.0), np.clip(np.maximum(t1, t2), 0.0, 1.0)
