@@ -83,7 +83,7 @@ def test_optimisation_leaves_hole_nodes_fixed():
 
 
 def test_bounded_slides_hole_nodes_along_their_edges():
-    """Item 60: under "bounded" a hole's nodes slide along its edges in (u, v), its vertices fixed, members in [l, 2l]."""
+    """Item 52: under "bounded" a hole's nodes slide along its edges in (u, v), its vertices fixed, members in [l, 2l]."""
     surface = load_surface(SURFACES / "nurbs_roof.json")
     mesh = equimesh.mesh_surface(surface, 3.0, holes=[SQUARE, TRIANGLE], optimize="bounded")
     check_openings(mesh, surface, [SQUARE, TRIANGLE], 3.0)  # on the polygons, every vertex a node bit for bit

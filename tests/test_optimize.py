@@ -75,7 +75,7 @@ def test_paper_objective_and_barrier_jacobians_match_finite_differences():
 
 
 def test_sliding_nodes_jacobians_match_finite_differences():
-    """Item 60: boundary nodes sliding along the domain's outline by arc position; the chain rule through ``d uv / d s``."""
+    """Item 52: boundary nodes sliding along the domain's outline by arc position; the chain rule through ``d uv / d s``."""
     mesh, plain = problem_for(dome(rise=15.0), 12.0, 3)
     square = np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]])
     arc = loop_arc(square)

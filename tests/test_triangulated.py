@@ -139,12 +139,12 @@ def assert_boundary_slid_along_the_loops(mesh):
 @pytest.mark.parametrize(
     "case, l",
     [
-        ("steep vault", 1.2),  # 20 x 14 rising 8 (item 54's known limit)
+        ("steep vault", 1.2),  # 20 x 14 rising 8 (item 51's known limit)
         ("warped wedge", 1.0),  # refused with the boundary fixed: 1 of 588 members a hair over 2l
     ],
 )
 def test_bounded_slides_the_boundary_along_the_loops(case, l):
-    """Item 60: under "bounded" every boundary node but the corners slides along its loop; every member in [l, 2l]."""
+    """Item 52: under "bounded" every boundary node but the corners slides along its loop; every member in [l, 2l]."""
     v, t = roof_mesh(20.0, 14.0, (20, 14), 8.0) if case == "steep vault" else wedge_mesh()
     surface = TriangulatedSurface(v, t)
     mesh = mesh_surface(surface, l, optimize="bounded")

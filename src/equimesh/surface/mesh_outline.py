@@ -198,7 +198,7 @@ def boundary_uv(outline, plane):
 
 
 def boundary_slides(outline, plane):
-    """The boundary nodes of ``plane`` sliding along their loops in the final optimisation (item 60).
+    """The boundary nodes of ``plane`` sliding along their loops in the final optimisation (item 52).
 
     Each node not at a corner of its loop slides between the corners before
     and after it (:func:`~equimesh.surface._slide.between_corners`).

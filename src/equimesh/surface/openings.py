@@ -85,7 +85,7 @@ def _as_given(ring):
 
 
 def hole_slides(surface, uv, nodes):
-    """The openings' nodes sliding along the holes' (u, v) polygons in the final optimisation (item 60).
+    """The openings' nodes sliding along the holes' (u, v) polygons in the final optimisation (item 52).
 
     ``nodes[k]`` are the nodes on hole ``k`` (:func:`holes_of`'s order), at
     ``uv``.  Every vertex of a hole is a corner: a node slides along the hole

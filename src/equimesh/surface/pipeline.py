@@ -389,7 +389,7 @@ def _mesh_front(surface, grid, l, limit, spacing, clock):
         return restate_mesh_error(exc, chart, outline, l)
 
     def boundary(plane, uv):
-        """Every boundary node slides along its loop between the loop's corners, which stay fixed (item 60)."""
+        """Every boundary node slides along its loop between the loop's corners, which stay fixed (item 52)."""
         slides, corners = boundary_slides(outline, plane)
         return {"fixed": corners, "slides": slides}
 
