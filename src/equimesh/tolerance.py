@@ -73,16 +73,6 @@ MAX_NORMAL_TURN = 90.0
 LM_INITIAL_DAMPING = 1e-3
 LM_DIAGONAL_FLOOR = 1e-12
 
-#: Beyond the paper (docs/decisions.md, "A solver that scales"): a retry of a
-#: rejected Levenberg-Marquardt step at a damping at most ``LM_RETRY_RATIO``
-#: times the factorised one is solved by conjugate gradients preconditioned
-#: with the kept factor, to a relative residual ``LM_RETRY_RTOL`` within
-#: ``LM_RETRY_ITERATIONS`` iterations (else the system is factorised anew).
-#: Tests: tests/test_solver.py.
-LM_RETRY_RATIO = 8.0
-LM_RETRY_RTOL = 1e-6
-LM_RETRY_ITERATIONS = 30
-
 #: Beyond the paper (docs/decisions.md, "The bounded objective"): the
 #: ``"bounded"`` optimisation (:func:`equimesh.surface.optimize.bounded_objective`)
 #: aims every member at ``l (1 + BOUNDED_OFFSET)``, inside the 0.5 % band and

@@ -15,10 +15,7 @@ instead of an inner iterative solve:
   factorised by SuperLU in symmetric mode, in a minimum-degree order of the
   normal matrix's structure computed once (:class:`_Ordering`: the
   structure is the mesh's at every iteration);
-* a rejected step is retried with a larger ``lambda``; up to
-  ``LM_RETRY_RATIO`` times the factorised damping, the retry is solved by
-  conjugate gradients preconditioned with the kept factor instead of a new
-  factorisation (:class:`_DampedSystem`);
+* a rejected step is retried with a larger ``lambda`` (a new factorisation);
 * bounds by projection: a variable on a bound whose gradient points outwards is
   held there for the step (it leaves ``F``), and the step is clipped to the box;
 * acceptance: the gain ratio ``rho = actual / predicted reduction`` of the
@@ -41,7 +38,7 @@ import scipy.sparse
 import scipy.sparse.linalg
 
 from ..tolerance import (
-    LM_DIAGONAL_FLOOR, LM_INITIAL_DAMPING, LM_RETRY_ITERATIONS, LM_RETRY_RATIO, LM_RETRY_RTOL,
+    LM_DIAGONAL_FLOOR, LM_INITIAL_DAMPING,
 )
 
 
@@ -59,15 +56,13 @@ class Solution:
 
 
 def least_squares(residuals, jacobian, x0, lower, upper, *, accept=None, gtol=1e-10, xtol=1e-10, ftol=1e-12,
-                  max_iterations=500, damping=LM_INITIAL_DAMPING, inexact_retries=True):
+                  max_iterations=500, damping=LM_INITIAL_DAMPING):
     """Minimise ``|residuals(x)|^2 / 2`` over the box ``[lower, upper]`` (see the module docstring).
 
     ``x0`` must lie in the box and satisfy ``accept`` (if given); every
     iterate, and so the result, then does too.  ``damping`` is the initial
     ``lambda``; a continuation passes the previous solve's final
     :attr:`Solution.damping` so that it does not pay again for rejected steps.
-    ``inexact_retries=False`` factorises every retried step instead of solving
-    it by preconditioned CG (:class:`_DampedSystem`).
     """
     x = np.clip(np.asarray(x0, dtype=float), lower, upper)
     r = residuals(x)
@@ -88,11 +83,10 @@ def least_squares(residuals, jacobian, x0, lower, upper, *, accept=None, gtol=1e
         diag = normal.diagonal()
         diag = np.maximum(diag, LM_DIAGONAL_FLOOR * max(float(diag.max()), 1.0))
         rhs = -g[free[order]]
-        damped = _DampedSystem(normal, diag, LM_RETRY_RATIO if inexact_retries else 0.0)
         retried = False
         while True:
             step = np.zeros_like(x)
-            step[free[order]] = damped.solve(lam, rhs)
+            step[free[order]] = _factorise((normal + scipy.sparse.diags(lam * diag)).tocsc(), "NATURAL").solve(rhs)
             x_new = np.clip(x + step, lower, upper)
             s = x_new - x
             js = jac @ s
@@ -118,39 +112,6 @@ def least_squares(residuals, jacobian, x0, lower, upper, *, accept=None, gtol=1e
             nu *= 2.0
             retried = True
     return Solution(x, cost, max_iterations, evaluations, False, f"stopped after {max_iterations} iterations", lam)
-
-
-class _DampedSystem:
-    """Solves of ``(N + lambda D) s = b`` for one normal matrix ``N`` and several dampings ``lambda``.
-
-    The first solve factorises ``N + lambda_0 D`` (SuperLU in symmetric
-    mode, diagonal pivots, the natural order: the matrix comes in
-    :class:`_Ordering`'s fill-reducing order).  A retry after a rejected
-    step only raises ``lambda``; for ``lambda <= retry_ratio lambda_0``
-    (``LM_RETRY_RATIO``; 0 factorises every retry)
-    the kept factor preconditions conjugate gradients on the new system
-    (the preconditioned matrix has its eigenvalues in ``[1, lambda / lambda_0]``,
-    so a few iterations reach ``LM_RETRY_RTOL``) instead of a new
-    factorisation; otherwise, or if CG does not get there in
-    ``LM_RETRY_ITERATIONS``, the new system is factorised.
-    """
-
-    def __init__(self, normal, diag, retry_ratio=LM_RETRY_RATIO):
-        self.normal, self.diag, self.retry_ratio = normal, diag, retry_ratio
-        self._lu, self._lam = None, None
-
-    def solve(self, lam, rhs):
-        if self._lu is not None and lam <= self.retry_ratio * self._lam:
-            system = self.normal + scipy.sparse.diags(lam * self.diag)
-            pre = scipy.sparse.linalg.LinearOperator(system.shape, matvec=self._lu.solve, dtype=float)
-            z, info = scipy.sparse.linalg.cg(
-                system, rhs, x0=self._lu.solve(rhs), rtol=LM_RETRY_RTOL, atol=0.0, maxiter=LM_RETRY_ITERATIONS, M=pre
-            )
-            if info == 0:
-                return z
-        self._lu = _factorise((self.normal + scipy.sparse.diags(lam * self.diag)).tocsc(), "NATURAL")
-        self._lam = lam
-        return self._lu.solve(rhs)
 
 
 class _Ordering:

@@ -166,9 +166,6 @@ class Objective:
     ``max_iterations`` its iteration limit (a round of a continuation need not converge).
     ``start`` (optional) restarts the solve there instead of at the previous
     objective's solution (a fallback that gives up the continuation's path).
-    ``exact_retries`` solves a retried step by a new factorisation instead of
-    preconditioned CG (:func:`~equimesh.surface._solver.least_squares`): the
-    bounded objective's short rounds are sensitive to the inexact steps.
     """
 
     residuals: Callable[[np.ndarray], np.ndarray]
@@ -180,7 +177,6 @@ class Objective:
     ftol: float = PAPER_FTOL
     max_iterations: int = 500
     start: np.ndarray = None
-    exact_retries: bool = False
 
 
 def edge_length_terms(problem, edges):
@@ -332,7 +328,7 @@ def bounded_objective(problem):
         return Objective(
             *weighted(weight, np.where(goal == ratio, target, goal)),
             f"members into [l, 2l] and to {target:g} l, round {k + 1}", None, None, refine, BOUNDED_FTOL,
-            BOUNDED_ROUND_ITERATIONS, exact_retries=True,
+            BOUNDED_ROUND_ITERATIONS,
         )
 
     def last_stage():
@@ -350,7 +346,7 @@ def bounded_objective(problem):
         return Objective(
             *weighted(cauchy_weight(lengths(problem.x0) / l), target, penalty),
             f"members in [l, 2l] by a penalty, Cauchy loss on L / l - {target:g}", feasible, violation, None,
-            BOUNDED_FTOL, start=problem.x0, exact_retries=True,
+            BOUNDED_FTOL, start=problem.x0,
         )
 
     return round_(0, problem.x0)
@@ -480,7 +476,7 @@ def optimize_uv(
         while True:
             solution = least_squares(
                 solve.residuals, solve.jacobian, x, *box, accept=guard, gtol=gtol, xtol=xtol, ftol=tol,
-                max_iterations=obj.max_iterations, damping=damping, inexact_retries=not obj.exact_retries,
+                max_iterations=obj.max_iterations, damping=damping,
             )
             x, nfev, njev = solution.x, nfev + solution.evaluations, njev + solution.iterations + 1
             damping = solution.damping  # warm start: the next solve begins where this one's damping ended
