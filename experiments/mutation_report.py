@@ -72,9 +72,14 @@ _EQUIVALENT_GROUPS = {
     "src/equimesh/planar/polygon.py": [
         ("equivalent: for any spacing >= 2 the lower bound ceil(L / 2l) of split_counts decides, so a default of 3 "
          "gives the same parts as 2",
-         ["def split_counts(lengths, l, spacing=3.0):", "def resample_boundary(poly, l, spacing=3.0):"]),
-        ("equivalent: the division by l that follows makes the counts' arithmetic float for any real input",
-         ["lengths = np.asarray(lengths, dtype=None)", "lengths = np.asarray(lengths, )"]),
+         ["def split_counts(lengths, l, spacing=3.0):", "def resample_boundary(poly, l, spacing=3.0):",
+          "def side_positions(lengths, angles, l, spacing=3.0):"]),
+        ("equivalent: every use of the lengths divides them by l or multiplies them by float fractions, so integer "
+         "lengths give the same floats", ["lengths = np.asarray(lengths, dtype=None)", "lengths = np.asarray(lengths, )"]),
+        ("equivalent: shapely.prepare only builds an index that speeds up the covers test; None is ignored",
+         ["shapely.prepare(None)"]),
+        ("equivalent: at a straight corner (theta = pi) the chord is a + b >= 2 (1 - REL_TOL) l, never below "
+         "(1 - REL_TOL) l", ["if theta <= math.pi and max(_chord(a, b, theta) for a, b in ends) < (1.0 - REL_TOL) * lp:"]),
         ("equivalent: a ring has at least 3 distinct vertices (checked before), so a second vertex unlike the first "
          "exists, and the vertices are all collinear with the first and that one, or not, whichever it is",
          ["other = int(np.flatnonzero(np.any(local != local[0], axis=1))[1])"]),

@@ -327,11 +327,14 @@ def test_stagger_by_hand(angle, l, reach, leaving, arriving):
     (7.0, [1.0, 3.0, 5.0, 6.0], [2.0, 4.0, 6.0], [0, 1, 3, 5], 7.0),
     # middle 12 .. 20 split into 2 parts of 4 (spacing 2, l = 2)
     (20.0, [2.0, 6.0, 10.0, 12.0], [], [0, 2, 6, 10, 12, 16], 20.0),
+    # one chain empty: the other gives way, whatever l (here 1 and 0.5)
+    (1.5, [], [1.0], [0], 1.0),
+    (0.75, [0.5], [], [0], 1.0),
 ])
 def test_place_drops_the_farthest_staggered_point_until_the_middle_is_l(length, start, end, points, denominator):
     from equimesh.planar.polygon import _place
 
-    l = 2.0 if length == 20.0 else 1.0
+    l = {20.0: 2.0, 0.75: 0.5}.get(length, 1.0)
     num, den = _place(length, np.array(start), np.array(end), l, 2.0)
     assert num.tolist() == points and den == denominator
 
@@ -537,21 +540,48 @@ def test_corner_gap_reads_only_the_points_within_k_l():
     assert _corner_gap(sides, lengths, [60.0, 300.0], 2.0, 0) == math.inf  # not sharp
 
 
+def _fingerprint(lengths, angles, l, spacing):
+    """``side_positions`` of a ring, its parts checked in [l, 2l]: (number of points, sum of i times the i-th position)."""
+    from equimesh.planar.polygon import side_positions
+
+    at = []
+    for length, (num, den) in zip(lengths, side_positions(lengths, angles, l, spacing)):
+        ends = np.append(num / den * length, length)
+        assert np.all(np.diff(ends) >= (1.0 - 1e-9) * l) and np.all(np.diff(ends) <= (2.0 + 1e-9) * l)
+        at.extend(ends[:-1])
+    return len(at), float(np.dot(np.round(at, 9), np.arange(1, len(at) + 1)))
+
+
 def test_short_side_search_fingerprint():
     """The search for short sides (docs/proofs.md, "Short sides": deterministic, measured, not proven) on 60 fixed
     rings of 3 to 5 sides of 1 to 8 l and corners of 5 to 70 degrees, at both spacings: every part in [l, 2l], and
     its output pinned by two sums (a fingerprint, as in dmsh's tests; a change to the search changes them)."""
-    from equimesh.planar.polygon import side_positions
-
     rng = np.random.default_rng(11)
     count, weighted = 0, 0.0
     for _ in range(60):
         n = int(rng.integers(3, 6))
         lengths, angles = np.round(rng.uniform(1.0, 8.0, n), 2), np.round(rng.uniform(5.0, 70.0, n), 1)
         for spacing in (1.5, 2.0):
-            for length, (num, den) in zip(lengths, side_positions(lengths, angles, 1.0, spacing)):
-                at = np.append(num / den * length, length)
-                assert np.all(np.diff(at) >= 1.0 - 1e-9) and np.all(np.diff(at) <= 2.0 + 1e-9)
-                count += len(num)
-                weighted += float(np.dot(np.round(at[:-1], 9), np.arange(1, len(num) + 1)))
-    assert (count, round(weighted, 6)) == (1502, 9484.86)
+            c, w = _fingerprint(lengths, angles, 1.0, spacing)
+            count, weighted = count + c, weighted + w
+    assert (count, round(weighted, 6)) == (1502, 22989.29)
+
+
+# Rings on which a step of the search decides the output (each found by changing that step, mutation testing):
+# a staggered point exactly at a side's end (8 = 8 l), the neighbours marked again after a change, the corners
+# compared after a trial, the sides near a mirrored corner, the chain of a non-sharp corner at l = 1.5.
+SEARCH_RINGS = [
+    ([3.0, 8.0, 2.0, 8.0, 7.0], [29.3, 36.0, 48.3, 7.1, 40.2], 1.0, 2.0, (20, 590.0)),
+    ([3.0, 8.0, 2.0, 1.0, 3.0], [61.3, 18.2, 63.0, 61.4, 4.2], 1.0, 2.0, (11, 98.0)),
+    ([7.0, 1.0, 5.0, 3.0], [18.4, 7.2, 39.3, 32.6], 1.0, 2.0, (11, 108.0)),
+    ([4.61, 3.0, 1.38, 3.68, 3.86], [6.0, 6.3, 69.9, 46.7, 18.7], 1.0, 1.5, (12, 82.72)),
+    ([4.61, 3.0, 1.38, 3.68, 3.86], [6.0, 6.3, 69.9, 46.7, 18.7], 1.5, 1.5, (12, 124.08)),
+    ([3.0, 4.0, 3.0, 2.0, 5.0], [59.2, 18.2, 14.0, 37.8, 13.0], 1.0, 1.5, (12, 102.0)),
+    ([2.6, 4.51, 5.25, 1.49, 7.58], [43.0, 9.9, 36.6, 66.4, 64.9], 1.0, 1.5, (16, 329.141666667)),
+    ([7.05, 4.14, 5.79, 3.28, 3.36], [54.7, 26.1, 20.8, 21.2, 24.1], 1.5, 1.5, (17, 350.97)),
+]
+
+
+@pytest.mark.parametrize("lengths, angles, l, spacing, pinned", SEARCH_RINGS)
+def test_short_side_search_on_rings_where_each_step_matters(lengths, angles, l, spacing, pinned):
+    assert _fingerprint(np.array(lengths) * l, angles, l, spacing) == pinned
