@@ -187,6 +187,7 @@ SPLIT_COUNTS = [
 def test_split_counts_by_hand(l, spacing, length, parts):
     """Step 2: the number of equal parts of a boundary edge, each part in [l, 2l] (up to REL_TOL)."""
     assert split_counts([length], l, spacing).tolist() == [parts]
+    assert split_counts([length], l, spacing).dtype.kind == "i"  # counts, for arange and repeat
     if spacing == 2.0:
         assert split_counts([length], l).tolist() == [parts]  # 2 is the default (Problem 1)
 
@@ -569,13 +570,14 @@ def test_short_side_search_fingerprint():
 
 # Rings on which a step of the search decides the output (each found by changing that step, mutation testing):
 # a staggered point exactly at a side's end (8 = 8 l), the neighbours marked again after a change, the corners
-# compared after a trial, the sides near a mirrored corner, the chain of a non-sharp corner at l = 1.5.
+# compared after a trial, the sides near a mirrored corner, the chain of a non-sharp corner at l = 1.5 and 0.5.
 SEARCH_RINGS = [
     ([3.0, 8.0, 2.0, 8.0, 7.0], [29.3, 36.0, 48.3, 7.1, 40.2], 1.0, 2.0, (20, 590.0)),
     ([3.0, 8.0, 2.0, 1.0, 3.0], [61.3, 18.2, 63.0, 61.4, 4.2], 1.0, 2.0, (11, 98.0)),
     ([7.0, 1.0, 5.0, 3.0], [18.4, 7.2, 39.3, 32.6], 1.0, 2.0, (11, 108.0)),
     ([4.61, 3.0, 1.38, 3.68, 3.86], [6.0, 6.3, 69.9, 46.7, 18.7], 1.0, 1.5, (12, 82.72)),
     ([4.61, 3.0, 1.38, 3.68, 3.86], [6.0, 6.3, 69.9, 46.7, 18.7], 1.5, 1.5, (12, 124.08)),
+    ([4.61, 3.0, 1.38, 3.68, 3.86], [6.0, 6.3, 69.9, 46.7, 18.7], 0.5, 1.5, (12, 41.36)),
     ([3.0, 4.0, 3.0, 2.0, 5.0], [59.2, 18.2, 14.0, 37.8, 13.0], 1.0, 1.5, (12, 102.0)),
     ([2.6, 4.51, 5.25, 1.49, 7.58], [43.0, 9.9, 36.6, 66.4, 64.9], 1.0, 1.5, (16, 329.141666667)),
     ([7.05, 4.14, 5.79, 3.28, 3.36], [54.7, 26.1, 20.8, 21.2, 24.1], 1.5, 1.5, (17, 350.97)),
@@ -585,3 +587,51 @@ SEARCH_RINGS = [
 @pytest.mark.parametrize("lengths, angles, l, spacing, pinned", SEARCH_RINGS)
 def test_short_side_search_on_rings_where_each_step_matters(lengths, angles, l, spacing, pinned):
     assert _fingerprint(np.array(lengths) * l, angles, l, spacing) == pinned
+
+
+def test_a_side_shorter_than_l_is_refused_as_impossible():
+    from equimesh.planar.polygon import check_edges_at_least
+
+    with pytest.raises(InvalidPolygonError) as err:
+        check_edges_at_least(as_polygon([[0, 0], [4, 0], [4, 0.5], [0, 0.5]]), 1.0)
+    assert str(err.value) == ("no mesh with every edge in [l, 2l] exists (both ends of a side are nodes, so some mesh "
+                              "edge on it is no longer than the side): edge (1, 2) has length 0.5, shorter than l = 1.0")
+
+
+def test_separation_refusal_says_first_what_is_proven():
+    """Close points at a corner of the sector lemma: the refusal is the proof that no mesh exists."""
+    from equimesh.planar.polygon import check_boundary_separation
+
+    poly = as_polygon(_leaving(5.4), 3.0)
+    with pytest.raises(InvalidPolygonError, match=r"^no mesh with every edge in \[l, 2l\] exists for l = 3.0: at the corner"):
+        check_boundary_separation(poly, resample_boundary(poly, 3.0, 1.5), 3.0)
+
+
+def test_points_closer_than_l_across_a_notch_do_not_see_each_other():
+    """A V-shaped notch of 16 degrees cut into a square: points 0.5 apart on its two walls, the segment between them
+    outside the polygon; Lemma 3 (1) concerns mutually visible points only, so the check accepts."""
+    from equimesh.planar.polygon import check_boundary_separation
+
+    poly = as_polygon([[0, 0], [10, 0], [10, 10], [6, 10], [5, 3], [4, 10], [0, 10]], 1.0)
+    boundary = resample_boundary(poly, 1.0)
+    assert pdist(boundary.points).min() == pytest.approx(0.5, rel=1e-12)
+    assert check_boundary_separation(poly, boundary, 1.0) is None
+
+
+@pytest.mark.parametrize("opposite, refused", [(1.5, False), (1.5 * (1.0 - 2.0 * REL_TOL), True)])
+def test_no_separation_when_the_first_points_are_closer_than_l_up_to_rel_tol(opposite, refused):
+    """A triangle with sides 1.6 and 1.7 at corner 0 (both below 2l, l = 1.5: the first points are their far ends):
+    refused when the opposite side is below (1 - REL_TOL) l, not when it is l."""
+    from equimesh.planar.polygon import _unseparable_corner
+
+    x = (1.7**2 - opposite**2 + 1.6**2) / 3.2
+    assert (_unseparable_corner(as_polygon([[0, 0], [1.6, 0], [x, math.sqrt(1.7**2 - x * x)]]), 1.5) is not None) == refused
+
+
+def test_no_separation_reads_the_far_ends_of_the_first_point_ranges():
+    """The 30 degree triangle with a hole near the far end of its arriving side's range [l, 1.5 l]: the triangle of
+    the corner and the far ends is not covered, the corner not refused (with the near end it would be)."""
+    from equimesh.planar.polygon import _unseparable_corner
+
+    poly = as_polygon([[0.0, 0.0], [1.6, 0.0], _at(30.0, 2.5)], None, [[[1.1, 0.5], [1.25, 0.5], [1.2, 0.62]]])
+    assert _unseparable_corner(poly, 1.0) is None
