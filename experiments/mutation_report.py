@@ -72,9 +72,42 @@ _EQUIVALENT_GROUPS = {
     "src/equimesh/planar/polygon.py": [
         ("equivalent: for any spacing >= 2 the lower bound ceil(L / 2l) of split_counts decides, so a default of 3 "
          "gives the same parts as 2",
-         ["def split_counts(lengths, l, spacing=3.0):", "def resample_boundary(poly, l, spacing=3.0):"]),
-        ("equivalent: the division by l that follows makes the counts' arithmetic float for any real input",
-         ["lengths = np.asarray(lengths, dtype=None)", "lengths = np.asarray(lengths, )"]),
+         ["def split_counts(lengths, l, spacing=3.0):", "def resample_boundary(poly, l, spacing=3.0):",
+          "def side_positions(lengths, angles, l, spacing=3.0):"]),
+        ("equivalent: every use of the lengths divides them by l or multiplies them by float fractions, so integer "
+         "lengths give the same floats", ["lengths = np.asarray(lengths, dtype=None)", "lengths = np.asarray(lengths, )"]),
+        ("equivalent: shapely.prepare only builds an index that speeds up the covers test; None is ignored",
+         ["shapely.prepare(None)"]),
+        ("equivalent: the only caller, _ring_vertices, always passes of", ['def _check_no_repeated_vertex(v, of="XXXX"):']),
+        ("equivalent: the integers 0 .. k - 1 are exact as floats, and every use divides them by the float "
+         "denominator", ["return np.arange(k, dtype=None), float(k)", "return np.arange(k, ), float(k)"]),
+        ("equivalent: a point at exactly K l is at least K l sin theta >= (1 - REL_TOL) l from the other side, so it "
+         "changes no gap below (1 - REL_TOL) l, the only gaps the search compares (a larger one passes at_least first)",
+         ["a, b = a[a <= reach], b[b < reach]", "a, b = a[a < reach], b[b <= reach]"]),
+        ("equivalent: once no free side is dirty a further pass processes no side and changes nothing; the early "
+         "return only saves the passes", ["if not dirty | set(free):"]),
+        ("equivalent: count only bounds the multiples k l of a chain; those past length - l leave a middle below l "
+         "in every candidate that holds them (skipped), so a count one lower or any higher gives the same candidates",
+         ["count = math.floor(length / l / (1.0 + REL_TOL))", "count = math.floor(length / l * (1.0 - REL_TOL))",
+          "count = math.floor(length / l * (2.0 + REL_TOL))"]),
+        ("equivalent: a chain point at the side's length leaves a middle below l in every candidate that holds it, "
+         "and such candidates are skipped", ["start, end = start[start <= length], end[end < length]",
+                                              "start, end = start[start < length], end[end <= length]"]),
+        ("equivalent: far < (1 - REL_TOL) l already implies beta < 2 (1 - REL_TOL) l cos theta (the chord at radius "
+         "(1 - REL_TOL) l is below it only there), so any looser bound on beta decides nothing",
+         ["if beta <= 2.0 * lp * (1.0 - REL_TOL) and far < (1.0 - REL_TOL) * lp:",
+          "if beta < 2.0 * lp / (1.0 - REL_TOL) and far < (1.0 - REL_TOL) * lp:",
+          "if beta < 3.0 * lp * (1.0 - REL_TOL) and far < (1.0 - REL_TOL) * lp:",
+          "if beta < 2.0 * lp * (1.0 + REL_TOL) and far < (1.0 - REL_TOL) * lp:",
+          "if beta < 2.0 * lp * (2.0 - REL_TOL) and far < (1.0 - REL_TOL) * lp:"]),
+        ("equivalent: ends is [(a, b) for a in the leaving range for b in the arriving range], so ends[-2] has the "
+         "leaving far end of ends[-1] and ends[1] its arriving far end",
+         ["((i + 1, ends[-2][0], leaving), (i - 1, ends[-1][1], arriving))]",
+          "((i + 1, ends[-1][0], leaving), (i - 1, ends[+1][1], arriving))]"]),
+        ("equivalent: _ring_vertices reads the label only as a truth value (label or 'a polygon', of if label), and "
+         "None is as false as the empty label", ["v = _ring_vertices(_parse_vertices(vertices), None)"]),
+        ("equivalent: at a straight corner (theta = pi) the chord is a + b >= 2 (1 - REL_TOL) l, never below "
+         "(1 - REL_TOL) l", ["if theta <= math.pi and max(_chord(a, b, theta) for a, b in ends) < (1.0 - REL_TOL) * lp:"]),
         ("equivalent: a ring has at least 3 distinct vertices (checked before), so a second vertex unlike the first "
          "exists, and the vertices are all collinear with the first and that one, or not, whichever it is",
          ["other = int(np.flatnonzero(np.any(local != local[0], axis=1))[1])"]),

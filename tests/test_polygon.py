@@ -187,6 +187,7 @@ SPLIT_COUNTS = [
 def test_split_counts_by_hand(l, spacing, length, parts):
     """Step 2: the number of equal parts of a boundary edge, each part in [l, 2l] (up to REL_TOL)."""
     assert split_counts([length], l, spacing).tolist() == [parts]
+    assert split_counts([length], l, spacing).dtype.kind == "i"  # counts, for arange and repeat
     if spacing == 2.0:
         assert split_counts([length], l).tolist() == [parts]  # 2 is the default (Problem 1)
 
@@ -270,3 +271,367 @@ def test_the_closest_pair_of_a_corner_pairs_each_point_with_the_next_one_across(
     sides = [(np.append(0.0, a[:-1]) / a[-1], 1.0), (np.append(0.0, b[-1] - b[::-1][1:]) / b[-1], 1.0)]
     gap = _corner_gap(sides, np.array([a[-1], b[-1]]), [angle, 360.0 - angle], 1.0, 0)
     assert min(gap, 1.0) == pytest.approx(min(nearest, 1.0), rel=1e-9)
+
+
+# --------------------------------------------------------------------------- Step 2 at sharp corners, by hand
+
+
+@pytest.mark.parametrize("angle, count", [
+    (10.0, 6),  # 1 / sin 10 = 5.76
+    (30.0, 2),  # 1 / sin 30 rounds to 2.0000000000000004: K = 2 only with the (1 - REL_TOL)
+    (59.0, 2),
+    (60.0 * (1.0 - 2.0 * REL_TOL), 2),  # sharp up to REL_TOL
+    (60.0 * (1.0 - REL_TOL), 0),  # exactly at the tolerance: not sharp
+    (60.0, 0),
+    (90.0, 0),
+])
+def test_stagger_count_and_reach_by_hand(angle, count):
+    """K = ceil(1 / sin angle) staggered points below SHARP_CORNER = 60 degrees (up to REL_TOL), K l from the corner."""
+    from equimesh.planar.polygon import _stagger_count, stagger_reach
+
+    assert _stagger_count(angle) == count
+    assert stagger_reach(angle, 2.0) == 2.0 * count
+
+
+# 2 k sin(angle / 2) for k = 2 at these angles: exactly 1 + REL_TOL (found by stepping through the floats
+# next to 2 asin((1 + REL_TOL) / 4)), and 1 up to rounding (2 asin(1 / 4)).
+AT_BOTH = 28.955024401447265
+BELOW_BOTH = math.degrees(2.0 * math.asin(0.25))
+
+
+@pytest.mark.parametrize("angle, l, reach, leaving, arriving", [
+    (10.0, 2.0, 100.0, [2, 6, 10, 12], [4, 8, 12]),  # K = 6; 2 k sin 5 >= 1 from k = 6 on: 6 l on both sides
+    (10.0, 2.0, 5.0, [2, 6], [4]),  # floor(reach / l) + 1 = 3 points
+    (10.0, 2.0, 4.0, [2, 6], [4]),
+    (10.0, 2.0, 3.99, [2], [4]),
+    (AT_BOTH, 1.0, 100.0, [1, 2, 3], [2, 3]),  # K = 3; k = 2 exactly at 1 + REL_TOL: on both sides
+    (BELOW_BOTH, 1.0, 100.0, [1, 3], [2, 3]),
+    (60.0, 1.0, 100.0, [], []),
+])
+def test_stagger_by_hand(angle, l, reach, leaving, arriving):
+    """``stagger``: the points k l, k = 1 .. min(K, floor(reach / l) + 1), odd k leaving the corner, even k
+    arriving, and both where the two points k l are l apart already (2 k sin(angle / 2) >= 1, up to REL_TOL)."""
+    from equimesh.planar.polygon import stagger
+
+    assert 4.0 * math.sin(math.radians(AT_BOTH) / 2.0) == 1.0 + REL_TOL
+    assert 4.0 * math.sin(math.radians(BELOW_BOTH) / 2.0) < 1.0 + REL_TOL / 2.0
+    out = stagger(angle, l, reach)
+    assert [x.tolist() for x in out] == [leaving, arriving]
+
+
+@pytest.mark.parametrize("length, start, end, points, denominator", [
+    # both chains end at 3: the start chain gives way first, its 3 dropped; middle 1 .. 2 (one part)
+    (5.0, [1.0, 3.0], [2.0, 3.0], [0, 1, 2, 3], 5.0),
+    # no point from the first corner: the middle 0 .. 1.5 is long enough, the point 2 from the end stays
+    (3.5, [], [2.0], [0, 1.5], 3.5),
+    # 6 = 6 (start first), 6 > 4, 5 > 4, 4 > 3, then 7 - 3 - 2 = 2 >= l: one part between 3 and 5
+    (7.0, [1.0, 3.0, 5.0, 6.0], [2.0, 4.0, 6.0], [0, 1, 3, 5], 7.0),
+    # middle 12 .. 20 split into 2 parts of 4 (spacing 2, l = 2)
+    (20.0, [2.0, 6.0, 10.0, 12.0], [], [0, 2, 6, 10, 12, 16], 20.0),
+    # one chain empty: the other gives way, whatever l (here 1 and 0.5)
+    (1.5, [], [1.0], [0], 1.0),
+    (0.75, [0.5], [], [0], 1.0),
+])
+def test_place_drops_the_farthest_staggered_point_until_the_middle_is_l(length, start, end, points, denominator):
+    from equimesh.planar.polygon import _place
+
+    l = {20.0: 2.0, 0.75: 0.5}.get(length, 1.0)
+    num, den = _place(length, np.array(start), np.array(end), l, 2.0)
+    assert num.tolist() == points and den == denominator
+
+
+def test_side_positions_by_hand():
+    """A ring of sides 20, 3, 20 with a 10 degree corner at 0: its stagger (K = 6, reach 20) leaving
+    [1, 3, 5, 6], arriving [2, 4, 6], the rest in parts of 2 (l = 1) or 4 (l = 2); the short side alone."""
+    from equimesh.planar.polygon import side_positions
+
+    for l, expected in [
+        (1.0, [([0, 1, 3, 5, 6, 8, 10, 12, 14, 16, 18], 20.0), ([0, 1], 2.0), ([0, 2, 4, 6, 8, 10, 12, 14, 16, 18], 20.0)]),
+        (2.0, [([0, 2, 6, 10, 12, 16], 20.0), ([0], 1.0), ([0, 4, 8, 12, 16], 20.0)]),
+    ]:
+        sides = side_positions([20.0, 3.0, 20.0], [10.0, 85.0, 85.0], l)
+        assert [(num.tolist(), float(den)) for num, den in sides] == expected
+
+
+# --------------------------------------------------------------------------- Lemma 3 (1): the checks' messages
+
+NECK = [[0, 0], [6, 0], [6, 2.5], [8, 2.5], [8, 0], [14, 0], [14, 6], [8, 6], [8, 3.5], [6, 3.5], [6, 6], [0, 6]]
+# The corridor narrows from 0.9 (left end) to 0.8 (right end): the right-end pair is the closest.
+TAPERED_NECK = [[0, 0], [6, 0], [6, 2.6], [8, 2.6], [8, 0], [14, 0], [14, 6], [8, 6], [8, 3.4], [6, 3.5], [6, 6], [0, 6]]
+
+
+def _separation_message(vertices, l, holes=None, spacing=2.0):
+    """``check_boundary_separation``'s refusal of the Step 2 points of ``vertices`` (and ``holes``): message, points."""
+    from equimesh.planar.polygon import check_boundary_separation
+
+    poly = as_polygon(vertices, l if holes is None else None, holes)
+    with pytest.raises(InvalidPolygonError) as err:
+        check_boundary_separation(poly, resample_boundary(poly, l, spacing), l)
+    return str(err.value), np.array(err.value.points).tolist()
+
+
+def test_a_neck_of_exactly_l_is_accepted_and_a_narrower_one_refused():
+    """Points exactly l apart across a corridor meet Lemma 3 (1); at l = 1.5 (a local length other than 1) a
+    corridor 1.2 wide is refused."""
+    from equimesh.planar.polygon import check_boundary_separation
+
+    poly = as_polygon(NECK, 1.0)
+    assert check_boundary_separation(poly, resample_boundary(poly, 1.0), 1.0) is None
+    message, _ = _separation_message(np.array(NECK) * 1.2, 1.5)
+    assert message.startswith("polygon is too narrow for l = 1.5: boundary points on edge (2, 3) and edge (9, 10) are 1.2")
+
+
+def test_the_closest_visible_pair_is_reported_in_the_callers_units():
+    """The tapered neck at l = 4 (local frame scaled by 1/4): the pair 3.2 apart at the right end, not the one
+    3.6 apart at the left end nor the first in index order; lengths in the caller's units."""
+    message, points = _separation_message(np.array(TAPERED_NECK) * 4.0, 4.0)
+    assert message == (
+        "polygon is too narrow for l = 4.0: boundary points on edge (3, 4) and edge (8, 9) are 3.1999999999999993 "
+        "apart and see each other across the polygon (Lemma 3 (1), a limit of this method); use l <= "
+        "3.1999999999999993 or widen the polygon there"
+    )
+    assert points == [[32.0, 10.4], [32.0, 13.6]]
+
+
+def test_a_pair_across_two_rings_is_a_neck_not_a_corner():
+    """A hole 0.5 from the outer boundary (built without l, so only this check sees it): the points are on
+    edge 0 of the outer ring and edge 3 of the hole, which would be consecutive edges of one ring."""
+    message, points = _separation_message([[0, 0], [10, 0], [10, 10], [0, 10]], 1.0, [[[2, 0.5], [4, 0.5], [4, 2.5], [2, 2.5]]])
+    assert message.startswith("polygon is too narrow for l = 1.0: boundary points on edge (0, 1) and edge (0, 3) of hole 0 "
+                              "are 0.5 apart and see each other across the polygon")
+    assert points == [[2.0, 0.0], [2.0, 0.5]]
+
+
+def test_a_corner_not_handled_is_named_with_its_limit_in_the_callers_units():
+    """The 5.7 degree triangle of the hardening tests at l = 4 (Problem 2's spacing), its sharp corner numbered 1:
+    K = 11, so sides of (K + 1) l = 48 are handled; the closest pair is on edges 0 and 1, the sides of that corner."""
+    from equimesh.planar.strip import BOUNDARY_SPACING
+
+    message, points = _separation_message(np.array([[10, 1], [0, 0], [10, 0]]) * 4.0, 4.0, spacing=BOUNDARY_SPACING)
+    assert message == (
+        "the corner at vertex 1 at (0, 0) (5.71059 degrees) is not handled for l = 4.0: boundary points on edge (0, 1) "
+        "and edge (1, 2) are 3.6020398255167008 apart, closer than l (Lemma 3 (1)); the staggered Step 2 is proven at "
+        "5.71059 degrees for sides of at least 48.0, longer if the next corner is sharp too, and found no placement for "
+        "these (a limit of this method, not a proof that no mesh exists; docs/proofs.md, 'Sharp corners'); use a "
+        "smaller l, longer sides or a wider corner"
+    )
+    assert points == [[36.01985123916004, 3.6019851239160046], [36.0, 0.0]]
+
+
+# --------------------------------------------------------------------------- the proven refusals (docs/proofs.md)
+
+
+def _at(angle, length):
+    return [length * math.cos(math.radians(angle)), length * math.sin(math.radians(angle))]
+
+
+@pytest.mark.parametrize("a, b, theta, chord", [(3.0, 4.0, math.pi / 2.0, 5.0), (3.0, 4.0, math.pi / 3.0, math.sqrt(13.0)),
+                                                (1.0, 1.0, 0.0, 0.0), (2.0, 0.0, 1.0, 2.0)])
+def test_chord_by_hand(a, b, theta, chord):
+    """The law of cosines; a corner of angle 0 with equal distances gives 0, not a rounding below it."""
+    from equimesh.planar.polygon import _chord
+
+    assert _chord(a, b, theta) == pytest.approx(chord, rel=1e-15, abs=0.0)
+
+
+LP = 1.5  # the local length of l = 3 (scale 1/2): tells l from the local length and from 1 / l
+
+
+@pytest.mark.parametrize("length, first", [
+    (1.5, (1.5, 1.5)),  # below 2l: the side is one part, its far end the first node
+    (2.0 * LP * (1.0 - REL_TOL), ((1.0 - REL_TOL) * LP, 2.0 * LP * (1.0 + REL_TOL))),  # 2l up to REL_TOL
+    (3.0, ((1.0 - REL_TOL) * LP, 2.0 * LP * (1.0 + REL_TOL))),
+    (2.0 * LP * (1.0 + REL_TOL), ((1.0 - REL_TOL) * LP, 2.0 * LP * (1.0 + REL_TOL))),
+    (4.0, ((1.0 - REL_TOL) * LP, 2.5 * (1.0 + REL_TOL))),  # the first part leaves at least l: at most L - l
+    (6.0, ((1.0 - REL_TOL) * LP, 3.0 * (1.0 + REL_TOL))),  # at most 2l
+])
+def test_first_node_by_hand(length, first):
+    """Where the first node after a corner can lie on a side split into parts of [l, 2l], widened by REL_TOL."""
+    from equimesh.planar.polygon import _first_node
+
+    assert _first_node(length, LP) == first
+
+
+def _leaving(x, angle=20.0):
+    """Corner 0 at the origin: its leaving side along the x axis, ``x`` long (caller units, l = 3), the other 18."""
+    return np.array([[0.0, 0.0], [x, 0.0], [18.0, 3.0], _at(angle, 18.0)])
+
+
+UNMESHABLE = ("no mesh with every edge in [l, 2l] exists for l = 3.0: at the corner at vertex 0 at (0, 0) (20 degrees) "
+              "edge ({edge}) is {beta} long, a single mesh edge, and the third node of its triangle would be closer than "
+              "l to its other end, {end} (docs/proofs.md, 'Sharp corners'); at this angle that side must be at least "
+              "5.638155725 long (or at most 3.449823032)")
+
+
+@pytest.mark.parametrize("vertices, message", [
+    (_leaving(5.4), UNMESHABLE.format(edge="0, 1", beta="5.4", end="vertex 1 at (5.4, 0)")),
+    (np.array([[0, 0], [18, 0], [18, 9], _at(20.0, 5.4)]),
+     UNMESHABLE.format(edge="3, 0", beta="5.4", end="vertex 3 at (5.074340152, 1.846908774)")),
+])
+def test_the_sector_lemma_names_the_side_and_its_far_end(vertices, message):
+    """20 degrees, a side of 1.8 l (l = 3) leaving or arriving at the corner: between 2 - sqrt(4 cos^2 - 3) l =
+    1.15 l and 2 l cos 20 = 1.879 l, so no mesh exists (docs/proofs.md, "Sharp corners", the sector lemma)."""
+    from equimesh.planar.polygon import _unmeshable_corner
+
+    assert str(_unmeshable_corner(as_polygon(vertices, 3.0), 3.0)) == message
+
+
+@pytest.mark.parametrize("beta, refused", [(1.14, False), (1.2, True), (4.0 / 3.0, True), (1.8, True), (1.95, False)])
+def test_the_sector_lemma_holds_between_its_two_roots(beta, refused):
+    """At 20 degrees a side of beta l is refused exactly for 1.15 l < beta < 1.879 l (l = 3, local length 1.5):
+    below, the node at 2l on the other side is l away; above, the node at l."""
+    from equimesh.planar.polygon import _unmeshable_corner
+
+    assert (_unmeshable_corner(as_polygon(_leaving(3.0 * beta), 3.0), 3.0) is not None) == refused
+
+
+def test_the_sector_lemma_at_its_widened_bounds():
+    """The radii l and 2l are widened by REL_TOL and the distance must stay below (1 - REL_TOL) l: a side 1e-10
+    (relative) inside either root of the widened condition is refused, one 1e-10 outside is not."""
+    from equimesh.planar.polygon import _unmeshable_corner
+
+    theta = math.radians(as_polygon(_leaving(5.4), 3.0).inner_angle(0))
+    c, s, t, r2 = math.cos(theta), math.sin(theta), (1.0 - REL_TOL) * LP, 2.0 * LP * (1.0 + REL_TOL)
+    high = 2.0 * (1.0 - REL_TOL) * LP * c  # the chord at radius (1 - REL_TOL) l is t there
+    low = r2 * c - math.sqrt(t * t - r2 * r2 * s * s)  # the chord at radius 2 (1 + REL_TOL) l is t there
+    for local, refused in [(high * (1.0 - 1e-10), True), (high * (1.0 + 1e-10), False),
+                           (low * (1.0 + 1e-10), True), (low * (1.0 - 1e-10), False)]:
+        poly = as_polygon(_leaving(2.0 * local), 3.0)
+        assert poly.local_edge_lengths[0] == local
+        assert (_unmeshable_corner(poly, 3.0) is not None) == refused, local
+
+
+def test_no_separation_at_a_corner_names_it_with_the_handled_sides():
+    """The 35.7 degree corner of a triangle with a 30 degree one (sides 1.6 and 2.5 l, l = 3): its sides are 2.5 l
+    and 1.37 l, the first points closer than l wherever they lie; K = 2, so sides of 3 l are handled."""
+    from equimesh.planar.polygon import _unseparable_corner
+
+    poly = as_polygon(np.array([[1.6, 0.0], _at(30.0, 2.5), [0.0, 0.0]]) * 3.0 + [6.0, 3.0], 3.0)
+    assert str(_unseparable_corner(poly, 3.0)) == (
+        "the corner at vertex 1 at (12.49519053, 6.75) (35.6746 degrees) cannot meet Lemma 3 (1) for l = 3.0: with sides "
+        "of 7.499999999999999 and 4.115357934313905 the first boundary points of its two sides are closer than l wherever "
+        "they lie, so no Step 2 separates them (a limit of the paper's method, not a proof that no mesh exists; "
+        "docs/proofs.md, 'Sharp corners'); sides of at least 9.0 are handled; use a smaller l, longer sides or a wider corner"
+    )
+
+
+def test_no_separation_needs_the_corners_triangle_inside_the_polygon():
+    """The triangle [[0, 0], [1.6, 0], 2.5 at 30 degrees], l = 1: its 30 degree corner is refused first; with a
+    hole inside the triangle of that corner and the far ends of its first-point ranges (its first points may not
+    see each other), the 35.7 degree corner is refused instead."""
+    from equimesh.planar.polygon import _unseparable_corner
+
+    triangle = [[0.0, 0.0], [1.6, 0.0], _at(30.0, 2.5)]
+    assert str(_unseparable_corner(as_polygon(triangle), 1.0)).startswith("the corner at vertex 0 at (0, 0) (30 degrees)")
+    poly = as_polygon(triangle, None, [[[0.9, 0.2], [1.1, 0.2], [1.0, 0.35]]])
+    assert str(_unseparable_corner(poly, 1.0)).startswith("the corner at vertex 2 at (2.165063509, 1.25) (35.6746 degrees)")
+
+
+def test_corner_gap_reads_only_the_points_within_k_l():
+    """A 10 degree corner (K = 6) at l = 2: points at 2 and 6 on one side, 4 on the other, within K l = 12, give the
+    gap |c(2) - c(4)|; points from K l on are at least l from the whole other side and are left out."""
+    from equimesh.planar.polygon import _corner_gap
+
+    lengths, angles = np.array([20.0, 20.0]), [10.0, 350.0]
+    sides = [(np.array([0.0, 2.0, 6.0]), 20.0), (np.array([0.0, 16.0]), 20.0)]
+    expected = math.sqrt(4.0 + 16.0 - 16.0 * math.cos(math.radians(10.0)))
+    assert _corner_gap(sides, lengths, angles, 2.0, 0) == pytest.approx(expected, rel=1e-12)
+    far = [(np.array([0.0, 12.0]), 20.0), (np.array([0.0, 8.0]), 20.0)]  # 12 = K l on one side, 12 on the other
+    assert _corner_gap(far, lengths, angles, 2.0, 0) == math.inf
+    assert _corner_gap(sides, lengths, [60.0, 300.0], 2.0, 0) == math.inf  # not sharp
+
+
+def _fingerprint(lengths, angles, l, spacing):
+    """``side_positions`` of a ring, its parts checked in [l, 2l]: (number of points, sum of i times the i-th position)."""
+    from equimesh.planar.polygon import side_positions
+
+    at = []
+    for length, (num, den) in zip(lengths, side_positions(lengths, angles, l, spacing)):
+        ends = np.append(num / den * length, length)
+        assert np.all(np.diff(ends) >= (1.0 - 1e-9) * l) and np.all(np.diff(ends) <= (2.0 + 1e-9) * l)
+        at.extend(ends[:-1])
+    return len(at), float(np.dot(np.round(at, 9), np.arange(1, len(at) + 1)))
+
+
+def test_short_side_search_fingerprint():
+    """The search for short sides (docs/proofs.md, "Short sides": deterministic, measured, not proven) on 60 fixed
+    rings of 3 to 5 sides of 1 to 8 l and corners of 5 to 70 degrees, at both spacings: every part in [l, 2l], and
+    its output pinned by two sums (a fingerprint, as in dmsh's tests; a change to the search changes them)."""
+    rng = np.random.default_rng(11)
+    count, weighted = 0, 0.0
+    for _ in range(60):
+        n = int(rng.integers(3, 6))
+        lengths, angles = np.round(rng.uniform(1.0, 8.0, n), 2), np.round(rng.uniform(5.0, 70.0, n), 1)
+        for spacing in (1.5, 2.0):
+            c, w = _fingerprint(lengths, angles, 1.0, spacing)
+            count, weighted = count + c, weighted + w
+    assert (count, round(weighted, 6)) == (1502, 22989.29)
+
+
+# Rings on which a step of the search decides the output (each found by changing that step, mutation testing):
+# a staggered point exactly at a side's end (8 = 8 l), the neighbours marked again after a change, the corners
+# compared after a trial, the sides near a mirrored corner, the chain of a non-sharp corner at l = 1.5 and 0.5.
+SEARCH_RINGS = [
+    ([3.0, 8.0, 2.0, 8.0, 7.0], [29.3, 36.0, 48.3, 7.1, 40.2], 1.0, 2.0, (20, 590.0)),
+    ([3.0, 8.0, 2.0, 1.0, 3.0], [61.3, 18.2, 63.0, 61.4, 4.2], 1.0, 2.0, (11, 98.0)),
+    ([7.0, 1.0, 5.0, 3.0], [18.4, 7.2, 39.3, 32.6], 1.0, 2.0, (11, 108.0)),
+    ([4.61, 3.0, 1.38, 3.68, 3.86], [6.0, 6.3, 69.9, 46.7, 18.7], 1.0, 1.5, (12, 82.72)),
+    ([4.61, 3.0, 1.38, 3.68, 3.86], [6.0, 6.3, 69.9, 46.7, 18.7], 1.5, 1.5, (12, 124.08)),
+    ([4.61, 3.0, 1.38, 3.68, 3.86], [6.0, 6.3, 69.9, 46.7, 18.7], 0.5, 1.5, (12, 41.36)),
+    ([3.0, 4.0, 3.0, 2.0, 5.0], [59.2, 18.2, 14.0, 37.8, 13.0], 1.0, 1.5, (12, 102.0)),
+    ([2.6, 4.51, 5.25, 1.49, 7.58], [43.0, 9.9, 36.6, 66.4, 64.9], 1.0, 1.5, (16, 329.141666667)),
+    ([7.05, 4.14, 5.79, 3.28, 3.36], [54.7, 26.1, 20.8, 21.2, 24.1], 1.5, 1.5, (17, 350.97)),
+]
+
+
+@pytest.mark.parametrize("lengths, angles, l, spacing, pinned", SEARCH_RINGS)
+def test_short_side_search_on_rings_where_each_step_matters(lengths, angles, l, spacing, pinned):
+    assert _fingerprint(np.array(lengths) * l, angles, l, spacing) == pinned
+
+
+def test_a_side_shorter_than_l_is_refused_as_impossible():
+    from equimesh.planar.polygon import check_edges_at_least
+
+    with pytest.raises(InvalidPolygonError) as err:
+        check_edges_at_least(as_polygon([[0, 0], [4, 0], [4, 0.5], [0, 0.5]]), 1.0)
+    assert str(err.value) == ("no mesh with every edge in [l, 2l] exists (both ends of a side are nodes, so some mesh "
+                              "edge on it is no longer than the side): edge (1, 2) has length 0.5, shorter than l = 1.0")
+
+
+def test_separation_refusal_says_first_what_is_proven():
+    """Close points at a corner of the sector lemma: the refusal is the proof that no mesh exists."""
+    from equimesh.planar.polygon import check_boundary_separation
+
+    poly = as_polygon(_leaving(5.4), 3.0)
+    with pytest.raises(InvalidPolygonError, match=r"^no mesh with every edge in \[l, 2l\] exists for l = 3.0: at the corner"):
+        check_boundary_separation(poly, resample_boundary(poly, 3.0, 1.5), 3.0)
+
+
+def test_points_closer_than_l_across_a_notch_do_not_see_each_other():
+    """A V-shaped notch of 16 degrees cut into a square: points 0.5 apart on its two walls, the segment between them
+    outside the polygon; Lemma 3 (1) concerns mutually visible points only, so the check accepts."""
+    from equimesh.planar.polygon import check_boundary_separation
+
+    poly = as_polygon([[0, 0], [10, 0], [10, 10], [6, 10], [5, 3], [4, 10], [0, 10]], 1.0)
+    boundary = resample_boundary(poly, 1.0)
+    assert pdist(boundary.points).min() == pytest.approx(0.5, rel=1e-12)
+    assert check_boundary_separation(poly, boundary, 1.0) is None
+
+
+@pytest.mark.parametrize("opposite, refused", [(1.5, False), (1.5 * (1.0 - 2.0 * REL_TOL), True)])
+def test_no_separation_when_the_first_points_are_closer_than_l_up_to_rel_tol(opposite, refused):
+    """A triangle with sides 1.6 and 1.7 at corner 0 (both below 2l, l = 1.5: the first points are their far ends):
+    refused when the opposite side is below (1 - REL_TOL) l, not when it is l."""
+    from equimesh.planar.polygon import _unseparable_corner
+
+    x = (1.7**2 - opposite**2 + 1.6**2) / 3.2
+    assert (_unseparable_corner(as_polygon([[0, 0], [1.6, 0], [x, math.sqrt(1.7**2 - x * x)]]), 1.5) is not None) == refused
+
+
+def test_no_separation_reads_the_far_ends_of_the_first_point_ranges():
+    """The 30 degree triangle with a hole near the far end of its arriving side's range [l, 1.5 l]: the triangle of
+    the corner and the far ends is not covered, the corner not refused (with the near end it would be)."""
+    from equimesh.planar.polygon import _unseparable_corner
+
+    poly = as_polygon([[0.0, 0.0], [1.6, 0.0], _at(30.0, 2.5)], None, [[[1.1, 0.5], [1.25, 0.5], [1.2, 0.62]]])
+    assert _unseparable_corner(poly, 1.0) is None

@@ -36,6 +36,9 @@ REFUSED = [
     ([[0, 0], [1]], None, "polygon vertices must be an array of numbers"),
     ([[0, 0], ["a", 1], [2, 2]], None, "polygon vertices must be an array of numbers"),
     ([[1, 1]], None, "a polygon needs at least 3 distinct vertices, got 1"),
+    # Edges 1 and 3 cross; the boxes of the segments (x_a, x_b)-(y_a, y_b) would not overlap.
+    ([[6, 2], [3, 6], [0, 2], [0, 3]], None, "polygon is not simple (self-intersecting): edge (1, 2) intersects edge (3, 0)"),
+    ([[0, 0], [4, 0], [4, float("nan")], [0, 4]], None, "vertex 2 has a non-finite coordinate (4.0, nan)"),
     ([[Decimal(0), 0], [1, 1j], [2, 3]], None, "polygon vertices must be real numbers, got complex values"),
     ([[0, 0], [1, 1j], [2, 3]], None, "polygon vertices must be real numbers, got complex values"),
 ]
@@ -139,6 +142,7 @@ def _square(x, y, side):
 
 OUTER = [[0, 0], [10, 0], [10, 10], [0, 10]]
 L_SHAPE = [[0, 0], [10, 0], [10, 4], [4, 4], [4, 10], [0, 10]]
+TALL = [[0, 5], [10, 5], [10, 15], [0, 15]]
 
 HOLES_REFUSED = [
     (OUTER, 5, None, "holes must be a list of polygons, got int"),
@@ -150,6 +154,22 @@ HOLES_REFUSED = [
      "hole 0 is 0.5 from the boundary of the polygon, closer than l = 1.0 (Lemma 3 (1)); move it or use l <= 0.5"),
     (OUTER, [_square(6, 6, 2), _square(1.5, 1.5, 2), _square(4.25, 1.5, 2)], 1.0,
      "hole 1 and hole 2 are 0.75 apart, closer than l = 1.0 (Lemma 3 (1)); move them apart or use l <= 0.75"),
+    # The same two at l = 4 (local frame scaled by 1/4): distances in the caller's units.
+    (np.multiply(OUTER, 4), [_square(2, 16, 8)], 4.0,
+     "hole 0 is 2.0 from the boundary of the polygon, closer than l = 4.0 (Lemma 3 (1)); move it or use l <= 2.0"),
+    (np.multiply(OUTER, 4), [_square(24, 24, 8), _square(6, 6, 8), _square(17, 6, 8)], 4.0,
+     "hole 1 and hole 2 are 3.0 apart, closer than l = 4.0 (Lemma 3 (1)); move them apart or use l <= 3.0"),
+    # The bounding box is read per axis: x from 0 to 10, y from 5 to 15.
+    (TALL, [_square(2, 2, 2)], None, "hole 0 is not inside the polygon: its vertex 0 at (2, 2) lies outside"),
+    (TALL, [_square(11, 6, 2)], None, "hole 0 is not inside the polygon: its vertex 0 at (11, 6) lies outside"),
+    # A vertex on the box's edge is not outside it; the hole touches the boundary.
+    (TALL, [[[8, 6], [10, 7], [8, 8]]], None, "hole 0 overlaps the boundary of the polygon (their edges cross or touch)"),
+    (OUTER, [[[2, 2], [3, np.nan], [2, 3]]], None, "vertex 1 of hole 0 has a non-finite coordinate (3.0, nan)"),
+    (OUTER, [[[2, 2], [3, 3], [2, 2]]], None, "hole 0 needs at least 3 distinct vertices, got 2"),
+    (OUTER, [[[2, 2], [4, 2], [4, 4], [4, 2], [2, 4]]], None, "vertices 1 and 3 of hole 0 coincide at (4, 2)"),
+    (OUTER, [[[2, 2], [4, 2], [2, 4], [4, 4]]], None,
+     "hole 0 is not simple (self-intersecting): edge (1, 2) of hole 0 intersects edge (3, 0) of hole 0"),
+    (OUTER, [_square(6, 6, 2), _square(1, 1, 2), _square(2, 2, 2)], None, "hole 1 and hole 2 overlap"),
 ]
 
 
@@ -163,8 +183,14 @@ def test_holes_refused_naming_the_hole(outer, holes, l, message):
 def test_holes_are_clockwise_rings_in_the_outer_frame():
     """Two holes 2 apart (>= l), either orientation given: clockwise, same frame, labelled; no l, no distance check."""
     poly = as_polygon(OUTER, 1.0, [_square(2, 2, 2), _square(6, 6, 2)[::-1]])
-    assert [h.label for h in poly.holes] == ["hole 0", "hole 1"]
+    assert poly.label == "" and [h.label for h in poly.holes] == ["hole 0", "hole 1"]
     assert [h.vertices.tolist() for h in poly.holes] == [[[2, 4], [4, 4], [4, 2], [2, 2]], [[6, 8], [8, 8], [8, 6], [6, 6]]]
     assert all(h.frame == poly.frame for h in poly.holes)
     assert len(as_polygon(OUTER, None, [_square(2, 2, 2), _square(4.5, 2, 2)]).holes) == 2
     assert as_polygon(OUTER, 1.0, []).holes == ()
+
+
+def test_holes_whose_bounding_boxes_overlap_are_apart():
+    """Two triangles with overlapping bounding boxes, 1.06 apart: no overlap (the shapes are compared, not the boxes)."""
+    holes = [[[2, 2], [6, 2], [2, 6]], [[6.5, 3], [6.5, 7], [2.5, 7]]]
+    assert len(as_polygon(OUTER, 1.0, holes).holes) == 2
