@@ -58,6 +58,7 @@ ROOT = Path(__file__).resolve().parent.parent
 MODULES = {
     "src/equimesh/planar/bounds.py": ["tests/test_bounds.py"],
     "src/equimesh/planar/lattice.py": ["tests/test_lattice.py"],
+    "src/equimesh/planar/_clearance.py": ["tests/test_lattice.py"],
     "src/equimesh/planar/polygon.py": ["tests/test_polygon.py", "tests/test_polygon_validation.py", "tests/test_hardening_planar.py"],
     "src/equimesh/planar/increment.py": ["tests/test_increment_steps.py"],
     "src/equimesh/planar/insertion/reference.py": ["tests/test_reference_engine.py", "tests/test_increment_steps.py"],
