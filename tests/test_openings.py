@@ -26,7 +26,7 @@ from equimesh.surface.flatten import flatten
 from equimesh.surface.openings import Perforated
 from equimesh.planar.polygon import SHARP_CORNER
 from equimesh.surface.outline import densify
-from equimesh.surface.ring import inner_angle
+from equimesh._geometry import inner_angle
 from equimesh.surface.remap import to_plane
 
 SURFACES = Path(__file__).resolve().parent.parent / "experiments" / "surfaces"

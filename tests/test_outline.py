@@ -20,7 +20,8 @@ import equimesh
 from equimesh.errors import SurfaceTooSmallError
 from equimesh.surface.bezier import BezierSurface
 from equimesh.planar.polygon import stagger_reach
-from equimesh.surface.ring import inner_angle, resample_ring
+from equimesh._geometry import inner_angle
+from equimesh.surface.ring import resample_ring
 from equimesh.tolerance import REL_TOL
 
 

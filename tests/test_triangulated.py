@@ -35,7 +35,7 @@ from equimesh.surface.mesh_chart import (
     harmonic_start,
 )
 from equimesh.surface.mesh_outline import CORNER_TURN, FIRM_TURN, loop_corners
-from equimesh.surface.ring import inner_angle
+from equimesh._geometry import inner_angle
 from equimesh.surface._slide import on_loop
 from equimesh.testing.meshes import roof_mesh, wedge_mesh
 

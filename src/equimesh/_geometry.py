@@ -17,6 +17,13 @@ def cross(u, v):
     return u[..., 0] * v[..., 1] - u[..., 1] * v[..., 0]
 
 
+def inner_angle(xy, i):
+    """Inner angle (degrees, in [0, 360)) of the closed polyline ``xy`` at vertex ``i``, the region on its left."""
+    n = len(xy)
+    u, w = xy[(i - 1) % n] - xy[i % n], xy[(i + 1) % n] - xy[i % n]
+    return float(np.degrees(np.arctan2(cross(w, u), np.dot(w, u))) % 360.0)
+
+
 def orient(a, b, c):
     """Twice the signed area of triangle ``abc`` (> 0 counter-clockwise)."""
     return cross(b - a, c - a)

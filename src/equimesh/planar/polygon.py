@@ -23,7 +23,7 @@ import numpy as np
 import shapely
 from scipy.spatial import cKDTree
 
-from .._geometry import Frame, cross, orient_sign, power_of_two_scale, segments_intersect, signed_area
+from .._geometry import Frame, cross, inner_angle, orient_sign, power_of_two_scale, segments_intersect, signed_area
 from ..errors import EquimeshError, InvalidLengthError, InvalidPolygonError
 from ..tolerance import MAX_EXTENT, MAX_LENGTH, MIN_LENGTH, REL_TOL, at_least
 
@@ -154,10 +154,7 @@ class Polygon:
 
     def inner_angle(self, i):
         """Inner angle at vertex ``i``, in degrees (in [0, 360))."""
-        n = len(self.local)
-        u = self.local[(i - 1) % n] - self.local[i % n]
-        w = self.local[(i + 1) % n] - self.local[i % n]
-        return float(np.degrees(np.arctan2(cross(w, u), np.dot(w, u))) % 360.0)
+        return inner_angle(self.local, i)
 
     @cached_property
     def region(self):

@@ -28,7 +28,8 @@ import numpy as np
 from ..errors import InvalidSurfaceError
 from ._places import coordinates, number
 from .outline import round_down
-from .ring import inner_angle, resample_ring
+from .._geometry import inner_angle
+from .ring import resample_ring
 from .remap import _nearest_segment
 from ._slide import between_corners, loop_arc, on_loop
 from ..tolerance import REL_TOL

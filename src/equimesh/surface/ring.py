@@ -22,7 +22,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._geometry import cross
+from .._geometry import inner_angle
 from ..errors import SurfaceTooSmallError
 from ..planar.polygon import split_counts, stagger_reach
 from ..tolerance import at_least
@@ -149,13 +149,6 @@ def _arc_at_distance(pts, arc, distance):
     a, b, c = e @ e, 2.0 * (p @ e), p @ p - distance * distance
     t = (-b + np.sqrt(b * b - 4.0 * a * c)) / (2.0 * a)
     return float(arc[j - 1] + t * (arc[j] - arc[j - 1]))
-
-
-def inner_angle(xy, i):
-    """Inner angle (degrees, in [0, 360)) of the closed polyline ``xy`` at point ``i``, the region on its left."""
-    p = xy[i]
-    u, w = xy[i - 1] - p, xy[(i + 1) % len(xy)] - p
-    return float(np.degrees(np.arctan2(cross(w, u), np.dot(w, u))) % 360.0)
 
 
 def _split_side(xy, params, arc, stretch, l, spacing):
