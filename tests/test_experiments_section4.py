@@ -127,3 +127,15 @@ def test_figures_without_data_says_to_run_table1(experiments, tmp_path, capsys):
     assert figures.main(["--data", str(tmp_path / "missing.npz"), "--fig-dir", str(tmp_path / "figs")]) == 2
     assert "run experiments/table1.py first" in capsys.readouterr().err
     assert not (tmp_path / "figs").exists()
+
+
+def test_optimisation_timing_prints_one_record_per_objective(load_experiment, capsys):
+    """experiments/optimisation_timing.py: one JSON line per objective, bounded at least the paper's share (l = 10)."""
+    timing = load_experiment("optimisation_timing")
+    assert timing.main(["--length", "10", "--objective", "paper", "bounded"]) == 0
+    records = [json.loads(line) for line in capsys.readouterr().out.splitlines()]
+    assert [r["objective"] for r in records] == ["paper", "bounded"]
+    for r in records:
+        assert r["members"] > 0 and 0.0 <= r["within_band"] <= 1.0
+        assert "optimisation of inner nodes" in r["seconds"]
+    assert records[1]["within_band"] >= records[0]["within_band"]
