@@ -73,8 +73,8 @@ def build_parser():
             '"control_points": ..., "weights": ...}; SURFACE.3dm: a NURBS surface or a single-face Brep '
             "(needs the extra [rhino]); SURFACE.obj|.stl|.ply|.vtk|.vtu: a triangle mesh (quadrilaterals are split), "
             "connected, manifold, with a boundary, used as the auxiliary triangulation itself (--grid is not used): "
-            "its further boundary loops are kept as openings, every node lies on its triangles, and its boundary "
-            "nodes stay fixed in the optimisation."
+            "its further boundary loops are kept as openings and every node lies on its triangles. Boundary nodes "
+            "slide along their boundary loops under --optimize bounded (corners stay put) and are fixed under paper."
         ),
     )
     mesh.add_argument("surface", metavar="SURFACE",
