@@ -63,6 +63,8 @@ MODULES = {
     "src/equimesh/planar/increment.py": ["tests/test_increment_steps.py"],
     "src/equimesh/planar/insertion/reference.py": ["tests/test_reference_engine.py", "tests/test_increment_steps.py"],
     "src/equimesh/planar/strip.py": ["tests/test_strip.py"],
+    # --- Step 2 on surfaces (boundary resampling) ---
+    "src/equimesh/surface/ring.py": ["tests/test_ring.py"],
 }
 
 #: Equivalent mutants, by module: (why no test can tell them from the
@@ -211,6 +213,24 @@ _EQUIVALENT_GROUPS = {
          ["doubt = np.flatnonzero(np.abs(near - threshold) < DOUBT * threshold)"]),
     ],
     # --- end of planar/_clearance.py ---
+    # --- surface/ring.py (Step 2 on a closed polyline) ---
+    "src/equimesh/surface/ring.py": [
+        ("equivalent: every arc length asked for is at least 0 = arc[0] (the stretches start at a >= 0, the distances "
+         "of _arc_at_distance are reached at arc >= 0), so searchsorted(..., 'right') - 1 is never below 0",
+         ['idx = np.clip(np.searchsorted(arc, s, side="right") - 1, None, len(arc) - 2)']),
+        ("equivalent: _at_arc replaces its first and last points (and parameters) by the polyline's ends, so the first "
+         "and last arc lengths asked for decide nothing else; the point asked for here is the middle one",
+         ["p, q = (_at_arc(pts, pts, arc, np.array([1.0, x, arc[-1]]))[0][1] for pts, arc, x in ((ahead, arcs[leaving], s), (back, back_arc, t)))",
+          "p, q = (_at_arc(pts, pts, arc, np.array([0.0, x, arc[+1]]))[0][1] for pts, arc, x in ((ahead, arcs[leaving], s), (back, back_arc, t)))",
+          "p, q = (_at_arc(pts, pts, arc, np.array([0.0, x, arc[-2]]))[0][1] for pts, arc, x in ((ahead, arcs[leaving], s), (back, back_arc, t)))",
+          "candidates = [np.array([1.0, length])]",
+          "head, tail = [1.0] if a > 0 else [], [b] if b < length else []"]),
+        ("equivalent: _at_arc is given the points as parameters too, so its parameters [1] are its points [0]",
+         ["p, q = (_at_arc(pts, pts, arc, np.array([0.0, x, arc[-1]]))[1][1] for pts, arc, x in ((ahead, arcs[leaving], s), (back, back_arc, t)))"]),
+        ("equivalent: corners are indices (a sequence of int, documented): any integer dtype indexes and slices alike",
+         ["corners = np.asarray(corners, dtype=None)", "corners = np.asarray(corners, )"]),
+    ],
+    # --- end of surface/ring.py ---
     "src/equimesh/planar/increment.py": [
         ("equivalent: for Problem 1 (no strip estimate) planar_estimate returns the polygon's estimate without "
          "reading the engine", ["check_size(*planar_estimate(poly, l, None, None), max_nodes, l)"]),
