@@ -219,7 +219,7 @@ _EQUIVALENT_GROUPS = {
          "of _arc_at_distance are reached at arc >= 0), so searchsorted(..., 'right') - 1 is never below 0",
          ['idx = np.clip(np.searchsorted(arc, s, side="right") - 1, None, len(arc) - 2)']),
         ("equivalent: _at_arc replaces its first and last points (and parameters) by the polyline's ends, so the first "
-         "and last arc lengths asked for decide nothing else; the point asked for here is the middle one",
+         "and last arc lengths asked for decide nothing",
          ["p, q = (_at_arc(pts, pts, arc, np.array([1.0, x, arc[-1]]))[0][1] for pts, arc, x in ((ahead, arcs[leaving], s), (back, back_arc, t)))",
           "p, q = (_at_arc(pts, pts, arc, np.array([0.0, x, arc[+1]]))[0][1] for pts, arc, x in ((ahead, arcs[leaving], s), (back, back_arc, t)))",
           "p, q = (_at_arc(pts, pts, arc, np.array([0.0, x, arc[-2]]))[0][1] for pts, arc, x in ((ahead, arcs[leaving], s), (back, back_arc, t)))",
