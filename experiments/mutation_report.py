@@ -65,6 +65,8 @@ MODULES = {
     "src/equimesh/planar/strip.py": ["tests/test_strip.py"],
     # --- Step 2 on surfaces (boundary resampling) ---
     "src/equimesh/surface/ring.py": ["tests/test_ring.py"],
+    # --- Problem 2's lattice placement search ---
+    "src/equimesh/planar/placement.py": ["tests/test_placement_search.py"],
 }
 
 #: Equivalent mutants, by module: (why no test can tell them from the
@@ -231,6 +233,15 @@ _EQUIVALENT_GROUPS = {
          ["corners = np.asarray(corners, dtype=None)", "corners = np.asarray(corners, )"]),
     ],
     # --- end of surface/ring.py ---
+    # --- planar/placement.py (Problem 2's lattice placement search) ---
+    "src/equimesh/planar/placement.py": [
+        ("equivalent: check_count's least defaults to 1",
+         ['n_angles = check_count(n_angles, "n_angles", )', 'n_offsets = check_count(n_offsets, "n_offsets", )']),
+        ("equivalent: the search scores with the default engine, the fast one, and planar_estimate reads the strip "
+         "estimate only for the reference engine",
+         ["check_size(*planar_estimate(poly, l, None, DEFAULT_ENGINE), max_nodes, l)"]),
+    ],
+    # --- end of planar/placement.py ---
     "src/equimesh/planar/increment.py": [
         ("equivalent: for Problem 1 (no strip estimate) planar_estimate returns the polygon's estimate without "
          "reading the engine", ["check_size(*planar_estimate(poly, l, None, None), max_nodes, l)"]),
