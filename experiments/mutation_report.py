@@ -67,6 +67,8 @@ MODULES = {
     "src/equimesh/surface/ring.py": ["tests/test_ring.py"],
     # --- Problem 2's lattice placement search ---
     "src/equimesh/planar/placement.py": ["tests/test_placement_search.py"],
+    # --- the insertion's region and constrained Delaunay triangulation ---
+    "src/equimesh/planar/insertion/_region.py": ["tests/test_region.py"],
 }
 
 #: Equivalent mutants, by module: (why no test can tell them from the
