@@ -244,6 +244,15 @@ _EQUIVALENT_GROUPS = {
          ["check_size(*planar_estimate(poly, l, None, DEFAULT_ENGINE), max_nodes, l)"]),
     ],
     # --- end of planar/placement.py ---
+    # --- planar/insertion/_region.py (the constrained Delaunay triangulation) ---
+    "src/equimesh/planar/insertion/_region.py": [
+        ("equivalent: Triangle's Python binding converts vertices and holes to double itself (integer points and "
+         "seeds give the same triangles: tests/test_region.py::test_integer_input_is_the_same_numbers)",
+         ['data = {"vertices": np.asarray(points, dtype=None), "segments": np.asarray(segments, dtype=np.int32)}',
+          'data = {"vertices": np.asarray(points, ), "segments": np.asarray(segments, dtype=np.int32)}',
+          'data["holes"] = np.asarray(holes, dtype=None)', 'data["holes"] = np.asarray(holes, )']),
+    ],
+    # --- end of planar/insertion/_region.py ---
     "src/equimesh/planar/increment.py": [
         ("equivalent: for Problem 1 (no strip estimate) planar_estimate returns the polygon's estimate without "
          "reading the engine", ["check_size(*planar_estimate(poly, l, None, None), max_nodes, l)"]),
