@@ -48,7 +48,8 @@ def window(first, grid_shape, l, angle, offset):
 def check_window(shape, first, grid_shape, l, angle, offset, distance):
     """``clear_of_boundary`` on one window agrees with the oracle on every vertex of it."""
     points = window(first, grid_shape, l, angle, offset)
-    kept = clear_of_boundary(shape, points, first, grid_shape, np.asarray(offset, float), lattice.lattice_basis(l, angle), distance)
+    basis = lattice.lattice_basis(l, angle)
+    kept = clear_of_boundary(shape, points, first, grid_shape, np.asarray(offset, float), basis, distance)
     assert kept.shape == tuple(grid_shape)
     assert np.array_equal(kept.ravel(), per_vertex(shape, points, distance))
 

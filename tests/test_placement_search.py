@@ -130,7 +130,8 @@ def test_search_visits_the_documented_placements_and_wraps(monkeypatch):
     assert (angle, frac) == (56.25, (0.75, 0.75))
     p = best_lattice_placement(SQUARE6 * 0.5, 0.5, clearance=1.25, n_angles=4, n_offsets=2, refine=2)
     assert seen == [(a, tuple(offset_of(a, f, 0.5)), 1.25) for a, f in tried]
-    assert (p.angle, p.offset, p.default_lattice_edges, p.evaluations) == (56.25, tuple(float(x) for x in offset_of(56.25, frac, 0.5)), default, 71)
+    expected = (56.25, tuple(float(x) for x in offset_of(56.25, frac, 0.5)), default, 71)
+    assert (p.angle, p.offset, p.default_lattice_edges, p.evaluations) == expected
 
 
 def test_search_at_another_length():

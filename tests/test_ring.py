@@ -124,8 +124,8 @@ def bent_wedge(bend):
 @pytest.mark.parametrize("bend", [0.0, 15.0, 25.0, 30.0])
 def test_straight_edges_at_a_sharp_corner_match_their_own_angle(bend, mirrored):
     """The straight edges from the corner end at stagger_reach(angle between them) + l from it: the reach is
-    recomputed from the straight edges' angle (K = 2 down to 30 degrees; bent by 25 or 30 degrees the edges to 3 l meet at 24 or 21 degrees, K = 3, and the
-    edges to 4 l settle it)."""
+    recomputed from the straight edges' angle (K = 2 down to 30 degrees; bent by 25 or 30 degrees the edges to 3 l
+    meet at 24 or 21 degrees, K = 3, and the edges to 4 l settle it)."""
     xy, corners = bent_wedge(bend), [0, 2, 3]
     if mirrored:  # the arriving side bends (reflected in the x axis, order reversed to keep the region on the left)
         xy, corners = np.vstack([xy[:1], xy[:0:-1]]) * [1.0, -1.0], [0, 1, 2]
