@@ -1,8 +1,10 @@
 """How strong the property tests are: mutation testing of the algorithm modules with mutmut.
 
 For each algorithm module (Problem 1: ``increment.py`` and the reference
-insertion engine; Problem 2: ``strip.py``, ``lattice.py``; ``bounds.py``; Step 2
-boundary resampling and separation in ``polygon.py``) mutmut makes small
+insertion engine with its triangulation ``_region.py``; Problem 2: ``strip.py``,
+``lattice.py``, ``_clearance.py``, ``placement.py``; ``bounds.py``; Step 2
+boundary resampling and separation in ``polygon.py`` and, on surfaces,
+``surface/ring.py``) mutmut makes small
 changes to the code (an operator, a constant, a comparison), one at a time, and
 runs the tests selected for that module in :data:`MODULES`.  A mutant is
 *killed* when a test fails, *survived* when every test passes.  A survivor is
@@ -58,11 +60,18 @@ ROOT = Path(__file__).resolve().parent.parent
 MODULES = {
     "src/equimesh/planar/bounds.py": ["tests/test_bounds.py"],
     "src/equimesh/planar/lattice.py": ["tests/test_lattice.py"],
-    "src/equimesh/planar/_clearance.py": ["tests/test_lattice.py"],
-    "src/equimesh/planar/polygon.py": ["tests/test_polygon.py", "tests/test_polygon_validation.py", "tests/test_hardening_planar.py"],
+    "src/equimesh/planar/_clearance.py": ["tests/test_clearance.py", "tests/test_lattice.py"],
+    "src/equimesh/planar/polygon.py": ["tests/test_polygon.py", "tests/test_polygon_validation.py", "tests/test_hardening_planar.py",
+                                       "tests/test_polygon_thresholds.py"],
     "src/equimesh/planar/increment.py": ["tests/test_increment_steps.py"],
     "src/equimesh/planar/insertion/reference.py": ["tests/test_reference_engine.py", "tests/test_increment_steps.py"],
     "src/equimesh/planar/strip.py": ["tests/test_strip.py"],
+    # --- Step 2 on surfaces (boundary resampling) ---
+    "src/equimesh/surface/ring.py": ["tests/test_ring.py"],
+    # --- Problem 2's lattice placement search ---
+    "src/equimesh/planar/placement.py": ["tests/test_placement_search.py"],
+    # --- the insertion's region and constrained Delaunay triangulation ---
+    "src/equimesh/planar/insertion/_region.py": ["tests/test_region.py"],
 }
 
 #: Equivalent mutants, by module: (why no test can tell them from the
@@ -163,6 +172,90 @@ _EQUIVALENT_GROUPS = {
          ["return np.asarray(offset, dtype=float) + np.asarray(ij, dtype=None) @ lattice_basis(l, angle)",
           "return np.asarray(offset, dtype=float) + np.asarray(ij, ) @ lattice_basis(l, angle)"]),
     ],
+    # --- planar/_clearance.py (the row-by-row lattice clearance) ---
+    "src/equimesh/planar/_clearance.py": [
+        ("equivalent: the band only grows (a wider reach, a longer stretch of the segment per row: u1 = ua - t_lo du "
+         "lies on the other side of ua, so the stretch still holds ua + t_lo du .. ua + t_hi du); it still visits every "
+         "(vertex, segment) pair within reach = (1 + 2 DOUBT) distance, and a pair farther than that is beyond the "
+         "doubtful window, so the distance it adds leaves the vertex kept iff inside, as before",
+         ["reach = (2.0 + 2.0 * DOUBT) * distance", "reach = (1.0 + 2.0 / DOUBT) * distance",
+          "reach = (1.0 + 3.0 * DOUBT) * distance",
+          "t_lo, t_hi = np.clip(np.minimum(t1, t2), None, 1.0), np.clip(np.maximum(t1, t2), 0.0, 1.0)",
+          "t_lo, t_hi = np.clip(np.minimum(t1, t2), 0.0, 1.0), np.clip(np.maximum(t1, t2), 0.0, None)",
+          "t_lo, t_hi = np.clip(np.minimum(t1, t2), 0.0, 1.0), np.clip(np.maximum(t1, t2), 1.0, 1.0)",
+          "t_lo, t_hi = np.clip(np.minimum(t1, t2), 0.0, 1.0), np.clip(np.maximum(t1, t2), 0.0, 2.0)",
+          "u1, u2 = ua[seg, 0] - t_lo * du, ua[seg, 0] + t_hi * du"]),
+        ("equivalent: a row of the band is within w of the segment, so min(t1, t2) <= 1, max(t1, t2) >= 0 and, for a "
+         "flat segment, row - w - va <= 0, each up to one rounding: the bound removed or moved decides only when a "
+         "rounding crosses it, moving the stretch by |du| ulps, which changes only pairs at the band's edge, about "
+         "reach > threshold (1 + DOUBT) away: they decide nothing",
+         ["t1 = np.where(None, 0.0, (row - w - ua[seg, 1]) / np.where(flat, 1.0, dv))",
+          "t_lo, t_hi = np.clip(np.minimum(t1, t2), 0.0, None), np.clip(np.maximum(t1, t2), 0.0, 1.0)",
+          "t_lo, t_hi = np.clip(np.minimum(t1, t2), 0.0, 2.0), np.clip(np.maximum(t1, t2), 0.0, 1.0)",
+          "t_lo, t_hi = np.clip(np.minimum(t1, t2), 0.0, 1.0), np.clip(np.maximum(t1, t2), None, 1.0)"]),
+        ("equivalent: for a flat segment the outer np.where replaces the quotient; dividing by 2.0 avoids the "
+         "division by zero as 1.0 does",
+         ["t1 = np.where(flat, 0.0, (row - w - ua[seg, 1]) / np.where(flat, 2.0, dv))",
+          "t2 = np.where(flat, 1.0, (row + w - ua[seg, 1]) / np.where(flat, 2.0, dv))"]),
+        ("equivalent: for a flat segment t1 = 0, and with t2 = 2 the clipped min and max are 0 and 1, as with t2 = 1",
+         ["t2 = np.where(flat, 2.0, (row + w - ua[seg, 1]) / np.where(flat, 1.0, dv))"]),
+        ("equivalent: the crossing column is clipped to [0, ni], so row ni + 1 of toggles is never written, and only "
+         "rows 0 .. ni - 1 are summed", ["toggles = np.zeros((ni + 2, nj), dtype=np.int64)"]),
+        ("equivalent: shapely's coordinates are float64 already",
+         ["rings = [np.asarray(r.coords, dtype=None)[:-1] for r in (shape.exterior, *shape.interiors)]",
+          "rings = [np.asarray(r.coords, )[:-1] for r in (shape.exterior, *shape.interiors)]"]),
+        ("equivalent: pairing each vertex with the previous one gives the same segments, each from its other end; the "
+         "distance and the crossing abscissa differ by roundings only: outside the doubtful window the band is right "
+         "by a margin of DOUBT threshold, 10^8 ulps, and a crossing moved across an integer flips the parity of a "
+         "vertex within a rounding of the boundary only, never kept (clearance >= 1)",
+         ["b = np.vstack([np.roll(r, +1, axis=0) for r in rings])"]),
+        ("equivalent: the threshold moves by 2 REL_TOL distance, 50 times less than the doubtful window DOUBT "
+         "threshold: a vertex the band decides is on the same side of both thresholds, and one in the window is "
+         "decided by shapely's at_least, which reads distance, not threshold",
+         ["threshold = (1.0 + REL_TOL) * distance"]),
+        ("equivalent: near == threshold is in the doubtful window, decided by shapely",
+         ["kept = inside & (near >= threshold)"]),
+        ("equivalent: at |near - threshold| == DOUBT threshold exactly the band's answer near > threshold is shapely's: "
+         "the two distances differ by a few ulps, 10^8 times less",
+         ["doubt = np.flatnonzero(np.abs(near - threshold) < DOUBT * threshold)"]),
+    ],
+    # --- end of planar/_clearance.py ---
+    # --- surface/ring.py (Step 2 on a closed polyline) ---
+    "src/equimesh/surface/ring.py": [
+        ("equivalent: every arc length asked for is at least 0 = arc[0] (the stretches start at a >= 0, the distances "
+         "of _arc_at_distance are reached at arc >= 0), so searchsorted(..., 'right') - 1 is never below 0",
+         ['idx = np.clip(np.searchsorted(arc, s, side="right") - 1, None, len(arc) - 2)']),
+        ("equivalent: _at_arc replaces its first and last points (and parameters) by the polyline's ends, so the first "
+         "and last arc lengths asked for decide nothing",
+         ["p, q = (_at_arc(pts, pts, arc, np.array([1.0, x, arc[-1]]))[0][1] for pts, arc, x in ((ahead, arcs[leaving], s), (back, back_arc, t)))",
+          "p, q = (_at_arc(pts, pts, arc, np.array([0.0, x, arc[+1]]))[0][1] for pts, arc, x in ((ahead, arcs[leaving], s), (back, back_arc, t)))",
+          "p, q = (_at_arc(pts, pts, arc, np.array([0.0, x, arc[-2]]))[0][1] for pts, arc, x in ((ahead, arcs[leaving], s), (back, back_arc, t)))",
+          "candidates = [np.array([1.0, length])]",
+          "head, tail = [1.0] if a > 0 else [], [b] if b < length else []"]),
+        ("equivalent: _at_arc is given the points as parameters too, so its parameters [1] are its points [0]",
+         ["p, q = (_at_arc(pts, pts, arc, np.array([0.0, x, arc[-1]]))[1][1] for pts, arc, x in ((ahead, arcs[leaving], s), (back, back_arc, t)))"]),
+        ("equivalent: corners are indices (a sequence of int, documented): any integer dtype indexes and slices alike",
+         ["corners = np.asarray(corners, dtype=None)", "corners = np.asarray(corners, )"]),
+    ],
+    # --- end of surface/ring.py ---
+    # --- planar/placement.py (Problem 2's lattice placement search) ---
+    "src/equimesh/planar/placement.py": [
+        ("equivalent: check_count's least defaults to 1",
+         ['n_angles = check_count(n_angles, "n_angles", )', 'n_offsets = check_count(n_offsets, "n_offsets", )']),
+        ("equivalent: the search scores with the default engine, the fast one, and planar_estimate reads the strip "
+         "estimate only for the reference engine",
+         ["check_size(*planar_estimate(poly, l, None, DEFAULT_ENGINE), max_nodes, l)"]),
+    ],
+    # --- end of planar/placement.py ---
+    # --- planar/insertion/_region.py (the constrained Delaunay triangulation) ---
+    "src/equimesh/planar/insertion/_region.py": [
+        ("equivalent: Triangle's Python binding converts vertices and holes to double itself (integer points and "
+         "seeds give the same triangles: tests/test_region.py::test_integer_input_is_the_same_numbers)",
+         ['data = {"vertices": np.asarray(points, dtype=None), "segments": np.asarray(segments, dtype=np.int32)}',
+          'data = {"vertices": np.asarray(points, ), "segments": np.asarray(segments, dtype=np.int32)}',
+          'data["holes"] = np.asarray(holes, dtype=None)', 'data["holes"] = np.asarray(holes, )']),
+    ],
+    # --- end of planar/insertion/_region.py ---
     "src/equimesh/planar/increment.py": [
         ("equivalent: for Problem 1 (no strip estimate) planar_estimate returns the polygon's estimate without "
          "reading the engine", ["check_size(*planar_estimate(poly, l, None, None), max_nodes, l)"]),

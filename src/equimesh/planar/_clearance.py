@@ -74,7 +74,9 @@ def clear_of_boundary(shape, points, first, grid_shape, offset, basis, distance)
     seg, row = _expand(np.maximum(np.ceil(vlo - w), j0).astype(np.int64), np.minimum(np.floor(vhi + w), j0 + nj - 1).astype(np.int64))
     dv = ub[seg, 1] - ua[seg, 1]
     flat = dv == 0.0
-    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):  # a nearly flat segment: t is clipped to [0, 1]
+    # The divisor is never 0 and the numerators are finite, so only a nearly flat segment (dv tiny) can
+    # overflow: t is then +-inf, clipped to [0, 1] below.
+    with np.errstate(over="ignore"):
         t1 = np.where(flat, 0.0, (row - w - ua[seg, 1]) / np.where(flat, 1.0, dv))
         t2 = np.where(flat, 1.0, (row + w - ua[seg, 1]) / np.where(flat, 1.0, dv))
     t_lo, t_hi = np.clip(np.minimum(t1, t2), 0.0, 1.0), np.clip(np.maximum(t1, t2), 0.0, 1.0)
@@ -89,15 +91,15 @@ def clear_of_boundary(shape, points, first, grid_shape, offset, basis, distance)
     np.minimum.at(near, vertex, point_segment_distance(points[vertex], a[s], b[s]))
 
     # Inside: parity of the boundary crossings left of each vertex along its row.
+    # Rows j with vlo <= j < vhi, the rows each segment crosses (a horizontal segment crosses none).
     crossing, j = _expand(np.maximum(np.ceil(vlo), j0).astype(np.int64), np.minimum(np.ceil(vhi) - 1, j0 + nj - 1).astype(np.int64))
-    keep = (ua[crossing, 1] > j) != (ub[crossing, 1] > j)
-    crossing, j = crossing[keep], j[keep]
     uc = ua[crossing, 0] + (j - ua[crossing, 1]) * (ub[crossing, 0] - ua[crossing, 0]) / (ub[crossing, 1] - ua[crossing, 1])
     toggles = np.zeros((ni + 1, nj), dtype=np.int64)
     np.add.at(toggles, (np.clip(np.floor(uc).astype(np.int64) + 1 - i0, 0, ni), j - j0), 1)
     inside = (np.cumsum(toggles[:ni], axis=0) & 1).astype(bool).ravel()
 
-    kept = inside & (near > threshold * (1.0 + DOUBT))
+    # Outside the doubtful window the band's distance is on the right side of the threshold.
+    kept = inside & (near > threshold)
     doubt = np.flatnonzero(np.abs(near - threshold) <= DOUBT * threshold)
     if doubt.size:
         p = points[doubt]

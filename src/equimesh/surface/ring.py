@@ -169,7 +169,7 @@ def _split_side(xy, params, arc, stretch, l, spacing):
         candidates = [np.concatenate([head, a + (b - a) * np.arange(j) / j, tail, [length]]) for j in range(k, 0, -1)]
     for s in candidates:
         pts, prm = _at_arc(xy, params, arc, s)
-        if len(s) > 1 and np.all(at_least(np.linalg.norm(np.diff(pts, axis=0), axis=1), l)):
+        if np.all(at_least(np.linalg.norm(np.diff(pts, axis=0), axis=1), l)):
             return pts, prm
     return None, None
 
@@ -183,11 +183,9 @@ def _too_short(side, arc, chord):
 
 
 def _at_arc(xy, params, arc, s):
-    """Points and parameters at arc lengths ``s`` along the polyline ``xy``, endpoints exact."""
+    """Points and parameters at arc lengths ``s`` (from 0 to the polyline's length) along ``xy``, endpoints exact."""
     idx = np.clip(np.searchsorted(arc, s, side="right") - 1, 0, len(arc) - 2)
     t = (s - arc[idx]) / (arc[idx + 1] - arc[idx])
-    t[0], t[-1] = 0.0, 1.0
-    idx[-1] = len(arc) - 2
     pts = xy[idx] + t[:, None] * (xy[idx + 1] - xy[idx])
     prm = params[idx] + t[:, None] * (params[idx + 1] - params[idx])
     pts[0], prm[0], pts[-1], prm[-1] = xy[0], params[0], xy[-1], params[-1]
