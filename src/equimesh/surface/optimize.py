@@ -277,18 +277,22 @@ def bounded_objective(problem):
       it back; locking them in stalled the sparsity, docs/decisions.md).  A
       series of rounds ends at the first round whose Cauchy loss is within
       :data:`~equimesh.tolerance.BOUNDED_LOSS_TOL` (relative) of its start's
-      and that ends with every member in [l, 2l] (or, once a point in
-      [l, 2l] is kept, that ends at all: a settled series with a member
-      outside only crawls), or after :data:`~equimesh.tolerance.BOUNDED_ROUNDS` rounds;
-    * two series from two starts, because the rounds are a local method:
-      first from the optimum of the paper's objective (Section 4's last
-      step, :func:`paper_objective` aimed at ``l (1 + BOUNDED_OFFSET)``,
-      solved to ``PAPER_FTOL``), so that the rounds begin at the share of
-      exact members that "paper" reaches; then, restarted with the initial
-      damping, from the remapped mesh.  On mildly curved surfaces the paper's
-      optimum leads to the better end, on steep ones (where the paper's
-      objective leaves many members far outside [l, 2l]) the remapped mesh
-      often does (docs/decisions.md);
+      and that ends with every member in [l, 2l], or that stalls (its own
+      cost changes by no more than that either: the next round would pose
+      the same problem; if its solve began with a damping carried over, one
+      more round starts with the initial one), or after
+      :data:`~equimesh.tolerance.BOUNDED_ROUNDS` rounds;
+    * two starts, because the rounds are a local method: first the remapped
+      mesh; then the optimum of the paper's objective (Section 4's last step,
+      :func:`paper_objective`, solved from the remapped mesh with the
+      boundary nodes held, so that it is the paper's problem).  If its share
+      of members within :data:`~equimesh.tolerance.BOUNDED_BAND` of l beats
+      every point in [l, 2l] kept so far, the boundary nodes are released
+      (the paper's objective solved on) and a second series of rounds starts
+      there: it begins with the exact members the paper reaches.  On steep
+      surfaces (where the paper's optimum leaves many members far outside
+      [l, 2l]) the first start wins, on mild ones often the second
+      (docs/decisions.md);
     * the result is the iterate in [l, 2l] with the largest share of members
       within :data:`~equimesh.tolerance.BOUNDED_BAND` of l seen at the end of
       any round (:attr:`Objective.final`);
