@@ -175,8 +175,9 @@ class Objective:
     instead of at the previous objective's solution (a second path).
     ``hold`` (optional) is a bool mask of variables kept at their start value
     by this objective's solve.  ``final(x)`` (optional, on the objective that
-    ends a continuation) is the point returned instead of its solution ``x``
-    (an earlier iterate the continuation kept as its best).
+    ends a continuation) gives the point returned instead of its solution ``x``
+    (an earlier iterate the continuation kept as its best) and the objective
+    whose solve ended there (its costs are reported).
     """
 
     residuals: Callable[[np.ndarray], np.ndarray]
@@ -353,10 +354,10 @@ def bounded_objective(problem):
 
     best = {"x": None, "share": -1.0}
 
-    def keep_best(x, ratio):
-        """Remember ``x`` (with ``ratio = L / l``) if it is in [l, 2l] and has the largest :func:`share` so far."""
+    def keep_best(x, ratio, objective):
+        """Remember ``x`` (``ratio = L / l``), the end of ``objective``, if it is in [l, 2l] with the largest :func:`share` so far."""
         if inside(ratio) and share(ratio) > best["share"]:
-            best.update(x=np.array(x), share=share(ratio))
+            best.update(x=np.array(x), share=share(ratio), objective=objective)
 
     def round_(k, x_start, then, start=None):
         """Round ``k + 1`` of a series from ``x_start`` (restarting there if ``start`` is given); ``then(x)`` follows the series."""
@@ -369,7 +370,7 @@ def bounded_objective(problem):
 
         def refine(x):
             end = lengths(x) / l
-            keep_best(x, end)
+            keep_best(x, end, objective)
             settled = abs(cauchy_loss(end) - loss) <= BOUNDED_LOSS_TOL * loss
             stalled = settled and cost - float(np.sum((weight * (end - goal)) ** 2)) <= BOUNDED_LOSS_TOL * cost
             if k + 1 >= BOUNDED_ROUNDS or (settled and inside(end)) or (stalled and start is not None):
@@ -378,10 +379,11 @@ def bounded_objective(problem):
             # a damping left large by earlier solves; then the next round starts afresh.
             return round_(k + 1, x, then, start=x if stalled else None)
 
-        return Objective(
+        objective = Objective(
             residuals, jacobian, f"members into [l, 2l] and to {target:g} l, round {k + 1}", None, None, refine,
             BOUNDED_FTOL, BOUNDED_ROUND_ITERATIONS, start=start, final=chosen,
         )
+        return objective
 
     def last_stage():
         low, smooth = 1.0 + 0.5 * BOUNDED_OFFSET, 0.25 * BOUNDED_OFFSET
@@ -402,7 +404,7 @@ def bounded_objective(problem):
         )
 
     def chosen(x):
-        return best["x"]
+        return best["x"], best["objective"]
 
     def finish(x):
         return None if best["x"] is not None else last_stage()
@@ -433,7 +435,7 @@ class UVOptimization:
     uv : (N, 2) float array
         Optimised parameters; fixed nodes bit-identical to the start.
     cost_before, cost_after : float
-        ``|r|^2 / 2`` of the (last stage's) objective at the start and at ``uv``.
+        ``|r|^2 / 2`` of the last objective (the one whose solve ended at ``uv``) at the start and at ``uv``.
     nfev, njev : int
         Residual and Jacobian evaluations of the solver (all stages).
     converged : bool, message : str
@@ -556,7 +558,8 @@ def optimize_uv(
         if following is None:
             break
         obj = following
-    x = x if obj.final is None else obj.final(x)
+    if obj.final is not None:
+        x, obj = obj.final(x)
     if obj.feasible is not None and not obj.feasible(x):
         raise InvalidSurfaceError(
             f"optimisation ({objective}): no mesh with every member in [l, 2l] found, {obj.violation(x)}; "
