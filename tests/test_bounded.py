@@ -128,3 +128,24 @@ def test_experiment_measures_a_surface_and_reports_the_target(load_experiment):
     assert row["share_in_l_2l"] == 1.0 and row["share_within_0.5pct"] >= bounded.DEVELOPABLE_TARGET
     report = bounded.summarize(pd.DataFrame([row]), provenance({}))
     assert "| barrel vault | span/16 = 5 | bounded |" in report and report.count("| yes |") == 1
+
+
+def test_the_papers_stage_holds_the_boundary_nodes(monkeypatch):
+    """The paper's optimum that "bounded" compares with is the paper's problem: the sliding boundary nodes stay put."""
+    from equimesh.surface import optimize
+
+    calls = []
+    real = optimize.least_squares
+
+    def spy(residuals, jacobian, x0, lower, upper, **kwargs):
+        solution = real(residuals, jacobian, x0, lower, upper, **kwargs)
+        calls.append((np.array(x0), lower == upper, solution.x))
+        return solution
+
+    monkeypatch.setattr(optimize, "least_squares", spy)
+    mesh = mesh_surface(dome(rise=12.0), 5.0, placement="default")
+    held = [(x0, h, x) for x0, h, x in calls if h.any()]
+    assert len(held) == 1  # one solve of the paper's objective
+    x0, h, x = held[0]
+    assert h.sum() == mesh.n_boundary - 4  # every boundary node but the corners has one variable, held
+    assert np.array_equal(x[h], x0[h]) and not np.array_equal(x[~h], x0[~h])

@@ -103,7 +103,7 @@ class UVProblem:
         return moving
 
     @property
-    def sliding(self):
+    def sliding_variables(self):
         """Bool mask of the variables that move boundary nodes: the free parameter of a node on a side, the arc positions."""
         variables = self.variables
         one = np.repeat(variables.reshape(len(self.uv), 2).sum(axis=1) == 1, 2)
@@ -417,7 +417,7 @@ def bounded_objective(problem):
                 return finish(x)
             return replace(paper_objective(problem), refine=lambda y: round_(0, y, finish), final=chosen)
 
-        return replace(paper_objective(problem), refine=refine, start=problem.x0, hold=problem.sliding, final=chosen)
+        return replace(paper_objective(problem), refine=refine, start=problem.x0, hold=problem.sliding_variables, final=chosen)
 
     return round_(0, problem.x0, paper_stage)
 
