@@ -190,7 +190,7 @@ class Objective:
     max_iterations: int = 500
     start: np.ndarray = None
     hold: np.ndarray = None
-    final: Callable[[np.ndarray], np.ndarray] = None
+    final: Callable[[np.ndarray], tuple] = None
 
 
 def edge_length_terms(problem, edges):
@@ -355,12 +355,12 @@ def bounded_objective(problem):
     best = {"x": None, "share": -1.0}
 
     def keep_best(x, ratio, objective):
-        """Remember ``x`` (``ratio = L / l``), the end of ``objective``, if it is in [l, 2l] with the largest :func:`share` so far."""
+        """Remember ``x`` (``ratio = L / l``), where ``objective``'s solve ended, if in [l, 2l] with the largest share so far."""
         if inside(ratio) and share(ratio) > best["share"]:
             best.update(x=np.array(x), share=share(ratio), objective=objective)
 
     def round_(k, x_start, then, start=None):
-        """Round ``k + 1`` of a series from ``x_start`` (restarting there if ``start`` is given); ``then(x)`` follows the series."""
+        """Round ``k + 1`` of a series from ``x_start`` (restarted there if ``start`` is given); ``then(x)`` follows it."""
         ratio = lengths(x_start) / l
         goal = np.clip(ratio, target, high)
         weight = np.where(goal == ratio, cauchy_weight(ratio), BOUNDED_PULL)
@@ -417,7 +417,8 @@ def bounded_objective(problem):
                 return finish(x)
             return replace(paper_objective(problem), refine=lambda y: round_(0, y, finish), final=chosen)
 
-        return replace(paper_objective(problem), refine=refine, start=problem.x0, hold=problem.sliding_variables, final=chosen)
+        held = problem.sliding_variables
+        return replace(paper_objective(problem), refine=refine, start=problem.x0, hold=held, final=chosen)
 
     return round_(0, problem.x0, paper_stage)
 
