@@ -1,9 +1,11 @@
 """The "bounded" objective (beyond the paper): every member in [l, 2l], most of them at one length."""
 
+import os
+
 import numpy as np
 import pandas as pd
 import pytest
-from hypothesis import given, settings
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 from section4_standin import dome, parabolic_vault
 
@@ -28,29 +30,26 @@ def in_bounds(mesh):
     return bool(np.all((ratio >= 1.0) & (ratio <= 2.0)))
 
 
-#: The smallest share within 0.5 % of l measured on 25 generated domes like
-#: those below (0.462, the one that needs the last stage; docs/decisions.md,
-#: "The bounded objective").
-GENERATED_FLOOR = 0.4
+#: Generated patches per run: a few in the ci profile (each costs a "bounded" and a "paper" mesh,
+#: about 2 s), more in the thorough one.
+EXAMPLES = {"thorough": 60}.get(os.environ.get("EQUIMESH_HYPOTHESIS_PROFILE", "ci"), 3)
 
 
-@settings(max_examples=3, deadline=None)
+@settings(max_examples=EXAMPLES, deadline=None)
 @given(
     rise=st.floats(min_value=2.0, max_value=15.0),
     seed=st.integers(0, 2**32 - 1),
     l=st.floats(min_value=4.5, max_value=5.0),
 )
-def test_bounded_keeps_members_in_bounds(rise, seed, l):
-    """Mildly curved Bezier patches: 100 % of the members in [l, 2l], and a large share within 0.5 % of l.
-
-    Not asserted here: a share at least the paper's.  It held on 23 of 25
-    generated patches; on the other two bounded reached 0.699 against 0.714
-    and 0.462 against 0.654 (the last stage's case; docs/decisions.md).
-    """
+# Rounds from the remapped mesh alone crawled here for 200 rounds with one member at 2.005 l and the last
+# stage ended at 0.462 against the paper's 0.654 (docs/decisions.md, "The bounded objective").
+@example(rise=8.623446459779622, seed=2893441600, l=4.876515103851089)
+def test_bounded_keeps_members_in_bounds_and_reaches_the_papers_share(rise, seed, l):
+    """Mildly curved Bezier patches: 100 % of the members in [l, 2l], and a share within 0.5 % of l at least the paper's."""
     surface = dome(rise=rise, seed=seed, jitter=1.0)
-    bounded = mesh_surface(surface, l, optimize="bounded", placement="default")
+    bounded, paper = (mesh_surface(surface, l, optimize=o, placement="default") for o in ("bounded", "paper"))
     assert in_bounds(bounded)
-    assert share_exact(bounded) >= GENERATED_FLOOR
+    assert share_exact(bounded) >= share_exact(paper)
 
 
 @pytest.mark.parametrize("rise", [2.0, 4.0, 8.0, 12.0, 15.0])
@@ -60,14 +59,6 @@ def test_bounded_reaches_the_papers_share_on_the_stand_in_domes(rise):
     bounded, paper = (mesh_surface(surface, 4.5, optimize=o, placement="default") for o in ("bounded", "paper"))
     assert in_bounds(bounded)
     assert share_exact(bounded) >= share_exact(paper)
-
-
-def test_a_member_the_rounds_cannot_pull_in_goes_to_the_last_stage():
-    """A generated dome on which one member stays above 2 l through every round (refused when the last stage
-    continued from the rounds' end): the last stage restarts from the remapped mesh and reaches [l, 2l]."""
-    surface = dome(rise=8.623446459779622, seed=2893441600, jitter=1.0)
-    mesh = mesh_surface(surface, 4.876515103851089, placement="default")
-    assert in_bounds(mesh)
 
 
 def test_bounded_beats_paper_on_a_doubly_curved_dome():
@@ -137,3 +128,24 @@ def test_experiment_measures_a_surface_and_reports_the_target(load_experiment):
     assert row["share_in_l_2l"] == 1.0 and row["share_within_0.5pct"] >= bounded.DEVELOPABLE_TARGET
     report = bounded.summarize(pd.DataFrame([row]), provenance({}))
     assert "| barrel vault | span/16 = 5 | bounded |" in report and report.count("| yes |") == 1
+
+
+def test_the_papers_stage_holds_the_boundary_nodes(monkeypatch):
+    """The paper's optimum that "bounded" compares with is the paper's problem: the sliding boundary nodes stay put."""
+    from equimesh.surface import optimize
+
+    calls = []
+    real = optimize.least_squares
+
+    def spy(residuals, jacobian, x0, lower, upper, **kwargs):
+        solution = real(residuals, jacobian, x0, lower, upper, **kwargs)
+        calls.append((np.array(x0), lower == upper, solution.x))
+        return solution
+
+    monkeypatch.setattr(optimize, "least_squares", spy)
+    mesh = mesh_surface(dome(rise=12.0), 5.0, placement="default")
+    held = [(x0, h, x) for x0, h, x in calls if h.any()]
+    assert len(held) == 1  # one solve of the paper's objective
+    x0, h, x = held[0]
+    assert h.sum() == mesh.n_boundary - 4  # every boundary node but the corners has one variable, held
+    assert np.array_equal(x[h], x0[h]) and not np.array_equal(x[~h], x0[~h])

@@ -158,14 +158,20 @@ def test_acceptance_guard_without_barrier():
 
 
 def test_bounded_objective_jacobian_matches_finite_differences(monkeypatch):
-    """A round (members pulled in from outside the band, Cauchy-weighted inside) and the penalised last stage."""
-    monkeypatch.setattr(optimize, "BOUNDED_ROUNDS", 1)  # the first round hands over to the last stage
+    """The stages in order; a round (members pulled in from outside the band, Cauchy-weighted inside) and the penalised last stage."""
+    monkeypatch.setattr(optimize, "BOUNDED_ROUNDS", 1)  # each series of rounds is one round
     mesh, problem = problem_for(dome(rise=15.0), 12.0, 3, spread=0.03)
     x = problem.x0
-    first = bounded_objective(problem)
+    first = bounded_objective(problem)  # round 1 from the remapped mesh
     ratio = edge_lengths(problem.surface.evaluate(*problem.uv.T), mesh.edges) / 12.0
     assert np.any(ratio < 1.0) and first.max_iterations == optimize.BOUNDED_ROUND_ITERATIONS  # some pulled in
-    last = first.refine(x)
+    paper = first.refine(x)  # the paper's objective from the remapped mesh, boundary nodes held
+    assert np.array_equal(paper.start, x) and paper.hold.shape == x.shape
+    released = paper.refine(x)  # its share beats no kept point: the boundary nodes are released
+    assert released.hold is None and released.start is None
+    second = released.refine(x)  # round 1 from the paper's optimum
+    assert second.max_iterations == optimize.BOUNDED_ROUND_ITERATIONS
+    last = second.refine(x)  # no round ended in [l, 2l]
     assert last.refine is None and np.any(last.residuals(x)[len(mesh.edges) :] > 0)  # the penalty acts
     for obj in (first, last):
         np.testing.assert_allclose(obj.jacobian(x).toarray(), finite_difference(obj.residuals, x), atol=1e-4)

@@ -40,7 +40,7 @@ boundary-strip triangles (observed on doubly curved patches).  Two guards:
   refused, so no iterate, and no result, has a fold-over.
 """
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Callable
 
 import numpy as np
@@ -54,7 +54,7 @@ from ..mesh import G1
 from .chart import domain_of
 from .regularity import derivatives, evaluate
 from ..tolerance import (
-    BOUNDED_FTOL, BOUNDED_LOSS_TOL, BOUNDED_OFFSET, BOUNDED_PENALTY, BOUNDED_PULL, BOUNDED_ROUND_ITERATIONS, BOUNDED_ROUNDS,
+    BOUNDED_BAND, BOUNDED_FTOL, BOUNDED_LOSS_TOL, BOUNDED_OFFSET, BOUNDED_PENALTY, BOUNDED_PULL, BOUNDED_ROUND_ITERATIONS, BOUNDED_ROUNDS,
     BOUNDED_SCALE, LM_INITIAL_DAMPING, PAPER_FTOL,
 )
 
@@ -101,6 +101,13 @@ class UVProblem:
         for slide in self.slides:
             moving[2 * slide.nodes] = moving[2 * slide.nodes + 1] = True
         return moving
+
+    @property
+    def sliding_variables(self):
+        """Bool mask of the variables that move boundary nodes: the free parameter of a node on a side, the arc positions."""
+        variables = self.variables
+        one = np.repeat(variables.reshape(len(self.uv), 2).sum(axis=1) == 1, 2)
+        return np.concatenate([one[variables], *(np.ones(len(slide.nodes), dtype=bool) for slide in self.slides)])
 
     @property
     def x0(self):
@@ -164,8 +171,13 @@ class Objective:
     continuation from the solution ``x`` of this one, or None when done.
     ``ftol`` is the solver's relative-reduction tolerance for this objective and
     ``max_iterations`` its iteration limit (a round of a continuation need not converge).
-    ``start`` (optional) restarts the solve there instead of at the previous
-    objective's solution (a fallback that gives up the continuation's path).
+    ``start`` (optional) restarts the solve there, with the initial damping,
+    instead of at the previous objective's solution (a second path).
+    ``hold`` (optional) is a bool mask of variables kept at their start value
+    by this objective's solve.  ``final(x)`` (optional, on the objective that
+    ends a continuation) gives the point returned instead of its solution ``x``
+    (an earlier iterate the continuation kept as its best) and the objective
+    whose solve ended there (its costs are reported).
     """
 
     residuals: Callable[[np.ndarray], np.ndarray]
@@ -177,6 +189,8 @@ class Objective:
     ftol: float = PAPER_FTOL
     max_iterations: int = 500
     start: np.ndarray = None
+    hold: np.ndarray = None
+    final: Callable[[np.ndarray], tuple] = None
 
 
 def edge_length_terms(problem, edges):
@@ -261,14 +275,32 @@ def bounded_objective(problem):
       :data:`~equimesh.tolerance.BOUNDED_ROUND_ITERATIONS` solver iterations
       (the damping warm-started from the previous round).  The rounds do not
       lock the bounds in (a step may push a member out, the next round pulls
-      it back; locking them in stalled the sparsity, docs/decisions.md), and
-      they stop at the first round that ends with every member in [l, 2l] and
-      a Cauchy loss within :data:`~equimesh.tolerance.BOUNDED_LOSS_TOL`
-      (relative) of its start's;
-    * after :data:`~equimesh.tolerance.BOUNDED_ROUNDS` rounds without that, a
-      last stage restarts from the remapped mesh (a member the rounds cannot
-      pull in was observed): Cauchy terms plus a smoothed one-sided penalty of
-      slope ``BOUNDED_PENALTY`` below ``1 + BOUNDED_OFFSET / 2`` and above
+      it back; locking them in stalled the sparsity, docs/decisions.md).  A
+      series of rounds ends at the first round whose Cauchy loss is within
+      :data:`~equimesh.tolerance.BOUNDED_LOSS_TOL` (relative) of its start's
+      and that ends with every member in [l, 2l], or that stalls (its own
+      cost changes by no more than that either: the next round would pose
+      the same problem; if its solve began with a damping carried over, one
+      more round starts with the initial one), or after
+      :data:`~equimesh.tolerance.BOUNDED_ROUNDS` rounds;
+    * two starts, because the rounds are a local method: first the remapped
+      mesh; then the optimum of the paper's objective (Section 4's last step,
+      :func:`paper_objective`, solved from the remapped mesh with the
+      boundary nodes held, so that it is the paper's problem).  If its share
+      of members within :data:`~equimesh.tolerance.BOUNDED_BAND` of l beats
+      every point in [l, 2l] kept so far, the boundary nodes are released
+      (the paper's objective solved on) and a second series of rounds starts
+      there: it begins with the exact members the paper reaches.  On steep
+      surfaces (where the paper's optimum leaves many members far outside
+      [l, 2l]) the first start wins, on mild ones often the second
+      (docs/decisions.md);
+    * the result is the iterate in [l, 2l] with the largest share of members
+      within :data:`~equimesh.tolerance.BOUNDED_BAND` of l seen at the end of
+      any round (:attr:`Objective.final`);
+    * if no round of either series ended in [l, 2l], a last stage restarts
+      from the remapped mesh (a member the rounds cannot pull in was
+      observed): Cauchy terms plus a smoothed one-sided penalty of slope
+      ``BOUNDED_PENALTY`` below ``1 + BOUNDED_OFFSET / 2`` and above
       ``2 - BOUNDED_OFFSET``, solved to convergence with the bounds locked in
       once reached; if it ends outside [l, 2l] too, :func:`optimize_uv`
       refuses the surface.
@@ -280,18 +312,24 @@ def bounded_objective(problem):
     lengths, length_jacobian = edge_length_terms(problem, problem.edges)
     target, high = 1.0 + BOUNDED_OFFSET, 2.0 - BOUNDED_OFFSET
 
-    def feasible(x):
-        ratio = lengths(x) / l
+    def inside(ratio):
         return bool(np.all((ratio >= 1.0) & (ratio <= 2.0)))
+
+    def share(ratio):
+        """The issue's measure: the share of members within ``BOUNDED_BAND`` of l."""
+        return float(np.mean(np.abs(ratio - 1.0) <= BOUNDED_BAND))
+
+    def feasible(x):
+        return inside(lengths(x) / l)
 
     def violation(x):
         ratio = lengths(x) / l
         out = int(np.count_nonzero((ratio < 1.0) | (ratio > 2.0)))
         return f"{out} of {len(ratio)} members outside [l, 2l] (lengths from {ratio.min():.6g} l to {ratio.max():.6g} l)"
 
-    def cauchy_loss(x):
+    def cauchy_loss(ratio):
         """The loss that the rounds decrease (majorise-minimise): ``sum log(1 + (d_e / s)^2)``."""
-        return float(np.sum(np.log1p(((lengths(x) / l - target) / BOUNDED_SCALE) ** 2)))
+        return float(np.sum(np.log1p(((ratio - target) / BOUNDED_SCALE) ** 2)))
 
     def cauchy_weight(ratio):
         return 1.0 / np.sqrt(1.0 + ((ratio - target) / BOUNDED_SCALE) ** 2)
@@ -314,22 +352,38 @@ def bounded_objective(problem):
 
         return residuals, jacobian
 
-    def round_(k, x_start):
+    best = {"x": None, "share": -1.0}
+
+    def keep_best(x, ratio, objective):
+        """Remember ``x`` (``ratio = L / l``), where ``objective``'s solve ended, if in [l, 2l] with the largest share so far."""
+        if inside(ratio) and share(ratio) > best["share"]:
+            best.update(x=np.array(x), share=share(ratio), objective=objective)
+
+    def round_(k, x_start, then, start=None):
+        """Round ``k + 1`` of a series from ``x_start`` (restarted there if ``start`` is given); ``then(x)`` follows it."""
         ratio = lengths(x_start) / l
         goal = np.clip(ratio, target, high)
         weight = np.where(goal == ratio, cauchy_weight(ratio), BOUNDED_PULL)
+        goal = np.where(goal == ratio, target, goal)
+        residuals, jacobian = weighted(weight, goal)
+        loss, cost = cauchy_loss(ratio), float(np.sum((weight * (ratio - goal)) ** 2))
 
         def refine(x):
-            settled = abs(cauchy_loss(x) - cauchy_loss(x_start)) <= BOUNDED_LOSS_TOL * cauchy_loss(x_start)
-            if feasible(x) and settled:
-                return None
-            return round_(k + 1, x) if k + 1 < BOUNDED_ROUNDS else last_stage()
+            end = lengths(x) / l
+            keep_best(x, end, objective)
+            settled = abs(cauchy_loss(end) - loss) <= BOUNDED_LOSS_TOL * loss
+            stalled = settled and cost - float(np.sum((weight * (end - goal)) ** 2)) <= BOUNDED_LOSS_TOL * cost
+            if k + 1 >= BOUNDED_ROUNDS or (settled and inside(end)) or (stalled and start is not None):
+                return then(x)
+            # A stalled round poses the next one the same problem: it ends the series, unless its solve began with
+            # a damping left large by earlier solves; then the next round starts afresh.
+            return round_(k + 1, x, then, start=x if stalled else None)
 
-        return Objective(
-            *weighted(weight, np.where(goal == ratio, target, goal)),
-            f"members into [l, 2l] and to {target:g} l, round {k + 1}", None, None, refine, BOUNDED_FTOL,
-            BOUNDED_ROUND_ITERATIONS,
+        objective = Objective(
+            residuals, jacobian, f"members into [l, 2l] and to {target:g} l, round {k + 1}", None, None, refine,
+            BOUNDED_FTOL, BOUNDED_ROUND_ITERATIONS, start=start, final=chosen,
         )
+        return objective
 
     def last_stage():
         low, smooth = 1.0 + 0.5 * BOUNDED_OFFSET, 0.25 * BOUNDED_OFFSET
@@ -349,7 +403,24 @@ def bounded_objective(problem):
             BOUNDED_FTOL, start=problem.x0,
         )
 
-    return round_(0, problem.x0)
+    def chosen(x):
+        return best["x"], best["objective"]
+
+    def finish(x):
+        return None if best["x"] is not None else last_stage()
+
+    def paper_stage(x):
+        """The paper's optimum (boundary held, as ``optimize="paper"``), then rounds from it if it has the larger share."""
+
+        def refine(x):
+            if share(lengths(x) / l) <= best["share"]:
+                return finish(x)
+            return replace(paper_objective(problem), refine=lambda y: round_(0, y, finish), final=chosen)
+
+        held = problem.sliding_variables
+        return replace(paper_objective(problem), refine=refine, start=problem.x0, hold=held, final=chosen)
+
+    return round_(0, problem.x0, paper_stage)
 
 
 #: Objective builders by name, each ``builder(problem: UVProblem) -> Objective``.
@@ -365,7 +436,7 @@ class UVOptimization:
     uv : (N, 2) float array
         Optimised parameters; fixed nodes bit-identical to the start.
     cost_before, cost_after : float
-        ``|r|^2 / 2`` of the (last stage's) objective at the start and at ``uv``.
+        ``|r|^2 / 2`` of the last objective (the one whose solve ended at ``uv``) at the start and at ``uv``.
     nfev, njev : int
         Residual and Jacobian evaluations of the solver (all stages).
     converged : bool, message : str
@@ -466,13 +537,14 @@ def optimize_uv(
         cost0 = _cost(obj, x0)
         return UVOptimization(uv, cost0, cost0, 0, 0, True, "no free nodes", objective)
     tri = None if triangles is None else np.asarray(triangles, dtype=np.int64).reshape(-1, 3)
-    box = problem.bounds
     x, nfev, njev, damping = x0, 0, 0, LM_INITIAL_DAMPING
     while True:
-        x = x if obj.start is None else obj.start
+        if obj.start is not None:  # a restart is a fresh solve: its own start and the initial damping
+            x, damping = obj.start, LM_INITIAL_DAMPING
         guard = _Guard(problem, tri, obj.feasible, x)
         solve = obj if tri is None or area_floor <= 0 else _with_barrier(problem, obj, tri, area_floor, x)
         tol = obj.ftol if ftol is None else ftol
+        box = problem.bounds if obj.hold is None else tuple(np.where(obj.hold, x, bound) for bound in problem.bounds)
         while True:
             solution = least_squares(
                 solve.residuals, solve.jacobian, x, *box, accept=guard, gtol=gtol, xtol=xtol, ftol=tol,
@@ -487,6 +559,8 @@ def optimize_uv(
         if following is None:
             break
         obj = following
+    if obj.final is not None:
+        x, obj = obj.final(x)
     if obj.feasible is not None and not obj.feasible(x):
         raise InvalidSurfaceError(
             f"optimisation ({objective}): no mesh with every member in [l, 2l] found, {obj.violation(x)}; "
