@@ -64,16 +64,28 @@ def place_corner(theta, lengths, l, fixed=(None, None)):
     ``(xs, ys)``, each side's points by distance from the corner, its far
     end included; a side longer than ``(K + 3) l`` stops at its first point
     past ``K l``.  ``fixed[s]``, if given, are side ``s``'s points (the same
-    form), kept as they are.  Tried on :data:`CORNER_GRID` steps per l, then
-    finer grids.
+    form), kept as they are.  On each grid (:data:`CORNER_GRID` steps per l,
+    then finer) the nodes are searched; with no side fixed, the proof's
+    relaxation then either shows that no placement exists (None) or gives
+    an order of the points of the two sides, which :func:`_tighten` places
+    as near the corner as it allows.
     """
     reach = corner_reach(theta, l)
     for level in range(CORNER_REFINEMENTS + 1):
         step = l / (CORNER_GRID * 2**level)
         lo = _nodes(lengths, reach, l, step, fixed)
-        path = _Graph(theta, lengths, reach, l, lo, lo, REL_TOL / 4.0, (math.inf, math.inf), fixed).search()
-        if path is not None:
-            return path
+        order = _Graph(theta, lengths, reach, l, lo, lo, REL_TOL / 4.0, (math.inf, math.inf), fixed).search()
+        if order is not None:
+            return _by_side(order)
+        if any(points is not None for points in fixed):
+            continue
+        lo, hi = _cells(lengths, reach, l, step)
+        order = _Graph(theta, lengths, reach, l, lo, hi, 2.0 * REL_TOL, (math.inf, math.inf)).search()
+        if order is None:
+            return None
+        found = _tighten(theta, lengths, reach, l, [side for side, _ in order])
+        if found is not None:
+            return found
     return None
 
 
@@ -92,6 +104,86 @@ def corner_unplaceable(theta, lengths, l, radii):
         if _Graph(theta, lengths, reach, l, lo, hi, 2.0 * REL_TOL, radii).search() is None:
             return True
     return False
+
+
+def _by_side(order):
+    """``(xs, ys)`` from the points ``(side, distance)`` in their merged order."""
+    return tuple(np.array([x for side, x in order if side == s]) for s in (0, 1))
+
+
+#: Rounds of :func:`_tighten` before it gives up: a bound on the work.
+TIGHTEN_ROUNDS = 200
+
+
+def _tighten(theta, lengths, reach, l, sides):
+    """The placement nearest the corner with the points in the merged order ``sides`` (side of each), or None.
+
+    Each point is pushed to the largest of its lower bounds: ``l`` past the
+    previous point of its side, as far as the point before it, past
+    ``G(u) = u cos theta + sqrt(l^2 - u^2 sin^2 theta)`` (where the other
+    side's point ``u`` before it stops being closer than l), its side's far
+    end (``K l`` for a long side), and ``2l`` before the next point of its
+    side; repeated until nothing moves.  Where ``G`` increases these bounds
+    are monotone, so this is the least placement of that order if there is
+    one; whatever it gives is checked pair by pair (:func:`_placed`).
+    """
+    sides = np.asarray(sides)
+    z = np.zeros(len(sides))
+    last = [int(np.flatnonzero(sides == s)[-1]) for s in (0, 1)]
+    ends = [reach if _long(length, reach, l) else length for length in lengths]
+    before = [_previous(sides, i) for i in range(len(sides))]
+    sin, cos = math.sin(theta), math.cos(theta)
+    for _ in range(TIGHTEN_ROUNDS):
+        old = z.copy()
+        for i, s in enumerate(sides):
+            low = [l if before[i] is None else z[before[i]] + l]
+            if i:
+                u = z[i - 1]
+                low.append(u)
+                if sides[i - 1] != s and u * sin < l:
+                    low.append(u * cos + math.sqrt(l * l - (u * sin) ** 2))
+            if i == last[s]:
+                low.append(ends[s])
+            z[i] = max(z[i], *low)
+        for i in range(len(sides) - 1, -1, -1):
+            if before[i] is not None:
+                z[before[i]] = max(z[before[i]], z[i] - 2.0 * l)
+        if np.array_equal(z, old):
+            return _placed(theta, lengths, reach, l, sides, z)
+    return None
+
+
+def _previous(sides, i):
+    """The index of the point before ``i`` on the same side, or None."""
+    same = np.flatnonzero(sides[:i] == sides[i])
+    return int(same[-1]) if len(same) else None
+
+
+def _placed(theta, lengths, reach, l, sides, z):
+    """``(xs, ys)`` if the points ``z`` of ``sides`` are a placement (checked within ``REL_TOL / 4``), else None.
+
+    Parts in ``[l, 2l]`` from the corner, each side ending at its far end
+    (a long side: past ``K l``, at least ``l`` before it), every cross pair
+    at least ``l`` apart.
+    """
+    tol = REL_TOL / 4.0
+    placed = []
+    for s, length in enumerate(lengths):
+        points = z[sides == s].copy()
+        parts = np.diff(np.concatenate([[0.0], points]))
+        if np.any(parts < (1.0 - tol) * l) or np.any(parts > 2.0 * (1.0 + tol) * l):
+            return None
+        if _long(length, reach, l):
+            if points[-1] > length - l:
+                return None
+        elif abs(points[-1] - length) > tol * l:
+            return None
+        else:
+            points[-1] = length
+        placed.append(points)
+    a, b = placed
+    distance = a[:, None] ** 2 + b[None, :] ** 2 - 2.0 * math.cos(theta) * a[:, None] * b[None, :]
+    return tuple(placed) if np.all(distance >= ((1.0 - tol) * l) ** 2) else None
 
 
 def cut(points, length, reach, l):
@@ -235,14 +327,14 @@ class _Graph:
                 dirty[o, ws] = True
 
     def _path(self, parent, state):
-        """The points of each side along the path ending at ``state``, by distance from the corner."""
-        n, sides = self.n, ([], [])
+        """The points ``(side, distance)`` along the path ending at ``state``, in their merged order."""
+        n, order = self.n, []
         s, p, q = state
         while p:
-            sides[s].append(self.lo[p])
+            order.append((s, self.lo[p]))
             code = int(parent[s, p, q])
             s, p, q = code // (n * n), code // n % n, code % n
-        return tuple(np.array(side[::-1]) for side in sides)
+        return order[::-1]
 
 
 def _beyond(hi, mine, theirs):

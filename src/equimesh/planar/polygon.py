@@ -699,13 +699,13 @@ def _place_corners_on_a_grid(sides, lengths, angles, l, spacing):
 
     The two sides of the corner are placed again (:func:`_grid_sides`):
     both free; the leaving side kept; the arriving one kept; or, for a side
-    shared with the next (previous) corner, that corner placed first with
-    both its sides free (if it is sharp) and this one then with the shared
-    side kept.  The
-    first trial after which every corner it touched, and their neighbours,
-    have a :func:`_corner_gap` of at least ``l`` is taken, in place.  A
-    corner that :func:`._corner.corner_unplaceable` proves impossible even
-    with every pair checked is not tried.  Every part stays in ``[l, 2l]``.
+    shared with the next (previous) sharp corner, that corner placed first
+    with both its sides free and this one then with the shared side kept,
+    or the other way round.  The first trial after which every corner it
+    touched, and their neighbours, have a :func:`_corner_gap` of at least
+    ``l`` is taken, in place.  A corner that
+    :func:`._corner.corner_unplaceable` proves impossible even with every
+    pair checked is not tried.  Every part stays in ``[l, 2l]``.
     Deterministic.
     """
     n = len(lengths)
@@ -715,7 +715,12 @@ def _place_corners_on_a_grid(sides, lengths, angles, l, spacing):
             continue
         if _corner.corner_unplaceable(math.radians(angles[c]), (lengths[c], lengths[c - 1]), l, (math.inf, math.inf)):
             continue
-        trials = ([(c, free)], [(c, leaving)], [(c, arriving)], [((c + 1) % n, free), (c, leaving)], [((c - 1) % n, free), (c, arriving)])
+        after, before = (c + 1) % n, (c - 1) % n
+        trials = (
+            [(c, free)], [(c, leaving)], [(c, arriving)],
+            [(after, free), (c, leaving)], [(before, free), (c, arriving)],
+            [(c, free), (after, arriving)], [(c, free), (before, leaving)],
+        )
         for steps in trials:
             if not all(_stagger_count(angles[corner]) for corner, _ in steps):
                 continue
