@@ -3,7 +3,7 @@
 What must hold: the merged-order lemma (consecutive cross pairs decide every cross pair); every placement
 the search returns has parts in [l, 2l], ends at the far corners and keeps every cross pair l apart
 (checked pair by pair here); the proof never contradicts a placement; and a corner it proves impossible has
-no placement on a sampled grid either (enumerated here, independently of the module).
+no placement on a sampled grid either (tests/corner_sampling.py, independently of the module).
 """
 
 import math
@@ -14,6 +14,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from equimesh.planar import _corner
+from corner_sampling import sampled_placement
 from equimesh.tolerance import REL_TOL
 
 
@@ -86,28 +87,6 @@ def test_a_long_side_is_cut_past_k_l_and_kept_sides_are_kept():
     _assert_placement(theta, lengths, 1.0, found)
 
 
-def _sampled_placement(theta, lengths, l, step=0.125):
-    """A placement of the two sides found by enumerating parts in multiples of ``step`` l (the last part of
-    each side whatever is left), every cross pair checked directly; None if there is none."""
-
-    def splits(length):
-        out, stack = [], [(0.0, [])]
-        while stack:
-            at, points = stack.pop()
-            if l <= length - at <= 2.0 * l:
-                out.append(np.array(points + [length]))
-            for part in np.arange(l, 2.0 * l + 1e-9, step * l):
-                if at + part <= length - l:
-                    stack.append((at + part, points + [at + part]))
-        return out
-
-    for a in splits(lengths[0]):
-        for b in splits(lengths[1]):
-            if _cross(theta, a, b).min() >= l:
-                return a, b
-    return None
-
-
 PROVEN = [  # (angle, leaving, arriving): the corners of results/sharp_corners.md proven by the relaxation
     (2.82807, 4.5, 3.5195),
     (10.0, 2.4, 4.5),
@@ -119,19 +98,19 @@ PROVEN = [  # (angle, leaving, arriving): the corners of results/sharp_corners.m
 
 
 @pytest.mark.parametrize("angle, a, b", PROVEN)
-def test_a_corner_proven_impossible_has_no_sampled_placement(angle, a, b):
+def test_a_corner_proven_impossible_has_nosampled_placement(angle, a, b):
     """corner_unplaceable proves these; enumerating parts in steps of l/8 finds no placement either, and the
     search gives up (it is never handed a corner the proof refuses)."""
     theta = math.radians(angle)
     assert _corner.corner_unplaceable(theta, (a, b), 1.0, (math.inf, math.inf))
     assert _corner.place_corner(theta, (a, b), 1.0) is None
-    assert _sampled_placement(theta, (a, b), 1.0) is None
+    assert sampled_placement(theta, (a, b), 1.0) is None
 
 
 def test_the_enumeration_finds_placements_where_they_exist():
     """The enumeration above is not vacuous: 20 degrees with sides of 3.4 and 3 l (the thin triangle of
     results/sharp_corners.md meshed by the search) has a placement on steps of l/8."""
-    assert _sampled_placement(math.radians(20.0), (3.4, 3.0), 1.0) is not None
+    assert sampled_placement(math.radians(20.0), (3.4, 3.0), 1.0) is not None
 
 
 def test_visibility_radii_drop_the_pairs_beyond_them():
