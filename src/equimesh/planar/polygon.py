@@ -832,9 +832,10 @@ def check_boundary_separation(poly, boundary, l):
     ``points`` the two boundary points in the caller's coordinates.  The
     message says what is proven (docs/proofs.md, "Sharp corners"): that no
     mesh with every edge in ``[l, 2l]`` exists (:func:`_unmeshable_corner`),
-    that no Step 2 can meet Lemma 3 (1) at a corner
-    (:func:`_unseparable_corner`), or neither (a corner or neck this method
-    does not handle).
+    that no Step 2 can meet Lemma 3 (1) at a corner (its first points,
+    :func:`_unseparable_corner`; or all its points, decided on a grid,
+    :func:`_unplaceable_corner` at the corners of the offending pairs), or
+    neither (a corner or neck this method does not handle).
     """
     pts = boundary.points
     lp = poly.local_length(l)
