@@ -413,9 +413,9 @@ def test_a_corner_not_handled_is_named_with_its_limit_in_the_callers_units():
     assert message == (
         "the corner at vertex 0 at (0, 0) (29.4 degrees) is not handled for l = 4.0: boundary points on edge (0, 1) "
         "and edge (2, 0) are 2.4802111916513114 apart, closer than l (Lemma 3 (1)); the staggered Step 2 is proven at "
-        "29.4 degrees for sides of at least 16.0, longer if the next corner is sharp too, and found no placement for "
-        "these (a limit of this method, not a proof that no mesh exists; docs/proofs.md, 'Sharp corners'); use a "
-        "smaller l, longer sides or a wider corner"
+        "29.4 degrees for sides of at least 16.0, longer if the next corner is sharp too; for these the searches "
+        "found no placement and none is proven impossible, even for each corner alone (a limit of this method, not a "
+        "proof that no mesh exists; docs/proofs.md, 'Sharp corners'); use a smaller l, longer sides or a wider corner"
     )
     assert points == [[5.0, 0.0], [3.4848552444807583, 1.9636150144605629]]
 
@@ -567,7 +567,7 @@ def test_short_side_search_fingerprint():
         for spacing in (1.5, 2.0):
             c, w = _fingerprint(lengths, angles, 1.0, spacing)
             count, weighted = count + c, weighted + w
-    assert (count, round(weighted, 6)) == (1496, 22771.175)
+    assert (count, round(weighted, 6)) == (1498, 22813.755)
 
 
 # Rings on which a step of the search decides the output (each found by changing that step, mutation testing):

@@ -28,17 +28,24 @@ Two readings of the same graph, on a grid of ``l / CORNER_GRID``:
   step exactly: a path is a placement, by the lemma.
 * :func:`corner_unplaceable` (a proof) lets a state stand for the grid
   *cells* its points lie in and allows a step when *some* points of the two
-  cells satisfy it (parts from ``(1 - REL_TOL) l`` to ``2 (1 + REL_TOL) l``,
-  distances from ``(1 - REL_TOL) l``, the tolerances of the checks), and
-  checks distances only between points that see each other.  Every
-  placement the checks would accept is then a path of cells, so when there
-  is none, no Step 2 meets Lemma 3 (1) at the corner.
+  cells satisfy it, with tolerances beyond those of the checks (parts from
+  ``(1 - 2 REL_TOL) l`` to ``2 (1 + 2 REL_TOL) l``, distances from
+  ``(1 - 2 REL_TOL) l``), and checks distances only between points that
+  see each other.  Every placement the checks would accept is then a path
+  of cells, so when there is none, no Step 2 meets Lemma 3 (1) at the
+  corner.  No lemma is needed for this direction: consecutive points of
+  the merged order are pairs the checks test.
+
+Where the nodes miss a thin set of placements, :func:`_tighten` places the
+order of the points along a path of cells as near the corner as it allows.
 
 Both sweep at most ``2 n^2`` states of ``n`` grid positions (``n`` about
 ``CORNER_GRID (K + 3)``), vectorised over ``q``.
 """
 
+import functools
 import math
+
 import numpy as np
 
 from ..tolerance import REL_TOL
@@ -79,8 +86,7 @@ def place_corner(theta, lengths, l, fixed=(None, None)):
             return _by_side(order)
         if any(points is not None for points in fixed):
             continue
-        lo, hi = _cells(lengths, reach, l, step)
-        order = _Graph(theta, lengths, reach, l, lo, hi, 2.0 * REL_TOL, (math.inf, math.inf)).search()
+        order = _relaxed(theta, tuple(lengths), l, (math.inf, math.inf), level)
         if order is None:
             return None
         found = _tighten(theta, lengths, reach, l, [side for side, _ in order])
@@ -98,12 +104,19 @@ def corner_unplaceable(theta, lengths, l, radii):
     checked.  False means only that the relaxation found a path on the
     finest grid, not that a placement exists.
     """
+    return any(_relaxed(theta, tuple(lengths), l, tuple(radii), level) is None for level in range(CORNER_REFINEMENTS + 1))
+
+
+@functools.lru_cache(maxsize=1024)
+def _relaxed(theta, lengths, l, radii, level):
+    """A path of the relaxation on cells of ``l / (CORNER_GRID 2^level)`` (points in merged order), or None.
+
+    Cached: the grid search of a ring asks for the same corner again
+    (:func:`corner_unplaceable` first, then :func:`place_corner`).
+    """
     reach = corner_reach(theta, l)
-    for level in range(CORNER_REFINEMENTS + 1):
-        lo, hi = _cells(lengths, reach, l, l / (CORNER_GRID * 2**level))
-        if _Graph(theta, lengths, reach, l, lo, hi, 2.0 * REL_TOL, radii).search() is None:
-            return True
-    return False
+    lo, hi = _cells(lengths, reach, l, l / (CORNER_GRID * 2**level))
+    return _Graph(theta, lengths, reach, l, lo, hi, 2.0 * REL_TOL, radii).search()
 
 
 def _by_side(order):
@@ -217,8 +230,12 @@ def _nodes(lengths, reach, l, step, fixed):
 
 
 def _cells(lengths, reach, l, step):
-    """Cells of the proof: ``[i step, (i + 1) step]`` up to the horizon, and each short side's far end as a point."""
-    edges = np.arange(0, math.ceil(_horizon(lengths, reach, l) / step) + 1) * step
+    """Cells of the proof: ``[i step, (i + 1) step]`` past the horizon, and each short side's far end as a point.
+
+    One cell more than the horizon needs: a long side's first point past
+    ``K l`` may lie up to ``2 REL_TOL l`` beyond ``K l + 2l``.
+    """
+    edges = np.arange(0, math.ceil(_horizon(lengths, reach, l) / step) + 2) * step
     ends = [length for length in lengths if not _long(length, reach, l)]
     return np.concatenate([[0.0], edges[:-1], ends]), np.concatenate([[0.0], edges[1:], ends])
 

@@ -705,8 +705,9 @@ def _place_corners_on_a_grid(sides, lengths, angles, l, spacing):
     touched, and their neighbours, have a :func:`_corner_gap` of at least
     ``l`` is taken, in place.  A corner that
     :func:`._corner.corner_unplaceable` proves impossible even with every
-    pair checked is not tried.  Every part stays in ``[l, 2l]``.
-    Deterministic.
+    pair checked ends the search: the ring cannot be separated, and
+    :func:`check_boundary_separation` refuses it, naming the first such
+    corner.  Every part stays in ``[l, 2l]``.  Deterministic.
     """
     n = len(lengths)
     free, leaving, arriving = (False, False), (True, False), (False, True)
@@ -714,7 +715,7 @@ def _place_corners_on_a_grid(sides, lengths, angles, l, spacing):
         if at_least(_corner_gap(sides, lengths, angles, l, c), l):
             continue
         if _corner.corner_unplaceable(math.radians(angles[c]), (lengths[c], lengths[c - 1]), l, (math.inf, math.inf)):
-            continue
+            return
         after, before = (c + 1) % n, (c - 1) % n
         trials = (
             [(c, free)], [(c, leaving)], [(c, arriving)],
@@ -1039,8 +1040,9 @@ def _separation_error(poly, boundary, l, i, j):
         message = (
             f"the corner at {ri.vertex_name(corner)} ({angle:.6g} degrees) is not handled for l = {_num(l)}: "
             f"{where}, closer than l (Lemma 3 (1)); the staggered Step 2 is proven at {angle:.6g} degrees for sides "
-            f"of at least {need}, longer if the next corner is sharp too, and found no placement for these "
-            "(a limit of this method, not a proof that no mesh exists; docs/proofs.md, 'Sharp corners'); "
+            f"of at least {need}, longer if the next corner is sharp too; for these the searches found no placement "
+            "and none is proven impossible, even for each corner alone (a limit of this method, not a proof that no "
+            "mesh exists; docs/proofs.md, 'Sharp corners'); "
             "use a smaller l, longer sides or a wider corner"
         )
     else:
