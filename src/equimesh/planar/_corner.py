@@ -220,13 +220,12 @@ def _nodes(lengths, reach, l, step, fixed):
     """Grid nodes of the search: multiples of ``step`` from the corner and from each short side's far end, and the fixed points."""
     top = _horizon(lengths, reach, l)
     nodes = [np.arange(1, math.floor(top / step) + 1) * step]
-    for length, points in zip(lengths, fixed):
+    for length in lengths:
         if not _long(length, reach, l):
             nodes.append(length - np.arange(0, math.floor(length / step)) * step)
-        if points is not None:
-            nodes.append(np.asarray(points, dtype=float))
-    nodes = np.unique(np.concatenate(nodes))
-    return np.concatenate([[0.0], nodes[(nodes > 0.0) & (nodes <= top)]])
+    nodes = np.concatenate(nodes)
+    kept = [np.asarray(points, dtype=float) for points in fixed if points is not None]
+    return np.unique(np.concatenate([[0.0], nodes[(nodes > 0.0) & (nodes <= top)], *kept]))
 
 
 def _cells(lengths, reach, l, step):
