@@ -6,8 +6,9 @@ each corner angle and each side length from l to past the proven limit of the
 staggered Step 2 (docs/proofs.md, "Sharp corners"), ``uniform_triangulation``
 runs with l = 1 and both insertion engines.  A refusal is classified by its
 message: proven impossible (a side shorter than l, or the sector lemma), no
-boundary resampling can meet Lemma 3 (1) (a limit of the paper's method), not
-handled by this method, or a neck.  For a mesh:
+boundary resampling can meet Lemma 3 (1) (a limit of the paper's method: its
+first points, or all its points decided on a grid), not handled by this
+method (nothing proven either way), or a neck.  For a mesh:
 the smallest triangle angle, overall and among the triangles with a node
 within ``stagger_reach + l`` of the sharp corner, and the share of G1 edges
 (lattice edges of length l), overall and among the edges near the corner.

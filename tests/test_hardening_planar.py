@@ -61,14 +61,26 @@ def test_the_thin_triangle_refused_before_is_meshed_by_the_continued_zigzag():
     assert np.array_equal(np.sort(bottom), [0, 1, 3, 5, 7, 9, 10])
 
 
+def test_a_corner_below_the_proven_side_length_is_placed_by_the_grid_search():
+    """5.7 degrees: the staggered Step 2 is proven for sides of K l + l = 12 l (K = ceil(1 / sin 5.7) = 11); with
+    sides of 10 and 10.05 l the short-side search finds no placement, the grid search of the corner does
+    (docs/proofs.md, "Sharp corners"), and every guarantee of Problem 2 holds."""
+    import invariants_uniform as inv
+
+    vertices = [[0, 0], [10, 0], [10, 1]]
+    inv.assert_problem2_invariants(equimesh.uniform_triangulation(vertices, 1.0), vertices, 1.0)
+
+
 def test_a_corner_beyond_this_method_is_refused_naming_corner_angle_and_limit():
-    """5.7 degrees: the staggered Step 2 is proven for sides of K l + l = 12 l (K = ceil(1 / sin 5.7) = 11);
-    with sides of 10 and 10.05 l no placement is found, which the message says is a limit of the method."""
+    """A thin triangle with corners of 29.4 and 23.07 degrees sharing a side of 4.25 l: each corner alone can be
+    separated, the searches find no placement for both, which the message says is a limit of the method (K = 3:
+    sides of 4 l are proven)."""
+    tip = [2.1 * np.cos(np.radians(29.4)), 2.1 * np.sin(np.radians(29.4))]
     with pytest.raises(
         InvalidPolygonError,
-        match=r"corner at vertex 0 .* \(5.71059 degrees\) is not handled for l = 1.0: .* at least 12.0, .*not a proof that no mesh exists",
+        match=r"corner at vertex 0 .* \(29.4 degrees\) is not handled for l = 1.0: .* at least 4.0, .*not a proof that no mesh exists",
     ) as info:
-        equimesh.uniform_triangulation([[0, 0], [10, 0], [10, 1]], 1.0)
+        equimesh.uniform_triangulation([[0, 0], [4.25, 0], tip], 1.0)
     p, q = np.array(info.value.points)
     assert np.linalg.norm(p - q) < 1.0
 
@@ -84,8 +96,9 @@ def test_a_neck_narrower_than_l_is_refused_naming_both_edges():
 def test_the_cause_pairs_a_rounding_error_outside_are_still_seen():
     """The cause of the issue: resampled points fall a rounding error outside P, so an exact
     ``covers`` test called the too-close pair invisible; the grown-polygon test sees it.  (The issue's
-    11- and 6.3-degree triangles are meshed now, their points staggered; a 5.7-degree one still shows the cause.)"""
-    poly = as_polygon([[0, 0], [10, 0], [10, 1]], 1.0)
+    11- and 6.3-degree triangles are meshed now, their points staggered, and so is a 5.7-degree one; a triangle
+    with a 2.8-degree corner between sides of 3.52 and 4.5, proven beyond Lemma 3 (1), still shows the cause.)"""
+    poly = as_polygon([[0, 0], [1, 0], [4.5 * np.cos(np.radians(10.0)), 4.5 * np.sin(np.radians(10.0))]], 1.0)
     boundary = resample_boundary(poly, 1.0, BOUNDARY_SPACING)
     pts = boundary.points
     pairs = cKDTree(pts).query_pairs(1.0 - REL_TOL, output_type="ndarray")

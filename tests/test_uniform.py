@@ -29,6 +29,7 @@ from equimesh.testing.shapes import flattened_square, letter_polygon, place, sha
 import invariants_uniform as inv
 from conftest import exercised
 import strategies_sharp as sss
+from corner_sampling import corners, sampled_placement
 import strategies_simple as ss
 
 #: Largest polygon area drawn by the property tests, in units of l^2.
@@ -631,6 +632,15 @@ def _first_points_closer_than_l(vertices, holes, l, samples=40):
     return False
 
 
+def _no_sampled_placement(vertices, holes, l):
+    """Sampled, independently of polygon.py: a corner below 60 degrees whose two sides have no split into parts of
+    [l, 2l] (steps of l/8) keeping every two points of different sides l apart (docs/proofs.md, "Sharp corners")."""
+    return any(
+        theta < math.radians(60.0) and sampled_placement(theta, (a / l, b / l), 1.0) is None
+        for theta, a, b in corners(inv.rings(vertices, holes))
+    )
+
+
 def _refusal_kind(error):
     """The kind of a refusal at a sharp corner, named by its one-line message."""
     text = str(error)
@@ -656,7 +666,8 @@ def test_short_sided_sharp_corners_are_meshed_within_every_theorem_or_refused_by
         if kind == "impossible" and "shorter than l" not in str(error):
             assert _sector_closer_than_l(vertices, holes, l)
         if kind == "no separation":
-            assert _first_points_closer_than_l(vertices, holes, l)
+            confirm = _first_points_closer_than_l if "first boundary points" in str(error) else _no_sampled_placement
+            assert confirm(vertices, holes, l)
         return
     exercised("a short-sided sharp corner is meshed", True)
     inv.assert_problem2_invariants(mesh, vertices, l, holes=holes)
@@ -701,6 +712,14 @@ PROVEN_REFUSALS = {
         r"^the corner at vertex 0 at \(0, 0\) \(30 degrees\) cannot meet Lemma 3 \(1\) for l = 1.0: with sides of "
         r"1.6 and 2.5 .* not a proof that no mesh exists.* sides of at least 3.0 are handled",
         _first_points_closer_than_l,
+    ),
+    # 20 degrees with both sides 3.45 l: each first point can be placed, but no split of the two sides into parts
+    # of [l, 2l] keeps them l apart (the relaxation on a grid of cells finds no path): a limit of the method.
+    "no placement": (
+        [[0, 0], [3.45, 0], _at(20.0, 3.45)],
+        r"^the corner at vertex 0 at \(0, 0\) \(20 degrees\) cannot meet Lemma 3 \(1\) for l = 1.0: no split of its sides "
+        r"of 3.45 and 3.45 into parts of \[l, 2l\] .* not a proof that no mesh exists.* sides of at least 4.0 are handled",
+        _no_sampled_placement,
     ),
 }
 

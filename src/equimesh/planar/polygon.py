@@ -26,6 +26,7 @@ from scipy.spatial import cKDTree
 from .._geometry import Frame, cross, inner_angle, orient_sign, power_of_two_scale, segments_intersect, signed_area
 from ..errors import EquimeshError, InvalidLengthError, InvalidPolygonError
 from ..tolerance import MAX_EXTENT, MAX_LENGTH, MIN_LENGTH, REL_TOL, at_least
+from . import _corner
 
 
 def real_number(value, name, error):
@@ -554,6 +555,7 @@ def side_positions(lengths, angles, l, spacing=2.0):
         sides.append(_place(length, start, end, l, spacing))
     if short:
         _separate_short_sides(sides, short, corners, lengths, angles, l, spacing)
+        _place_corners_on_a_grid(sides, lengths, angles, l, spacing)
     return sides
 
 
@@ -692,6 +694,89 @@ def _short_side(i, sides, lengths, angles, l, spacing, flipped, multiples):
     return best
 
 
+def _place_corners_on_a_grid(sides, lengths, angles, l, spacing):
+    """Each sharp corner still closer than ``l`` after :func:`_separate_short_sides`, placed by :func:`._corner.place_corner`.
+
+    The two sides of the corner are placed again (:func:`_grid_sides`):
+    both free; the leaving side kept; the arriving one kept; or, for a side
+    shared with the next (previous) sharp corner, that corner placed first
+    with both its sides free and this one then with the shared side kept,
+    or the other way round.  The first trial after which every corner it
+    touched, and their neighbours, have a :func:`_corner_gap` of at least
+    ``l`` is taken, in place.  A corner that
+    :func:`._corner.corner_unplaceable` proves impossible even with every
+    pair checked ends the search: the ring cannot be separated, and
+    :func:`check_boundary_separation` refuses it, naming the first such
+    corner.  Every part stays in ``[l, 2l]``.  Deterministic.
+    """
+    n = len(lengths)
+    free, leaving, arriving = (False, False), (True, False), (False, True)
+    for c in range(n):
+        if at_least(_corner_gap(sides, lengths, angles, l, c), l):
+            continue
+        if _corner.corner_unplaceable(math.radians(angles[c]), (lengths[c], lengths[c - 1]), l, (math.inf, math.inf)):
+            return
+        after, before = (c + 1) % n, (c - 1) % n
+        trials = (
+            [(c, free)], [(c, leaving)], [(c, arriving)],
+            [(after, free), (c, leaving)], [(before, free), (c, arriving)],
+            [(c, free), (after, arriving)], [(c, free), (before, leaving)],
+        )
+        for steps in trials:
+            if not all(_stagger_count(angles[corner]) for corner, _ in steps):
+                continue
+            trial = list(sides)
+            for corner, keep in steps:
+                trial = trial and _grid_sides(trial, lengths, angles, l, spacing, corner, keep)
+            touched = {(corner + k) % n for corner, _ in steps for k in (-1, 0, 1)}
+            if trial and all(at_least(_corner_gap(trial, lengths, angles, l, k), l) for k in touched):
+                sides[:] = trial
+                break
+
+
+def _grid_sides(sides, lengths, angles, l, spacing, c, keep):
+    """``sides`` with the two sides of corner ``c`` (leaving, arriving) placed by :func:`._corner.place_corner`, or None.
+
+    The sides flagged in ``keep`` are passed as they are (:func:`_from_corner`).
+    """
+    n = len(lengths)
+    theta = math.radians(angles[c])
+    reach = _corner.corner_reach(theta, l)
+    ends = (c, (c - 1) % n)
+    near = [_from_corner(sides, lengths, c, i) for i in ends]
+    fixed = [_corner.cut(points, lengths[i], reach, l) if kept else None for i, points, kept in zip(ends, near, keep)]
+    found = _corner.place_corner(theta, tuple(lengths[i] for i in ends), l, fixed)
+    if found is None:
+        return None
+    trial = list(sides)
+    for i, points, now in zip(ends, found, near):
+        trial[i] = _grid_side(lengths[i], points, now, i == c, l, spacing)
+    return trial
+
+
+def _from_corner(sides, lengths, c, i):
+    """The points of side ``i`` (``c`` leaving corner ``c``, ``c - 1`` arriving) by distance from corner ``c``, far end included."""
+    num, den = sides[i]
+    positions = num[1:] / den * lengths[i]
+    return np.append(positions if i == c else (lengths[i] - positions)[::-1], lengths[i])
+
+
+def _grid_side(length, points, now, leaving, l, spacing):
+    """A side from :func:`._corner.place_corner`'s ``points`` (by distance from the corner), as ``(positions, length)``.
+
+    Where the grid cut the side short (past ``K l``), its points ``now`` at
+    least ``l`` beyond the cut are kept and :func:`_place` splits the middle
+    between, at least ``l`` long, into parts of ``[l, 2l]``; the kept points
+    are consecutive points of a side, so their parts are in ``[l, 2l]`` too.
+    """
+    if points[-1] == length:
+        inner = points[:-1]
+        return np.concatenate([[0.0], inner if leaving else (length - inner)[::-1]]), length
+    kept = now[(now >= points[-1] + l) & (now < length)]
+    far = (length - kept)[::-1]
+    return _place(length, points, far, l, spacing) if leaving else _place(length, far, points, l, spacing)
+
+
 def _corner_gap(sides, lengths, angles, l, c):
     """The smallest distance between Step 2 points of the two sides of corner ``c`` (``inf`` if it is not sharp).
 
@@ -748,9 +833,10 @@ def check_boundary_separation(poly, boundary, l):
     ``points`` the two boundary points in the caller's coordinates.  The
     message says what is proven (docs/proofs.md, "Sharp corners"): that no
     mesh with every edge in ``[l, 2l]`` exists (:func:`_unmeshable_corner`),
-    that no Step 2 can meet Lemma 3 (1) at a corner
-    (:func:`_unseparable_corner`), or neither (a corner or neck this method
-    does not handle).
+    that no Step 2 can meet Lemma 3 (1) at a corner (its first points,
+    :func:`_unseparable_corner`; or all its points, decided on a grid,
+    :func:`_unplaceable_corner` at the corners of the offending pairs), or
+    neither (a corner or neck this method does not handle).
     """
     pts = boundary.points
     lp = poly.local_length(l)
@@ -766,7 +852,12 @@ def check_boundary_separation(poly, boundary, l):
     pairs = pairs[visible]
     gap = np.linalg.norm(pts[pairs[:, 0]] - pts[pairs[:, 1]], axis=1)
     i, j = pairs[np.lexsort((pairs[:, 1], pairs[:, 0], gap))[0]]
-    raise _unmeshable_corner(poly, l) or _unseparable_corner(poly, l) or _separation_error(poly, boundary, l, int(i), int(j))
+    raise (
+        _unmeshable_corner(poly, l)
+        or _unseparable_corner(poly, l)
+        or _unplaceable_corner(poly, l, _corners_of(poly, boundary, pairs))
+        or _separation_error(poly, boundary, l, int(i), int(j))
+    )
 
 
 def _corners(poly):
@@ -847,10 +938,7 @@ def _unseparable_corner(poly, l):
     for ring, i, theta, leaving, arriving in _corners(poly):
         ends = [(a, b) for a in _first_node(leaving, lp) for b in _first_node(arriving, lp)]
         if theta < math.pi and max(_chord(a, b, theta) for a, b in ends) < (1.0 - REL_TOL) * lp:
-            v, n = ring.local[i], len(ring.local)
-            reach = [v + (ring.local[j % n] - v) * r / length for j, r, length in
-                     ((i + 1, ends[-1][0], leaving), (i - 1, ends[-1][1], arriving))]
-            if not grown.covers(shapely.Polygon([v, *reach])):
+            if not _sees_within(grown, ring, i, *ends[-1]):
                 continue
             need = _num((stagger_reach(math.degrees(theta), lp) + lp) / poly.frame.scale)
             return InvalidPolygonError(
@@ -861,6 +949,78 @@ def _unseparable_corner(poly, l):
                 f"mesh exists; docs/proofs.md, 'Sharp corners'); sides of at least {need} are handled; "
                 "use a smaller l, longer sides or a wider corner"
             )
+    return None
+
+
+def _sees_within(grown, ring, i, leaving, arriving):
+    """Whether the triangle of corner ``i`` and the points ``leaving`` and ``arriving`` along its sides lies in ``grown``.
+
+    Then every two points of the two sides within those distances see each
+    other (the segment joining them lies in the triangle).
+    """
+    v, n = ring.local[i], len(ring.local)
+    lengths = ring.local_edge_lengths
+    far = [v + (ring.local[j % n] - v) * r / lengths[k] for j, r, k in ((i + 1, leaving, i), (i - 1, arriving, i - 1))]
+    return grown.covers(shapely.Polygon([v, *far]))
+
+
+def _visible_radii(grown, ring, i, sides):
+    """``sides`` halved until :func:`_sees_within` holds for them (at most 64 times; then nothing is seen: ``(0, 0)``)."""
+    for k in range(64):
+        radii = tuple(x / 2.0**k for x in sides)
+        if _sees_within(grown, ring, i, *radii):
+            return radii
+    return 0.0, 0.0
+
+
+def _corners_of(poly, boundary, pairs):
+    """The corners ``(ring, i)`` at which a pair of ``pairs`` (boundary point indices) lies on the two sides.
+
+    A vertex of P lies on the edge it starts and on the one it ends.
+    """
+    found = set()
+    for i, j in pairs:
+        r = int(boundary.ring[i])
+        if r != int(boundary.ring[j]):
+            continue
+        n = len(poly.rings[r].local)
+        edges = [{int(boundary.edge[k]), int(boundary.edge[k] - boundary.is_vertex[k]) % n} for k in (i, j)]
+        found |= {(r, b) for a in edges[0] for b in edges[1] if (a + 1) % n == b}
+        found |= {(r, a) for a in edges[0] for b in edges[1] if (b + 1) % n == a}
+    return sorted(found)
+
+
+def _unplaceable_corner(poly, l, corners):
+    """The error for the first of ``corners`` (``(ring, i)``) that no Step 2 can separate (Lemma 3 (1)), or None.
+
+    Only corners sharper than :data:`SHARP_CORNER` are decided
+    (:func:`._corner.corner_unplaceable`): distances are checked within the
+    largest of the sides' lengths halved until the triangle they span with
+    the corner lies in P (grown by ``REL_TOL l``), where every two points of
+    the two sides see each other (:func:`_sees_within`).  When no split of
+    the two sides into parts of ``[l, 2l]`` keeps them ``l`` apart there, no
+    boundary resampling meets Lemma 3 (1), which this method and the
+    paper's need; it is not a proof that no mesh exists (docs/proofs.md,
+    "Sharp corners").
+    """
+    lp = poly.local_length(l)
+    grown = poly.region.buffer(REL_TOL * lp)
+    for r, i in corners:
+        ring = poly.rings[r]
+        angle, lengths = ring.inner_angle(i), ring.local_edge_lengths
+        sides = (lengths[i], lengths[i - 1])
+        if not angle < SHARP_CORNER:
+            continue
+        if not _corner.corner_unplaceable(math.radians(angle), sides, lp, _visible_radii(grown, ring, i, sides)):
+            continue
+        need = _num((stagger_reach(angle, lp) + lp) / poly.frame.scale)
+        return InvalidPolygonError(
+            f"the corner at {ring.vertex_name(i)} ({angle:.6g} degrees) cannot meet Lemma 3 (1) for l = {_num(l)}: "
+            f"no split of its sides of {_num(sides[0] / poly.frame.scale)} and {_num(sides[1] / poly.frame.scale)} "
+            "into parts of [l, 2l] keeps every two points of different sides l apart (decided on a grid of cells), so "
+            "no Step 2 separates them (a limit of the paper's method, not a proof that no mesh exists; docs/proofs.md, "
+            f"'Sharp corners'); sides of at least {need} are handled; use a smaller l, longer sides or a wider corner"
+        )
     return None
 
 
@@ -880,8 +1040,9 @@ def _separation_error(poly, boundary, l, i, j):
         message = (
             f"the corner at {ri.vertex_name(corner)} ({angle:.6g} degrees) is not handled for l = {_num(l)}: "
             f"{where}, closer than l (Lemma 3 (1)); the staggered Step 2 is proven at {angle:.6g} degrees for sides "
-            f"of at least {need}, longer if the next corner is sharp too, and found no placement for these "
-            "(a limit of this method, not a proof that no mesh exists; docs/proofs.md, 'Sharp corners'); "
+            f"of at least {need}, longer if the next corner is sharp too; for these the searches found no placement "
+            "and none is proven impossible, even for each corner alone (a limit of this method, not a proof that no "
+            "mesh exists; docs/proofs.md, 'Sharp corners'); "
             "use a smaller l, longer sides or a wider corner"
         )
     else:
