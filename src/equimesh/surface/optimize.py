@@ -48,7 +48,7 @@ import scipy.optimize
 import scipy.sparse
 
 from ._jacobian import AreaBarrier, ElementJacobian, signed_areas
-from ._solver import least_squares
+from ._solver import NormalEquations, least_squares
 from ..errors import EquimeshError, InvalidSurfaceError
 from ..mesh import G1
 from .chart import domain_of
@@ -468,6 +468,7 @@ def optimize_uv(
     tri = None if triangles is None else np.asarray(triangles, dtype=np.int64).reshape(-1, 3)
     box = problem.bounds
     x, nfev, njev, damping = x0, 0, 0, LM_INITIAL_DAMPING
+    normal_equations = NormalEquations()  # one pattern for every stage: analysed once
     while True:
         x = x if obj.start is None else obj.start
         guard = _Guard(problem, tri, obj.feasible, x)
@@ -476,7 +477,7 @@ def optimize_uv(
         while True:
             solution = least_squares(
                 solve.residuals, solve.jacobian, x, *box, accept=guard, gtol=gtol, xtol=xtol, ftol=tol,
-                max_iterations=obj.max_iterations, damping=damping,
+                max_iterations=obj.max_iterations, damping=damping, normal_equations=normal_equations,
             )
             x, nfev, njev = solution.x, nfev + solution.evaluations, njev + solution.iterations + 1
             damping = solution.damping  # warm start: the next solve begins where this one's damping ended
