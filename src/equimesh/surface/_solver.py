@@ -249,6 +249,11 @@ class _Pardiso:
         import pypardiso
 
         self._solver = pypardiso.PyPardisoSolver(mtype=2)
+        # Our own parameters (iparm 1 = 1): METIS order (2 = 2), no iterative refinement (8 = 0: it
+        # took two of three triangular solves; the Cholesky solve alone is backward stable),
+        # the default pivot perturbation 1e-8 (10 = 8).
+        for i, value in ((1, 1), (2, 2), (8, 0), (10, 8)):
+            self._solver.set_iparm(i, value)
         self._pattern = scipy.sparse.csr_matrix((np.ones(len(rows)), (rows, cols)), shape=(n, n))
         self._pattern.sort_indices()
         self._call(11, np.zeros(n))
