@@ -13,7 +13,7 @@ from equimesh.surface._solver import FACTORISATIONS, NormalEquations, least_squa
 
 def _available(name):
     """``name`` as a pytest parameter, skipped where its optional dependency is not installed."""
-    missing = name == "pardiso" and not _solver._pardiso_available()
+    missing = name == "pardiso" and _solver.pypardiso is None
     return pytest.param(name, marks=pytest.mark.skipif(missing, reason="pypardiso (extra 'fast') not installed"))
 
 
@@ -99,6 +99,31 @@ def test_a_rejected_step_is_halved_with_the_same_factor(monkeypatch):
     accepted = []
     solution = run(lambda x: accepted.append(float(x[0])) or x[0] >= -0.05)
     assert len(factorised) == solution.iterations and accepted[0] < -0.05 <= accepted[-1]
+
+
+@pytest.mark.parametrize("failure", ["raises", "not finite"])
+def test_a_failed_factorisation_is_damped_more(monkeypatch, failure):
+    """A factorisation that fails in rounding (SuperLU "singular", PARDISO's zero pivot) or gives a
+    non-finite step is a rejected step: ``lambda`` rises and the solve goes on to the same minimum."""
+    calls = []
+
+    class FailingOnce(FACTORISATIONS["superlu"]):
+        def factorise(self, values):
+            calls.append(values)
+            if len(calls) > 1:
+                return super().factorise(values)
+            if failure == "raises":
+                raise _solver._FactorisationError("zero pivot")
+            return lambda b: np.full_like(b, np.nan)
+
+    monkeypatch.setitem(FACTORISATIONS, "failing", FailingOnce)
+    a, b = scipy.sparse.csr_matrix(np.array([[2.0, 0.0], [1.0, 1.0], [0.0, 3.0]])), np.array([1.0, 2.0, 3.0])
+    solution = least_squares(
+        lambda x: a @ x - b, lambda x: a, np.zeros(2), np.full(2, -10.0), np.full(2, 10.0), ftol=1e-15,
+        normal_equations=NormalEquations("failing"),
+    )
+    assert solution.converged and len(calls) > solution.iterations, solution.message
+    np.testing.assert_allclose(solution.x, np.linalg.lstsq(a.toarray(), b, rcond=None)[0], atol=1e-8)
 
 
 def test_rejected_steps_and_bounds_on_rosenbrock():

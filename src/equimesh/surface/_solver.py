@@ -51,6 +51,11 @@ import scipy.sparse.linalg
 
 from ..tolerance import LM_BACKTRACKS, LM_DIAGONAL_FLOOR, LM_INITIAL_DAMPING
 
+try:
+    import pypardiso
+except ImportError:  # the extra 'fast' is not installed, or its MKL library is not found
+    pypardiso = None
+
 
 @dataclass(frozen=True)
 class Solution:
@@ -95,6 +100,9 @@ def least_squares(residuals, jacobian, x0, lower, upper, *, accept=None, gtol=1e
         retried = False
         while True:
             direction = system.solve(lam, rhs)
+            if direction is None:  # not numerically positive definite: damp more
+                lam, nu, retried = lam * nu, 2.0 * nu, True
+                continue
             for halving in range(LM_BACKTRACKS + 1):
                 x_new = np.clip(x + 0.5**halving * direction, lower, upper)
                 s = x_new - x
@@ -169,10 +177,19 @@ class NormalEquations:
         self._values = values
 
     def solve(self, lam, rhs):
-        """The solution of ``(J^T J + lam D) s = rhs`` (a new factorisation per call)."""
+        """The solution of ``(J^T J + lam D) s = rhs`` (a new factorisation per call), or None if it fails.
+
+        The matrix is positive definite in exact arithmetic; a factorisation
+        that meets a zero or negative pivot, or a solution that is not finite,
+        says that ``lam`` is too small for the rounding, and the caller damps more.
+        """
         values = self._values.copy()
         values[self._diagonal] += lam * self._damping
-        return self._factor.factorise(values)(rhs)
+        try:
+            step = self._factor.factorise(values)(rhs)
+        except _FactorisationError:
+            return None
+        return step if np.all(np.isfinite(step)) else None
 
     def _analyse(self, jac):
         """Index maps from the products of each row's entries to the upper-triangular pattern, and its symbolic factorisation.
@@ -232,7 +249,10 @@ class _SuperLU:
     def factorise(self, values):
         """A function ``b -> A^-1 b`` for the matrix of the pattern's upper-triangular ``values``."""
         matrix = scipy.sparse.csc_matrix((values[self._source], self._indices, self._indptr), shape=(self._n, self._n))
-        lu, order = _factorise(matrix, "NATURAL"), self._order
+        try:
+            lu, order = _factorise(matrix, "NATURAL"), self._order
+        except RuntimeError as error:  # SuperLU: "Factor is exactly singular"
+            raise _FactorisationError(str(error)) from None
 
         def solve(b):
             out = np.empty_like(b)
@@ -246,8 +266,6 @@ class _Pardiso:
     """MKL PARDISO (``pypardiso``): a supernodal Cholesky of the upper triangle, its symbolic analysis (METIS order) done once, one thread."""
 
     def __init__(self, rows, cols, n):
-        import pypardiso
-
         self._solver = pypardiso.PyPardisoSolver(mtype=2)
         # Our own parameters (iparm 1 = 1): METIS order (2 = 2), no iterative refinement (8 = 0: it
         # took two of three triangular solves; the Cholesky solve alone is backward stable),
@@ -264,6 +282,8 @@ class _Pardiso:
         threads = self._solver.libmkl.MKL_Set_Num_Threads_Local(1)
         try:
             return self._solver._call_pardiso(self._pattern, b)
+        except pypardiso.pardiso_wrapper.PyPardisoError as error:  # e.g. -4, a zero pivot
+            raise _FactorisationError(str(error)) from None
         finally:
             self._solver.libmkl.MKL_Set_Num_Threads_Local(threads)
 
@@ -274,19 +294,15 @@ class _Pardiso:
         return lambda b: self._call(33, np.asarray(b, dtype=float))
 
 
-def _pardiso_available():
-    try:
-        import pypardiso  # noqa: F401
-    except ImportError:
-        return False
-    return True
+class _FactorisationError(ArithmeticError):
+    """A factorisation of the damped normal matrix failed (a zero or negative pivot in rounding)."""
 
 
 #: Factorisations of the damped normal matrix by name, each ``f(rows, cols, n)``
 #: (the upper-triangular pattern, sorted by row then column) with ``factorise(values) -> solver``.
 FACTORISATIONS = {"superlu": _SuperLU, "pardiso": _Pardiso}
 #: PARDISO when ``pypardiso`` (the optional extra ``fast``) is installed, else SuperLU.
-DEFAULT_FACTORISATION = "pardiso" if _pardiso_available() else "superlu"
+DEFAULT_FACTORISATION = "superlu" if pypardiso is None else "pardiso"
 
 
 def _factorise(matrix, ordering):
