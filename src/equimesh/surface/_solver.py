@@ -23,7 +23,8 @@ on surface meshes) instead of an inner iterative solve:
 * a rejected step is first shortened along the same direction, halving it
   up to :data:`~equimesh.tolerance.LM_BACKTRACKS` times with the same factor
   (a line search, Nocedal and Wright 10.3), and only then retried with a
-  larger ``lambda`` (a new factorisation);
+  larger ``lambda`` (a new factorisation), and so is a factorisation that
+  fails in rounding (a zero pivot) or gives a step that is not finite;
 * bounds by projection: a variable on a bound whose gradient points outwards is
   held there for the step (it leaves ``F``), and the step is clipped to the box;
 * acceptance: the gain ratio ``rho = actual / predicted reduction`` of the
