@@ -48,13 +48,22 @@ def test_normal_equations_solve_the_damped_system(factorisation, seed, n, m, lam
 
     ``D`` is ``diag(J^T J)`` floored at ``LM_DIAGONAL_FLOOR`` of its largest
     entry; the rows of ``J`` have different numbers of entries and some are
-    all zero (an inactive barrier row), as in the optimisation.
+    all zero (an inactive barrier row), as in the optimisation; some have a
+    column twice (summed).
     """
     rng = np.random.default_rng(seed)
     dense = rng.standard_normal((m, n)) * (rng.random((m, n)) < 0.4)
     dense[rng.random(m) < 0.2] = 0.0
     jac = scipy.sparse.csr_matrix(dense)
     jac.data[rng.random(jac.nnz) < 0.1] = 0.0  # stored zeros keep the structure
+    if seed % 2:  # some entries given as two halves (duplicates, summed)
+        coo, split = jac.tocoo(), rng.random(jac.nnz) < 0.3
+        rows = np.concatenate([coo.row, coo.row[split]])
+        by_row = np.argsort(rows, kind="stable")
+        data = np.concatenate([np.where(split, 0.5, 1.0) * coo.data, 0.5 * coo.data[split]])[by_row]
+        cols = np.concatenate([coo.col, coo.col[split]])[by_row]
+        indptr = np.concatenate([[0], np.cumsum(np.bincount(rows, minlength=m))])
+        jac = scipy.sparse.csr_matrix((data, cols, indptr), shape=(m, n))
     held = rng.random(n) < 0.2
     rhs = rng.standard_normal(n)
     system = NormalEquations(factorisation)

@@ -157,6 +157,9 @@ class NormalEquations:
     def assemble(self, jac, held):
         """The normal matrix of the CSR Jacobian ``jac`` with the variables ``held`` (bool) kept in place."""
         jac = jac.tocsr()
+        if not jac.has_canonical_format:  # a column twice in a row would miss its cross products
+            jac = jac.copy()
+            jac.sum_duplicates()
         if self._structure is None or not (
             np.array_equal(jac.indptr, self._structure[0]) and np.array_equal(jac.indices, self._structure[1])
         ):
