@@ -3,7 +3,8 @@
 Runs :func:`equimesh.mesh_surface` on ``experiments/surfaces/reference_dome.json``
 (15 x 15 grid, default lattice placement, no size limit) and prints, for each
 objective, the members, the solver's Jacobian evaluations (one per iteration) and final cost, the share of
-members within 0.5 % of l and the wall time of each stage.  It writes no file:
+members within 0.5 % of l, the factorisation used (PARDISO where the extra ``fast`` is
+installed, else SuperLU) and the wall time of each stage.  It writes no file:
 it is the command behind the optimisation timings of docs/decisions.md (items
 40, 41 and 56) and docs/performance.md.  To compare two checkouts in the same
 run, start it once per checkout, side by side::
@@ -24,6 +25,7 @@ from pathlib import Path
 import numpy as np
 
 import equimesh
+from equimesh.surface import _solver
 from equimesh.surface.optimize import OBJECTIVES
 
 DOME = Path(__file__).resolve().parent / "surfaces" / "reference_dome.json"
@@ -45,6 +47,7 @@ def measure(length, objective):
         "jacobians": result.njev,
         "cost": result.cost_after,
         "within_band": float(np.mean(np.abs(ratio - 1.0) <= BAND)),
+        "factorisation": getattr(_solver, "DEFAULT_FACTORISATION", "superlu"),  # a checkout from before the choice
         "seconds": {stage: round(s, 3) for stage, s in mesh.stages.seconds.items()},
     }
 

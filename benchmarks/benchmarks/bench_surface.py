@@ -135,6 +135,12 @@ class Optimisation:
 
     track_share_within_half_percent.unit = "share"
 
+    def track_jacobian_evaluations(self, cache, objective, l):
+        """Jacobian evaluations of the solver, one per iteration (each about one factorisation): its work, whatever the load."""
+        return self._run(cache, objective, l)[0].njev
+
+    track_jacobian_evaluations.unit = "evaluations"
+
 
 class Table1:
     """``experiments/table1.py`` and ``experiments/figures.py`` end to end, and the Table 1 figures.

@@ -72,6 +72,10 @@ MAX_NORMAL_TURN = 90.0
 #: system.  Neither changes a converged result; tests: tests/test_optimize.py.
 LM_INITIAL_DAMPING = 1e-3
 LM_DIAGONAL_FLOOR = 1e-12
+#: A rejected Levenberg-Marquardt step is halved along its direction, with the
+#: same factorisation, up to ``LM_BACKTRACKS`` times before the damping is raised
+#: (docs/decisions.md, "Rejected steps"; test: tests/test_solver.py).
+LM_BACKTRACKS = 4
 
 #: Beyond the paper (docs/decisions.md, "The bounded objective"): the
 #: ``"bounded"`` optimisation (:func:`equimesh.surface.optimize.bounded_objective`)

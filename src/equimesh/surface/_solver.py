@@ -5,30 +5,43 @@ considering (u_i, v_i) of inner nodes as variables") is a nonlinear least-square
 problem ``min |r(x)|^2 / 2`` whose Jacobian has a few entries per row (one
 residual per member or triangle).  :func:`least_squares` solves it by
 Levenberg-Marquardt with a sparse direct factorisation of the damped normal
-equations, so that one iteration costs about as much as one sparse LU of a
-mesh-Laplacian-like matrix (near-linear in the node count on surface meshes)
-instead of an inner iterative solve:
+equations, so that one iteration costs about as much as one sparse
+factorisation of a mesh-Laplacian-like matrix (near-linear in the node count
+on surface meshes) instead of an inner iterative solve:
 
 * step: ``(J_F^T J_F + lambda D_F) s_F = -g_F`` over the free variables ``F``,
   ``D = diag(J^T J)`` (Marquardt's scaling, floored at :data:`~equimesh.tolerance.LM_DIAGONAL_FLOOR`
-  of its largest entry so that a variable no residual sees stays regular),
-  factorised by SuperLU in symmetric mode, in a minimum-degree order of the
-  normal matrix's structure computed once (:class:`_Ordering`: the
-  structure is the mesh's at every iteration);
-* a rejected step is retried with a larger ``lambda`` (a new factorisation);
+  of its largest entry so that a variable no residual sees stays regular).
+  The normal matrix keeps one sparsity pattern for the whole solve
+  (:class:`NormalEquations`: the Jacobian's structure is the mesh's at every
+  iteration, and a held variable keeps its row and column, with an identity
+  diagonal and a zero right-hand side), so the products ``J^T J`` are summed
+  into it through an index map computed once, and the factorisation's
+  symbolic analysis (the fill-reducing order) is done once
+  (:data:`FACTORISATIONS`: MKL PARDISO's supernodal Cholesky when the optional
+  ``pypardiso`` is installed, else SuperLU in symmetric mode);
+* a rejected step is first shortened along the same direction, halving it
+  up to :data:`~equimesh.tolerance.LM_BACKTRACKS` times with the same factor
+  (a line search, Nocedal and Wright 10.3), and only then retried with a
+  larger ``lambda`` (a new factorisation), and so is a factorisation that
+  fails in rounding (a zero pivot) or gives a step that is not finite;
 * bounds by projection: a variable on a bound whose gradient points outwards is
   held there for the step (it leaves ``F``), and the step is clipped to the box;
 * acceptance: the gain ratio ``rho = actual / predicted reduction`` of the
   projected step; ``rho > 0`` and ``accept(x_new)`` (a caller's predicate, e.g.
   "no triangle folds over", "every member stays in [l, 2l]") are required;
-  ``lambda`` follows Nielsen's rule;
+  ``lambda`` follows Nielsen's rule after a full step and stays after a
+  shortened one (lowering it there made more steps fail, raising it made
+  more iterations: docs/decisions.md);
 * convergence, not an evaluation cap: the infinity norm of the projected
   gradient below ``gtol``, or a step below ``xtol (xtol + |x|)``, or actual
   and predicted relative reductions below ``ftol``.  ``max_iterations`` is
   only a guard against a bug and is reported when it is hit.
 
-Deterministic: no randomness, and SuperLU runs single-threaded with a fixed
-ordering, so the same input gives the same bits.
+Deterministic: no randomness, a fixed ordering, and single-threaded
+factorisations, so the same input gives the same bits on one installation
+(the two factorisations round differently, so a result's last bits depend on
+whether ``pypardiso`` is installed).
 """
 
 from dataclasses import dataclass
@@ -37,9 +50,12 @@ import numpy as np
 import scipy.sparse
 import scipy.sparse.linalg
 
-from ..tolerance import (
-    LM_DIAGONAL_FLOOR, LM_INITIAL_DAMPING,
-)
+from ..tolerance import LM_BACKTRACKS, LM_DIAGONAL_FLOOR, LM_INITIAL_DAMPING
+
+try:
+    import pypardiso
+except ImportError:  # the extra 'fast' is not installed, or its MKL library is not found
+    pypardiso = None
 
 
 @dataclass(frozen=True)
@@ -56,19 +72,23 @@ class Solution:
 
 
 def least_squares(residuals, jacobian, x0, lower, upper, *, accept=None, gtol=1e-10, xtol=1e-10, ftol=1e-12,
-                  max_iterations=500, damping=LM_INITIAL_DAMPING):
+                  max_iterations=500, damping=LM_INITIAL_DAMPING, normal_equations=None):
     """Minimise ``|residuals(x)|^2 / 2`` over the box ``[lower, upper]`` (see the module docstring).
 
     ``x0`` must lie in the box and satisfy ``accept`` (if given); every
     iterate, and so the result, then does too.  ``damping`` is the initial
     ``lambda``; a continuation passes the previous solve's final
     :attr:`Solution.damping` so that it does not pay again for rejected steps.
+    ``normal_equations`` (a :class:`NormalEquations`, a new one by default)
+    keeps the index maps and the symbolic factorisation: a continuation
+    passes the same one to every solve so that the analysis of the one
+    pattern is done once.
     """
     x = np.clip(np.asarray(x0, dtype=float), lower, upper)
     r = residuals(x)
     cost = 0.5 * float(r @ r)
     evaluations, nu, lam = 1, 2.0, damping
-    ordering = _Ordering()
+    system = NormalEquations() if normal_equations is None else normal_equations
     for iteration in range(max_iterations):
         jac = jacobian(x)
         g = jac.T @ r
@@ -76,30 +96,32 @@ def least_squares(residuals, jacobian, x0, lower, upper, *, accept=None, gtol=1e
         if np.all(np.abs(projected) <= gtol):
             return Solution(x, cost, iteration, evaluations, True, "projected gradient below gtol", lam)
         held = ((x <= lower) & (g > 0)) | ((x >= upper) & (g < 0))
-        free = np.flatnonzero(~held)
-        order = ordering.of(jac, free)
-        permuted = jac[:, free[order]]
-        normal = (permuted.T @ permuted).tocsc()
-        diag = normal.diagonal()
-        diag = np.maximum(diag, LM_DIAGONAL_FLOOR * max(float(diag.max()), 1.0))
-        rhs = -g[free[order]]
+        system.assemble(jac, held)
+        rhs = np.where(held, 0.0, -g)
         retried = False
         while True:
-            step = np.zeros_like(x)
-            step[free[order]] = _factorise((normal + scipy.sparse.diags(lam * diag)).tocsc(), "NATURAL").solve(rhs)
-            x_new = np.clip(x + step, lower, upper)
-            s = x_new - x
-            js = jac @ s
-            predicted = -(float(g @ s) + 0.5 * float(js @ js))
-            r_new = residuals(x_new)
-            evaluations += 1
-            cost_new = 0.5 * float(r_new @ r_new)
-            actual = cost - cost_new
-            small_step = np.linalg.norm(s) <= xtol * (xtol + np.linalg.norm(x))
-            if predicted > 0 and actual > 0 and (accept is None or accept(x_new)):
-                rho = actual / predicted
-                lam *= max(1.0 / 3.0, 1.0 - (2.0 * rho - 1.0) ** 3)
-                nu = 2.0
+            direction = system.solve(lam, rhs)
+            if direction is None:  # not numerically positive definite: damp more
+                lam, nu, retried = lam * nu, 2.0 * nu, True
+                continue
+            for halving in range(LM_BACKTRACKS + 1):
+                x_new = np.clip(x + 0.5**halving * direction, lower, upper)
+                s = x_new - x
+                js = jac @ s
+                predicted = -(float(g @ s) + 0.5 * float(js @ js))
+                r_new = residuals(x_new)
+                evaluations += 1
+                cost_new = 0.5 * float(r_new @ r_new)
+                actual = cost - cost_new
+                small_step = np.linalg.norm(s) <= xtol * (xtol + np.linalg.norm(x))
+                taken = predicted > 0 and actual > 0 and (accept is None or accept(x_new))
+                if taken or small_step or predicted <= 0:
+                    break
+                retried = True
+            if taken:
+                if halving == 0:  # Nielsen's rule on a full step; a shortened one keeps lambda
+                    lam *= max(1.0 / 3.0, 1.0 - (2.0 * actual / predicted - 1.0) ** 3)
+                    nu = 2.0
                 x, r, old, cost = x_new, r_new, cost, cost_new
                 if small_step and not retried:
                     return Solution(x, cost, iteration + 1, evaluations, True, "step below xtol", lam)
@@ -114,30 +136,177 @@ def least_squares(residuals, jacobian, x0, lower, upper, *, accept=None, gtol=1e
     return Solution(x, cost, max_iterations, evaluations, False, f"stopped after {max_iterations} iterations", lam)
 
 
-class _Ordering:
-    """A fill-reducing order of the free variables, computed once and reused.
+class NormalEquations:
+    """The damped normal equations ``(J^T J + lambda D) s = b`` on one sparsity pattern for the whole solve.
 
-    The normal matrix ``J_F^T J_F`` has the sparsity of the mesh (two
-    variables per node, coupled through the residuals' elements), the same
-    at every iteration up to entries that happen to vanish (an inactive
-    barrier row), so one minimum-degree ordering of its structure (SuperLU's
-    ``MMD_AT_PLUS_A``) serves every iteration; it is recomputed only when
-    the set of free variables changes (a bound becomes held or released).
-    Measured on the reference dome at 101,654 members: the ordering was
-    about a third of each factorisation's time.
+    The Jacobian's structure is the mesh's at every iteration (residuals of
+    members and triangles, inactive barrier rows stored as zeros), so the
+    upper triangle of ``J^T J`` has one pattern: :meth:`assemble` sums the
+    products ``J_ri J_rj`` of each row into it through an index map computed
+    when the structure is first (or newly) seen, and the factorisation
+    analyses the pattern (orders it) only then.  A held variable keeps its
+    row and column, zeroed, with a unit diagonal (its step is 0), so that
+    the pattern does not change with the set of free variables either.
     """
 
-    def __init__(self):
-        self._free, self._order = None, None
+    def __init__(self, factorisation=None):
+        """``factorisation``: a key of :data:`FACTORISATIONS`, :data:`DEFAULT_FACTORISATION` by default."""
+        self._factorisation = FACTORISATIONS[factorisation or DEFAULT_FACTORISATION]
+        self._structure = None
 
-    def of(self, jac, free):
-        """Positions of ``free`` in elimination order, for the Jacobian ``jac`` (structure only)."""
-        if self._free is None or not np.array_equal(free, self._free):
-            structure = abs(jac[:, free]).tocsc()
-            structure.data[:] = 1.0
-            pattern = (structure.T @ structure + scipy.sparse.identity(len(free))).tocsc()
-            self._free, self._order = free, np.argsort(_factorise(pattern, "MMD_AT_PLUS_A").perm_c)
-        return self._order
+    def assemble(self, jac, held):
+        """The normal matrix of the CSR Jacobian ``jac`` with the variables ``held`` (bool) kept in place."""
+        jac = jac.tocsr()
+        if not jac.has_canonical_format:  # a column twice in a row would miss its cross products
+            jac = jac.copy()
+            jac.sum_duplicates()
+        if self._structure is None or not (
+            np.array_equal(jac.indptr, self._structure[0]) and np.array_equal(jac.indices, self._structure[1])
+        ):
+            self._analyse(jac)
+        data = jac.data
+        slots, products = [np.zeros(0, dtype=np.int64)], [np.zeros(0)]
+        for entries, left, right, slot in self._groups:
+            active = np.flatnonzero(np.any(data[entries] != 0.0, axis=1))  # an inactive barrier row adds nothing
+            if len(active) < len(entries):
+                left, right, slot = left[active], right[active], slot[active]
+            slots.append(slot.ravel())
+            products.append((data[left] * data[right]).ravel())
+        values = np.bincount(np.concatenate(slots), np.concatenate(products), len(self._rows)).astype(float, copy=False)
+        diagonal = values[self._diagonal]
+        self._damping = np.maximum(diagonal, LM_DIAGONAL_FLOOR * max(float(diagonal.max(initial=0.0)), 1.0))
+        values[held[self._rows] | held[self._cols]] = 0.0
+        self._damping[held] = 0.0
+        values[self._diagonal[held]] = 1.0
+        self._values = values
+
+    def solve(self, lam, rhs):
+        """The solution of ``(J^T J + lam D) s = rhs`` (a new factorisation per call), or None if it fails.
+
+        The matrix is positive definite in exact arithmetic; a factorisation
+        that meets a zero or negative pivot, or a solution that is not finite,
+        says that ``lam`` is too small for the rounding, and the caller damps more.
+        """
+        values = self._values.copy()
+        values[self._diagonal] += lam * self._damping
+        try:
+            step = self._factor.factorise(values)(rhs)
+        except _FactorisationError:
+            return None
+        return step if np.all(np.isfinite(step)) else None
+
+    def _analyse(self, jac):
+        """Index maps from the products of each row's entries to the upper-triangular pattern, and its symbolic factorisation.
+
+        Rows are grouped by their number ``k`` of entries; a group keeps, per
+        row, the positions of its entries in ``jac.data`` and of the
+        ``k (k + 1) / 2`` products ``J_ri J_rj`` (``i <= j``), and the slot of
+        the pattern each product is summed into.
+        """
+        n = jac.shape[1]
+        counts = np.diff(jac.indptr)
+        groups, keys = [], [np.arange(n, dtype=np.int64) * (n + 1)]  # the whole diagonal, even where no row reaches
+        for k in np.unique(counts[counts > 0]):
+            entries = jac.indptr[:-1][counts == k][:, None] + np.arange(k)
+            i, j = np.triu_indices(k)
+            left, right = entries[:, i], entries[:, j]
+            a, b = jac.indices[left].astype(np.int64), jac.indices[right].astype(np.int64)
+            keys.append((np.minimum(a, b) * n + np.maximum(a, b)).ravel())
+            groups.append((entries, left, right))
+        unique, slots = np.unique(np.concatenate(keys), return_inverse=True)
+        offsets = np.cumsum([n] + [left.size for _, left, _ in groups])
+        self._groups = [
+            (entries, left, right, slots[offsets[g] - left.size : offsets[g]].reshape(left.shape))
+            for g, (entries, left, right) in enumerate(groups, start=1)
+        ]
+        self._rows, self._cols = unique // n, unique % n
+        self._diagonal = np.flatnonzero(self._rows == self._cols)
+        self._structure = (jac.indptr.copy(), jac.indices.copy())
+        self._factor = self._factorisation(self._rows, self._cols, n)
+
+
+class _SuperLU:
+    """SuperLU in symmetric mode on the full symmetric matrix, in a minimum-degree order computed once.
+
+    SuperLU's ``MMD_AT_PLUS_A`` order of the pattern is taken at
+    construction and the permuted matrix factorised in its natural order at
+    every call (measured on the reference dome at 101,654 members: the
+    ordering was about a third of each factorisation's time).
+    """
+
+    def __init__(self, rows, cols, n):
+        off = rows != cols
+        entry_rows, entry_cols = np.concatenate([rows, cols[off]]), np.concatenate([cols, rows[off]])
+        pattern = scipy.sparse.csc_matrix((np.ones(len(entry_rows)), (entry_rows, entry_cols)), shape=(n, n))
+        self._order = np.argsort(_factorise(pattern + n * scipy.sparse.identity(n, format="csc"), "MMD_AT_PLUS_A").perm_c)
+        position = np.empty(n, dtype=np.int64)
+        position[self._order] = np.arange(n)
+        # Which upper entry each entry of the permuted full CSC matrix takes its value from.
+        source = np.concatenate([np.arange(len(rows)), np.flatnonzero(off)])
+        permuted = scipy.sparse.coo_matrix(
+            (np.arange(1, len(source) + 1), (position[entry_rows], position[entry_cols])), shape=(n, n)
+        ).tocsc()
+        permuted.sort_indices()
+        self._source = source[permuted.data - 1]
+        self._indices, self._indptr, self._n = permuted.indices, permuted.indptr, n
+
+    def factorise(self, values):
+        """A function ``b -> A^-1 b`` for the matrix of the pattern's upper-triangular ``values``."""
+        matrix = scipy.sparse.csc_matrix((values[self._source], self._indices, self._indptr), shape=(self._n, self._n))
+        try:
+            lu, order = _factorise(matrix, "NATURAL"), self._order
+        except RuntimeError as error:  # SuperLU: "Factor is exactly singular"
+            raise _FactorisationError(str(error)) from None
+
+        def solve(b):
+            out = np.empty_like(b)
+            out[order] = lu.solve(b[order])
+            return out
+
+        return solve
+
+
+class _Pardiso:
+    """MKL PARDISO (``pypardiso``): a supernodal Cholesky of the upper triangle, its symbolic analysis (METIS order) done once, one thread."""
+
+    def __init__(self, rows, cols, n):
+        self._solver = pypardiso.PyPardisoSolver(mtype=2)
+        # Our own parameters (iparm 1 = 1): METIS order (2 = 2), no iterative refinement (8 = 0: it
+        # took two of three triangular solves; the Cholesky solve alone is backward stable),
+        # the default pivot perturbation 1e-8 (10 = 8).
+        for i, value in ((1, 1), (2, 2), (8, 0), (10, 8)):
+            self._solver.set_iparm(i, value)
+        self._pattern = scipy.sparse.csr_matrix((np.ones(len(rows)), (rows, cols)), shape=(n, n))
+        self._pattern.sort_indices()
+        self._call(11, np.zeros(n))
+
+    def _call(self, phase, b):
+        """PARDISO's ``phase`` on the pattern's matrix, in one thread (with two its results differ in the last bits)."""
+        self._solver.set_phase(phase)
+        threads = self._solver.libmkl.MKL_Set_Num_Threads_Local(1)
+        try:
+            return self._solver._call_pardiso(self._pattern, b)
+        except pypardiso.pardiso_wrapper.PyPardisoError as error:  # e.g. -4, a zero pivot
+            raise _FactorisationError(str(error)) from None
+        finally:
+            self._solver.libmkl.MKL_Set_Num_Threads_Local(threads)
+
+    def factorise(self, values):
+        """A function ``b -> A^-1 b`` for the matrix of the pattern's upper-triangular ``values``."""
+        self._pattern.data[:] = values
+        self._call(22, np.zeros(self._pattern.shape[0]))
+        return lambda b: self._call(33, np.asarray(b, dtype=float))
+
+
+class _FactorisationError(ArithmeticError):
+    """A factorisation of the damped normal matrix failed (a zero or negative pivot in rounding)."""
+
+
+#: Factorisations of the damped normal matrix by name, each ``f(rows, cols, n)``
+#: (the upper-triangular pattern, sorted by row then column) with ``factorise(values) -> solver``.
+FACTORISATIONS = {"superlu": _SuperLU, "pardiso": _Pardiso}
+#: PARDISO when ``pypardiso`` (the optional extra ``fast``) is installed, else SuperLU.
+DEFAULT_FACTORISATION = "superlu" if pypardiso is None else "pardiso"
 
 
 def _factorise(matrix, ordering):

@@ -48,7 +48,7 @@ import scipy.optimize
 import scipy.sparse
 
 from ._jacobian import AreaBarrier, ElementJacobian, signed_areas
-from ._solver import least_squares
+from ._solver import NormalEquations, least_squares
 from ..errors import EquimeshError, InvalidSurfaceError
 from ..mesh import G1
 from .chart import domain_of
@@ -538,6 +538,7 @@ def optimize_uv(
         return UVOptimization(uv, cost0, cost0, 0, 0, True, "no free nodes", objective)
     tri = None if triangles is None else np.asarray(triangles, dtype=np.int64).reshape(-1, 3)
     x, nfev, njev, damping = x0, 0, 0, LM_INITIAL_DAMPING
+    normal_equations = NormalEquations()  # one pattern for every stage: analysed once
     while True:
         if obj.start is not None:  # a restart is a fresh solve: its own start and the initial damping
             x, damping = obj.start, LM_INITIAL_DAMPING
@@ -548,7 +549,7 @@ def optimize_uv(
         while True:
             solution = least_squares(
                 solve.residuals, solve.jacobian, x, *box, accept=guard, gtol=gtol, xtol=xtol, ftol=tol,
-                max_iterations=obj.max_iterations, damping=damping,
+                max_iterations=obj.max_iterations, damping=damping, normal_equations=normal_equations,
             )
             x, nfev, njev = solution.x, nfev + solution.evaluations, njev + solution.iterations + 1
             damping = solution.damping  # warm start: the next solve begins where this one's damping ended
