@@ -47,7 +47,7 @@ ENGINE_NAMES = sorted(ENGINES)
 
 
 def _sign(x):
-    return (x > 0) - (x < 0)
+    return int(x > 0) - int(x < 0)
 
 
 def exact_orient(a, b, c):
