@@ -65,6 +65,22 @@ MODULES = {
     "src/equimesh/planar/strip.py": ["tests/test_strip.py"],
 }
 
+# --- the fast engine's numba kernels (helper M2's entries) ---
+#: The fast engine's kernels -> their tests.  The kernels are compiled by a
+#: call (``insertion/_jit.py``), not by a decorator, so mutmut mutates them
+#: and puts its trampolines in front of them; numba cannot compile a
+#: trampoline, so their tests run the kernels as Python (:data:`ENVIRONMENT`),
+#: on small inputs.
+KERNEL_MODULES = {
+    "src/equimesh/planar/insertion/_predicates.py": ["tests/test_fast_kernels.py"],
+    "src/equimesh/planar/insertion/_cdt.py": ["tests/test_fast_kernels.py", "tests/test_engines.py"],
+    "src/equimesh/planar/insertion/fast.py": ["tests/test_fast_kernels.py", "tests/test_engines.py"],
+}
+MODULES.update(KERNEL_MODULES)
+#: Module -> environment variables of its mutmut run, beyond the caller's.
+ENVIRONMENT = dict.fromkeys(KERNEL_MODULES, {"NUMBA_DISABLE_JIT": "1"})
+# --- end of the fast engine's kernels ---
+
 #: Equivalent mutants, by module: (why no test can tell them from the
 #: original, the mutated lines as mutmut prints them after "+", stripped).
 _LAST_AXIS = "equivalent: np.sort sorts along the last axis by default, axis 1 of these 2-D arrays"
@@ -260,9 +276,10 @@ def prepare(module, work_dir, keep=None):
     return folder
 
 
-def mutmut(folder, *args):
-    """Run ``mutmut *args`` in ``folder``; its standard output."""
+def mutmut(folder, *args, environment=None):
+    """Run ``mutmut *args`` in ``folder`` with ``environment`` added; its standard output."""
     env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}  # mutmut puts mutants/src first itself
+    env.update(environment or {})
     done = subprocess.run([sys.executable, "-m", "mutmut", *args], cwd=folder, env=env, capture_output=True, text=True)
     if done.returncode:
         raise SystemExit(f"mutmut {' '.join(args)} failed in {folder}: {done.stderr.strip().splitlines()[-1:]}")
@@ -298,7 +315,7 @@ def run_module(module, work_dir, max_children, keep=None, seconds=None, progress
     progress(f"{NAME}: {module} against {' '.join(MODULES[module])}" + ("" if full else f", {len(again)} survivors again"))
     start = time.perf_counter()
     if full or again:
-        mutmut(folder, "run", "--max-children", str(max_children), *again)
+        mutmut(folder, "run", "--max-children", str(max_children), *again, environment=ENVIRONMENT.get(module))
     if full or seconds is None:
         seconds = time.perf_counter() - start
     status = statuses(folder)
@@ -312,7 +329,7 @@ def run_module(module, work_dir, max_children, keep=None, seconds=None, progress
     score = (counts["killed"] + counts["timeout"]) / relevant if relevant else 1.0
     progress(f"{NAME}: {module}: {len(status)} mutants, {counts['killed']} killed, "
              f"{counts['survived']} survived ({equivalent} equivalent), {seconds:.0f} s")
-    return {"module": module, "tests": MODULES[module], "mutants": len(status), **counts,
+    return {"module": module, "tests": MODULES[module], "environment": ENVIRONMENT.get(module, {}), "mutants": len(status), **counts,
             "equivalent": equivalent, "score": score, "seconds": round(seconds), "survivors": survivors}
 
 
@@ -331,7 +348,8 @@ def report(modules, record):
         "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|",
     ]
     for m in modules:
-        body.append(f"| `{m['module']}` | {', '.join(m['tests'])} | {m['mutants']} | {m['killed']} | {m['survived']} "
+        tests = " ".join([*(f"{k}={v}" for k, v in m.get("environment", {}).items()), ", ".join(m["tests"])])
+        body.append(f"| `{m['module']}` | {tests} | {m['mutants']} | {m['killed']} | {m['survived']} "
                     f"| {m['equivalent']} | {m['timeout']} | {m['no tests']} | {100 * m['score']:.1f} % | {m['seconds']} s |")
     for m in modules:
         body += ["", f"## Survivors in `{m['module']}`", ""]
