@@ -210,7 +210,28 @@ _EQUIVALENT_GROUPS = {
         (_NEGATIVE_RESHAPE, ["v = real_array(value, name, EquimeshError).reshape(-2)"]),
     ],
 }
-EQUIVALENT = {(module, line): why for module, groups in _EQUIVALENT_GROUPS.items()
+# --- the fast engine's numba kernels (helper M2's entries) ---
+_LONGER_BUFFER = ("equivalent: a longer buffer; only h[:n] is read, and n never exceeds the original length (each "
+                  "Grow-Expansion adds at most one component, and the original has room for all of them)")
+_KERNEL_EQUIVALENT_GROUPS = {
+    "src/equimesh/planar/insertion/_predicates.py": [
+        (_LONGER_BUFFER,
+         ["h = np.empty(3)", "h = np.empty(14)",
+          "h = np.empty(3 * (nux * nvy + nuy * nvx) + 1)", "h = np.empty(2 * (nux * nvy + nuy * nvx) + 2)",
+          "h = np.empty(3 * (nux * nux + nuy * nuy) + 1)", "h = np.empty(2 * (nux * nux + nuy * nuy) + 2)",
+          "h = np.empty(3 * (na * nbc + nb * nca + nc * nab) + 1)",
+          "h = np.empty(2 * (na * nbc + nb * nca + nc * nab) + 2)"]),
+        ("equivalent: Shewchuk's own orient2d returns det when |det| >= the bound (predicates.c: det >= errbound), "
+         "so equality proves the sign too, and every caller reads only the sign (compared with 0, np.sign)",
+         ["if abs(det) >= _CCW_BOUND * (abs(left) + abs(right)):"]),
+        ("equivalent: the bound's 96 eps^2 term exceeds the second-order error, so the error is strictly below "
+         "_ICC_BOUND * permanent when the permanent is positive and |det| equal to it proves the sign; at a zero "
+         "permanent every product is 0 (no underflow in the documented range), the exact value too; callers read "
+         "only the sign", ["if abs(det) >= _ICC_BOUND * permanent:"]),
+    ],
+}
+# --- end of the fast engine's kernels ---
+EQUIVALENT = {(module, line): why for module, groups in {**_EQUIVALENT_GROUPS, **_KERNEL_EQUIVALENT_GROUPS}.items()
               for why, lines in groups for line in lines}
 
 #: pytest options for every mutant run: stop at the first failure.

@@ -26,6 +26,7 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
+import equimesh
 from equimesh._geometry import circumcenters, point_segment_distance, segments_intersect
 from equimesh.planar.insertion import _predicates as pr
 from equimesh.planar.insertion import fast, reference
@@ -36,6 +37,7 @@ from equimesh.testing.generators import regular_polygon
 from equimesh.tolerance import REL_TOL, SLIVER_GAP
 
 import strategies
+from invariants import assert_problem1_invariants
 
 EPS = 2.0**-53
 
@@ -223,6 +225,45 @@ def test_predicates_on_exact_degeneracies():
     assert incircle(0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, np.nextafter(1.0, 2.0)) < 0.0
 
 
+#: Points whose determinant rounds to a few ulps of the wrong sign (found by a search over lattice points
+#: and regular polygons shifted by a float): the floating-point filter must send them to the exact path.
+#: Orientation: three collinear lattice points moved off the line by the rounding of their shift.
+ROUNDED_COLLINEAR = [(17.411734702368754, 63.40775260450107), (-8.988265297631244, 30.40775260450107),
+                     (-74.98826529763124, -52.09224739549893)]
+#: In-circle: near-cocircular quadruples where each one of the three terms of the permanent decides.
+ROUNDED_COCIRCULAR = [
+    [(15.92126927774595, 32.613187074599026), (19.321269277745948, 30.913187074599026),
+     (19.321269277745948, 32.613187074599026), (15.92126927774595, 30.913187074599026)],
+    [(20.926165246765393, 3.685615981610309), (20.926165246765393, 1.9856159816103087),
+     (24.32616524676539, 1.9856159816103087), (24.32616524676539, 3.685615981610309)],
+    [(-27.64288931395287, 21.926510684504446), (-29.12288931395287, 21.926510684504446),
+     (-28.012889313952872, 21.556510684504445), (-28.75288931395287, 21.556510684504445)],
+    # a far from d, b and c near it: the first term's lift is large.
+    [(-69.39856049678312, -45.80618297899076), (-22.62861706679063, -9.09126415966715),
+     (-23.847830536049322, -7.241910777572148), (-23.22111730167882, -8.155309756583527)],
+]
+
+
+def test_predicates_where_rounding_gives_the_wrong_sign():
+    a, b, c = ROUNDED_COLLINEAR
+    det = exact_orient(a, b, c)[0]
+    left, right = (a[0] - c[0]) * (b[1] - c[1]), (a[1] - c[1]) * (b[0] - c[0])
+    assert det < 0 < left - right  # the premise: rounding flips the sign
+    assert _sign(orient2d(*a, *b, *c)) == -1
+    for a, b, c, d in ROUNDED_COCIRCULAR:
+        assert exact_orient(a, b, c)[0] > 0
+        assert _sign(incircle(*a, *b, *c, *d)) == _sign(exact_incircle(a, b, c, d)[0])
+
+
+def test_cross_exact_fills_its_buffer():
+    """Two products with rounding errors at exponents far apart: four nonoverlapping components, the most possible."""
+    one = np.array([1.0 + 2.0**-30])
+    tiny = np.array([2.0**-100 * (1.0 + 2.0**-30)])
+    h, n = pr._cross_exact(one, 1, one, 1, tiny, 1, tiny, 1)
+    assert n == 4
+    assert_expansion(h, n, Fraction(one[0]) ** 2 - Fraction(tiny[0]) ** 2)
+
+
 def test_predicates_by_hand():
     """Values far from degenerate are the plain determinants: orient = twice the signed area."""
     assert orient2d(0.0, 0.0, 2.0, 0.0, 0.0, 3.0) == 6.0
@@ -234,7 +275,7 @@ def test_predicates_by_hand():
 
 # --------------------------------------------------------------------------- geometry as the reference's
 
-finite = st.floats(-50.0, 50.0)
+finite = coordinates
 
 
 triangles = st.lists(st.tuples(finite, finite), min_size=3, max_size=3).filter(lambda t: exact_orient(*t)[0] != 0)
@@ -467,8 +508,8 @@ def test_insertion_by_bowyer_watson_keeps_a_delaunay_triangulation(ring, p):
     P, V, SA, SB = ring
     N, S, _ = adjacency(V, SA, SB, len(P))
     start = locate(P, V, N, np.ones(len(V), dtype=np.bool_), len(V), 0, *p, len(V) + 1)
-    if start < 0 or min(math.dist(p, q) for q in P) < 1e-3:
-        return  # in the hole, or on a point
+    if start < 0 or min(math.dist(p, q) for q in P) < 1e-3 or _touches_a_constraint(p, p, P, SA, SB):
+        return  # in the hole, on a point or on a constraint (the engine splits those: cavity_boundary's split)
     mark = np.zeros(len(V), dtype=np.int64)
     assert cavity(P, V, N, S, start, *p, mark, 1, np.empty(1, dtype=np.int64)) in (1, -1)
     cav = np.empty(len(V), dtype=np.int64)
@@ -476,8 +517,6 @@ def test_insertion_by_bowyer_watson_keeps_a_delaunay_triangulation(ring, p):
     assert set(cav[:k].tolist()) == _brute_cavity(P, V, N, S, start, p) == set(np.flatnonzero(mark == 2).tolist())
     edges = np.empty((k + 2, 4), dtype=np.int64)
     m = cavity_boundary(V, N, S, cav, k, -1, mark, 2, edges)
-    if m < 0:
-        return  # p on a constraint edge (between two hole points): not this test's case
     assert m == k + 2
     assert cavity_boundary(V, N, S, cav, k, -1, mark, 2, edges[: k + 1]) == -1
     P2 = np.vstack([P, [p]])
@@ -533,7 +572,8 @@ def _lim(l):
 
 @given(square_rings(), st.floats(0.3, 2.0), st.data())
 def test_candidates_are_the_reference_candidates(ring, l, data):
-    """Per triangle: the visible circumcentre and the constraint midpoints the reference lists, same bits, same values.
+    """Per triangle: the visible circumcentre and the constraint midpoints of value at least (1 - REL_TOL) l the
+    reference lists, same bits, same values.
 
     ``_gap`` is the distance to the nearest constraint whenever it is at most
     half the search reach, also when the search gives up (a buffer of one
@@ -557,7 +597,7 @@ def test_candidates_are_the_reference_candidates(ring, l, data):
                                    HK, HI, nh)
     mids, values, split = reference.midpoint_candidates(P, V, segments, l)
     expected = sorted([(-r, x, y, -1) for (x, y), r in zip(centres.tolist(), radii.tolist())] +
-                      [(-v, x, y, s) for (x, y), v, s in zip(mids.tolist(), values.tolist(), split.tolist())])
+                      [(-v, x, y, s) for (x, y), v, s in zip(mids.tolist(), values.tolist(), split.tolist()) if v >= lim[0]])
     pushed = sorted((*HK[i], HI[i, 2]) for i in range(nh))
     assert pushed == expected
     assert all(HI[i, 1] == HI[i, 0] for i in range(nh))  # each entry carries its triangle's version
@@ -568,3 +608,18 @@ def test_candidates_are_the_reference_candidates(ring, l, data):
         for reach, buffer in ((lim[4], seen), (lim[4], seen[:1]), (0.0, seen)):
             gap = fast._gap(P, V, N, S, SA, SB, salive, len(SA), t, x, y, reach, buffer)
             assert gap >= nearest and (gap == nearest or nearest > reach / 2.0)
+
+
+def test_a_cavity_larger_than_its_buffer():
+    """A regular 70-gon: its vertices are cocircular, so the first point (a circumcentre near the centre) has a
+    cavity of more than ``_CAVITY`` (64) triangles: the buffer must grow, and the mesh is Problem 1's."""
+    vertices = regular_polygon(70, 1.5)
+    ring = np.array([(i, (i + 1) % 70) for i in range(70)], dtype=np.int64)
+    V = np.ascontiguousarray(constrained_delaunay(vertices, ring, np.empty((0, 2))), dtype=np.int64)
+    N, S, _ = adjacency(V, ring[:, 0].copy(), ring[:, 1].copy(), 70)
+    point, _, _ = reference.best_candidate(vertices, V, ring, 1.0)
+    start = locate(vertices, V, N, np.ones(len(V), dtype=np.bool_), len(V), 0, *point, len(V) + 1)
+    mark = np.zeros(len(V), dtype=np.int64)
+    assert cavity(vertices, V, N, S, start, *point, mark, 1, np.empty(fast._CAVITY, dtype=np.int64)) == -1
+    assert cavity(vertices, V, N, S, start, *point, mark, 2, np.empty(len(V), dtype=np.int64)) > fast._CAVITY
+    assert_problem1_invariants(equimesh.increment(vertices, 1.0, engine="fast"), vertices, 1.0)
