@@ -74,7 +74,7 @@ MODULES = {
 KERNEL_MODULES = {
     "src/equimesh/planar/insertion/_predicates.py": ["tests/test_fast_kernels.py"],
     "src/equimesh/planar/insertion/_cdt.py": ["tests/test_fast_kernels.py", "tests/test_engines.py"],
-    "src/equimesh/planar/insertion/fast.py": ["tests/test_fast_kernels.py", "tests/test_engines.py"],
+    "src/equimesh/planar/insertion/fast.py": ["tests/test_fast_kernels.py"],
 }
 MODULES.update(KERNEL_MODULES)
 #: Module -> environment variables of its mutmut run, beyond the caller's.
@@ -228,6 +228,41 @@ _KERNEL_EQUIVALENT_GROUPS = {
          "_ICC_BOUND * permanent when the permanent is positive and |det| equal to it proves the sign; at a zero "
          "permanent every product is 0 (no underflow in the documented range), the exact value too; callers read "
          "only the sign", ["if abs(det) >= _ICC_BOUND * permanent:"]),
+    ],
+    "src/equimesh/planar/insertion/_cdt.py": [
+        ("equivalent: the bounding-box test only answers False early, and two of its four conditions cannot hold "
+         "together (a box left of the other and the other left of it), so each mutant still answers False only for "
+         "disjoint boxes, and every other pair goes on to the exact test",
+         ["if max(px, qx) < min(ax, bx) or max(ax, bx) < min(px, qx) or max(py, qy) < min(ay, by) and max(ay, by) < min(py, qy):",
+          "if max(px, qx) < min(ax, bx) or max(ax, bx) < min(px, qx) and max(py, qy) < min(ay, by) or max(ay, by) < min(py, qy):",
+          "if max(px, qx) < min(ax, bx) and max(ax, bx) < min(px, qx) or max(py, qy) < min(ay, by) or max(ay, by) < min(py, qy):"]),
+        ("equivalent: d1 .. d4 are signs in {-1, 0, 1}; the mutant differs only when one end (say q, d2 = 0) lies on "
+         "the other segment's line while that segment's ends are strictly on both sides of line pq: then the lines "
+         "meet at q, between a and b, and the segments touch, the answer of the on-segment test (d1 / 0 is +-inf as "
+         "Python, 0 / 0 is nan and not < 0)",
+         ["if d1 / d2 < 0 and d3 * d4 < 0:", "if d1 * d2 <= 0 and d3 * d4 < 0:", "if d1 * d2 < 1 and d3 * d4 < 0:",
+          "if d1 * d2 < 0 and d3 / d4 < 0:", "if d1 * d2 < 0 and d3 * d4 <= 0:", "if d1 * d2 < 0 and d3 * d4 < 1:"]),
+        ("equivalent: the walk's direction only decides where it goes next; locate answers from a triangle only after "
+         "the closed-containment test (then t, or the lower of t and its neighbour across the edge holding the point, "
+         "the only triangles containing it), and else scans every slot after max_steps or when it leaves the "
+         "triangulation: the same answer",
+         ["t = N[t, 0 if (o0 < 0.0) and False else (1 if o1 < 0.0 else 2)]",
+          "t = N[t, 0 if (o0 < 0.0) or True else (1 if o1 < 0.0 else 2)]",
+          "t = N[t, 1 if o0 < 0.0 else (1 if o1 < 0.0 else 2)]", "t = N[t, 0 if o0 <= 0.0 else (1 if o1 < 0.0 else 2)]",
+          "t = N[t, 0 if o0 < 1.0 else (1 if o1 < 0.0 else 2)]",
+          "t = N[t, 0 if o0 < 0.0 else (1 if (o1 < 0.0) and False else 2)]",
+          "t = N[t, 0 if o0 < 0.0 else (1 if (o1 < 0.0) or True else 2)]",
+          "t = N[t, 0 if o0 < 0.0 else (2 if o1 < 0.0 else 2)]", "t = N[t, 0 if o0 < 0.0 else (1 if o1 <= 0.0 else 2)]",
+          "t = N[t, 0 if o0 < 0.0 else (1 if o1 < 1.0 else 2)]"]),
+        ("equivalent: a stricter acceptance still accepts only triangles that contain the point, where the answer is "
+         "right; a triangle it rejects sends the walk on, and in the end to the scan, which gives the same answer",
+         ["if o0 > 0.0 and o1 >= 0.0 and o2 >= 0.0:", "if o0 >= 1.0 and o1 >= 0.0 and o2 >= 0.0:",
+          "if o0 >= 0.0 and o1 > 0.0 and o2 >= 0.0:", "if o0 >= 0.0 and o1 >= 1.0 and o2 >= 0.0:",
+          "if o0 >= 0.0 and o1 >= 0.0 and o2 > 0.0:", "if o0 >= 0.0 and o1 >= 0.0 and o2 >= 1.0:"]),
+        ("equivalent: stopping a walk early (at slot 0, or at a point on an edge) only hands the query over: "
+         "locate's to the scan, which returns the lowest slot containing the point (for a point inside an edge the "
+         "lower of its two triangles, the walk's own answer); walk's (status -1) to the engine's brute-force "
+         "visibility test and locate, which decide the same", ["if t <= 0:", "if t < 1:", "if zeros >= 1:"]),
     ],
 }
 # --- end of the fast engine's kernels ---
@@ -383,16 +418,23 @@ def report(modules, record):
                                    "(`python experiments/mutation_report.py`)", body, record)
 
 
+def _rows(json_path):
+    """Module -> its row in ``json_path`` (from earlier runs), for the modules still in :data:`MODULES`."""
+    previous = json.loads(json_path.read_text())["modules"] if json_path.exists() else []
+    return {m["module"]: m for m in previous if m["module"] in MODULES}
+
+
 def main(argv=None):
     args = parse_args(argv)
     wanted = args.modules or list(MODULES)
     json_path = args.out_dir / f"{NAME}.json"
-    previous = json.loads(json_path.read_text())["modules"] if json_path.exists() else []
-    done = {m["module"]: m for m in previous if m["module"] in MODULES}
     args.out_dir.mkdir(parents=True, exist_ok=True)
     for module in wanted:
         keep = "survivors" if args.survivors else "resume" if args.resume else None
-        done[module] = run_module(module, args.work_dir, args.max_children, keep, done.get(module, {}).get("seconds"))
+        seconds = _rows(json_path).get(module, {}).get("seconds")
+        row = run_module(module, args.work_dir, args.max_children, keep, seconds)
+        done = _rows(json_path)  # read again: another process may have run other modules meanwhile
+        done[module] = row
         modules = [done[m] for m in MODULES if m in done]
         atomic_write_text(json_path, json.dumps({"modules": modules}, indent=1) + "\n")
         parameters = {"modules": [m["module"] for m in modules], "max_children": args.max_children, "pytest_args": PYTEST_ARGS}

@@ -38,6 +38,7 @@ from equimesh.tolerance import REL_TOL, SLIVER_GAP
 
 import strategies
 from invariants import assert_problem1_invariants
+from test_engines import assert_same_insertion, problem1_runs, problem2_runs
 
 EPS = 2.0**-53
 
@@ -317,6 +318,17 @@ def test_segments_touch_is_the_reference(quad):
     assert segments_touch(*p, *q, *a, *b) == bool(segments_intersect(p, q, a, b))
 
 
+@pytest.mark.parametrize("end", range(4))
+def test_segments_touch_where_one_end_lies_on_the_other_segment(end):
+    """A T: one end inside the other segment, the other three ends off both lines; each of the four ends in turn."""
+    def ends(stem, bar):
+        return [stem + bar, stem[::-1] + bar, bar + stem, bar + stem[::-1]][end]
+
+    bar = [(0.0, 0.0), (3.0, 0.0)]
+    assert segments_touch(*(c for point in ends([(1.0, 0.0), (1.0, 2.0)], bar) for c in point))  # (1, 0) on the bar
+    assert not segments_touch(*(c for point in ends([(1.0, 0.5), (1.0, 2.0)], bar) for c in point))
+
+
 # --------------------------------------------------------------------------- the heap
 
 #: Keys with many ties in value, then in x.
@@ -489,6 +501,22 @@ def test_locate_gives_the_lowest_live_slot_containing_the_point(ring, data):
     assert locate(P, V, N, alive, len(V), start, x, y, 0) == (containing[1] if len(containing) > 1 else -1)
 
 
+def test_locate_from_every_triangle_to_every_vertex_edge_and_centroid():
+    """On a lattice (cocircular everywhere), every start, every query at a vertex, an edge midpoint or a centroid:
+    the lowest slot whose closed triangle contains the query, as the scan finds it."""
+    xy = np.array([[x, y] for y in range(4) for x in range(4)], dtype=float)
+    ring = [0, 1, 2, 3, 7, 11, 15, 14, 13, 12, 8, 4]
+    segments = np.array([[ring[i], ring[(i + 1) % 12]] for i in range(12)], dtype=np.int64)
+    V = np.ascontiguousarray(constrained_delaunay(xy, segments, np.empty((0, 2))), dtype=np.int64)
+    N, _, _ = adjacency(V, segments[:, 0].copy(), segments[:, 1].copy(), len(xy))
+    alive = np.ones(len(V), dtype=np.bool_)
+    queries = [tuple(p) for p in xy] + [tuple(xy[V[t]].mean(axis=0)) for t in range(len(V))]
+    queries += [tuple((xy[V[t, e]] + xy[V[t, (e + 1) % 3]]) / 2.0) for t in range(len(V)) for e in range(3)]
+    for x, y in queries:
+        lowest = next(t for t in range(len(V)) if _contains(xy, V, t, x, y))
+        assert all(locate(xy, V, N, alive, len(V), start, x, y, len(V) + 1) == lowest for start in range(len(V)))
+
+
 def _brute_cavity(P, V, N, S, start, p):
     """Triangles reachable from ``start`` across non-constraint edges whose circumcircle strictly contains ``p``."""
     cav, todo = {start}, [start]
@@ -623,3 +651,16 @@ def test_a_cavity_larger_than_its_buffer():
     assert cavity(vertices, V, N, S, start, *point, mark, 1, np.empty(fast._CAVITY, dtype=np.int64)) == -1
     assert cavity(vertices, V, N, S, start, *point, mark, 2, np.empty(len(V), dtype=np.int64)) > fast._CAVITY
     assert_problem1_invariants(equimesh.increment(vertices, 1.0, engine="fast"), vertices, 1.0)
+
+
+@pytest.mark.parametrize(
+    "runs, args",
+    [(problem1_runs, ([(0.0, 0.0), (10.6, 0.8), (12.2, 7.4), (4.4, 11.8), (-1.6, 6.2)], 0.7)),
+     (problem2_runs, ([(0.0, 0.0), (14.2, 0.6), (14.8, 6.4), (6.6, 7.2), (6.2, 14.6), (-0.4, 14.0)], 0.7, 17.0))],
+    ids=["problem1", "problem2"],
+)
+def test_the_engine_is_the_reference_on_two_fixed_polygons(runs, args):
+    """The whole engine on a convex pentagon (Problem 1) and an L (Problem 2, lattice at 17 degrees), no four
+    cocircular points: the reference's points, values and triangles bit for bit (``tests/test_engines.py`` does
+    this on generated polygons, compiled)."""
+    assert_same_insertion(runs(np.array(args[0]), *args[1:]))
