@@ -278,7 +278,7 @@ PYTEST_ARGS = ["-p", "no:cacheprovider", "-q", "-x"]
 #: surviving mutant runs its tests in their own time, so 3 leaves a margin of 6.
 TIMEOUT_MULTIPLIER = 3.0
 
-STATUSES = ("killed", "survived", "timeout", "no tests", "suspicious", "skipped", "segfault")
+STATUSES = ("killed", "survived", "timeout", "no tests", "suspicious", "skipped", "segfault", "not checked")
 
 
 def parse_args(argv=None):
@@ -287,6 +287,8 @@ def parse_args(argv=None):
     p.add_argument("--max-children", type=int, default=2, help="parallel mutant runs (default 2)")
     p.add_argument("--work-dir", type=Path, default=ROOT / ".mutation", help="scratch folder (default .mutation/)")
     p.add_argument("--resume", action="store_true", help="keep the scratch copy of a module and its finished mutants")
+    p.add_argument("--so-far", action="store_true",
+                   help="write the rows of interrupted modules from the mutants already run (runs nothing)")
     p.add_argument("--survivors", action="store_true",
                    help="run only the last run's survivors again, against the current tests (keeps the other verdicts)")
     _common.add_output_options(p, fig_dir=False)
@@ -313,8 +315,8 @@ def mutmut_table(module):
 def prepare(module, work_dir, keep=None):
     """The copy of the project for ``module``'s mutants; returns its folder.
 
-    ``keep=None`` makes a fresh copy; ``"resume"`` keeps an existing one with
-    its tests; ``"survivors"`` keeps it with the current tests.  Either way the
+    ``keep=None`` makes a fresh copy; ``"resume"`` and ``"so-far"`` keep an
+    existing one with its tests; ``"survivors"`` keeps it with the current tests.  Either way the
     ``[tool.mutmut]`` table is the current one (mutmut resets the verdicts its
     change can alter).
     """
@@ -358,6 +360,9 @@ def statuses(folder):
 def run_module(module, work_dir, max_children, keep=None, seconds=None, progress=print):
     """Mutate ``module``, run its tests on every mutant; its counts and survivors.
 
+    With ``keep="so-far"`` nothing runs: the row counts the mutants that an
+    interrupted run checked (the rest are "not checked", outside the score),
+    and its time is from mutmut's stats file to its last verdict.
     With ``keep="survivors"`` only the survivors of the last run are run again
     (:func:`prepare`; the test selection must be the same, or mutmut resets
     every verdict), and ``seconds`` is the time of that last full run.  mutmut
@@ -366,11 +371,16 @@ def run_module(module, work_dir, max_children, keep=None, seconds=None, progress
     function before, so kill it with a new test (or run the module afresh).
     """
     folder = prepare(module, work_dir, keep)
-    full = keep != "survivors" or not (folder / "mutants").exists()
+    full = keep not in ("survivors", "so-far") or not (folder / "mutants").exists()
     again = [] if full else sorted(n for n, s in statuses(folder).items() if s == "survived")
-    progress(f"{NAME}: {module} against {' '.join(MODULES[module])}" + ("" if full else f", {len(again)} survivors again"))
+    progress(f"{NAME}: {module} against {' '.join(MODULES[module])}" + ("" if full else ", so far" if keep == "so-far" else f", {len(again)} survivors again"))
     start = time.perf_counter()
-    if full or again:
+    if keep == "so-far":
+        if full:
+            raise SystemExit(f"{NAME}: no interrupted run of {module} in {folder}")
+        meta = [f.stat().st_mtime for f in (folder / "mutants").rglob("*.meta")]
+        seconds = max(meta) - (folder / "mutants" / "mutmut-stats.json").stat().st_mtime
+    elif full or again:
         mutmut(folder, "run", "--max-children", str(max_children), *again, environment=ENVIRONMENT.get(module))
     if full or seconds is None:
         seconds = time.perf_counter() - start
@@ -381,7 +391,7 @@ def run_module(module, work_dir, max_children, keep=None, seconds=None, progress
         line = mutated_line(folder, name)
         survivors.append({"mutant": name, "line": line, "equivalent": EQUIVALENT.get((module, line))})
     equivalent = sum(s["equivalent"] is not None for s in survivors)
-    relevant = len(status) - equivalent - counts["no tests"] - counts["skipped"]
+    relevant = len(status) - equivalent - counts["no tests"] - counts["skipped"] - counts["not checked"]
     score = (counts["killed"] + counts["timeout"]) / relevant if relevant else 1.0
     progress(f"{NAME}: {module}: {len(status)} mutants, {counts['killed']} killed, "
              f"{counts['survived']} survived ({equivalent} equivalent), {seconds:.0f} s")
@@ -409,6 +419,9 @@ def report(modules, record):
                     f"| {m['equivalent']} | {m['timeout']} | {m['no tests']} | {100 * m['score']:.1f} % | {m['seconds']} s |")
     for m in modules:
         body += ["", f"## Survivors in `{m['module']}`", ""]
+        if m.get("not checked"):
+            body += [f"Interrupted: {m['not checked']} of {m['mutants']} mutants not run (not in the score; "
+                     "`--resume` continues the run).", ""]
         if not m["survivors"]:
             body.append("None.")
         for s in m["survivors"]:
@@ -430,7 +443,7 @@ def main(argv=None):
     json_path = args.out_dir / f"{NAME}.json"
     args.out_dir.mkdir(parents=True, exist_ok=True)
     for module in wanted:
-        keep = "survivors" if args.survivors else "resume" if args.resume else None
+        keep = "survivors" if args.survivors else "resume" if args.resume else "so-far" if args.so_far else None
         seconds = _rows(json_path).get(module, {}).get("seconds")
         row = run_module(module, args.work_dir, args.max_children, keep, seconds)
         done = _rows(json_path)  # read again: another process may have run other modules meanwhile

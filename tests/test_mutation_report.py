@@ -61,3 +61,5 @@ def test_kernel_modules_run_as_python_and_say_so(mutation):
     record = {"git": {"commit": "abc", "dirty": False}, "date": "2026-01-01", "parameters": {},
               "python": "3.11", "platform": "linux", "versions": {}}
     assert "| `src/k.py` | NUMBA_DISABLE_JIT=1 tests/a.py, tests/b.py | 1 | 1 |" in mutation.report([module], record)
+    module["not checked"] = 1
+    assert "Interrupted: 1 of 1 mutants not run" in mutation.report([module], record)
