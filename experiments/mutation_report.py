@@ -73,7 +73,7 @@ MODULES = {
 #: on small inputs.
 KERNEL_MODULES = {
     "src/equimesh/planar/insertion/_predicates.py": ["tests/test_fast_kernels.py"],
-    "src/equimesh/planar/insertion/_cdt.py": ["tests/test_fast_kernels.py", "tests/test_engines.py"],
+    "src/equimesh/planar/insertion/_cdt.py": ["tests/test_fast_kernels.py"],
     "src/equimesh/planar/insertion/fast.py": ["tests/test_fast_kernels.py"],
 }
 MODULES.update(KERNEL_MODULES)

@@ -26,7 +26,7 @@ import equimesh
 import equimesh.planar.increment
 import equimesh.planar.strip
 from equimesh import EquimeshError
-from equimesh.planar.insertion import ENGINES, Region, insert
+from equimesh.planar.insertion import ENGINES, insert
 from equimesh.planar.insertion._cdt import adjacency, cavity_boundary, locate
 from equimesh.planar.insertion._region import constrained_delaunay
 from equimesh.testing.generators import rectangle, regular_polygon, rotate
@@ -196,14 +196,6 @@ def test_validation_does_not_depend_on_the_engine(call):
             call(name)
         messages.add((type(info.value), str(info.value)))
     assert len(messages) == 1, messages
-
-
-def test_fast_engine_refuses_an_interior_constraint():
-    """A constraint with triangles on both sides is outside the fast engine's contract: a clear error."""
-    square = rectangle(2.0, 2.0)
-    region = Region(square, np.array([[0, 1], [1, 2], [2, 3], [3, 0], [0, 2]]), np.empty((0, 2)))
-    with pytest.raises(EquimeshError, match="segment 4 is an edge of zero or two triangles"):
-        insert(region, 1.0, engine="fast")
 
 
 def test_cavity_boundary_fills_its_buffer_exactly():

@@ -27,13 +27,14 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 import equimesh
+from equimesh import EquimeshError
 from equimesh._geometry import circumcenters, point_segment_distance, segments_intersect
+from equimesh.planar.insertion import Region, fast, insert, reference
 from equimesh.planar.insertion import _predicates as pr
-from equimesh.planar.insertion import fast, reference
 from equimesh.planar.insertion._cdt import adjacency, cavity, cavity_boundary, fill, locate, segments_touch, walk
 from equimesh.planar.insertion._region import constrained_delaunay
 from equimesh.planar.insertion._predicates import incircle, orient2d
-from equimesh.testing.generators import regular_polygon
+from equimesh.testing.generators import rectangle, regular_polygon
 from equimesh.tolerance import REL_TOL, SLIVER_GAP
 
 import strategies
@@ -664,3 +665,24 @@ def test_the_engine_is_the_reference_on_two_fixed_polygons(runs, args):
     cocircular points: the reference's points, values and triangles bit for bit (``tests/test_engines.py`` does
     this on generated polygons, compiled)."""
     assert_same_insertion(runs(np.array(args[0]), *args[1:]))
+
+
+@pytest.mark.parametrize("l", [0.6, 30.0])
+def test_a_quadrilateral_of_four_long_constraints_is_the_reference(l):
+    """Only the four corners: every point comes from splitting the long constraints or from circumcentres, and
+    the heap is compacted while midpoints are in it; with l = 30 nothing is inserted (two triangles).  The
+    reference's insertion bit for bit."""
+    corners = np.array([(0.0, 0.0), (20.3, 0.7), (19.6, 4.1), (0.4, 3.3)])
+    region = Region(corners, np.array([[0, 1], [1, 2], [2, 3], [3, 0]]), np.empty((0, 2)))
+    a, b = fast.run(region, l), reference.run(region, l)
+    assert a.points.tobytes() == b.points.tobytes() and a.values.tobytes() == b.values.tobytes()
+    assert a.segments.tolist() == b.segments.tolist()
+    assert sorted(map(sorted, a.triangles.tolist())) == sorted(map(sorted, b.triangles.tolist()))
+
+
+def test_fast_engine_refuses_an_interior_constraint():
+    """A constraint with triangles on both sides is outside the fast engine's contract: a clear error."""
+    square = rectangle(2.0, 2.0)
+    region = Region(square, np.array([[0, 1], [1, 2], [2, 3], [3, 0], [0, 2]]), np.empty((0, 2)))
+    with pytest.raises(EquimeshError, match="segment 4 is an edge of zero or two triangles"):
+        insert(region, 1.0, engine="fast")
