@@ -40,6 +40,7 @@ from equimesh.tolerance import REL_TOL, SLIVER_GAP
 import strategies
 from invariants import assert_problem1_invariants
 from test_engines import assert_same_insertion, problem1_runs, problem2_runs
+from test_reference_engine import NEAR_CONSTRAINT, at_exactly, circle_triangle
 
 EPS = 2.0**-53
 
@@ -667,6 +668,15 @@ def test_the_engine_is_the_reference_on_two_fixed_polygons(runs, args):
     assert_same_insertion(runs(np.array(args[0]), *args[1:]))
 
 
+def test_integer_points_and_float_indices_are_converted():
+    """A region given by integer coordinates and float segment indices: the same insertion as from floats and ints."""
+    corners = [[0, 0], [20, 1], [19, 4], [0, 3]]
+    loose = Region(corners, [[0.0, 1.0], [1.0, 2.0], [2.0, 3.0], [3.0, 0.0]], np.empty((0, 2)))
+    exact = Region(np.array(corners, dtype=float), np.array([[0, 1], [1, 2], [2, 3], [3, 0]]), np.empty((0, 2)))
+    a, b = fast.run(loose, 0.6), fast.run(exact, 0.6)
+    assert a.points.tobytes() == b.points.tobytes() and a.segments.tolist() == b.segments.tolist()
+
+
 @pytest.mark.parametrize("l", [0.6, 30.0])
 def test_a_quadrilateral_of_four_long_constraints_is_the_reference(l):
     """Only the four corners: every point comes from splitting the long constraints or from circumcentres, and
@@ -686,3 +696,23 @@ def test_fast_engine_refuses_an_interior_constraint():
     region = Region(square, np.array([[0, 1], [1, 2], [2, 3], [3, 0], [0, 2]]), np.empty((0, 2)))
     with pytest.raises(EquimeshError, match="segment 4 is an edge of zero or two triangles"):
         insert(region, 1.0, engine="fast")
+
+
+def _thresholds():
+    """(points, l) of the reference engine's threshold tests (``tests/test_reference_engine.py``)."""
+    cases = [(circle_triangle(gap, radius)[0], 1.0) for gap, radius, _ in NEAR_CONSTRAINT]
+    cases += [(circle_triangle(0.5, 1.5)[0], 1.5 / factor) for factor in (1.0 - 0.5 * REL_TOL, 1.0 - 2.0 * REL_TOL)]
+    for tol, radius in [(REL_TOL, 3.0), (SLIVER_GAP, 1.0)]:
+        points, _, l = at_exactly(tol, radius)
+        cases += [(points, l), (points, np.nextafter(l, 0.0) * (1.0 - 4.0 * REL_TOL))]
+    return cases
+
+
+@pytest.mark.parametrize("points, l", _thresholds())
+def test_the_candidate_rules_at_their_thresholds_are_the_reference(points, l):
+    """One triangle bounded by its three constraints, its circumcentre placed at each threshold of the rules
+    (radius (1 - REL_TOL) l, gap REL_TOL l and SLIVER_GAP l, value l up to REL_TOL), l far from 1 included:
+    the fast engine inserts what the reference engine inserts, bit for bit."""
+    region = Region(points, np.array([[0, 1], [1, 2], [2, 0]]), np.empty((0, 2)))
+    a, b = fast.run(region, l), reference.run(region, l)
+    assert a.points.tobytes() == b.points.tobytes() and a.values.tobytes() == b.values.tobytes()
