@@ -264,6 +264,49 @@ _KERNEL_EQUIVALENT_GROUPS = {
          "lower of its two triangles, the walk's own answer); walk's (status -1) to the engine's brute-force "
          "visibility test and locate, which decide the same", ["if t <= 0:", "if t < 1:", "if zeros >= 1:"]),
     ],
+    "src/equimesh/planar/insertion/fast.py": [
+        ("equivalent: as floats 1.0 / 0.0 these flags are only read as truth values and written True / False",
+         ["salive = np.ones(len(SA), dtype=None)", "salive = np.ones(len(SA), )", "alive = np.ones(n_slots, dtype=None)",
+          "alive = np.ones(n_slots, )"]),
+        ("equivalent: as floats these counters and slot numbers stay exact integers (far below 2^53); they are only "
+         "incremented, compared for equality with integer stamps and versions, and copied into int64 arrays",
+         ["ver = np.zeros(n_slots, dtype=None)", "ver = np.zeros(n_slots, )", "mark = np.zeros(n_slots, dtype=None)",
+          "mark = np.zeros(n_slots, )", "vstamp = np.zeros(n, dtype=None)", "vstamp = np.zeros(n, )",
+          "free = np.empty(n_slots, dtype=None)", "free = np.empty(n_slots, )"]),
+        ("equivalent: run raises on any status but _OK before it reads the arrays returned with it",
+         ["return -2 - s, P0, T0, SEG0, np.empty(None)", "return -2 - s, P0, T0, SEG0, np.empty(1)"]),
+        ("equivalent: a buffer's capacity is checked against the need before every use (len(edges) against k + 2, "
+         "len(HK) against the pushes to come, len(P) against n) and grown then; a longer HI, values, vfan or vstamp "
+         "than the array checked, or an unused column, is never read",
+         ["edges = np.empty((_CAVITY - 2, 4), dtype=np.int64)", "edges = np.empty((_CAVITY + 3, 4), dtype=np.int64)",
+          "edges = np.empty((_CAVITY + 2, 5), dtype=np.int64)", "HK = np.empty((4 * n_slots + 16, 4))",
+          "HI = np.empty((5 * n_slots + 16, 3), dtype=np.int64)", "HI = np.empty((4 * n_slots + 17, 3), dtype=np.int64)",
+          "HI = np.empty((4 * n_slots + 16, 4), dtype=np.int64)",
+          "HK, HI = _grown(HK, 2 * len(HK) + 4 * m), _grown(HI, 3 * len(HI) + 4 * m)",
+          "HK, HI = _grown(HK, 2 * len(HK) + 4 * m), _grown(HI, 2 * len(HI) + 5 * m)",
+          "P, values = _grown(P, 2 * n), _grown(values, 3 * n)", "vfan, vstamp = _grown(vfan, 3 * n), _grown(vstamp, 2 * n)",
+          "vfan, vstamp = _grown(vfan, 2 * n), _grown(vstamp, 3 * n)"]),
+        ("equivalent: compacting or growing the heap earlier (never later) changes only its array, hence only the "
+         "order in which entries with identical keys (value, x, y) surface; such entries are one point (a circumcentre "
+         "shared by cocircular triangles; a circumcentre within REL_TOL l of a constraint is never pushed, so never "
+         "equals a midpoint), inserted once with the same value, and its cavity, grown from any triangle containing "
+         "it, is the same, so the same triangles follow",
+         ["if nh + 5 * m > len(HK):", "if nh + 4 * m >= len(HK):", "if 3 * (nh + 4 * m) > len(HK):",
+          "if 2 * (nh + 5 * m) > len(HK):", "if 2 * (nh + 4 * m) >= len(HK):"]),
+        ("equivalent: heapify sifts down from a higher index, a leaf (indices from k // 2 have no child below k), "
+         "which _sift_down writes back unchanged", ["for i in range(k // 2 + 1, -1, -1):", "for i in range(k // 2, -1, -1):"]),
+        ("equivalent: stamps are only compared for equality with marks that start at 0, and are incremented before "
+         "each use, so starting from 1 marks nothing falsely", ["nh, m, stamp = 0, n_slots, 1"]),
+        ("equivalent: r is -1 (no candidate) or at least (1 - REL_TOL) l > 0", ["if r <= 0.0:"]),
+        ("equivalent: an entry of a split segment s belongs to the triangle that had s as an edge, the start of the "
+         "split's cavity, so its version is stale and it is skipped whatever the segment test says",
+         ["if ver[t] != version or (s > 0 and not salive[s]):", "if ver[t] != version or (s >= 1 and not salive[s]):"]),
+        (_NEGATIVE_RESHAPE, ["points = np.array(region.points, dtype=float).reshape(-2, 2)",
+                             "segments = np.array(region.segments, dtype=np.int64).reshape(-2, 2)"]),
+        ("equivalent: constrained_delaunay returns int64 triangles already",
+         ["points, np.ascontiguousarray(triangles, dtype=None), segments, lim",
+          "points, np.ascontiguousarray(triangles, ), segments, lim"]),
+    ],
 }
 # --- end of the fast engine's kernels ---
 EQUIVALENT = {(module, line): why for module, groups in {**_EQUIVALENT_GROUPS, **_KERNEL_EQUIVALENT_GROUPS}.items()
