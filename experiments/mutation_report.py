@@ -296,7 +296,23 @@ _KERNEL_EQUIVALENT_GROUPS = {
         ("equivalent: heapify sifts down from a higher index, a leaf (indices from k // 2 have no child below k), "
          "which _sift_down writes back unchanged", ["for i in range(k // 2 + 1, -1, -1):", "for i in range(k // 2, -1, -1):"]),
         ("equivalent: stamps are only compared for equality with marks that start at 0, and are incremented before "
-         "each use, so starting from 1 marks nothing falsely", ["nh, m, stamp = 0, n_slots, 1"]),
+         "each use, so starting from 1 or stepping by 2 marks nothing falsely",
+         ["nh, m, stamp = 0, n_slots, 1", "stamp += 2"]),
+        ("equivalent: growing a buffer earlier or larger (the need is checked again before every use): the cavity, "
+         "its boundary edges and fan slots, the triangle arrays, SB and salive beside the SA that is checked; edges "
+         "first grow at k >= 65, where 2 k - 2 >= k + 2",
+         ["cav = _grown(cav, 3 * len(cav))", "if k + 3 > len(edges):", "if k + 2 >= len(edges):",
+          "edges = _grown(edges, 2 * k - 2)", "edges = _grown(edges, 3 * k + 2)", "edges = _grown(edges, 2 * k + 3)",
+          "if k + 3 > len(slots):", "if k + 2 >= len(slots):", "slots = _grown(slots, 3 * k + 2)",
+          "slots = _grown(slots, 2 * k + 3)", "if m >= n_free + len(V) - n_slots:", "size = 3 * len(V) + m",
+          "if n_segs + 3 > len(SA):", "if n_segs + 2 >= len(SA):",
+          "SA, SB, salive = _grown(SA, 2 * len(SA) + 2), _grown(SB, 3 * len(SB) + 2), _grown(salive, 2 * len(SA) + 2)",
+          "SA, SB, salive = _grown(SA, 2 * len(SA) + 2), _grown(SB, 2 * len(SB) + 3), _grown(salive, 2 * len(SA) + 2)",
+          "SA, SB, salive = _grown(SA, 2 * len(SA) + 2), _grown(SB, 2 * len(SB) + 2), _grown(salive, 3 * len(SA) + 2)",
+          "SA, SB, salive = _grown(SA, 2 * len(SA) + 2), _grown(SB, 2 * len(SB) + 2), _grown(salive, 2 * len(SA) + 3)"]),
+        ("equivalent: cavity returns -1 (buffer too short) or k >= 1 (the start triangle is always in), and "
+         "cavity_boundary -1 or m >= 3 (a cavity's boundary is a closed polygon)",
+         ["while k <= 0:", "while k < 1:", "if m <= 0:", "if m < 1:"]),
         ("equivalent: r is -1 (no candidate) or at least (1 - REL_TOL) l > 0", ["if r <= 0.0:"]),
         ("equivalent: an entry of a split segment s belongs to the triangle that had s as an edge, the start of the "
          "split's cavity, so its version is stale and it is skipped whatever the segment test says",
