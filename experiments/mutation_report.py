@@ -263,6 +263,40 @@ _KERNEL_EQUIVALENT_GROUPS = {
          "locate's to the scan, which returns the lowest slot containing the point (for a point inside an edge the "
          "lower of its two triangles, the walk's own answer); walk's (status -1) to the engine's brute-force "
          "visibility test and locate, which decide the same", ["if t <= 0:", "if t < 1:", "if zeros >= 1:"]),
+        ("equivalent: np.full takes the dtype of its fill value -1 (int64); float keys and counts of small integers "
+         "are exact and sort, search and compare as the integers; the directed half-edge keys are unique, so the "
+         "sort's stability is never seen; order[pos] / 3 stored into the int64 N truncates as // does",
+         ["keys = np.empty(3 * nt, dtype=None)", "keys = np.empty(3 * nt, )", "order = np.argsort(keys, kind=None)",
+          "order = np.argsort(keys, )", 'order = np.argsort(keys, kind="MERGESORT")', "N = np.full((nt, 3), -1, dtype=None)",
+          "N = np.full((nt, 3), -1, )", "S = np.full((nt, 3), -1, dtype=None)", "S = np.full((nt, 3), -1, )",
+          "N[t, e] = order[pos] / 3", "count = np.zeros(len(SA), dtype=None)", "count = np.zeros(len(SA), )"]),
+        ("equivalent under the engine's contract (checked first: every constraint is an edge of exactly one "
+         "triangle): a constraint edge has no triangle across it (n < 0), so the constraint tests of the cavity and "
+         "of its boundary decide nothing that n < 0 and the mark do not",
+         ["if S[t, e] >= 0 and n < 0 or mark[n] == stamp:", "if S[t, e] > 0 or n < 0 or mark[n] == stamp:",
+          "if S[t, e] >= 1 or n < 0 or mark[n] == stamp:", "if inside and s > 0:", "if inside and s >= 1:"]),
+        ("equivalent: the new point lies strictly inside the star of its cavity (inside a cavity triangle, or on an "
+         "edge between two: both contain it strictly in their circumcircles; never on an unsplit constraint, within "
+         "REL_TOL l of which no circumcentre is pushed), so no fan triangle is flat",
+         ["if orient2d(P[u, 0], P[u, 1], P[v, 0], P[v, 1], px, py) < 0.0 or vstamp[u] == stamp:"]),
+        ("equivalent: the cavity's boundary is a closed polygon, so the second loop of fill links edges 1 and 2 of "
+         "every fan triangle, overwriting these first values; and any negative S means no segment (only S >= 0 is "
+         "tested)",
+         ["N[t, 0], N[t, 2], N[t, 2] = outer, -1, -1", "N[t, 0], N[t, 1], N[t, 2] = outer, +1, -1",
+          "N[t, 0], N[t, 1], N[t, 2] = outer, -2, -1", "N[t, 0], N[t, 1], N[t, 2] = outer, -1, +1",
+          "N[t, 0], N[t, 1], N[t, 2] = outer, -1, -2", "S[t, 0], S[t, 1], S[t, 2] = edges[f, 3], -2, -1",
+          "S[t, 0], S[t, 1], S[t, 2] = edges[f, 3], -1, -2"]),
+        ("equivalent: v occurs once in the outer triangle, followed by u (it has the edge v -> u), so the first j "
+         "with V[outer, j] == v is the j with V[outer, j + 1] == u", ["if V[outer, j] == v or V[outer, (j + 1) % 3] == u:"]),
+        ("equivalent: the caller reads only status < 0 and then computes the triangle itself (locate)",
+         ["return -2, -1", "return -1, +1", "return -1, -2"]),
+        ("equivalent: a zero orientation of the line gc with a vertex returned -1 just before, so s0, s1, s2 are "
+         "nonzero here and <= 0 is < 0, >= 0 is > 0",
+         ["if s2 <= 0.0 and s0 > 0.0:", "if s2 < 0.0 and s0 >= 0.0:", "elif s1 <= 0.0 and s2 > 0.0:",
+          "elif s1 < 0.0 and s2 >= 0.0:", "elif s0 <= 0.0 and s1 > 0.0:", "elif s0 < 0.0 and s1 >= 0.0:"]),
+        ("equivalent: o_out == 0 would put c on the line of the edge the segment gc leaves t by, where gc meets that "
+         "line, hence on the edge itself and in the closed triangle t, which was tested before",
+         ["if o_out > 0.0:"]),
     ],
     "src/equimesh/planar/insertion/fast.py": [
         ("equivalent: as floats 1.0 / 0.0 these flags are only read as truth values and written True / False",
@@ -421,7 +455,8 @@ def run_module(module, work_dir, max_children, keep=None, seconds=None, progress
 
     With ``keep="so-far"`` nothing runs: the row counts the mutants that an
     interrupted run checked (the rest are "not checked", outside the score),
-    and its time is from mutmut's stats file to its last verdict.
+    and its time is the sum of mutmut's times of the mutants run (their last
+    runs), a little below the wall time.
     With ``keep="survivors"`` only the survivors of the last run are run again
     (:func:`prepare`; the test selection must be the same, or mutmut resets
     every verdict), and ``seconds`` is the time of that last full run.  mutmut
@@ -437,8 +472,8 @@ def run_module(module, work_dir, max_children, keep=None, seconds=None, progress
     if keep == "so-far":
         if full:
             raise SystemExit(f"{NAME}: no interrupted run of {module} in {folder}")
-        meta = [f.stat().st_mtime for f in (folder / "mutants").rglob("*.meta")]
-        seconds = max(meta) - (folder / "mutants" / "mutmut-stats.json").stat().st_mtime
+        meta = [json.loads(f.read_text()) for f in (folder / "mutants").rglob("*.meta")]
+        seconds = sum(d or 0.0 for m in meta for d in m["durations_by_key"].values())
     elif full or again:
         mutmut(folder, "run", "--max-children", str(max_children), *again, environment=ENVIRONMENT.get(module))
     if full or seconds is None:
