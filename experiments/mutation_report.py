@@ -74,6 +74,22 @@ MODULES = {
     "src/equimesh/planar/insertion/_region.py": ["tests/test_region.py"],
 }
 
+# --- the fast engine's numba kernels (helper M2's entries) ---
+#: The fast engine's kernels -> their tests.  The kernels are compiled by a
+#: call (``insertion/_jit.py``), not by a decorator, so mutmut mutates them
+#: and puts its trampolines in front of them; numba cannot compile a
+#: trampoline, so their tests run the kernels as Python (:data:`ENVIRONMENT`),
+#: on small inputs.
+KERNEL_MODULES = {
+    "src/equimesh/planar/insertion/_predicates.py": ["tests/test_fast_kernels.py"],
+    "src/equimesh/planar/insertion/_cdt.py": ["tests/test_fast_kernels.py"],
+    "src/equimesh/planar/insertion/fast.py": ["tests/test_fast_kernels.py"],
+}
+MODULES.update(KERNEL_MODULES)
+#: Module -> environment variables of its mutmut run, beyond the caller's.
+ENVIRONMENT = dict.fromkeys(KERNEL_MODULES, {"NUMBA_DISABLE_JIT": "1"})
+# --- end of the fast engine's kernels ---
+
 #: Equivalent mutants, by module: (why no test can tell them from the
 #: original, the mutated lines as mutmut prints them after "+", stripped).
 _LAST_AXIS = "equivalent: np.sort sorts along the last axis by default, axis 1 of these 2-D arrays"
@@ -287,7 +303,156 @@ _EQUIVALENT_GROUPS = {
         (_NEGATIVE_RESHAPE, ["v = real_array(value, name, EquimeshError).reshape(-2)"]),
     ],
 }
-EQUIVALENT = {(module, line): why for module, groups in _EQUIVALENT_GROUPS.items()
+# --- the fast engine's numba kernels (helper M2's entries) ---
+_LONGER_BUFFER = ("equivalent: a longer buffer; only h[:n] is read, and n never exceeds the original length (each "
+                  "Grow-Expansion adds at most one component, and the original has room for all of them)")
+_KERNEL_EQUIVALENT_GROUPS = {
+    "src/equimesh/planar/insertion/_predicates.py": [
+        (_LONGER_BUFFER,
+         ["h = np.empty(3)", "h = np.empty(14)",
+          "h = np.empty(3 * (nux * nvy + nuy * nvx) + 1)", "h = np.empty(2 * (nux * nvy + nuy * nvx) + 2)",
+          "h = np.empty(3 * (nux * nux + nuy * nuy) + 1)", "h = np.empty(2 * (nux * nux + nuy * nuy) + 2)",
+          "h = np.empty(3 * (na * nbc + nb * nca + nc * nab) + 1)",
+          "h = np.empty(2 * (na * nbc + nb * nca + nc * nab) + 2)"]),
+        ("equivalent: Shewchuk's own orient2d returns det when |det| >= the bound (predicates.c: det >= errbound), "
+         "so equality proves the sign too, and every caller reads only the sign (compared with 0, np.sign)",
+         ["if abs(det) >= _CCW_BOUND * (abs(left) + abs(right)):"]),
+        ("equivalent: the bound's 96 eps^2 term exceeds the second-order error, so the error is strictly below "
+         "_ICC_BOUND * permanent when the permanent is positive and |det| equal to it proves the sign; at a zero "
+         "permanent every product is 0 (no underflow in the documented range), the exact value too; callers read "
+         "only the sign", ["if abs(det) >= _ICC_BOUND * permanent:"]),
+    ],
+    "src/equimesh/planar/insertion/_cdt.py": [
+        ("equivalent: the bounding-box test only answers False early, and two of its four conditions cannot hold "
+         "together (a box left of the other and the other left of it), so each mutant still answers False only for "
+         "disjoint boxes, and every other pair goes on to the exact test",
+         ["if max(px, qx) < min(ax, bx) or max(ax, bx) < min(px, qx) or max(py, qy) < min(ay, by) and max(ay, by) < min(py, qy):",
+          "if max(px, qx) < min(ax, bx) or max(ax, bx) < min(px, qx) and max(py, qy) < min(ay, by) or max(ay, by) < min(py, qy):",
+          "if max(px, qx) < min(ax, bx) and max(ax, bx) < min(px, qx) or max(py, qy) < min(ay, by) or max(ay, by) < min(py, qy):"]),
+        ("equivalent: d1 .. d4 are signs in {-1, 0, 1}; the mutant differs only when one end (say q, d2 = 0) lies on "
+         "the other segment's line while that segment's ends are strictly on both sides of line pq: then the lines "
+         "meet at q, between a and b, and the segments touch, the answer of the on-segment test (d1 / 0 is +-inf as "
+         "Python, 0 / 0 is nan and not < 0)",
+         ["if d1 / d2 < 0 and d3 * d4 < 0:", "if d1 * d2 <= 0 and d3 * d4 < 0:", "if d1 * d2 < 1 and d3 * d4 < 0:",
+          "if d1 * d2 < 0 and d3 / d4 < 0:", "if d1 * d2 < 0 and d3 * d4 <= 0:", "if d1 * d2 < 0 and d3 * d4 < 1:"]),
+        ("equivalent: the walk's direction only decides where it goes next; locate answers from a triangle only after "
+         "the closed-containment test (then t, or the lower of t and its neighbour across the edge holding the point, "
+         "the only triangles containing it), and else scans every slot after max_steps or when it leaves the "
+         "triangulation: the same answer",
+         ["t = N[t, 0 if (o0 < 0.0) and False else (1 if o1 < 0.0 else 2)]",
+          "t = N[t, 0 if (o0 < 0.0) or True else (1 if o1 < 0.0 else 2)]",
+          "t = N[t, 1 if o0 < 0.0 else (1 if o1 < 0.0 else 2)]", "t = N[t, 0 if o0 <= 0.0 else (1 if o1 < 0.0 else 2)]",
+          "t = N[t, 0 if o0 < 1.0 else (1 if o1 < 0.0 else 2)]",
+          "t = N[t, 0 if o0 < 0.0 else (1 if (o1 < 0.0) and False else 2)]",
+          "t = N[t, 0 if o0 < 0.0 else (1 if (o1 < 0.0) or True else 2)]",
+          "t = N[t, 0 if o0 < 0.0 else (2 if o1 < 0.0 else 2)]", "t = N[t, 0 if o0 < 0.0 else (1 if o1 <= 0.0 else 2)]",
+          "t = N[t, 0 if o0 < 0.0 else (1 if o1 < 1.0 else 2)]"]),
+        ("equivalent: a stricter acceptance still accepts only triangles that contain the point, where the answer is "
+         "right; a triangle it rejects sends the walk on, and in the end to the scan, which gives the same answer",
+         ["if o0 > 0.0 and o1 >= 0.0 and o2 >= 0.0:", "if o0 >= 1.0 and o1 >= 0.0 and o2 >= 0.0:",
+          "if o0 >= 0.0 and o1 > 0.0 and o2 >= 0.0:", "if o0 >= 0.0 and o1 >= 1.0 and o2 >= 0.0:",
+          "if o0 >= 0.0 and o1 >= 0.0 and o2 > 0.0:", "if o0 >= 0.0 and o1 >= 0.0 and o2 >= 1.0:"]),
+        ("equivalent: stopping a walk early (at slot 0, or at a point on an edge) only hands the query over: "
+         "locate's to the scan, which returns the lowest slot containing the point (for a point inside an edge the "
+         "lower of its two triangles, the walk's own answer); walk's (status -1) to the engine's brute-force "
+         "visibility test and locate, which decide the same", ["if t <= 0:", "if t < 1:", "if zeros >= 1:"]),
+        ("equivalent: np.full takes the dtype of its fill value -1 (int64); float keys and counts of small integers "
+         "are exact and sort, search and compare as the integers; the directed half-edge keys are unique, so the "
+         "sort's stability is never seen; order[pos] / 3 stored into the int64 N truncates as // does",
+         ["keys = np.empty(3 * nt, dtype=None)", "keys = np.empty(3 * nt, )", "order = np.argsort(keys, kind=None)",
+          "order = np.argsort(keys, )", 'order = np.argsort(keys, kind="MERGESORT")', "N = np.full((nt, 3), -1, dtype=None)",
+          "N = np.full((nt, 3), -1, )", "S = np.full((nt, 3), -1, dtype=None)", "S = np.full((nt, 3), -1, )",
+          "N[t, e] = order[pos] / 3", "count = np.zeros(len(SA), dtype=None)", "count = np.zeros(len(SA), )"]),
+        ("equivalent under the engine's contract (checked first: every constraint is an edge of exactly one "
+         "triangle): a constraint edge has no triangle across it (n < 0), so the constraint tests of the cavity and "
+         "of its boundary decide nothing that n < 0 and the mark do not",
+         ["if S[t, e] >= 0 and n < 0 or mark[n] == stamp:", "if S[t, e] > 0 or n < 0 or mark[n] == stamp:",
+          "if S[t, e] >= 1 or n < 0 or mark[n] == stamp:", "if inside and s > 0:", "if inside and s >= 1:"]),
+        ("equivalent: the new point lies strictly inside the star of its cavity (inside a cavity triangle, or on an "
+         "edge between two: both contain it strictly in their circumcircles; never on an unsplit constraint, within "
+         "REL_TOL l of which no circumcentre is pushed), so no fan triangle is flat",
+         ["if orient2d(P[u, 0], P[u, 1], P[v, 0], P[v, 1], px, py) < 0.0 or vstamp[u] == stamp:"]),
+        ("equivalent: the cavity's boundary is a closed polygon, so the second loop of fill links edges 1 and 2 of "
+         "every fan triangle, overwriting these first values; and any negative S means no segment (only S >= 0 is "
+         "tested)",
+         ["N[t, 0], N[t, 2], N[t, 2] = outer, -1, -1", "N[t, 0], N[t, 1], N[t, 2] = outer, +1, -1",
+          "N[t, 0], N[t, 1], N[t, 2] = outer, -2, -1", "N[t, 0], N[t, 1], N[t, 2] = outer, -1, +1",
+          "N[t, 0], N[t, 1], N[t, 2] = outer, -1, -2", "S[t, 0], S[t, 1], S[t, 2] = edges[f, 3], -2, -1",
+          "S[t, 0], S[t, 1], S[t, 2] = edges[f, 3], -1, -2"]),
+        ("equivalent: v occurs once in the outer triangle, followed by u (it has the edge v -> u), so the first j "
+         "with V[outer, j] == v is the j with V[outer, j + 1] == u", ["if V[outer, j] == v or V[outer, (j + 1) % 3] == u:"]),
+        ("equivalent: the caller reads only status < 0 and then computes the triangle itself (locate)",
+         ["return -2, -1", "return -1, +1", "return -1, -2"]),
+        ("equivalent: a zero orientation of the line gc with a vertex returned -1 just before, so s0, s1, s2 are "
+         "nonzero here and <= 0 is < 0, >= 0 is > 0",
+         ["if s2 <= 0.0 and s0 > 0.0:", "if s2 < 0.0 and s0 >= 0.0:", "elif s1 <= 0.0 and s2 > 0.0:",
+          "elif s1 < 0.0 and s2 >= 0.0:", "elif s0 <= 0.0 and s1 > 0.0:", "elif s0 < 0.0 and s1 >= 0.0:"]),
+        ("equivalent: o_out == 0 would put c on the line of the edge the segment gc leaves t by, where gc meets that "
+         "line, hence on the edge itself and in the closed triangle t, which was tested before",
+         ["if o_out > 0.0:"]),
+    ],
+    "src/equimesh/planar/insertion/fast.py": [
+        ("equivalent: as floats 1.0 / 0.0 these flags are only read as truth values and written True / False",
+         ["salive = np.ones(len(SA), dtype=None)", "salive = np.ones(len(SA), )", "alive = np.ones(n_slots, dtype=None)",
+          "alive = np.ones(n_slots, )"]),
+        ("equivalent: as floats these counters and slot numbers stay exact integers (far below 2^53); they are only "
+         "incremented, compared for equality with integer stamps and versions, and copied into int64 arrays",
+         ["ver = np.zeros(n_slots, dtype=None)", "ver = np.zeros(n_slots, )", "mark = np.zeros(n_slots, dtype=None)",
+          "mark = np.zeros(n_slots, )", "vstamp = np.zeros(n, dtype=None)", "vstamp = np.zeros(n, )",
+          "free = np.empty(n_slots, dtype=None)", "free = np.empty(n_slots, )"]),
+        ("equivalent: run raises on any status but _OK before it reads the arrays returned with it",
+         ["return -2 - s, P0, T0, SEG0, np.empty(None)", "return -2 - s, P0, T0, SEG0, np.empty(1)"]),
+        ("equivalent: a buffer's capacity is checked against the need before every use (len(edges) against k + 2, "
+         "len(HK) against the pushes to come, len(P) against n) and grown then; a longer HI, values, vfan or vstamp "
+         "than the array checked, or an unused column, is never read",
+         ["edges = np.empty((_CAVITY - 2, 4), dtype=np.int64)", "edges = np.empty((_CAVITY + 3, 4), dtype=np.int64)",
+          "edges = np.empty((_CAVITY + 2, 5), dtype=np.int64)", "HK = np.empty((4 * n_slots + 16, 4))",
+          "HI = np.empty((5 * n_slots + 16, 3), dtype=np.int64)", "HI = np.empty((4 * n_slots + 17, 3), dtype=np.int64)",
+          "HI = np.empty((4 * n_slots + 16, 4), dtype=np.int64)",
+          "HK, HI = _grown(HK, 2 * len(HK) + 4 * m), _grown(HI, 3 * len(HI) + 4 * m)",
+          "HK, HI = _grown(HK, 2 * len(HK) + 4 * m), _grown(HI, 2 * len(HI) + 5 * m)",
+          "P, values = _grown(P, 2 * n), _grown(values, 3 * n)", "vfan, vstamp = _grown(vfan, 3 * n), _grown(vstamp, 2 * n)",
+          "vfan, vstamp = _grown(vfan, 2 * n), _grown(vstamp, 3 * n)"]),
+        ("equivalent: compacting or growing the heap earlier (never later) changes only its array, hence only the "
+         "order in which entries with identical keys (value, x, y) surface; such entries are one point (a circumcentre "
+         "shared by cocircular triangles; a circumcentre within REL_TOL l of a constraint is never pushed, so never "
+         "equals a midpoint), inserted once with the same value, and its cavity, grown from any triangle containing "
+         "it, is the same, so the same triangles follow",
+         ["if nh + 5 * m > len(HK):", "if nh + 4 * m >= len(HK):", "if 3 * (nh + 4 * m) > len(HK):",
+          "if 2 * (nh + 5 * m) > len(HK):", "if 2 * (nh + 4 * m) >= len(HK):"]),
+        ("equivalent: heapify sifts down from a higher index, a leaf (indices from k // 2 have no child below k), "
+         "which _sift_down writes back unchanged", ["for i in range(k // 2 + 1, -1, -1):", "for i in range(k // 2, -1, -1):"]),
+        ("equivalent: stamps are only compared for equality with marks that start at 0, and are incremented before "
+         "each use, so starting from 1 or stepping by 2 marks nothing falsely",
+         ["nh, m, stamp = 0, n_slots, 1", "stamp += 2"]),
+        ("equivalent: growing a buffer earlier or larger (the need is checked again before every use): the cavity, "
+         "its boundary edges and fan slots, the triangle arrays, SB and salive beside the SA that is checked; edges "
+         "first grow at k >= 65, where 2 k - 2 >= k + 2",
+         ["cav = _grown(cav, 3 * len(cav))", "if k + 3 > len(edges):", "if k + 2 >= len(edges):",
+          "edges = _grown(edges, 2 * k - 2)", "edges = _grown(edges, 3 * k + 2)", "edges = _grown(edges, 2 * k + 3)",
+          "if k + 3 > len(slots):", "if k + 2 >= len(slots):", "slots = _grown(slots, 3 * k + 2)",
+          "slots = _grown(slots, 2 * k + 3)", "if m >= n_free + len(V) - n_slots:", "size = 3 * len(V) + m",
+          "if n_segs + 3 > len(SA):", "if n_segs + 2 >= len(SA):",
+          "SA, SB, salive = _grown(SA, 2 * len(SA) + 2), _grown(SB, 3 * len(SB) + 2), _grown(salive, 2 * len(SA) + 2)",
+          "SA, SB, salive = _grown(SA, 2 * len(SA) + 2), _grown(SB, 2 * len(SB) + 3), _grown(salive, 2 * len(SA) + 2)",
+          "SA, SB, salive = _grown(SA, 2 * len(SA) + 2), _grown(SB, 2 * len(SB) + 2), _grown(salive, 3 * len(SA) + 2)",
+          "SA, SB, salive = _grown(SA, 2 * len(SA) + 2), _grown(SB, 2 * len(SB) + 2), _grown(salive, 2 * len(SA) + 3)"]),
+        ("equivalent: cavity returns -1 (buffer too short) or k >= 1 (the start triangle is always in), and "
+         "cavity_boundary -1 or m >= 3 (a cavity's boundary is a closed polygon)",
+         ["while k <= 0:", "while k < 1:", "if m <= 0:", "if m < 1:"]),
+        ("equivalent: r is -1 (no candidate) or at least (1 - REL_TOL) l > 0", ["if r <= 0.0:"]),
+        ("equivalent: an entry of a split segment s belongs to the triangle that had s as an edge, the start of the "
+         "split's cavity, so its version is stale and it is skipped whatever the segment test says",
+         ["if ver[t] != version or (s > 0 and not salive[s]):", "if ver[t] != version or (s >= 1 and not salive[s]):"]),
+        (_NEGATIVE_RESHAPE, ["points = np.array(region.points, dtype=float).reshape(-2, 2)",
+                             "segments = np.array(region.segments, dtype=np.int64).reshape(-2, 2)"]),
+        ("equivalent: constrained_delaunay returns int64 triangles already",
+         ["points, np.ascontiguousarray(triangles, dtype=None), segments, lim",
+          "points, np.ascontiguousarray(triangles, ), segments, lim"]),
+    ],
+}
+# --- end of the fast engine's kernels ---
+EQUIVALENT = {(module, line): why for module, groups in {**_EQUIVALENT_GROUPS, **_KERNEL_EQUIVALENT_GROUPS}.items()
               for why, lines in groups for line in lines}
 
 #: pytest options for every mutant run: stop at the first failure.
@@ -299,7 +464,7 @@ PYTEST_ARGS = ["-p", "no:cacheprovider", "-q", "-x"]
 #: surviving mutant runs its tests in their own time, so 3 leaves a margin of 6.
 TIMEOUT_MULTIPLIER = 3.0
 
-STATUSES = ("killed", "survived", "timeout", "no tests", "suspicious", "skipped", "segfault")
+STATUSES = ("killed", "survived", "timeout", "no tests", "suspicious", "skipped", "segfault", "not checked")
 
 
 def parse_args(argv=None):
@@ -308,6 +473,8 @@ def parse_args(argv=None):
     p.add_argument("--max-children", type=int, default=2, help="parallel mutant runs (default 2)")
     p.add_argument("--work-dir", type=Path, default=ROOT / ".mutation", help="scratch folder (default .mutation/)")
     p.add_argument("--resume", action="store_true", help="keep the scratch copy of a module and its finished mutants")
+    p.add_argument("--so-far", action="store_true",
+                   help="write the rows of interrupted modules from the mutants already run (runs nothing)")
     p.add_argument("--survivors", action="store_true",
                    help="run only the last run's survivors again, against the current tests (keeps the other verdicts)")
     _common.add_output_options(p, fig_dir=False)
@@ -334,8 +501,8 @@ def mutmut_table(module):
 def prepare(module, work_dir, keep=None):
     """The copy of the project for ``module``'s mutants; returns its folder.
 
-    ``keep=None`` makes a fresh copy; ``"resume"`` keeps an existing one with
-    its tests; ``"survivors"`` keeps it with the current tests.  Either way the
+    ``keep=None`` makes a fresh copy; ``"resume"`` and ``"so-far"`` keep an
+    existing one with its tests; ``"survivors"`` keeps it with the current tests.  Either way the
     ``[tool.mutmut]`` table is the current one (mutmut resets the verdicts its
     change can alter).
     """
@@ -353,9 +520,10 @@ def prepare(module, work_dir, keep=None):
     return folder
 
 
-def mutmut(folder, *args):
-    """Run ``mutmut *args`` in ``folder``; its standard output."""
+def mutmut(folder, *args, environment=None):
+    """Run ``mutmut *args`` in ``folder`` with ``environment`` added; its standard output."""
     env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}  # mutmut puts mutants/src first itself
+    env.update(environment or {})
     done = subprocess.run([sys.executable, "-m", "mutmut", *args], cwd=folder, env=env, capture_output=True, text=True)
     if done.returncode:
         raise SystemExit(f"mutmut {' '.join(args)} failed in {folder}: {done.stderr.strip().splitlines()[-1:]}")
@@ -378,6 +546,10 @@ def statuses(folder):
 def run_module(module, work_dir, max_children, keep=None, seconds=None, progress=print):
     """Mutate ``module``, run its tests on every mutant; its counts and survivors.
 
+    With ``keep="so-far"`` nothing runs: the row counts the mutants that an
+    interrupted run checked (the rest are "not checked", outside the score),
+    and its time is the sum of mutmut's times of the mutants run (their last
+    runs), a little below the wall time.
     With ``keep="survivors"`` only the survivors of the last run are run again
     (:func:`prepare`; the test selection must be the same, or mutmut resets
     every verdict), and ``seconds`` is the time of that last full run.  mutmut
@@ -386,12 +558,17 @@ def run_module(module, work_dir, max_children, keep=None, seconds=None, progress
     function before, so kill it with a new test (or run the module afresh).
     """
     folder = prepare(module, work_dir, keep)
-    full = keep != "survivors" or not (folder / "mutants").exists()
+    full = keep not in ("survivors", "so-far") or not (folder / "mutants").exists()
     again = [] if full else sorted(n for n, s in statuses(folder).items() if s == "survived")
-    progress(f"{NAME}: {module} against {' '.join(MODULES[module])}" + ("" if full else f", {len(again)} survivors again"))
+    progress(f"{NAME}: {module} against {' '.join(MODULES[module])}" + ("" if full else ", so far" if keep == "so-far" else f", {len(again)} survivors again"))
     start = time.perf_counter()
-    if full or again:
-        mutmut(folder, "run", "--max-children", str(max_children), *again)
+    if keep == "so-far":
+        if full:
+            raise SystemExit(f"{NAME}: no interrupted run of {module} in {folder}")
+        meta = [json.loads(f.read_text()) for f in (folder / "mutants").rglob("*.meta")]
+        seconds = sum(d or 0.0 for m in meta for d in m["durations_by_key"].values())
+    elif full or again:
+        mutmut(folder, "run", "--max-children", str(max_children), *again, environment=ENVIRONMENT.get(module))
     if full or seconds is None:
         seconds = time.perf_counter() - start
     status = statuses(folder)
@@ -401,11 +578,11 @@ def run_module(module, work_dir, max_children, keep=None, seconds=None, progress
         line = mutated_line(folder, name)
         survivors.append({"mutant": name, "line": line, "equivalent": EQUIVALENT.get((module, line))})
     equivalent = sum(s["equivalent"] is not None for s in survivors)
-    relevant = len(status) - equivalent - counts["no tests"] - counts["skipped"]
+    relevant = len(status) - equivalent - counts["no tests"] - counts["skipped"] - counts["not checked"]
     score = (counts["killed"] + counts["timeout"]) / relevant if relevant else 1.0
     progress(f"{NAME}: {module}: {len(status)} mutants, {counts['killed']} killed, "
              f"{counts['survived']} survived ({equivalent} equivalent), {seconds:.0f} s")
-    return {"module": module, "tests": MODULES[module], "mutants": len(status), **counts,
+    return {"module": module, "tests": MODULES[module], "environment": ENVIRONMENT.get(module, {}), "mutants": len(status), **counts,
             "equivalent": equivalent, "score": score, "seconds": round(seconds), "survivors": survivors}
 
 
@@ -424,10 +601,14 @@ def report(modules, record):
         "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|",
     ]
     for m in modules:
-        body.append(f"| `{m['module']}` | {', '.join(m['tests'])} | {m['mutants']} | {m['killed']} | {m['survived']} "
+        tests = " ".join([*(f"{k}={v}" for k, v in m.get("environment", {}).items()), ", ".join(m["tests"])])
+        body.append(f"| `{m['module']}` | {tests} | {m['mutants']} | {m['killed']} | {m['survived']} "
                     f"| {m['equivalent']} | {m['timeout']} | {m['no tests']} | {100 * m['score']:.1f} % | {m['seconds']} s |")
     for m in modules:
         body += ["", f"## Survivors in `{m['module']}`", ""]
+        if m.get("not checked"):
+            body += [f"Interrupted: {m['not checked']} of {m['mutants']} mutants not run (not in the score; "
+                     "`--resume` continues the run).", ""]
         if not m["survivors"]:
             body.append("None.")
         for s in m["survivors"]:
@@ -437,16 +618,23 @@ def report(modules, record):
                                    "(`python experiments/mutation_report.py`)", body, record)
 
 
+def _rows(json_path):
+    """Module -> its row in ``json_path`` (from earlier runs), for the modules still in :data:`MODULES`."""
+    previous = json.loads(json_path.read_text())["modules"] if json_path.exists() else []
+    return {m["module"]: m for m in previous if m["module"] in MODULES}
+
+
 def main(argv=None):
     args = parse_args(argv)
     wanted = args.modules or list(MODULES)
     json_path = args.out_dir / f"{NAME}.json"
-    previous = json.loads(json_path.read_text())["modules"] if json_path.exists() else []
-    done = {m["module"]: m for m in previous if m["module"] in MODULES}
     args.out_dir.mkdir(parents=True, exist_ok=True)
     for module in wanted:
-        keep = "survivors" if args.survivors else "resume" if args.resume else None
-        done[module] = run_module(module, args.work_dir, args.max_children, keep, done.get(module, {}).get("seconds"))
+        keep = "survivors" if args.survivors else "resume" if args.resume else "so-far" if args.so_far else None
+        seconds = _rows(json_path).get(module, {}).get("seconds")
+        row = run_module(module, args.work_dir, args.max_children, keep, seconds)
+        done = _rows(json_path)  # read again: another process may have run other modules meanwhile
+        done[module] = row
         modules = [done[m] for m in MODULES if m in done]
         atomic_write_text(json_path, json.dumps({"modules": modules}, indent=1) + "\n")
         parameters = {"modules": [m["module"] for m in modules], "max_children": args.max_children, "pytest_args": PYTEST_ARGS}

@@ -48,6 +48,10 @@ MAX_SHIFT = 100.0
 
 seeds = st.integers(min_value=0, max_value=2**32 - 1)
 
+#: Coordinates of the fast engine's frame (l about 1): zero or of magnitude 1e-6 to 1e3, so no product
+#: of the exact predicates' fallback underflows (their documented range).
+frame_coordinates = st.one_of(st.just(0.0), st.floats(1e-6, 1e3), st.floats(-1e3, -1e-6))
+
 
 @st.composite
 def lengths(draw):

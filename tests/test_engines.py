@@ -2,9 +2,6 @@
 
 What must hold:
 
-* the exact predicates of the fast engine give the sign of the exact
-  determinant, also on cocircular and collinear points (lattices, regular
-  polygons);
 * on tie-free inputs (random polygons, generic rotation: no four cocircular
   points) both engines insert the same points in the same order, with the
   same values, bit for bit, and end with the same triangles;
@@ -14,11 +11,11 @@ What must hold:
   and 2 and is deterministic;
 * engine names: an unknown one is a clear error listing the engines, and
   validation does not depend on the engine.
+
+The predicates and the heap are tested in ``tests/test_fast_kernels.py``.
 """
 
-import math
 from contextlib import contextmanager
-from fractions import Fraction
 
 import numpy as np
 import pytest
@@ -29,10 +26,9 @@ import equimesh
 import equimesh.planar.increment
 import equimesh.planar.strip
 from equimesh import EquimeshError
-from equimesh.planar.insertion import ENGINES, Region, insert
+from equimesh.planar.insertion import ENGINES, insert
 from equimesh.planar.insertion._cdt import adjacency, cavity_boundary, locate
 from equimesh.planar.insertion._region import constrained_delaunay
-from equimesh.planar.insertion._predicates import incircle, orient2d
 from equimesh.testing.generators import rectangle, regular_polygon, rotate
 
 import invariants_uniform as inv
@@ -42,72 +38,6 @@ from invariants import assert_problem1_invariants, assert_values_non_increasing
 from strategies import problems
 
 ENGINE_NAMES = sorted(ENGINES)
-
-# --------------------------------------------------------------------------- predicates
-
-
-def _sign(x):
-    return (x > 0) - (x < 0)
-
-
-def exact_orient(a, b, c):
-    (ax, ay), (bx, by), (cx, cy) = ((Fraction(x), Fraction(y)) for x, y in (a, b, c))
-    return _sign((ax - cx) * (by - cy) - (ay - cy) * (bx - cx))
-
-
-def exact_incircle(a, b, c, d):
-    dx, dy = Fraction(d[0]), Fraction(d[1])
-    rows = [(Fraction(p[0]) - dx, Fraction(p[1]) - dy) for p in (a, b, c)]
-    (ax, ay), (bx, by), (cx, cy) = rows
-    la, lb, lc = (x * x + y * y for x, y in rows)
-    return _sign(la * (bx * cy - by * cx) + lb * (cx * ay - cy * ax) + lc * (ax * by - ay * bx))
-
-
-#: Coordinates of the engine's frame (l about 1): zero or of magnitude 1e-6 to 1e3, so no product
-#: of the exact fallback underflows (the predicates' documented range).
-coordinates = st.one_of(st.just(0.0), st.floats(1e-6, 1e3), st.floats(-1e3, -1e-6))
-points = st.tuples(coordinates, coordinates)
-
-
-@st.composite
-def lattice_quadruples(draw):
-    """Four points of a scaled, shifted integer or triangular lattice (many collinear and cocircular)."""
-    h = draw(st.sampled_from([1.0, 0.1, 1.7, 2.0**-10]))
-    shift = np.array([draw(coordinates), draw(coordinates)])
-    ij = np.array(draw(st.lists(st.tuples(st.integers(-3, 3), st.integers(-3, 3)), min_size=4, max_size=4)), float)
-    if draw(st.booleans()):
-        ij = np.column_stack([ij[:, 0] + 0.5 * ij[:, 1], ij[:, 1] * math.sqrt(3.0) / 2.0])
-    return [tuple(map(float, p)) for p in ij * h + shift]
-
-
-@st.composite
-def cocircular_quadruples(draw):
-    """Four vertices of a regular k-gon (cocircular up to rounding), in ccw order, then a fourth point."""
-    k = draw(st.integers(4, 12))
-    v = regular_polygon(k, draw(st.floats(0.1, 10.0)), center=(draw(coordinates), draw(coordinates)))
-    idx = sorted(draw(st.lists(st.integers(0, k - 1), min_size=4, max_size=4, unique=True)))
-    return [tuple(map(float, v[i])) for i in idx]
-
-
-@given(st.one_of(st.lists(points, min_size=4, max_size=4), lattice_quadruples(), cocircular_quadruples()))
-def test_predicates_give_the_exact_sign(quad):
-    """orient2d and incircle agree in sign with rational arithmetic on the same doubles."""
-    a, b, c, d = quad
-    assert _sign(orient2d(*a, *b, *c)) == exact_orient(a, b, c)
-    assert _sign(orient2d(*a, *b, *d)) == exact_orient(a, b, d)
-    if exact_orient(a, b, c) > 0:
-        assert _sign(incircle(*a, *b, *c, *d)) == exact_incircle(a, b, c, d)
-
-
-def test_predicates_on_exact_degeneracies():
-    """Exactly collinear and cocircular points give 0; a point one ulp off the line gives the right side."""
-    assert orient2d(0.0, 0.0, 1.0, 1.0, 3.0, 3.0) == 0.0
-    assert orient2d(0.1, 0.1, 0.3, 0.3, 0.7, 0.7) == 0.0
-    assert orient2d(0.0, 0.0, 1.0, 1.0, 3.0, np.nextafter(3.0, 4.0)) > 0.0
-    assert incircle(0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 1.0) == 0.0
-    assert incircle(0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, np.nextafter(1.0, 0.0)) > 0.0
-    assert incircle(0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, np.nextafter(1.0, 2.0)) < 0.0
-
 
 # --------------------------------------------------------------------------- recording the engine's output
 
@@ -163,7 +93,7 @@ def tie_free_convex(draw):
     """Random convex polygons (inner angles >= 90) at a generic rotation and l: no four cocircular points."""
     v = draw(strategies.random_polygons(max_area=150.0))
     l = draw(st.floats(0.3, 3.0))
-    return rotate(v, draw(st.floats(0.01, 1.5))) * l + np.array([draw(coordinates), draw(coordinates)]), l
+    return rotate(v, draw(st.floats(0.01, 1.5))) * l + np.array([draw(strategies.frame_coordinates), draw(strategies.frame_coordinates)]), l
 
 
 @given(tie_free_convex())
@@ -266,14 +196,6 @@ def test_validation_does_not_depend_on_the_engine(call):
             call(name)
         messages.add((type(info.value), str(info.value)))
     assert len(messages) == 1, messages
-
-
-def test_fast_engine_refuses_an_interior_constraint():
-    """A constraint with triangles on both sides is outside the fast engine's contract: a clear error."""
-    square = rectangle(2.0, 2.0)
-    region = Region(square, np.array([[0, 1], [1, 2], [2, 3], [3, 0], [0, 2]]), np.empty((0, 2)))
-    with pytest.raises(EquimeshError, match="segment 4 is an edge of zero or two triangles"):
-        insert(region, 1.0, engine="fast")
 
 
 def test_cavity_boundary_fills_its_buffer_exactly():

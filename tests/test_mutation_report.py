@@ -47,3 +47,19 @@ def test_report_explains_or_flags_every_survivor(mutation):
     assert "| `src/m.py` | tests/test_m.py | 10 | 8 | 2 | 1 | 0 | 0 | 88.9 % | 5 s |" in text
     assert "`m__mutmut_1`: `x = 1` — the value is never read" in text
     assert "`m__mutmut_2`: `y = 2` — **not explained: a test is missing**" in text
+
+
+def test_kernel_modules_run_as_python_and_say_so(mutation):
+    """The numba kernels' mutants run with NUMBA_DISABLE_JIT=1, and their row of the table says so."""
+    kernels = [m for m in mutation.MODULES if "/insertion/_" in m or m.endswith("/insertion/fast.py")]
+    assert len(kernels) == 3
+    assert all(mutation.ENVIRONMENT[m] == {"NUMBA_DISABLE_JIT": "1"} for m in kernels)
+    assert "src/equimesh/planar/bounds.py" not in mutation.ENVIRONMENT
+    module = {"module": "src/k.py", "tests": ["tests/a.py", "tests/b.py"], "environment": {"NUMBA_DISABLE_JIT": "1"},
+              "mutants": 1, "killed": 1, "survived": 0, "timeout": 0, "no tests": 0, "equivalent": 0, "score": 1.0,
+              "seconds": 5, "survivors": []}
+    record = {"git": {"commit": "abc", "dirty": False}, "date": "2026-01-01", "parameters": {},
+              "python": "3.11", "platform": "linux", "versions": {}}
+    assert "| `src/k.py` | NUMBA_DISABLE_JIT=1 tests/a.py, tests/b.py | 1 | 1 |" in mutation.report([module], record)
+    module["not checked"] = 1
+    assert "Interrupted: 1 of 1 mutants not run" in mutation.report([module], record)

@@ -70,6 +70,17 @@ def test_near_constraint_and_sliver_gap_rules(gap, radius, listed):
     assert len(centers) == listed
 
 
+def at_exactly(tol, radius):
+    """``circle_triangle(1/2, radius / (2 tol))`` and the l for which ``tol * l`` is the computed gap exactly."""
+    points, segments = circle_triangle(0.5, radius * 0.5 / tol)
+    centre, _ = circumcenters(points[[0]], points[[1]], points[[2]])
+    gap = float(point_segment_distance(centre, points[0], points[1])[0])
+    l = gap / tol
+    while tol * l != gap:
+        l = np.nextafter(l, np.inf if tol * l < gap else -np.inf)
+    return points, segments, l
+
+
 @pytest.mark.parametrize("tol, radius", [(REL_TOL, 3.0), (SLIVER_GAP, 1.0)])
 def test_near_rules_are_inclusive_at_any_l(tol, radius):
     """A gap of exactly REL_TOL l (any value), or exactly SLIVER_GAP l with value l, is left out, at l far from 1.
@@ -77,12 +88,7 @@ def test_near_rules_are_inclusive_at_any_l(tol, radius):
     The triangle has gap 1/2 and circumradius ``radius / (2 tol)``; l is the float for which ``tol * l`` is the
     computed gap exactly.
     """
-    points, segments = circle_triangle(0.5, radius * 0.5 / tol)
-    centre, _ = circumcenters(points[[0]], points[[1]], points[[2]])
-    gap = float(point_segment_distance(centre, points[0], points[1])[0])
-    l = gap / tol
-    while tol * l != gap:
-        l = np.nextafter(l, np.inf if tol * l < gap else -np.inf)
+    points, segments, l = at_exactly(tol, radius)
     centers, radii = reference.circle_candidates(points, ONE, segments, l)
     assert len(centers) == 0
     centers, _ = reference.circle_candidates(points, ONE, segments, np.nextafter(l, 0.0) * (1.0 - 4.0 * REL_TOL))

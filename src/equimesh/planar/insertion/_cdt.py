@@ -19,16 +19,15 @@ for none).  Every sign is decided by the exact predicates of
   re-filled with a fan of triangles from the point.
 
 Every function but :func:`adjacency` is compiled without numba's reference
-counting (``_nrt=False``; the reason is in :mod:`.fast`).
+counting (``nrt=False``; the reason is in :mod:`.fast`).
 """
 
 import numpy as np
-from numba import njit
 
+from ._jit import compiled
 from ._predicates import incircle, orient2d
 
 
-@njit(cache=True)
 def adjacency(V, SA, SB, n_points):
     """``(N, S, count)`` for triangles ``V``; ``count[s]`` = triangles that have segment ``s`` as an edge."""
     nt = V.shape[0]
@@ -57,7 +56,9 @@ def adjacency(V, SA, SB, n_points):
     return N, S, count
 
 
-@njit(cache=True, _nrt=False)
+adjacency = compiled(adjacency)
+
+
 def walk(P, V, N, S, t, gx, gy, cx, cy, max_steps):
     """Walk from ``g`` (inside triangle ``t``) towards ``c``: ``(status, triangle)``.
 
@@ -76,7 +77,7 @@ def walk(P, V, N, S, t, gx, gy, cx, cy, max_steps):
     for _ in range(max_steps):
         o0, o1, o2 = _edge_sides(P, V, t, cx, cy)
         if o0 >= 0.0 and o1 >= 0.0 and o2 >= 0.0:
-            zeros = (o0 == 0.0) + (o1 == 0.0) + (o2 == 0.0)
+            zeros = int(o0 == 0.0) + int(o1 == 0.0) + int(o2 == 0.0)
             if zeros == 0:
                 return 1, t
             if zeros > 1:
@@ -108,7 +109,9 @@ def walk(P, V, N, S, t, gx, gy, cx, cy, max_steps):
     return -1, -1
 
 
-@njit(cache=True, _nrt=False)
+walk = compiled(walk, nrt=False)
+
+
 def _edge_sides(P, V, t, x, y):
     """``orient`` of each edge ``e`` of triangle ``t`` with the point: all >= 0 when the closed triangle contains it."""
     a, b, c = V[t, 0], V[t, 1], V[t, 2]
@@ -116,12 +119,16 @@ def _edge_sides(P, V, t, x, y):
     return orient2d(ax, ay, bx, by, x, y), orient2d(bx, by, cx, cy, x, y), orient2d(cx, cy, ax, ay, x, y)
 
 
-@njit(cache=True, _nrt=False)
+_edge_sides = compiled(_edge_sides, nrt=False)
+
+
 def _on_segment(sx, sy, tx, ty, rx, ry, d):
     return d == 0.0 and min(sx, tx) <= rx <= max(sx, tx) and min(sy, ty) <= ry <= max(sy, ty)
 
 
-@njit(cache=True, _nrt=False)
+_on_segment = compiled(_on_segment, nrt=False)
+
+
 def segments_touch(px, py, qx, qy, ax, ay, bx, by):
     """Whether closed segments ``pq`` and ``ab`` share a point; :func:`equimesh._geometry.segments_intersect`.
 
@@ -143,7 +150,9 @@ def segments_touch(px, py, qx, qy, ax, ay, bx, by):
     )
 
 
-@njit(cache=True, _nrt=False)
+segments_touch = compiled(segments_touch, nrt=False)
+
+
 def locate(P, V, N, alive, n_slots, start, x, y, max_steps):
     """The lowest live slot whose closed triangle contains ``(x, y)``, or -1.
 
@@ -159,7 +168,7 @@ def locate(P, V, N, alive, n_slots, start, x, y, max_steps):
     for _ in range(max_steps):
         o0, o1, o2 = _edge_sides(P, V, t, x, y)
         if o0 >= 0.0 and o1 >= 0.0 and o2 >= 0.0:
-            zeros = (o0 == 0.0) + (o1 == 0.0) + (o2 == 0.0)
+            zeros = int(o0 == 0.0) + int(o1 == 0.0) + int(o2 == 0.0)
             if zeros == 0:
                 return t
             if zeros > 1:
@@ -177,7 +186,9 @@ def locate(P, V, N, alive, n_slots, start, x, y, max_steps):
     return -1
 
 
-@njit(cache=True, _nrt=False)
+locate = compiled(locate, nrt=False)
+
+
 def cavity(P, V, N, S, start, px, py, mark, stamp, cav):
     """Bowyer-Watson cavity of point ``p`` from triangle ``start``: its slots in ``cav[:k]``; returns ``k``.
 
@@ -207,7 +218,9 @@ def cavity(P, V, N, S, start, px, py, mark, stamp, cav):
     return k
 
 
-@njit(cache=True, _nrt=False)
+cavity = compiled(cavity, nrt=False)
+
+
 def cavity_boundary(V, N, S, cav, k, split, mark, stamp, edges):
     """Boundary edges of the cavity ``cav[:k]`` (without the split segment), rows ``(u, v, outer, segment)``.
 
@@ -233,7 +246,9 @@ def cavity_boundary(V, N, S, cav, k, split, mark, stamp, edges):
     return m
 
 
-@njit(cache=True, _nrt=False)
+cavity_boundary = compiled(cavity_boundary, nrt=False)
+
+
 def fill(P, V, N, S, edges, m, p, slots, vfan, vstamp, stamp):
     """Fan triangles ``(u, v, p)`` over the cavity boundary ``edges[:m]`` into ``slots[:m]``.
 
@@ -262,3 +277,6 @@ def fill(P, V, N, S, edges, m, p, slots, vfan, vstamp, stamp):
             N[slots[f], 1] = g
             N[g, 2] = slots[f]
     return True
+
+
+fill = compiled(fill, nrt=False)

@@ -16,12 +16,13 @@ or underflows (coordinates are moderate: the caller works in a frame where
 ``l`` is about 1).
 
 Compiled without fast-math, so no fused multiply-add can change a rounding,
-and with numba's runtime (``_nrt=True``, the exact fallback allocates its
+and with numba's runtime (``nrt=True``, the exact fallback allocates its
 expansions) even when called from the engine's helpers compiled without it.
 """
 
 import numpy as np
-from numba import njit
+
+from ._jit import compiled
 
 #: Half an ulp of 1.0 (Shewchuk's ``epsilon``).
 _EPS = 2.0**-53
@@ -32,7 +33,6 @@ _CCW_BOUND = (3.0 + 16.0 * _EPS) * _EPS
 _ICC_BOUND = (10.0 + 96.0 * _EPS) * _EPS
 
 
-@njit(cache=True, _nrt=True)
 def _two_sum(a, b):
     """``a + b = x + y`` exactly, ``x`` the rounded sum (Knuth)."""
     x = a + b
@@ -41,7 +41,9 @@ def _two_sum(a, b):
     return x, (a - av) + (b - bv)
 
 
-@njit(cache=True, _nrt=True)
+_two_sum = compiled(_two_sum, nrt=True)
+
+
 def _split(a):
     """``a = hi + lo`` with both halves of at most 26 significant bits (Dekker)."""
     c = _SPLITTER * a
@@ -49,7 +51,9 @@ def _split(a):
     return hi, a - hi
 
 
-@njit(cache=True, _nrt=True)
+_split = compiled(_split, nrt=True)
+
+
 def _two_product(a, b):
     """``a * b = x + y`` exactly, ``x`` the rounded product (Dekker)."""
     x = a * b
@@ -61,7 +65,9 @@ def _two_product(a, b):
     return x, alo * blo - err
 
 
-@njit(cache=True, _nrt=True)
+_two_product = compiled(_two_product, nrt=True)
+
+
 def _grow(h, n, b):
     """Add ``b`` to the expansion ``h[:n]`` in place (Grow-Expansion, zero elimination); the new length.
 
@@ -81,7 +87,9 @@ def _grow(h, n, b):
     return k
 
 
-@njit(cache=True, _nrt=True)
+_grow = compiled(_grow, nrt=True)
+
+
 def _add_product(h, n, e, ne, f, nf, sign):
     """``h[:n] += sign * (e[:ne] * f[:nf])`` exactly; the new length (room for ``n + 2 ne nf``)."""
     for i in range(ne):
@@ -92,7 +100,9 @@ def _add_product(h, n, e, ne, f, nf, sign):
     return n
 
 
-@njit(cache=True, _nrt=True)
+_add_product = compiled(_add_product, nrt=True)
+
+
 def _difference(a, b):
     """``a - b`` as an expansion of one or two components."""
     h = np.empty(2)
@@ -100,7 +110,9 @@ def _difference(a, b):
     return h, _grow(h, 1, -b)
 
 
-@njit(cache=True, _nrt=True)
+_difference = compiled(_difference, nrt=True)
+
+
 def _orient_exact(ax, ay, bx, by, cx, cy):
     h = np.empty(13)
     n = 0
@@ -111,7 +123,9 @@ def _orient_exact(ax, ay, bx, by, cx, cy):
     return h[n - 1]
 
 
-@njit(cache=True, _nrt=True)
+_orient_exact = compiled(_orient_exact, nrt=True)
+
+
 def orient2d(ax, ay, bx, by, cx, cy):
     """A value whose sign is the exact sign of ``orient(a, b, c)`` (> 0: counter-clockwise)."""
     left = (ax - cx) * (by - cy)
@@ -122,7 +136,9 @@ def orient2d(ax, ay, bx, by, cx, cy):
     return _orient_exact(ax, ay, bx, by, cx, cy)
 
 
-@njit(cache=True, _nrt=True)
+orient2d = compiled(orient2d, nrt=True)
+
+
 def _cross_exact(ux, nux, vy, nvy, uy, nuy, vx, nvx):
     """``u x v = ux vy - uy vx`` for expansions, as an expansion ``(h, n)``."""
     h = np.empty(2 * (nux * nvy + nuy * nvx) + 1)
@@ -130,7 +146,9 @@ def _cross_exact(ux, nux, vy, nvy, uy, nuy, vx, nvx):
     return h, _add_product(h, n, uy, nuy, vx, nvx, -1.0)
 
 
-@njit(cache=True, _nrt=True)
+_cross_exact = compiled(_cross_exact, nrt=True)
+
+
 def _lift_exact(ux, nux, uy, nuy):
     """``ux^2 + uy^2`` for expansions, as an expansion ``(h, n)``."""
     h = np.empty(2 * (nux * nux + nuy * nuy) + 1)
@@ -138,7 +156,9 @@ def _lift_exact(ux, nux, uy, nuy):
     return h, _add_product(h, n, uy, nuy, uy, nuy, 1.0)
 
 
-@njit(cache=True, _nrt=True)
+_lift_exact = compiled(_lift_exact, nrt=True)
+
+
 def _incircle_exact(ax, ay, bx, by, cx, cy, dx, dy):
     adx, nadx = _difference(ax, dx)
     ady, nady = _difference(ay, dy)
@@ -159,7 +179,9 @@ def _incircle_exact(ax, ay, bx, by, cx, cy, dx, dy):
     return h[n - 1]
 
 
-@njit(cache=True, _nrt=True)
+_incircle_exact = compiled(_incircle_exact, nrt=True)
+
+
 def incircle(ax, ay, bx, by, cx, cy, dx, dy):
     """A value whose sign is the exact sign of the in-circle determinant.
 
@@ -183,3 +205,6 @@ def incircle(ax, ay, bx, by, cx, cy, dx, dy):
     if abs(det) > _ICC_BOUND * permanent:
         return det
     return _incircle_exact(ax, ay, bx, by, cx, cy, dx, dy)
+
+
+incircle = compiled(incircle, nrt=True)

@@ -52,12 +52,12 @@ The engine requires every constraint to bound the region (a triangle on one
 side only), as in Problems 1 and 2.
 
 Compilation.  The helpers that take arrays only index them, never allocate,
-and are compiled without numba's reference counting (``_nrt=False``):
+and are compiled without numba's reference counting (``nrt=False``, :mod:`._jit`):
 with it, every call increments and decrements the count of each array
 argument atomically, a quarter of the engine's time at 10^5 points (perf,
 docs/performance.md).  numba hands that flag down to the functions they
 call, so the predicates, whose exact fallback allocates, ask for the
-runtime explicitly (``_nrt=True`` in :mod:`._predicates`).  The heap's
+runtime explicitly (``nrt=True`` in :mod:`._predicates`).  The heap's
 sift loops call no helper that takes an array for the same reason.
 
 numba's on-disk cache (``cache=True``) is keyed by the source file of each
@@ -70,11 +70,11 @@ whenever one of them changes.
 import math
 
 import numpy as np
-from numba import njit
 
 from ...errors import EquimeshError, InternalError
 from ...tolerance import REL_TOL, SLIVER_GAP
 from ._cdt import adjacency, cavity, cavity_boundary, fill, locate, segments_touch, walk
+from ._jit import compiled
 from ._region import Insertion, constrained_delaunay
 
 #: The distance from a circumcentre to the constraints is searched among the
@@ -95,12 +95,13 @@ _OK = -1
 _BROKEN = -2 - 2**62
 
 
-@njit(cache=True, _nrt=False)
 def _circumcircle(P, a, b, c):
     """Circumcentre and radius of the triangle ``abc`` (vertex indices), exactly as :func:`equimesh._geometry.circumcenters`.
 
     Vertices in increasing index order; the operations (relative to the
     first vertex, then ``hypot``) are the reference's, so the bits match.
+    ``np.hypot`` is the C library's ``hypot`` compiled and as Python alike
+    (Python's ``math.hypot`` rounds differently).
     """
     i, j, k = min(a, b, c), max(min(a, b), min(max(a, b), c)), max(a, b, c)
     ax, ay = P[i, 0], P[i, 1]
@@ -113,25 +114,31 @@ def _circumcircle(P, a, b, c):
     uy = (bbx * c2 - ccx * b2) / d
     gx = (P[i, 0] + P[j, 0] + P[k, 0]) / 3.0
     gy = (P[i, 1] + P[j, 1] + P[k, 1]) / 3.0
-    return ax + ux, ay + uy, math.hypot(ux, uy), gx, gy
+    return ax + ux, ay + uy, np.hypot(ux, uy), gx, gy
 
 
-@njit(cache=True, _nrt=False)
+_circumcircle = compiled(_circumcircle, nrt=False)
+
+
 def _point_segment_distance(x, y, ax, ay, bx, by):
     """:func:`equimesh._geometry.point_segment_distance` for one point and segment, same operations."""
     abx, aby = bx - ax, by - ay
     denom = abx * abx + aby * aby
     t = ((x - ax) * abx + (y - ay) * aby) / (denom if denom > 0 else 1.0)
     t = min(max(t, 0.0), 1.0)
-    return math.hypot(x - (ax + t * abx), y - (ay + t * aby))
+    return np.hypot(x - (ax + t * abx), y - (ay + t * aby))
 
 
-@njit(cache=True, _nrt=False)
+_point_segment_distance = compiled(_point_segment_distance, nrt=False)
+
+
 def _edge_distance(P, a, b, x, y):
     return _point_segment_distance(x, y, P[a, 0], P[a, 1], P[b, 0], P[b, 1])
 
 
-@njit(cache=True, _nrt=False)
+_edge_distance = compiled(_edge_distance, nrt=False)
+
+
 def _gap(P, V, N, S, SA, SB, salive, n_segs, start, x, y, reach, seen):
     """Distance from ``(x, y)`` to the nearest constraint, exact whenever it is at most ``reach / 2``.
 
@@ -168,7 +175,9 @@ def _gap(P, V, N, S, SA, SB, salive, n_segs, start, x, y, reach, seen):
     return best
 
 
-@njit(cache=True, _nrt=False)
+_gap = compiled(_gap, nrt=False)
+
+
 def _visible_circumcentre(P, V, N, S, SA, SB, salive, n_segs, alive, n_slots, t, lim, seen):
     """Candidate 1 of the reference for triangle ``t``: ``(value, x, y, triangle containing it)`` or value -1.
 
@@ -191,7 +200,9 @@ def _visible_circumcentre(P, V, N, S, SA, SB, salive, n_segs, alive, n_slots, t,
     return r, cx, cy, where
 
 
-@njit(cache=True, _nrt=False)
+_visible_circumcentre = compiled(_visible_circumcentre, nrt=False)
+
+
 def _before(a0, a1, a2, b0, b1, b2):
     """Heap order: key ``(a0, a1, a2)`` before ``(b0, b1, b2)``, lexicographically on ``(-value, x, y)``."""
     if a0 != b0:
@@ -201,14 +212,18 @@ def _before(a0, a1, a2, b0, b1, b2):
     return a2 < b2
 
 
-@njit(cache=True, _nrt=False)
+_before = compiled(_before, nrt=False)
+
+
 def _swap(HK, HI, a, b):
     for c in range(3):
         HK[a, c], HK[b, c] = HK[b, c], HK[a, c]
         HI[a, c], HI[b, c] = HI[b, c], HI[a, c]
 
 
-@njit(cache=True, _nrt=False)
+_swap = compiled(_swap, nrt=False)
+
+
 def _sift_down(HK, HI, n, i):
     """Move the entry at ``i`` down to its place among ``[:n]``.
 
@@ -232,7 +247,9 @@ def _sift_down(HK, HI, n, i):
     HI[i, 0], HI[i, 1], HI[i, 2] = t, version, s
 
 
-@njit(cache=True, _nrt=False)
+_sift_down = compiled(_sift_down, nrt=False)
+
+
 def _push(HK, HI, n, value, x, y, t, version, s):
     """Add an entry to the heap ``[:n]``, moving the entries above it down as in :func:`_sift_down`; the new size."""
     i = n
@@ -248,7 +265,9 @@ def _push(HK, HI, n, value, x, y, t, version, s):
     return n + 1
 
 
-@njit(cache=True, _nrt=False)
+_push = compiled(_push, nrt=False)
+
+
 def _pop(HK, HI, n):
     """Remove the top (it is copied to row ``n - 1``); the new size."""
     _swap(HK, HI, 0, n - 1)
@@ -256,7 +275,9 @@ def _pop(HK, HI, n):
     return n - 1
 
 
-@njit(cache=True)
+_pop = compiled(_pop, nrt=False)
+
+
 def _compact(HK, HI, n, ver, salive):
     """Drop the dead entries of the heap ``[:n]`` (lazy deletion's garbage) and restore the heap order; the new size."""
     k = 0
@@ -270,7 +291,9 @@ def _compact(HK, HI, n, ver, salive):
     return k
 
 
-@njit(cache=True)
+_compact = compiled(_compact)
+
+
 def _grown(a, size):
     """``a`` in a zero-filled array of ``size`` rows."""
     out = np.zeros((size,) + a.shape[1:], dtype=a.dtype)
@@ -278,7 +301,9 @@ def _grown(a, size):
     return out
 
 
-@njit(cache=True, _nrt=False)
+_grown = compiled(_grown)
+
+
 def _push_candidates(P, V, N, S, SA, SB, salive, n_segs, alive, ver, n_slots, t, lim, seen, HK, HI, nh):
     """Push the candidates of triangle ``t`` (its circumcentre, its constraint midpoints); the new heap size."""
     r, cx, cy, _ = _visible_circumcentre(P, V, N, S, SA, SB, salive, n_segs, alive, n_slots, t, lim, seen)
@@ -302,7 +327,9 @@ def _push_candidates(P, V, N, S, SA, SB, salive, n_segs, alive, ver, n_slots, t,
     return nh
 
 
-@njit(cache=True)
+_push_candidates = compiled(_push_candidates, nrt=False)
+
+
 def _insert_all(P0, T0, SEG0, lim):
     """Steps 3-4 on the CDT ``T0`` of ``P0`` with constraints ``SEG0``: ``(status, P, triangles, segments, values)``."""
     n = len(P0)
@@ -410,6 +437,9 @@ def _insert_all(P0, T0, SEG0, lim):
     out_segments = np.empty((len(segs), 2), dtype=np.int64)
     out_segments[:, 0], out_segments[:, 1] = SA[segs], SB[segs]
     return _OK, P[:n].copy(), V[live].copy(), out_segments, values[: n - len(P0)].copy()
+
+
+_insert_all = compiled(_insert_all)
 
 
 def run(region, l):
