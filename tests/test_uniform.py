@@ -29,7 +29,7 @@ from equimesh.testing.shapes import flattened_square, letter_polygon, place, sha
 import invariants_uniform as inv
 from conftest import exercised
 import strategies_sharp as sss
-from corner_sampling import corners, sampled_placement
+from corner_sampling import corners, sampled_pair, sampled_placement
 import strategies_simple as ss
 
 #: Largest polygon area drawn by the property tests, in units of l^2.
@@ -641,6 +641,19 @@ def _no_sampled_placement(vertices, holes, l):
     )
 
 
+def _no_sampled_pair_placement(vertices, holes, l):
+    """Sampled, independently of polygon.py: two consecutive corners below 60 degrees, sharing a side, with no
+    split of the shared side (steps of l/8) for which both other sides can be split keeping each corner's two
+    sides l apart (docs/proofs.md, "Sharp corners")."""
+    for ring in inv.rings(vertices, holes):
+        found = list(corners([ring]))
+        for (theta_1, shared, arriving), (theta_2, leaving, _) in zip(found, found[1:] + found[:1]):
+            sharp = max(theta_1, theta_2) < math.radians(60.0)
+            if sharp and sampled_pair((theta_1, theta_2), (arriving / l, shared / l, leaving / l), 1.0) is None:
+                return True
+    return False
+
+
 def _refusal_kind(error):
     """The kind of a refusal at a sharp corner, named by its one-line message."""
     text = str(error)
@@ -667,6 +680,7 @@ def test_short_sided_sharp_corners_are_meshed_within_every_theorem_or_refused_by
             assert _sector_closer_than_l(vertices, holes, l)
         if kind == "no separation":
             confirm = _first_points_closer_than_l if "first boundary points" in str(error) else _no_sampled_placement
+            confirm = _no_sampled_pair_placement if "together" in str(error) else confirm
             assert confirm(vertices, holes, l)
         return
     exercised("a short-sided sharp corner is meshed", True)
@@ -720,6 +734,14 @@ PROVEN_REFUSALS = {
         r"^the corner at vertex 0 at \(0, 0\) \(20 degrees\) cannot meet Lemma 3 \(1\) for l = 1.0: no split of its sides "
         r"of 3.45 and 3.45 into parts of \[l, 2l\] .* not a proof that no mesh exists.* sides of at least 4.0 are handled",
         _no_sampled_placement,
+    ),
+    # 29.4 and 23.07 degrees sharing a side of 4.25 l: each corner alone can be separated, both together cannot
+    # (no split of the shared side leaves both other sides a split; decided jointly on a grid of cells).
+    "no joint placement": (
+        [[0, 0], [4.25, 0], _at(29.4, 2.1)],
+        r"^the corners at vertex 0 at \(0, 0\) \(29.4 degrees\) and vertex 1 at \(4.25, 0\) \(23.0697 degrees\) cannot meet "
+        r"Lemma 3 \(1\) together for l = 1.0: .* not a proof that no mesh exists",
+        _no_sampled_pair_placement,
     ),
 }
 
