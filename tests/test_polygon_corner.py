@@ -162,8 +162,9 @@ def test_the_pair_enumeration_finds_placements_where_they_exist():
 
 @given(st.floats(10.0, 59.0), st.floats(10.0, 59.0), st.floats(1.0, 4.0), st.floats(1.0, 7.0), st.floats(1.0, 4.0))
 def test_a_pair_placement_found_meets_lemma_3_and_a_proven_pair_has_no_sampled_placement(angle_1, angle_2, a, s, b):
-    """The proof (a relaxation) never refuses a pair the search places, whatever the search returns is a placement
-    at both corners (checked pair by pair), and a pair it refuses has no placement in the enumeration either."""
+    """The proof's cells (a relaxation) never refute a pair the search places (on the two coarsest grids), whatever
+    the search returns is a placement at both corners (checked pair by pair), and a pair the proof refuses has
+    no placement in the enumeration either."""
     thetas, lengths = (math.radians(angle_1), math.radians(angle_2)), (a, s, b)
     if _coupled.pair_unplaceable(thetas, lengths, 1.0, (math.inf,) * 4):
         assert sampled_pair(thetas, lengths, 1.0) is None
@@ -171,3 +172,16 @@ def test_a_pair_placement_found_meets_lemma_3_and_a_proven_pair_has_no_sampled_p
     found = _coupled.place_pair(thetas, lengths, 1.0)
     if found is not None:
         _assert_pair(thetas, lengths, 1.0, found)
+        for level in (0, 1):
+            assert _coupled._Pair(thetas, lengths, 1.0, level, cells=True, radii=(math.inf,) * 4).search() is not None
+
+
+def test_a_single_corner_left_open_by_cells_of_l_over_64_is_proven_on_clipped_cells():
+    """21.69 degrees with sides of 3.188 l (a short wedge of strategies_sharp): the last placements vanish at a
+    first part of exactly 2l, so corner_unplaceable's cells of l/16 to l/64 still hold a path; the joint proof
+    with no second corner, its first and last cells clipped to the ranges those points can have, refutes it, and
+    the enumeration finds no placement either."""
+    theta, sides = math.radians(21.693585695037463), (3.18837772, 3.18837772)
+    assert not _corner.corner_unplaceable(theta, sides, 1.0, (math.inf, math.inf))
+    assert _coupled.pair_unplaceable((theta, None), (sides[1], sides[0], 0.0), 1.0, (math.inf,) * 4)
+    assert sampled_placement(theta, sides, 1.0) is None

@@ -28,10 +28,14 @@ the grid, and bounded by :data:`PAIR_STEPS`.
   ``(1 - 2 REL_TOL) l`` to ``2 (1 + 2 REL_TOL) l``, distances from
   ``(1 - 2 REL_TOL) l``; ``d^2`` is convex, so its largest value over two
   cells is at their corners), and distances are checked only within the
-  radii where the sides see each other.  Every placement the checks accept
-  maps each point to its cell and is then an enumerated prefix that is never
-  dropped; when every prefix is dropped, no Step 2 meets Lemma 3 (1) at the
-  two corners together (docs/proofs.md, "Sharp corners").
+  radii where the sides see each other.  Cells next to an exact end are
+  clipped to the range a first or last point can have (:func:`_side`).
+  Every placement the checks accept maps each point to a position holding
+  it and is then an enumerated prefix that is never dropped; when every
+  prefix is dropped, no Step 2 meets Lemma 3 (1) at the two corners
+  together (docs/proofs.md, "Sharp corners").  With no second corner the
+  same proof decides one corner on finer cells than
+  :func:`._corner.corner_unplaceable`.
 """
 
 import math
@@ -58,13 +62,14 @@ class _Undecided(Exception):
 def place_pair(thetas, lengths, l):
     """Points of ``A``, ``S`` and ``B`` keeping both corners ``l`` apart, or None if none is found.
 
-    ``thetas`` are ``(theta_1, theta_2)`` in radians (``theta_2`` None: corner
-    ``c`` alone, ``B`` ignored), ``lengths`` are ``(A, L, B)``.  Returns ``(a, s, b)``: ``a`` the points of ``A`` by
+    ``thetas`` are ``(theta_1, theta_2)`` in radians, ``lengths`` are
+    ``(A, L, B)``.  Returns ``(a, s, b)``: ``a`` the points of ``A`` by
     distance from ``c``, ``s`` those of ``S`` by distance from ``c``, ``b``
     those of ``B`` by distance from ``c + 1``, each up to its far end, a long
     ``A`` or ``B`` stopping at a point past ``K l`` at least ``l`` before it.
-    Tries the grids of ``l / CORNER_GRID``, then finer, each after the
-    proof (every pair checked) on the grid before it failed.
+    On each grid (``l / CORNER_GRID``, then halved up to
+    :data:`._corner.CORNER_REFINEMENTS` times) the search runs, then, if it
+    found nothing, the proof with every pair checked: None once it refutes.
     """
     for level in range(CORNER_REFINEMENTS + 1):
         try:
@@ -79,15 +84,22 @@ def place_pair(thetas, lengths, l):
 def pair_unplaceable(thetas, lengths, l, radii):
     """True when no Step 2 keeps both corners ``l`` apart (Lemma 3 (1)): proven on a grid of cells.
 
-    ``radii`` are ``(A, S from c, B, S from c + 1)``: the distances from each
-    corner within which the points of its two sides see each other (the
-    caller proves it); pairs beyond are not checked.  False means only that
-    no grid refuted every prefix within :data:`PAIR_STEPS`.
+    ``thetas`` and ``lengths`` as for :func:`place_pair`; ``theta_2`` None
+    decides corner ``c`` alone (``B`` ignored).  ``radii`` are ``(A, S from
+    c, B, S from c + 1)``: the distances from each corner within which the
+    points of its two sides see each other (the caller proves it); pairs
+    beyond are not checked.  Cells of ``l / CORNER_GRID`` down to
+    ``l / (CORNER_GRID 2^PAIR_REFINEMENTS)``; after each grid of cells that
+    refuted nothing, the search on its nodes (the finest of the search's), and False when it finds a
+    placement (then no proof exists).  False means only that no grid refuted
+    every prefix within :data:`PAIR_STEPS`.
     """
     for level in range(PAIR_REFINEMENTS + 1):
         try:
             if _Pair(thetas, lengths, l, level, cells=True, radii=radii).search() is None:
                 return True
+            if level <= CORNER_REFINEMENTS and _Pair(thetas, lengths, l, level, cells=False, radii=(math.inf,) * 4).search():
+                return False
         except _Undecided:
             return False
     return False
