@@ -9,7 +9,7 @@ import math
 
 import numpy as np
 import pytest
-from hypothesis import assume, given
+from hypothesis import assume, example, given
 from hypothesis import strategies as st
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
@@ -671,6 +671,12 @@ def test_short_sided_sharp_corners_are_meshed_within_every_theorem_or_refused_by
     whether it is proven impossible (a side shorter than l, or the sector lemma, confirmed here by sampling)
     or a limit of this method (docs/proofs.md, "Sharp corners")."""
     vertices, holes, l = case
+    _meshed_or_refused_by_kind(vertices, holes, l)
+
+
+def _meshed_or_refused_by_kind(vertices, holes, l):
+    """Problem 2 on ``vertices``: every guarantee checked on a mesh; a refusal's kind confirmed by sampling
+    (docs/proofs.md, "Sharp corners")."""
     try:
         mesh = equimesh.uniform_triangulation(vertices, l, holes=holes or None)
     except equimesh.InvalidPolygonError as error:
@@ -680,11 +686,23 @@ def test_short_sided_sharp_corners_are_meshed_within_every_theorem_or_refused_by
             assert _sector_closer_than_l(vertices, holes, l)
         if kind == "no separation":
             confirm = _first_points_closer_than_l if "first boundary points" in str(error) else _no_sampled_placement
-            confirm = _no_sampled_pair_placement if "together" in str(error) else confirm
-            assert confirm(vertices, holes, l)
+            together = exercised("two sharp corners are refused together", "together" in str(error))
+            assert (_no_sampled_pair_placement if together else confirm)(vertices, holes, l)
         return
     exercised("a short-sided sharp corner is meshed", True)
     inv.assert_problem2_invariants(mesh, vertices, l, holes=holes)
+
+
+@given(st.floats(10.0, 59.0), st.floats(10.0, 59.0), st.floats(0.0, 1.0))
+@example(29.4, 23.069711979788835, 3.25 / 8.0)  # the triangle of PROVEN_REFUSALS["no joint placement"]
+def test_triangles_with_two_sharp_corners_on_one_side_are_meshed_or_refused_with_a_proof(angle_1, angle_2, size):
+    """Two corners of 10 to 59 degrees at the ends of a base from l to where they stop sharing any point of it
+    (``K_1 l + K_2 l + 3 l``): meshed within every theorem, or refused by kind, a proof confirmed by sampling
+    (jointly: planar/_coupled.py).  Rarely "not handled" (docs/proofs.md, "Sharp corners", what is not decided)."""
+    base = 1.0 + size * (stagger_reach(angle_1, 1.0) + stagger_reach(angle_2, 1.0) + 2.0)
+    a, b = math.radians(angle_1), math.radians(angle_2)
+    side = base * math.sin(b) / math.sin(a + b)
+    _meshed_or_refused_by_kind(np.array([[0.0, 0.0], [base, 0.0], [side * math.cos(a), side * math.sin(a)]]), [], 1.0)
 
 
 SHARP_EXAMPLES = {

@@ -865,7 +865,8 @@ def check_boundary_separation(poly, boundary, l):
     that no Step 2 can meet Lemma 3 (1) at a corner (its first points,
     :func:`_unseparable_corner`; or all its points, decided on a grid,
     :func:`_unplaceable_corner` at the corners of the offending pairs, or
-    :func:`_unplaceable_pair` at two of them sharing a side), or neither (a corner or neck this method does not handle).
+    :func:`_unplaceable_pair` at two of them sharing a side), or neither (a
+    corner or neck this method does not handle).
     """
     pts = boundary.points
     lp = poly.local_length(l)
@@ -1025,8 +1026,8 @@ def _unplaceable_corner(poly, l, corners):
 
     Only corners sharper than :data:`SHARP_CORNER` are decided
     (:func:`._corner.corner_unplaceable`, then on finer cells
-    :func:`._coupled.pair_unplaceable` with no second corner): distances are checked within the
-    largest of the sides' lengths halved until the triangle they span with
+    :func:`._coupled.pair_unplaceable` with no second corner): distances are
+    checked within the largest of the sides' lengths halved until the triangle they span with
     the corner lies in P (grown by ``REL_TOL l``), where every two points of
     the two sides see each other (:func:`_sees_within`).  When no split of
     the two sides into parts of ``[l, 2l]`` keeps them ``l`` apart there, no
