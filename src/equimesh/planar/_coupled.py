@@ -71,6 +71,8 @@ def place_pair(thetas, lengths, l):
     :data:`._corner.CORNER_REFINEMENTS` times) the search runs, then, if it
     found nothing, the proof with every pair checked: None once it refutes.
     """
+    if not _coupled(thetas, lengths, l):
+        return None
     for level in range(CORNER_REFINEMENTS + 1):
         try:
             found = _Pair(thetas, lengths, l, level, cells=False, radii=(math.inf,) * 4).search()
@@ -94,6 +96,8 @@ def pair_unplaceable(thetas, lengths, l, radii):
     placement (then no proof exists).  False means only that no grid refuted
     every prefix within :data:`PAIR_STEPS`.
     """
+    if not _coupled(thetas, lengths, l):
+        return False
     for level in range(PAIR_REFINEMENTS + 1):
         try:
             if _Pair(thetas, lengths, l, level, cells=True, radii=radii).search() is None:
@@ -103,6 +107,18 @@ def pair_unplaceable(thetas, lengths, l, radii):
         except _Undecided:
             return False
     return False
+
+
+def _coupled(thetas, lengths, l):
+    """Whether the shared side is short enough for the two corners to read the same points of it.
+
+    Each corner's placement reads ``S`` only up to its first point past
+    ``K l`` (at most ``K l + 2l``; past ``K l`` a point is ``l`` from the
+    whole other side), so with ``L > K_1 l + K_2 l + 4l`` no point of ``S``
+    matters to both: not this module's case (and its grid would grow with
+    ``L``).  One corner alone is always decided here (``S`` cut like ``A``).
+    """
+    return thetas[1] is None or lengths[1] <= corner_reach(thetas[0], l) + corner_reach(thetas[1], l) + 4.0 * l
 
 
 def _side(length, reach, l, step, cells, tol):
@@ -208,7 +224,8 @@ class _Pair:
         self.b = (np.zeros(1), np.zeros(1), np.ones(1, dtype=bool), np.zeros((1, 1), dtype=bool))
         if not alone:
             self.b = _side(b, corner_reach(thetas[1], l), l, step, cells, tol)
-        lo, hi, _, s_parts = _side(s, math.inf, l, step, cells, tol)
+        # alone, S is cut past K l like A; a pair reads all of S (short enough: _coupled)
+        lo, hi, self.s_ends, s_parts = _side(s, corner_reach(thetas[0], l) if alone else math.inf, l, step, cells, tol)
         self.s = lo, hi
         self.parts = [self.a[3], s_parts, self.b[3]]
         self.cross_a = _cross(thetas[0], self.s, self.a[:2], l, tol, (radii[1], radii[0]))
@@ -231,7 +248,7 @@ class _Pair:
     def _extend(self, path, left_a, left_b):
         """A continuation of the points ``path`` of ``S`` to its far end with ``A`` and ``B`` still split, or None."""
         i = path[-1]
-        if i == len(self.s[0]) - 1:
+        if self.s_ends[i]:
             return path, left_a, left_b
         key = (i, left_a.tobytes(), left_b.tobytes())
         if key in self.dead:
