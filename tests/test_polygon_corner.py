@@ -185,3 +185,12 @@ def test_a_single_corner_left_open_by_cells_of_l_over_64_is_proven_on_clipped_ce
     assert not _corner.corner_unplaceable(theta, sides, 1.0, (math.inf, math.inf))
     assert _coupled.pair_unplaceable((theta, None), (sides[1], sides[0], 0.0), 1.0, (math.inf,) * 4)
     assert sampled_placement(theta, sides, 1.0) is None
+
+
+def test_a_shared_side_too_long_to_couple_the_corners_is_not_decided_jointly():
+    """Past K_1 l + K_2 l + 4l no point of the shared side matters to both corners: neither the search nor the
+    proof takes the pair (K = 3 at 29.4 and 23.07 degrees: up to 10 l)."""
+    lengths = (2.1, 10.25, 2.630842730287126)
+    assert not _coupled._coupled(PAIR_THETAS, lengths, 1.0) and _coupled._coupled(PAIR_THETAS, PAIR_LENGTHS, 1.0)
+    assert _coupled.place_pair(PAIR_THETAS, lengths, 1.0) is None
+    assert not _coupled.pair_unplaceable(PAIR_THETAS, lengths, 1.0, (math.inf,) * 4)
