@@ -1,10 +1,11 @@
-"""Placements of the two sides of a corner enumerated on a grid, independently of planar/_corner.py.
+"""Placements of the two sides of a corner (or of two corners sharing a side) enumerated on a grid, independently of planar/_corner.py and planar/_coupled.py.
 
 A placement splits each side (lengths by distance from the corner) into parts of ``[l, 2l]`` and keeps every
 two points of different sides at least ``l`` apart (the corner excluded).  :func:`sampled_placement` tries
 every split whose parts, all but the last, are multiples of ``step l`` from ``l`` to ``2l``, checking every
 pair directly, with the other side's points pruned as soon as one is too close.  Finding none confirms,
-without proving, that a corner refused as impossible to separate has no placement.
+without proving, that a corner refused as impossible to separate has no placement.  :func:`sampled_pair`
+does the same for two corners sharing a side: every split of the shared side, then each corner's other side.
 """
 
 import math
@@ -42,6 +43,31 @@ def sampled_placement(theta, lengths, l, step=0.125):
                 y = at + part
                 if y <= lengths[1] - l and _far_enough(theta, y, xs, l):
                     stack.append((y, points + (y,)))
+    return None
+
+
+def _fits(theta, fixed, length, l, step):
+    """Whether some split of ``length`` (parts but the last multiples of ``step l``) keeps every point l from ``fixed``
+    (distances from the corner on its other side)."""
+    stack = [0.0]
+    while stack:
+        at = stack.pop()
+        if l <= length - at <= 2.0 * l and _far_enough(theta, length, fixed, l):
+            return True
+        for part in np.arange(l, 2.0 * l + 1e-9, step * l):
+            y = at + part
+            if y <= length - l and _far_enough(theta, y, fixed, l):
+                stack.append(y)
+    return False
+
+
+def sampled_pair(thetas, lengths, l, step=0.125):
+    """The split of the shared side for corners of ``thetas`` sharing it, with sides ``(A, L, B)`` (``A`` arriving at
+    the first corner, ``B`` leaving the second), for which both other sides can be split, or None."""
+    a, s, b = lengths
+    for xs in _splits(s, l, step):
+        if _fits(thetas[0], xs, a, l, step) and _fits(thetas[1], s - np.append(0.0, xs[:-1]), b, l, step):
+            return xs
     return None
 
 

@@ -71,18 +71,18 @@ def test_a_corner_below_the_proven_side_length_is_placed_by_the_grid_search():
     inv.assert_problem2_invariants(equimesh.uniform_triangulation(vertices, 1.0), vertices, 1.0)
 
 
-def test_a_corner_beyond_this_method_is_refused_naming_corner_angle_and_limit():
+def test_two_corners_separable_alone_but_not_together_are_refused_naming_both():
     """A thin triangle with corners of 29.4 and 23.07 degrees sharing a side of 4.25 l: each corner alone can be
-    separated, the searches find no placement for both, which the message says is a limit of the method (K = 3:
-    sides of 4 l are proven)."""
+    separated, the two together cannot (decided jointly on a grid of cells, planar/_coupled.py), which the
+    message says is a limit of the method, naming both corners and the three sides."""
     tip = [2.1 * np.cos(np.radians(29.4)), 2.1 * np.sin(np.radians(29.4))]
     with pytest.raises(
         InvalidPolygonError,
-        match=r"corner at vertex 0 .* \(29.4 degrees\) is not handled for l = 1.0: .* at least 4.0, .*not a proof that no mesh exists",
-    ) as info:
+        match=r"^the corners at vertex 0 at \(0, 0\) \(29.4 degrees\) and vertex 1 at \(4.25, 0\) \(23.0697 degrees\) cannot "
+        r"meet Lemma 3 \(1\) together for l = 1.0: no split of their sides of 2.1, 4.25, 2.63084273\d* .*not a proof that no "
+        r"mesh exists",
+    ):
         equimesh.uniform_triangulation([[0, 0], [4.25, 0], tip], 1.0)
-    p, q = np.array(info.value.points)
-    assert np.linalg.norm(p - q) < 1.0
 
 
 def test_a_neck_narrower_than_l_is_refused_naming_both_edges():

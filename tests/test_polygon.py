@@ -402,11 +402,15 @@ def test_a_pair_across_two_rings_is_a_neck_not_a_corner():
     assert points == [[2.0, 0.0], [2.0, 0.5]]
 
 
-def test_a_corner_not_handled_is_named_with_its_limit_in_the_callers_units():
+def test_a_corner_not_handled_is_named_with_its_limit_in_the_callers_units(monkeypatch):
     """A thin triangle at l = 4 (Problem 2's spacing) with sharp corners of 29.4 and 23.07 degrees sharing a side:
-    each corner alone has a placement, the searches find none for both (docs/proofs.md, "Sharp corners", what
-    is not decided); K = 3, so sides of (K + 1) l = 16 are handled; the closest pair is on edges 0 and 2."""
+    each corner alone has a placement, none exists for both; with the joint proof switched off (what a ring it
+    does not decide meets) it is "not handled" (docs/proofs.md, "Sharp corners"); K = 3, so sides of
+    (K + 1) l = 16 are handled; the closest pair is on edges 0 and 2."""
+    from equimesh.planar import _coupled
     from equimesh.planar.strip import BOUNDARY_SPACING
+
+    monkeypatch.setattr(_coupled, "pair_unplaceable", lambda *args: False)
 
     triangle = np.array([[0, 0], [4.25, 0], [2.1 * math.cos(math.radians(29.4)), 2.1 * math.sin(math.radians(29.4))]])
     message, points = _separation_message(triangle * 4.0, 4.0, spacing=BOUNDARY_SPACING)

@@ -3,7 +3,8 @@
 What must hold: the merged-order lemma (consecutive cross pairs decide every cross pair); every placement
 the search returns has parts in [l, 2l], ends at the far corners and keeps every cross pair l apart
 (checked pair by pair here); the proof never contradicts a placement; and a corner it proves impossible has
-no placement on a sampled grid either (tests/corner_sampling.py, independently of the module).
+no placement on a sampled grid either (tests/corner_sampling.py, independently of the module).  The same for two
+corners sharing a side, decided jointly (planar/_coupled.py).
 """
 
 import math
@@ -13,8 +14,8 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from equimesh.planar import _corner
-from corner_sampling import sampled_placement
+from equimesh.planar import _corner, _coupled
+from corner_sampling import sampled_pair, sampled_placement
 from equimesh.tolerance import REL_TOL
 
 
@@ -119,3 +120,77 @@ def test_visibility_radii_drop_the_pairs_beyond_them():
     theta = math.radians(20.0)
     assert _corner.corner_unplaceable(theta, (3.4553, 3.4553), 1.0, (math.inf, math.inf))
     assert not _corner.corner_unplaceable(theta, (3.4553, 3.4553), 1.0, (0.0, 0.0))
+
+
+# --------------------------------------------------------------------------- two sharp corners sharing a side (_coupled.py)
+
+#: The thin triangle [[0, 0], [4.25, 0], 2.1 (cos 29.4, sin 29.4)]: corners of 29.4 and 23.07 degrees sharing the
+#: side of 4.25 l, their other sides 2.1 and 2.63 l.
+PAIR_THETAS = (math.radians(29.4), math.radians(23.069711979788835))
+PAIR_LENGTHS = (2.1, 4.25, 2.630842730287126)
+
+
+def _assert_pair(thetas, lengths, l, found):
+    """A joint placement: each corner's two sides a placement (:func:`_assert_placement`), the shared side the same."""
+    a, s, b = found
+    _assert_placement(thetas[0], (lengths[1], lengths[0]), l, (s, a))
+    _assert_placement(thetas[1], (lengths[2], lengths[1]), l, (b, lengths[1] - np.append(0.0, s[:-1])[::-1]))
+
+
+def test_two_corners_each_placeable_alone_are_proven_unplaceable_together():
+    """Each corner of the triangle alone has a placement; together none (the relaxation refutes every split of the
+    shared side), and the independent enumeration of every split of the shared side (steps of l/8 and l/32)
+    finds none either, nor the search."""
+    for theta, sides in zip(PAIR_THETAS, [PAIR_LENGTHS[1::-1], PAIR_LENGTHS[:0:-1]]):
+        assert _corner.place_corner(theta, sides, 1.0) is not None
+    assert _coupled.pair_unplaceable(PAIR_THETAS, PAIR_LENGTHS, 1.0, (math.inf,) * 4)
+    assert _coupled.place_pair(PAIR_THETAS, PAIR_LENGTHS, 1.0) is None
+    for step in (1.0 / 8.0, 1.0 / 32.0):
+        assert sampled_pair(PAIR_THETAS, PAIR_LENGTHS, 1.0, step) is None
+
+
+def test_the_pair_enumeration_finds_placements_where_they_exist():
+    """Not vacuous: with the shared side 5.25 l both the search and the enumeration place the pair, and the
+    proof does not refuse it; with no pair seen (radii 0) nothing is proven."""
+    lengths = (2.1, 5.25, 2.630842730287126)
+    found = _coupled.place_pair(PAIR_THETAS, lengths, 1.0)
+    _assert_pair(PAIR_THETAS, lengths, 1.0, found)
+    assert sampled_pair(PAIR_THETAS, lengths, 1.0) is not None
+    assert not _coupled.pair_unplaceable(PAIR_THETAS, lengths, 1.0, (math.inf,) * 4)
+    assert not _coupled.pair_unplaceable(PAIR_THETAS, PAIR_LENGTHS, 1.0, (0.0,) * 4)
+
+
+@given(st.floats(10.0, 59.0), st.floats(10.0, 59.0), st.floats(1.0, 4.0), st.floats(1.0, 7.0), st.floats(1.0, 4.0))
+def test_a_pair_placement_found_meets_lemma_3_and_a_proven_pair_has_no_sampled_placement(angle_1, angle_2, a, s, b):
+    """The proof's cells (a relaxation) never refute a pair the search places (on the two coarsest grids), whatever
+    the search returns is a placement at both corners (checked pair by pair), and a pair the proof refuses has
+    no placement in the enumeration either."""
+    thetas, lengths = (math.radians(angle_1), math.radians(angle_2)), (a, s, b)
+    if _coupled.pair_unplaceable(thetas, lengths, 1.0, (math.inf,) * 4):
+        assert sampled_pair(thetas, lengths, 1.0) is None
+        return
+    found = _coupled.place_pair(thetas, lengths, 1.0)
+    if found is not None:
+        _assert_pair(thetas, lengths, 1.0, found)
+        for level in (0, 1):
+            assert _coupled._Pair(thetas, lengths, 1.0, level, cells=True, radii=(math.inf,) * 4).search() is not None
+
+
+def test_a_single_corner_left_open_by_cells_of_l_over_64_is_proven_on_clipped_cells():
+    """21.69 degrees with sides of 3.188 l (a short wedge of strategies_sharp): the last placements vanish at a
+    first part of exactly 2l, so corner_unplaceable's cells of l/16 to l/64 still hold a path; the joint proof
+    with no second corner, its first and last cells clipped to the ranges those points can have, refutes it, and
+    the enumeration finds no placement either."""
+    theta, sides = math.radians(21.693585695037463), (3.18837772, 3.18837772)
+    assert not _corner.corner_unplaceable(theta, sides, 1.0, (math.inf, math.inf))
+    assert _coupled.pair_unplaceable((theta, None), (sides[1], sides[0], 0.0), 1.0, (math.inf,) * 4)
+    assert sampled_placement(theta, sides, 1.0) is None
+
+
+def test_a_shared_side_too_long_to_couple_the_corners_is_not_decided_jointly():
+    """Past K_1 l + K_2 l + 4l no point of the shared side matters to both corners: neither the search nor the
+    proof takes the pair (K = 3 at 29.4 and 23.07 degrees: up to 10 l)."""
+    lengths = (2.1, 10.25, 2.630842730287126)
+    assert not _coupled._coupled(PAIR_THETAS, lengths, 1.0) and _coupled._coupled(PAIR_THETAS, PAIR_LENGTHS, 1.0)
+    assert _coupled.place_pair(PAIR_THETAS, lengths, 1.0) is None
+    assert not _coupled.pair_unplaceable(PAIR_THETAS, lengths, 1.0, (math.inf,) * 4)

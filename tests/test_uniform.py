@@ -9,7 +9,7 @@ import math
 
 import numpy as np
 import pytest
-from hypothesis import assume, given
+from hypothesis import assume, example, given
 from hypothesis import strategies as st
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
@@ -29,7 +29,7 @@ from equimesh.testing.shapes import flattened_square, letter_polygon, place, sha
 import invariants_uniform as inv
 from conftest import exercised
 import strategies_sharp as sss
-from corner_sampling import corners, sampled_placement
+from corner_sampling import corners, sampled_pair, sampled_placement
 import strategies_simple as ss
 
 #: Largest polygon area drawn by the property tests, in units of l^2.
@@ -641,6 +641,19 @@ def _no_sampled_placement(vertices, holes, l):
     )
 
 
+def _no_sampled_pair_placement(vertices, holes, l):
+    """Sampled, independently of polygon.py: two consecutive corners below 60 degrees, sharing a side, with no
+    split of the shared side (steps of l/8) for which both other sides can be split keeping each corner's two
+    sides l apart (docs/proofs.md, "Sharp corners")."""
+    for ring in inv.rings(vertices, holes):
+        found = list(corners([ring]))
+        for (theta_1, shared, arriving), (theta_2, leaving, _) in zip(found, found[1:] + found[:1]):
+            sharp = max(theta_1, theta_2) < math.radians(60.0)
+            if sharp and sampled_pair((theta_1, theta_2), (arriving / l, shared / l, leaving / l), 1.0) is None:
+                return True
+    return False
+
+
 def _refusal_kind(error):
     """The kind of a refusal at a sharp corner, named by its one-line message."""
     text = str(error)
@@ -658,6 +671,12 @@ def test_short_sided_sharp_corners_are_meshed_within_every_theorem_or_refused_by
     whether it is proven impossible (a side shorter than l, or the sector lemma, confirmed here by sampling)
     or a limit of this method (docs/proofs.md, "Sharp corners")."""
     vertices, holes, l = case
+    _meshed_or_refused_by_kind(vertices, holes, l)
+
+
+def _meshed_or_refused_by_kind(vertices, holes, l):
+    """Problem 2 on ``vertices``: every guarantee checked on a mesh; a refusal's kind confirmed by sampling
+    (docs/proofs.md, "Sharp corners")."""
     try:
         mesh = equimesh.uniform_triangulation(vertices, l, holes=holes or None)
     except equimesh.InvalidPolygonError as error:
@@ -667,10 +686,23 @@ def test_short_sided_sharp_corners_are_meshed_within_every_theorem_or_refused_by
             assert _sector_closer_than_l(vertices, holes, l)
         if kind == "no separation":
             confirm = _first_points_closer_than_l if "first boundary points" in str(error) else _no_sampled_placement
-            assert confirm(vertices, holes, l)
+            together = exercised("two sharp corners are refused together", "together" in str(error))
+            assert (_no_sampled_pair_placement if together else confirm)(vertices, holes, l)
         return
     exercised("a short-sided sharp corner is meshed", True)
     inv.assert_problem2_invariants(mesh, vertices, l, holes=holes)
+
+
+@given(st.floats(10.0, 59.0), st.floats(10.0, 59.0), st.floats(0.0, 1.0))
+@example(29.4, 23.069711979788835, 3.25 / 8.0)  # the triangle of PROVEN_REFUSALS["no joint placement"]
+def test_triangles_with_two_sharp_corners_on_one_side_are_meshed_or_refused_with_a_proof(angle_1, angle_2, size):
+    """Two corners of 10 to 59 degrees at the ends of a base from l to where they stop sharing any point of it
+    (``K_1 l + K_2 l + 3 l``): meshed within every theorem, or refused by kind, a proof confirmed by sampling
+    (jointly: planar/_coupled.py).  Rarely "not handled" (docs/proofs.md, "Sharp corners", what is not decided)."""
+    base = 1.0 + size * (stagger_reach(angle_1, 1.0) + stagger_reach(angle_2, 1.0) + 2.0)
+    a, b = math.radians(angle_1), math.radians(angle_2)
+    side = base * math.sin(b) / math.sin(a + b)
+    _meshed_or_refused_by_kind(np.array([[0.0, 0.0], [base, 0.0], [side * math.cos(a), side * math.sin(a)]]), [], 1.0)
 
 
 SHARP_EXAMPLES = {
@@ -720,6 +752,14 @@ PROVEN_REFUSALS = {
         r"^the corner at vertex 0 at \(0, 0\) \(20 degrees\) cannot meet Lemma 3 \(1\) for l = 1.0: no split of its sides "
         r"of 3.45 and 3.45 into parts of \[l, 2l\] .* not a proof that no mesh exists.* sides of at least 4.0 are handled",
         _no_sampled_placement,
+    ),
+    # 29.4 and 23.07 degrees sharing a side of 4.25 l: each corner alone can be separated, both together cannot
+    # (no split of the shared side leaves both other sides a split; decided jointly on a grid of cells).
+    "no joint placement": (
+        [[0, 0], [4.25, 0], _at(29.4, 2.1)],
+        r"^the corners at vertex 0 at \(0, 0\) \(29.4 degrees\) and vertex 1 at \(4.25, 0\) \(23.0697 degrees\) cannot meet "
+        r"Lemma 3 \(1\) together for l = 1.0: .* not a proof that no mesh exists",
+        _no_sampled_pair_placement,
     ),
 }
 

@@ -14,6 +14,7 @@ origin is validated as precisely as the same polygon near it.  Validation is
 O(n log n) in the number of vertices.
 """
 
+import functools
 import math
 import numbers
 from dataclasses import dataclass, replace
@@ -26,7 +27,7 @@ from scipy.spatial import cKDTree
 from .._geometry import Frame, cross, inner_angle, orient_sign, power_of_two_scale, segments_intersect, signed_area
 from ..errors import EquimeshError, InvalidLengthError, InvalidPolygonError
 from ..tolerance import MAX_EXTENT, MAX_LENGTH, MIN_LENGTH, REL_TOL, at_least
-from . import _corner
+from . import _corner, _coupled
 
 
 def real_number(value, name, error):
@@ -701,8 +702,9 @@ def _place_corners_on_a_grid(sides, lengths, angles, l, spacing):
     both free; the leaving side kept; the arriving one kept; or, for a side
     shared with the next (previous) sharp corner, that corner placed first
     with both its sides free and this one then with the shared side kept,
-    or the other way round.  The first trial after which every corner it
-    touched, and their neighbours, have a :func:`_corner_gap` of at least
+    or the other way round; last, with each neighbouring sharp corner
+    jointly (:func:`_grid_pair`).  The first trial after which every corner
+    it touched, and their neighbours, have a :func:`_corner_gap` of at least
     ``l`` is taken, in place.  A corner that
     :func:`._corner.corner_unplaceable` proves impossible even with every
     pair checked ends the search: the ring cannot be separated, and
@@ -721,17 +723,44 @@ def _place_corners_on_a_grid(sides, lengths, angles, l, spacing):
             [(c, free)], [(c, leaving)], [(c, arriving)],
             [(after, free), (c, leaving)], [(before, free), (c, arriving)],
             [(c, free), (after, arriving)], [(c, free), (before, leaving)],
+            [(c, PAIR)], [(before, PAIR)],
         )
         for steps in trials:
             if not all(_stagger_count(angles[corner]) for corner, _ in steps):
                 continue
             trial = list(sides)
             for corner, keep in steps:
-                trial = trial and _grid_sides(trial, lengths, angles, l, spacing, corner, keep)
-            touched = {(corner + k) % n for corner, _ in steps for k in (-1, 0, 1)}
+                place = _grid_pair if keep is PAIR else functools.partial(_grid_sides, keep=keep)
+                trial = trial and place(trial, lengths, angles, l, spacing, corner)
+            touched = {(corner + k) % n for corner, keep in steps for k in (-1, 0, 1, 2)[: 3 + (keep is PAIR)]}
             if trial and all(at_least(_corner_gap(trial, lengths, angles, l, k), l) for k in touched):
                 sides[:] = trial
                 break
+
+
+#: The trial of :func:`_place_corners_on_a_grid` placing a corner and the next one jointly.
+PAIR = "pair"
+
+
+def _grid_pair(sides, lengths, angles, l, spacing, c):
+    """``sides`` with the sides of corners ``c`` and ``c + 1`` placed by :func:`._coupled.place_pair`, or None.
+
+    None too when either corner is not sharp.
+    """
+    n = len(lengths)
+    after = (c + 1) % n
+    if not (_stagger_count(angles[after]) and _stagger_count(angles[c])):
+        return None
+    thetas, three = (math.radians(angles[c]), math.radians(angles[after])), (lengths[c - 1], lengths[c], lengths[after])
+    found = _coupled.place_pair(thetas, three, l)
+    if found is None:
+        return None
+    a, s, b = found
+    trial = list(sides)
+    trial[c] = np.concatenate([[0.0], s[:-1]]), lengths[c]
+    trial[c - 1] = _grid_side(lengths[c - 1], a, _from_corner(sides, lengths, c, c - 1), False, l, spacing)
+    trial[after] = _grid_side(lengths[after], b, _from_corner(sides, lengths, after, after), True, l, spacing)
+    return trial
 
 
 def _grid_sides(sides, lengths, angles, l, spacing, c, keep):
@@ -835,8 +864,9 @@ def check_boundary_separation(poly, boundary, l):
     mesh with every edge in ``[l, 2l]`` exists (:func:`_unmeshable_corner`),
     that no Step 2 can meet Lemma 3 (1) at a corner (its first points,
     :func:`_unseparable_corner`; or all its points, decided on a grid,
-    :func:`_unplaceable_corner` at the corners of the offending pairs), or
-    neither (a corner or neck this method does not handle).
+    :func:`_unplaceable_corner` at the corners of the offending pairs, or
+    :func:`_unplaceable_pair` at two of them sharing a side), or neither (a
+    corner or neck this method does not handle).
     """
     pts = boundary.points
     lp = poly.local_length(l)
@@ -856,6 +886,7 @@ def check_boundary_separation(poly, boundary, l):
         _unmeshable_corner(poly, l)
         or _unseparable_corner(poly, l)
         or _unplaceable_corner(poly, l, _corners_of(poly, boundary, pairs))
+        or _unplaceable_pair(poly, l, _corners_of(poly, boundary, pairs))
         or _separation_error(poly, boundary, l, int(i), int(j))
     )
 
@@ -994,8 +1025,9 @@ def _unplaceable_corner(poly, l, corners):
     """The error for the first of ``corners`` (``(ring, i)``) that no Step 2 can separate (Lemma 3 (1)), or None.
 
     Only corners sharper than :data:`SHARP_CORNER` are decided
-    (:func:`._corner.corner_unplaceable`): distances are checked within the
-    largest of the sides' lengths halved until the triangle they span with
+    (:func:`._corner.corner_unplaceable`, then on finer cells
+    :func:`._coupled.pair_unplaceable` with no second corner): distances are
+    checked within the largest of the sides' lengths halved until the triangle they span with
     the corner lies in P (grown by ``REL_TOL l``), where every two points of
     the two sides see each other (:func:`_sees_within`).  When no split of
     the two sides into parts of ``[l, 2l]`` keeps them ``l`` apart there, no
@@ -1011,7 +1043,11 @@ def _unplaceable_corner(poly, l, corners):
         sides = (lengths[i], lengths[i - 1])
         if not angle < SHARP_CORNER:
             continue
-        if not _corner.corner_unplaceable(math.radians(angle), sides, lp, _visible_radii(grown, ring, i, sides)):
+        radii = _visible_radii(grown, ring, i, sides)
+        theta = math.radians(angle)
+        if not _corner.corner_unplaceable(theta, sides, lp, radii) and not _coupled.pair_unplaceable(
+            (theta, None), (sides[1], sides[0], 0.0), lp, (radii[1], radii[0], 0.0, 0.0)
+        ):
             continue
         need = _num((stagger_reach(angle, lp) + lp) / poly.frame.scale)
         return InvalidPolygonError(
@@ -1020,6 +1056,42 @@ def _unplaceable_corner(poly, l, corners):
             "into parts of [l, 2l] keeps every two points of different sides l apart (decided on a grid of cells), so "
             "no Step 2 separates them (a limit of the paper's method, not a proof that no mesh exists; docs/proofs.md, "
             f"'Sharp corners'); sides of at least {need} are handled; use a smaller l, longer sides or a wider corner"
+        )
+    return None
+
+
+def _unplaceable_pair(poly, l, corners):
+    """The error for the first two sharp corners sharing a side, one of ``corners``, that no Step 2 separates together, or None.
+
+    Corners ``i`` and ``i + 1`` both sharper than :data:`SHARP_CORNER`
+    (either in ``corners``) are decided by :func:`._coupled.pair_unplaceable`,
+    distances checked within each corner's :func:`_visible_radii` as in
+    :func:`_unplaceable_corner`.  When no split of the three sides into
+    parts of ``[l, 2l]`` keeps both corners' sides ``l`` apart there, no
+    boundary resampling meets Lemma 3 (1); it is not a proof that no mesh
+    exists (docs/proofs.md, "Sharp corners").
+    """
+    lp = poly.local_length(l)
+    grown = poly.region.buffer(REL_TOL * lp)
+    for r, i in sorted({(r, (j - k) % len(poly.rings[r].local)) for r, j in corners for k in (0, 1)}):
+        ring = poly.rings[r]
+        n, lengths = len(ring.local), ring.local_edge_lengths
+        after = (i + 1) % n
+        angles = (ring.inner_angle(i), ring.inner_angle(after))
+        if not max(angles) < SHARP_CORNER:
+            continue
+        three = (lengths[i - 1], lengths[i], lengths[after])
+        radii = _visible_radii(grown, ring, i, three[1::-1])[::-1] + _visible_radii(grown, ring, after, three[:0:-1])
+        if not _coupled.pair_unplaceable(tuple(math.radians(a) for a in angles), three, lp, radii):
+            continue
+        sides = ", ".join(_num(x / poly.frame.scale) for x in three)
+        return InvalidPolygonError(
+            f"the corners at {ring.vertex_name(i)} ({angles[0]:.6g} degrees) and {ring.vertex_name(after)} "
+            f"({angles[1]:.6g} degrees) cannot meet Lemma 3 (1) together for l = {_num(l)}: no split of their sides of "
+            f"{sides} (the middle one shared) into parts of [l, 2l] keeps every two points of different sides l apart "
+            "at both corners (decided on a grid of cells), so no Step 2 separates them (a limit of the paper's method, "
+            "not a proof that no mesh exists; docs/proofs.md, 'Sharp corners'); use a smaller l, longer sides or wider "
+            "corners"
         )
     return None
 
