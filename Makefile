@@ -32,6 +32,7 @@ EXPERIMENTS := \
 	experiments/ratio_sweep.py \
 	experiments/problem2.py \
 	experiments/sharp_corners.py \
+	experiments/sharp_sweep.py \
 	experiments/table1.py \
 	experiments/figures.py \
 	experiments/compare_peers.py \
