@@ -72,6 +72,9 @@ MODULES = {
     "src/equimesh/planar/placement.py": ["tests/test_placement_search.py"],
     # --- the insertion's region and constrained Delaunay triangulation ---
     "src/equimesh/planar/insertion/_region.py": ["tests/test_region.py"],
+    # --- Step 2 at one sharp corner, decided on a grid ---
+    "src/equimesh/planar/_corner.py": ["tests/test_polygon_corner.py"],
+    # --- end of planar/_corner.py ---
 }
 
 #: Equivalent mutants, by module: (why no test can tell them from the
