@@ -259,6 +259,39 @@ _EQUIVALENT_GROUPS = {
           'data["holes"] = np.asarray(holes, dtype=None)', 'data["holes"] = np.asarray(holes, )']),
     ],
     # --- end of planar/insertion/_region.py ---
+    # --- planar/_corner.py (Step 2 at one sharp corner, decided on a grid) ---
+    "src/equimesh/planar/_corner.py": [
+        ("equivalent: np.unique merges the node 0 (or a multiple past top, removed by the filter) with the 0.0 "
+         "already there; arange(k) is arange(0, k)",
+         ["nodes = [np.arange(math.floor(top / step) + 1) * step]",
+          "nodes = [np.arange(1, math.floor(top / step) + 2) * step]",
+          "nodes.append(length - np.arange(math.floor(length / step)) * step)"]),
+        ("equivalent: no node is 0 (multiples k >= 1 of the step, and a far end less fewer than length / step "
+         "steps), and np.unique would merge one with the 0.0 already there",
+         ["return np.unique(np.concatenate([[0.0], nodes[(nodes >= 0.0) & (nodes <= top)], *kept]))"]),
+        ("equivalent: np.concatenate with the float nodes makes the kept points float whatever their dtype",
+         ["kept = [np.asarray(points, dtype=None) for points in fixed if points is not None]",
+          "kept = [np.asarray(points, ) for points in fixed if points is not None]"]),
+        ("equivalent: at u sin theta == l the bound G(u) = u cos theta is at most u, already a lower bound",
+         ["if sides[i - 1] != s and u * sin <= l:"]),
+        ("equivalent: the backward pass reaches i = -1 again, the last point, whose push it has just done (max "
+         "is idempotent)", ["for i in range(len(sides) - 1, -2, -1):"]),
+        ("equivalent: the push at i = 1 acts only when the first two points of the order are on one side; until it "
+         "first binds both iterate alike, and it binds only when z[1] > z[0] + 2l >= 3l; z only grows, so then the "
+         "other side's first point, after z[1] in the order, is more than 2l from the corner in both, and _placed "
+         "refuses both", ["for i in range(len(sides) - 1, +1, -1):"]),
+        ("equivalent: search indexes only layers 0 and 1 of reached and parent",
+         ["reached = np.zeros((3, n, n), dtype=bool)", "parent = np.full((3, n, n), -1, dtype=np.int64)"]),
+        ("equivalent: np.full of a Python int makes int64 arrays without dtype too (numpy 2, 64-bit platforms)",
+         ["parent = np.full((2, n, n), -1, dtype=None)", "parent = np.full((2, n, n), -1, )"]),
+        ("equivalent: the initial parent is never read: _path reads the parents of reached states with p > 0, each "
+         "set when the state is first reached",
+         ["parent = np.full((2, n, n), +1, dtype=np.int64)", "parent = np.full((2, n, n), -2, dtype=np.int64)"]),
+        ("equivalent: dirty is read only as truth values; a float array of 0 and 1 (or None stored as False in a "
+         "bool array) reads alike",
+         ["dirty = np.zeros((2, n), dtype=None)", "dirty = np.zeros((2, n), )", "dirty[s, p] = None"]),
+    ],
+    # --- end of planar/_corner.py ---
     "src/equimesh/planar/increment.py": [
         ("equivalent: for Problem 1 (no strip estimate) planar_estimate returns the polygon's estimate without "
          "reading the engine", ["check_size(*planar_estimate(poly, l, None, None), max_nodes, l)"]),

@@ -18,6 +18,12 @@ from corner_sampling import sampled_placement
 from equimesh.tolerance import REL_TOL
 
 
+@pytest.fixture(autouse=True)
+def _no_cached_relaxation():
+    """Each test computes the relaxation afresh (_relaxed is cached per corner across calls)."""
+    _corner._relaxed.cache_clear()
+
+
 def _cross(theta, a, b):
     """Distances between every point at distances ``a`` on one side and ``b`` on the other."""
     a, b = np.asarray(a)[:, None], np.asarray(b)[None, :]
@@ -244,3 +250,16 @@ def test_far_enough_cells_against_sampled_points():
                 ok = vv >= uu
                 best = np.max(uu[ok] ** 2 + vv[ok] ** 2 - 2.0 * c * uu[ok] * vv[ok], initial=-1.0)
                 assert far[p, w] == (best >= short * short), (angle, p, w)
+
+
+@pytest.mark.parametrize("angle, sides, placed", [
+    (8.0, [1, 0, 1, 0, 0, 0], [[2.0, 4.0, 6.0, 8.0], [1.0, 3.0]]),  # the last point pushed to K l = 8, the rest 2 l back
+    (15.0, [1, 0, 1, 0, 0], [[1.9318516525781366, 3.5279475487927563, 4.527947548792756], [1.0, 3.0]]),
+])
+def test_tighten_by_hand(angle, sides, placed):
+    """A long leaving side (12 l) and an arriving one of 3 l in a given merged order: each point at the largest of its
+    lower bounds (l past the point before it on its side, G of the other side's point before it, K l for the long
+    side's last point, 2 l before the next point of its side)."""
+    theta = math.radians(angle)
+    found = _corner._tighten(theta, (12.0, 3.0), _corner.corner_reach(theta, 1.0), 1.0, sides)
+    assert [points.tolist() for points in found] == placed
