@@ -265,7 +265,8 @@ _EQUIVALENT_GROUPS = {
          "already there; arange(k) is arange(0, k)",
          ["nodes = [np.arange(math.floor(top / step) + 1) * step]",
           "nodes = [np.arange(1, math.floor(top / step) + 2) * step]",
-          "nodes.append(length - np.arange(math.floor(length / step)) * step)"]),
+          "nodes.append(length - np.arange(math.floor(length / step)) * step)",
+          "edges = np.arange(math.ceil(_horizon(lengths, reach, l) / step) + 2) * step"]),
         ("equivalent: no node is 0 (multiples k >= 1 of the step, and a far end less fewer than length / step "
          "steps), and np.unique would merge one with the 0.0 already there",
          ["return np.unique(np.concatenate([[0.0], nodes[(nodes >= 0.0) & (nodes <= top)], *kept]))"]),
@@ -280,6 +281,16 @@ _EQUIVALENT_GROUPS = {
          "first binds both iterate alike, and it binds only when z[1] > z[0] + 2l >= 3l; z only grows, so then the "
          "other side's first point, after z[1] in the order, is more than 2l from the corner in both, and _placed "
          "refuses both", ["for i in range(len(sides) - 1, +1, -1):"]),
+        ("equivalent: a part ends at least (1 - tol) l past where it starts, so no part ends in position 0 (the "
+         "corner) or 1 (the first node or cell, at most l / 16 from the corner) whatever index > 0 says",
+         ["step = part & (allowed & (index >= 0))[None, :]", "step = part & (allowed & (index > 1))[None, :]"]),
+        ("equivalent: without allowed a side may step past its short far end (or a long side past K l + 2l, which "
+         "needs a step out of a point past K l, where it stops); such a point never ends its side and is the last "
+         "point of every later state, so no extra state completes or is on the way to one that does",
+         ["step = part & (allowed | (index > 0))[None, :]"]),
+        ("equivalent: with axis=None every target is kept, also those with nothing fresh: or-ing in nothing and "
+         "keeping their parents changes no state, and marking them dirty only makes the sweep look at them again",
+         ["grown = fresh.any(axis=None)"]),
         ("equivalent: search indexes only layers 0 and 1 of reached and parent",
          ["reached = np.zeros((3, n, n), dtype=bool)", "parent = np.full((3, n, n), -1, dtype=np.int64)"]),
         ("equivalent: np.full of a Python int makes int64 arrays without dtype too (numpy 2, 64-bit platforms)",

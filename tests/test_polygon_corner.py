@@ -128,6 +128,14 @@ def test_visibility_radii_drop_the_pairs_beyond_them():
     assert not _corner.corner_unplaceable(theta, (3.4553, 3.4553), 1.0, (0.0, 0.0))
 
 
+def test_visibility_radii_belong_to_their_sides():
+    """5.83 degrees with sides 3.5 (leaving) and 2.5473: proven when the leaving side is seen up to 2.5 l and the
+    arriving one whole, not the other way round."""
+    theta, lengths = math.radians(5.83171), (3.5, 2.5473)
+    assert _corner.corner_unplaceable(theta, lengths, 1.0, (2.5, math.inf))
+    assert not _corner.corner_unplaceable(theta, lengths, 1.0, (math.inf, 2.5))
+
+
 def _corners(seed, count, angles, sides):
     """``count`` corners ``(degrees, A / l, B / l, l)`` drawn from ``seed``: angles and side lengths uniform in the given ranges, rounded."""
     rng = np.random.default_rng(seed)
@@ -263,3 +271,12 @@ def test_tighten_by_hand(angle, sides, placed):
     theta = math.radians(angle)
     found = _corner._tighten(theta, (12.0, 3.0), _corner.corner_reach(theta, 1.0), 1.0, sides)
     assert [points.tolist() for points in found] == placed
+
+
+def test_tighten_and_the_reach_scale_with_l():
+    """The 8 degree order above at l = 1.5 is the same placement scaled; K at 30 degrees is 2 although 1 / sin 30
+    degrees rounds to 2 + 4e-16 (the 1 - REL_TOL of K)."""
+    theta = math.radians(8.0)
+    found = _corner._tighten(theta, (18.0, 4.5), _corner.corner_reach(theta, 1.5), 1.5, [1, 0, 1, 0, 0, 0])
+    assert [points.tolist() for points in found] == [[3.0, 6.0, 9.0, 12.0], [1.5, 4.5]]
+    assert _corner.corner_reach(math.radians(30.0), 1.5) == 3.0
