@@ -291,6 +291,11 @@ _EQUIVALENT_GROUPS = {
         ("equivalent: with axis=None every target is kept, also those with nothing fresh: or-ing in nothing and "
          "keeping their parents changes no state, and marking them dirty only makes the sweep look at them again",
          ["grown = fresh.any(axis=None)"]),
+        ("equivalent: best starts below 0 only to lose to any value; -2 loses as -1 does (short > 0)",
+         ["best = np.full((self.n, self.n), -2.0)"]),
+        ("equivalent: a corner of the two cells with v == u lies on the diagonal inside both, where the value "
+         "2 (1 - c) t^2 grows with t, so the diagonal's end t = last, which is checked, is at least as large",
+         ["best = np.where(v2 > u2, np.maximum(best, u2 * u2 + v2 * v2 - 2.0 * c * u2 * v2), best)"]),
         ("equivalent: search indexes only layers 0 and 1 of reached and parent",
          ["reached = np.zeros((3, n, n), dtype=bool)", "parent = np.full((3, n, n), -1, dtype=np.int64)"]),
         ("equivalent: np.full of a Python int makes int64 arrays without dtype too (numpy 2, 64-bit platforms)",
