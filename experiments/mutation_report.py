@@ -72,6 +72,9 @@ MODULES = {
     "src/equimesh/planar/placement.py": ["tests/test_placement_search.py"],
     # --- the insertion's region and constrained Delaunay triangulation ---
     "src/equimesh/planar/insertion/_region.py": ["tests/test_region.py"],
+    # --- Step 2 at one sharp corner, decided on a grid ---
+    "src/equimesh/planar/_corner.py": ["tests/test_polygon_corner.py"],
+    # --- end of planar/_corner.py ---
 }
 
 # --- the fast engine's numba kernels (helper M2's entries) ---
@@ -272,6 +275,55 @@ _EQUIVALENT_GROUPS = {
           'data["holes"] = np.asarray(holes, dtype=None)', 'data["holes"] = np.asarray(holes, )']),
     ],
     # --- end of planar/insertion/_region.py ---
+    # --- planar/_corner.py (Step 2 at one sharp corner, decided on a grid) ---
+    "src/equimesh/planar/_corner.py": [
+        ("equivalent: np.unique merges the node 0 (or a multiple past top, removed by the filter) with the 0.0 "
+         "already there; arange(k) is arange(0, k)",
+         ["nodes = [np.arange(math.floor(top / step) + 1) * step]",
+          "nodes = [np.arange(1, math.floor(top / step) + 2) * step]",
+          "nodes.append(length - np.arange(math.floor(length / step)) * step)",
+          "edges = np.arange(math.ceil(_horizon(lengths, reach, l) / step) + 2) * step"]),
+        ("equivalent: no node is 0 (multiples k >= 1 of the step, and a far end less fewer than length / step "
+         "steps), and np.unique would merge one with the 0.0 already there",
+         ["return np.unique(np.concatenate([[0.0], nodes[(nodes >= 0.0) & (nodes <= top)], *kept]))"]),
+        ("equivalent: np.concatenate with the float nodes makes the kept points float whatever their dtype",
+         ["kept = [np.asarray(points, dtype=None) for points in fixed if points is not None]",
+          "kept = [np.asarray(points, ) for points in fixed if points is not None]"]),
+        ("equivalent: at u sin theta == l the bound G(u) = u cos theta is at most u, already a lower bound",
+         ["if sides[i - 1] != s and u * sin <= l:"]),
+        ("equivalent: the backward pass reaches i = -1 again, the last point, whose push it has just done (max "
+         "is idempotent)", ["for i in range(len(sides) - 1, -2, -1):"]),
+        ("equivalent: the push at i = 1 acts only when the first two points of the order are on one side; until it "
+         "first binds both iterate alike, and it binds only when z[1] > z[0] + 2l >= 3l; z only grows, so then the "
+         "other side's first point, after z[1] in the order, is more than 2l from the corner in both, and _placed "
+         "refuses both", ["for i in range(len(sides) - 1, +1, -1):"]),
+        ("equivalent: a part ends at least (1 - tol) l past where it starts, so no part ends in position 0 (the "
+         "corner) or 1 (the first node or cell, at most l / 16 from the corner) whatever index > 0 says",
+         ["step = part & (allowed & (index >= 0))[None, :]", "step = part & (allowed & (index > 1))[None, :]"]),
+        ("equivalent: without allowed a side may step past its short far end (or a long side past K l + 2l, which "
+         "needs a step out of a point past K l, where it stops); such a point never ends its side and is the last "
+         "point of every later state, so no extra state completes or is on the way to one that does",
+         ["step = part & (allowed | (index > 0))[None, :]"]),
+        ("equivalent: with axis=None every target is kept, also those with nothing fresh: or-ing in nothing and "
+         "keeping their parents changes no state, and marking them dirty only makes the sweep look at them again",
+         ["grown = fresh.any(axis=None)"]),
+        ("equivalent: best starts below 0 only to lose to any value; -2 loses as -1 does (short > 0)",
+         ["best = np.full((self.n, self.n), -2.0)"]),
+        ("equivalent: a corner of the two cells with v == u lies on the diagonal inside both, where the value "
+         "2 (1 - c) t^2 grows with t, so the diagonal's end t = last, which is checked, is at least as large",
+         ["best = np.where(v2 > u2, np.maximum(best, u2 * u2 + v2 * v2 - 2.0 * c * u2 * v2), best)"]),
+        ("equivalent: search indexes only layers 0 and 1 of reached and parent",
+         ["reached = np.zeros((3, n, n), dtype=bool)", "parent = np.full((3, n, n), -1, dtype=np.int64)"]),
+        ("equivalent: np.full of a Python int makes int64 arrays without dtype too (numpy 2, 64-bit platforms)",
+         ["parent = np.full((2, n, n), -1, dtype=None)", "parent = np.full((2, n, n), -1, )"]),
+        ("equivalent: the initial parent is never read: _path reads the parents of reached states with p > 0, each "
+         "set when the state is first reached",
+         ["parent = np.full((2, n, n), +1, dtype=np.int64)", "parent = np.full((2, n, n), -2, dtype=np.int64)"]),
+        ("equivalent: dirty is read only as truth values; a float array of 0 and 1 (or None stored as False in a "
+         "bool array) reads alike",
+         ["dirty = np.zeros((2, n), dtype=None)", "dirty = np.zeros((2, n), )", "dirty[s, p] = None"]),
+    ],
+    # --- end of planar/_corner.py ---
     "src/equimesh/planar/increment.py": [
         ("equivalent: for Problem 1 (no strip estimate) planar_estimate returns the polygon's estimate without "
          "reading the engine", ["check_size(*planar_estimate(poly, l, None, None), max_nodes, l)"]),

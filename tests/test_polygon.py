@@ -651,3 +651,17 @@ def test_no_separation_reads_the_far_ends_of_the_first_point_ranges():
 
     poly = as_polygon([[0.0, 0.0], [1.6, 0.0], _at(30.0, 2.5)], None, [[[1.1, 0.5], [1.25, 0.5], [1.2, 0.62]]])
     assert _unseparable_corner(poly, 1.0) is None
+
+
+@pytest.mark.parametrize("hole_at, halvings", [(3.3, 1), (1.5, 2), (5.0, 0)])
+def test_visible_radii_halve_the_sides_until_the_corners_triangle_is_in_the_polygon(hole_at, halvings):
+    """A 20 degree triangle with sides 4 and a small hole at hole_at along the corner's bisector direction (none at
+    5: outside): the sides are halved until the triangle they span with the corner misses the hole."""
+    from equimesh.planar.polygon import _visible_radii
+
+    x, y = hole_at * math.cos(math.radians(7.0)), hole_at * math.sin(math.radians(7.0))
+    holes = [[[x - 0.05, y - 0.03], [x + 0.05, y - 0.03], [x, y + 0.04]]] if hole_at < 4.0 else None
+    poly = as_polygon([[0.0, 0.0], [4.0, 0.0], _at(20.0, 4.0)], None, holes)
+    ring = poly.rings[0]
+    sides = (ring.local_edge_lengths[0], ring.local_edge_lengths[-1])  # in the local frame, as the caller passes them
+    assert _visible_radii(poly.region, ring, 0, sides) == tuple(side / 2.0**halvings for side in sides)

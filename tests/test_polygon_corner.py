@@ -19,6 +19,12 @@ from corner_sampling import sampled_pair, sampled_placement
 from equimesh.tolerance import REL_TOL
 
 
+@pytest.fixture(autouse=True)
+def _no_cached_relaxation():
+    """Each test computes the relaxation afresh (_relaxed is cached per corner across calls)."""
+    _corner._relaxed.cache_clear()
+
+
 def _cross(theta, a, b):
     """Distances between every point at distances ``a`` on one side and ``b`` on the other."""
     a, b = np.asarray(a)[:, None], np.asarray(b)[None, :]
@@ -72,7 +78,8 @@ def test_a_placement_off_every_grid_is_found_by_tightening():
         assert _corner._Graph(theta, lengths, reach, 1.0, nodes, nodes, REL_TOL / 4.0, (math.inf, math.inf)).search() is None
     found = _corner.place_corner(theta, lengths, 1.0)
     _assert_placement(theta, lengths, 1.0, found)
-    assert [len(points) for points in found] == [3, 3]
+    assert [points.tolist() for points in found] == [[1.0, 2.6398839449125027, 4.132016938510646],
+                                                     [1.9078479878943455, 3.12864928468156, 4.132016938510646]]
 
 
 def test_a_long_side_is_cut_past_k_l_and_kept_sides_are_kept():
@@ -194,3 +201,157 @@ def test_a_shared_side_too_long_to_couple_the_corners_is_not_decided_jointly():
     assert not _coupled._coupled(PAIR_THETAS, lengths, 1.0) and _coupled._coupled(PAIR_THETAS, PAIR_LENGTHS, 1.0)
     assert _coupled.place_pair(PAIR_THETAS, lengths, 1.0) is None
     assert not _coupled.pair_unplaceable(PAIR_THETAS, lengths, 1.0, (math.inf,) * 4)
+
+
+def test_visibility_radii_belong_to_their_sides():
+    """5.83 degrees with sides 3.5 (leaving) and 2.5473: proven when the leaving side is seen up to 2.5 l and the
+    arriving one whole, not the other way round."""
+    theta, lengths = math.radians(5.83171), (3.5, 2.5473)
+    assert _corner.corner_unplaceable(theta, lengths, 1.0, (2.5, math.inf))
+    assert not _corner.corner_unplaceable(theta, lengths, 1.0, (math.inf, 2.5))
+
+
+def _corners(seed, count, angles, sides):
+    """``count`` corners ``(degrees, A / l, B / l, l)`` drawn from ``seed``: angles and side lengths uniform in the given ranges, rounded."""
+    rng = np.random.default_rng(seed)
+    return [(round(float(rng.uniform(*angles)), 2), *np.round(rng.uniform(*sides, 2), 3).tolist(), float(rng.choice([1.0, 1.5])))
+            for _ in range(count)]
+
+
+def _corner_fingerprint(corners):
+    """The proof's answers (every pair seen, and only within half of each side) and the search's placements, each
+    with its leaving side kept, summed: (proven, index-weighted proven, points, index-weighted sum of the points).
+    """
+    proven, weighted_proven, points, weighted = 0, 0, 0, 0.0
+    for k, (angle, a, b, l) in enumerate(corners, 1):
+        theta, lengths = math.radians(angle), (a * l, b * l)
+        for radii in ((math.inf, math.inf), (a * l / 2.0, b * l / 2.0)):
+            decided = _corner.corner_unplaceable(theta, lengths, l, radii)
+            proven, weighted_proven = proven + decided, weighted_proven + k * decided
+        found = _corner.place_corner(theta, lengths, l)
+        if found is None:
+            continue
+        _assert_placement(theta, lengths, l, found)
+        again = _corner.place_corner(theta, lengths, l, (found[0], None))
+        if again is not None:  # None where found came from _tighten, off the grid (the search alone misses it)
+            assert np.array_equal(again[0], found[0])
+            _assert_placement(theta, lengths, l, again)
+            found = (*found, *again)
+        at = np.concatenate(found)
+        points, weighted = points + len(at), weighted + k * float(np.dot(np.round(at, 9), np.arange(1, len(at) + 1)))
+    return proven, weighted_proven, points, round(weighted, 6)
+
+
+def test_corner_fingerprint_short_sides():
+    """40 corners of 3 to 45 degrees with sides of 1 to 8 l: the proof and the search pinned by sums (a fingerprint,
+    as in dmsh's tests; a change to either changes them), every placement checked pair by pair."""
+    assert _corner_fingerprint(_corners(5, 40, (3.0, 45.0), (1.0, 8.0))) == (15, 345, 204, 82530.326293)
+
+
+def test_corner_fingerprint_long_sides():
+    """8 corners of 12 to 25 degrees (K = 3 to 5) with sides of 6 to 30 l, most longer than (K + 3) l and cut past
+    K l."""
+    assert _corner_fingerprint(_corners(6, 8, (12.0, 25.0), (6.0, 30.0))) == (0, 0, 74, 7138.78125)
+
+
+TOL = REL_TOL / 4.0  # the tolerance of _placed's checks
+FAR = 2.0**-31  # TOL * FAR_L exactly, a multiple of the ulp of 3.5: a far end exactly at the tolerance
+FAR_L = 1.862645149230957
+EXACT = 3.464101614560404  # at 30 degrees and l = 2, its squared distance from 2 is ((1 - TOL) l)^2 to the last bit
+
+
+@pytest.mark.parametrize("angle, l, lengths, xs, ys, placed", [
+    (90.0, 2.0, (6.0, 4.0), [2.0, 6.0], [2.0, 4.0], True),
+    (90.0, 2.0, (6.0, 4.0), [2.0, 6.0], [2.0, 4.5], False),  # the arriving side does not end at its far end
+    (90.0, 2.0, (4.0 + (1.0 - TOL) * 2.0,) * 2, [(1.0 - TOL) * 2.0, 4.0 + (1.0 - TOL) * 2.0], [2.0, 4.0 + (1.0 - TOL) * 2.0], True),
+    (90.0, 2.0, (6.0, 4.0), [(1.0 - 0.9 * TOL) * 2.0, 6.0], [2.0, 4.0], True),
+    (90.0, 2.0, (6.0, 4.0), [(1.0 - 2.0 * TOL) * 2.0, 6.0], [2.0, 4.0], False),
+    (90.0, 2.0, (2.0 * (1.0 + TOL) * 2.0, 4.0), [2.0 * (1.0 + TOL) * 2.0], [2.0, 4.0], True),
+    (90.0, 2.0, (2.0 * (1.0 + 2.0 * TOL) * 2.0, 4.0), [2.0 * (1.0 + 2.0 * TOL) * 2.0], [2.0, 4.0], False),
+    (90.0, 2.0, (12.0, 4.0), [2.0, 4.0, 6.0, 8.0, 10.0], [2.0, 4.0], True),  # a long side: its last point l before the end
+    (90.0, 2.0, (12.0, 4.0), [2.0, 4.0, 6.0, 8.0, 10.5], [2.0, 4.0], False),
+    (90.0, FAR_L, (3.5, 3.5), [3.5 + FAR], [3.5], True),  # a far end missed by exactly TOL l is moved onto it
+    (90.0, FAR_L, (3.5, 3.5), [3.5 + 2.0 * FAR], [3.5], False),
+    (30.0, 2.0, (4.0, 4.0), [2.0, 4.0], [4.0], True),
+    (30.0, 2.0, (4.0, 4.0), [2.0, 4.0], [2.0, 4.0], False),  # the first points 1.04 apart
+    (30.0, 2.0, (4.0, EXACT), [2.0, 4.0], [EXACT], True),  # a cross pair at (1 - TOL) l exactly
+])
+def test_placed_checks_parts_ends_and_cross_pairs_at_their_tolerance(angle, l, lengths, xs, ys, placed):
+    """_placed accepts parts from (1 - TOL) l to 2 (1 + TOL) l, far ends within TOL l (moved onto them), a long
+    side's last point up to l before its end, cross pairs from (1 - TOL) l; each threshold exactly and just past."""
+    theta = math.radians(angle)
+    sides, z = np.array([0] * len(xs) + [1] * len(ys)), np.array(xs + ys)
+    found = _corner._placed(theta, lengths, _corner.corner_reach(theta, l), l, sides, z)
+    assert (found is not None) == placed
+    if placed:
+        assert [points.tolist() for points in found] == [xs[:-1] + [min(xs[-1], lengths[0])], ys]
+
+
+def test_cut_keeps_a_long_sides_points_up_to_the_first_past_k_l():
+    """K l = 12 (5 degrees): a side longer than 15 l keeps its points up to the first at or past 12; one of 15 l is
+    not cut."""
+    odd, even = np.arange(1.0, 40.0, 2.0), np.arange(2.0, 40.0, 2.0)
+    assert _corner.cut(odd, 40.0, 12.0, 1.0).tolist() == [1.0, 3.0, 5.0, 7.0, 9.0, 11.0, 13.0]
+    assert _corner.cut(even, 15.5, 12.0, 1.0).tolist() == [2.0, 4.0, 6.0, 8.0, 10.0, 12.0]
+    assert _corner.cut(even, 15.0, 12.0, 1.0) is even
+
+
+def test_cells_and_nodes_by_hand():
+    """K l = 6 and sides 3.125 and 20 (long: past K l + 3 l) at a step of 1/4: the search's nodes are the multiples of
+    the step up to K l + 2 l = 8, the short side's far end less multiples of the step, and the points kept; the
+    proof's cells cover [0, 8.25] in steps (one more than 8 needs), with the corner and the short side's far end as points."""
+    lengths, step = (3.125, 20.0), 0.25
+    nodes = _corner._nodes(lengths, 6.0, 1.0, step, (np.array([1.1, 3.125]), None))
+    assert nodes.tolist() == sorted({0.0, 1.1} | {step * k for k in range(1, 33)} | {3.125 - step * k for k in range(12)})
+    lo, hi = _corner._cells(lengths, 6.0, 1.0, step)
+    assert lo.tolist() == [0.0, *(step * k for k in range(33)), 3.125]
+    assert hi.tolist() == [0.0, *(step * k for k in range(1, 34)), 3.125]
+    assert _corner._horizon((20.0, 9.0), 6.0, 1.0) == 9.0 and _corner._horizon((9.5, 7.0), 6.0, 1.0) == 8.0
+
+
+def test_far_enough_cells_against_sampled_points():
+    """_Graph._far_enough on cells: some u of cell p and v >= u of cell w with u^2 + v^2 - 2 c u v >= short^2, the
+    same answer as sampling each cell (ends included) and the diagonal v = u where the cells overlap (the largest value
+    of the convex quadratic lies at a corner of that region); on random cells, points and overlaps, at 3 angles."""
+    rng = np.random.default_rng(3)
+    lo = np.round(rng.uniform(0.0, 4.0, 40), 3)
+    hi = lo + np.where(rng.random(40) < 0.3, 0.0, np.round(rng.uniform(0.0, 1.5, 40), 3))
+    cells = type("Cells", (), {"lo": lo, "hi": hi, "n": len(lo)})()
+    samples = np.linspace(0.0, 1.0, 9)
+    for angle in (10.0, 35.0, 80.0):
+        c, short = math.cos(math.radians(angle)), 1.0
+        far = _corner._Graph._far_enough(cells, math.radians(angle), short)
+        for p in range(len(lo)):
+            for w in range(len(lo)):
+                u = lo[p] + (hi[p] - lo[p]) * samples
+                v = lo[w] + (hi[w] - lo[w]) * samples
+                first, last = max(lo[p], lo[w]), min(hi[p], hi[w])
+                uu, vv = np.meshgrid(u, v)
+                uu, vv = uu.ravel(), vv.ravel()
+                if first <= last:
+                    uu, vv = np.append(uu, [first, last]), np.append(vv, [first, last])
+                ok = vv >= uu
+                best = np.max(uu[ok] ** 2 + vv[ok] ** 2 - 2.0 * c * uu[ok] * vv[ok], initial=-1.0)
+                assert far[p, w] == (best >= short * short), (angle, p, w)
+
+
+@pytest.mark.parametrize("angle, sides, placed", [
+    (8.0, [1, 0, 1, 0, 0, 0], [[2.0, 4.0, 6.0, 8.0], [1.0, 3.0]]),  # the last point pushed to K l = 8, the rest 2 l back
+    (15.0, [1, 0, 1, 0, 0], [[1.9318516525781366, 3.5279475487927563, 4.527947548792756], [1.0, 3.0]]),
+])
+def test_tighten_by_hand(angle, sides, placed):
+    """A long leaving side (12 l) and an arriving one of 3 l in a given merged order: each point at the largest of its
+    lower bounds (l past the point before it on its side, G of the other side's point before it, K l for the long
+    side's last point, 2 l before the next point of its side)."""
+    theta = math.radians(angle)
+    found = _corner._tighten(theta, (12.0, 3.0), _corner.corner_reach(theta, 1.0), 1.0, sides)
+    assert [points.tolist() for points in found] == placed
+
+
+def test_tighten_and_the_reach_scale_with_l():
+    """The 8 degree order above at l = 1.5 is the same placement scaled; K at 30 degrees is 2 although 1 / sin 30
+    degrees rounds to 2 + 4e-16 (the 1 - REL_TOL of K)."""
+    theta = math.radians(8.0)
+    found = _corner._tighten(theta, (18.0, 4.5), _corner.corner_reach(theta, 1.5), 1.5, [1, 0, 1, 0, 0, 0])
+    assert [points.tolist() for points in found] == [[3.0, 6.0, 9.0, 12.0], [1.5, 4.5]]
+    assert _corner.corner_reach(math.radians(30.0), 1.5) == 3.0
