@@ -11,7 +11,7 @@ sharing any point of it),
 runs ``uniform_triangulation`` with l = 1 (fast engine) and classifies each
 refusal by its message as ``experiments/sharp_corners.py`` does.  The count
 that matters is "not handled": a ring where nothing is proven either way
-(docs/proofs.md, "Sharp corners"; docs/decisions.md, items 80 and 85).
+(docs/proofs.md, "Sharp corners"; docs/decisions.md, items 58 and 59).
 Writes results/sharp_sweep.csv and .md.
 """
 

@@ -91,7 +91,7 @@ LM_BACKTRACKS = 4
 #: member in [l, 2l], or stalls (its own cost changes by less than that too),
 #: or after ``BOUNDED_ROUNDS`` rounds.  The result is the end of a round in
 #: [l, 2l] with the largest share of members within ``BOUNDED_BAND`` of l (the
-#: issue's "within 0.5 %"; docs/decisions.md item 70).  If no round ended in
+#: issue's "within 0.5 %"; docs/decisions.md item 74).  If no round ended in
 #: [l, 2l], a last stage restarts from the
 #: remapped mesh with a one-sided penalty of slope ``BOUNDED_PENALTY``
 #: (below ``l (1 + BOUNDED_OFFSET / 2)``, above ``l (2 - BOUNDED_OFFSET)``, a hinge
