@@ -72,6 +72,9 @@ MODULES = {
     "src/equimesh/planar/placement.py": ["tests/test_placement_search.py"],
     # --- the insertion's region and constrained Delaunay triangulation ---
     "src/equimesh/planar/insertion/_region.py": ["tests/test_region.py"],
+    # --- Step 2 at two sharp corners sharing a side (helper M4's entry) ---
+    "src/equimesh/planar/_coupled.py": ["tests/test_polygon_corner.py", "tests/test_coupled.py"],
+    # --- end of the two sharp corners ---
 }
 
 # --- the fast engine's numba kernels (helper M2's entries) ---
