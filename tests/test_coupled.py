@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 
 from equimesh.planar import _coupled
+from equimesh.tolerance import REL_TOL
 from test_polygon_corner import PAIR_LENGTHS, PAIR_THETAS, _assert_placement
 
 #: The pair of tests/test_polygon_corner.py with the shared side 5.25 l: placeable.
@@ -94,17 +95,19 @@ def test_cross_does_not_check_pairs_beyond_the_radii():
 
 
 def test_side_nodes_are_the_multiples_of_the_step_from_either_end_and_a_long_side_stops_past_k_l():
-    """l = 2, step l/2, K l = 6: a side of 5.3 has the multiples of 1 from both ends and stops at its far end; one
+    """l = 2, step l/4, K l = 6: a side of 5.3 has the multiples of 0.5 from both ends and stops at its far end; one
     of 12 = K l + 3l is still short; one of 12.5 is long: nodes up to K l + 2l = 10, any past K l an end."""
-    l, step, reach = 2.0, 1.0, 6.0
+    l, step, reach = 2.0, 0.5, 6.0
     lo, hi, ends, _ = _coupled._side(5.3, reach, l, step, False, 0.0)
-    assert lo.tolist() == sorted({0.0, 1.0, 2.0, 3.0, 4.0, 5.0} | {5.3 - k for k in range(6)}) and hi is lo
+    expected = {0.0} | {k * step for k in range(1, 11)} | {5.3 - k * step for k in range(11)}
+    assert lo.tolist() == sorted(expected) and hi is lo
     assert np.flatnonzero(ends).tolist() == [len(lo) - 1]
     for length in (12.0, 10.0):
         lo, _, ends, _ = _coupled._side(length, reach, l, step, False, 0.0)
-        assert lo.tolist() == np.arange(length + 1).tolist() and np.flatnonzero(ends).tolist() == [length]
+        assert lo.tolist() == (np.arange(2 * length + 1) * step).tolist()
+        assert np.flatnonzero(ends).tolist() == [2 * length]
     lo, _, ends, parts = _coupled._side(12.5, reach, l, step, False, 0.0)
-    assert lo.tolist() == np.arange(11.0).tolist() and np.flatnonzero(ends).tolist() == [6, 7, 8, 9, 10]
+    assert lo.tolist() == (np.arange(21) * step).tolist() and np.flatnonzero(ends).tolist() == list(range(12, 21))
     assert (parts == _coupled._parts(lo, lo, l, 0.0)).all()
 
 
@@ -137,7 +140,7 @@ def test_a_decision_past_pair_steps_tests_is_left_undecided(monkeypatch):
     search = _coupled._Pair(PAIR_THETAS, PLACEABLE, 1.0, 0, cells=False, radii=inf)
     assert search.search() is not None
     steps = search.steps
-    assert steps > 1
+    assert steps == len(search.tested) > 1
     monkeypatch.setattr(_coupled, "PAIR_STEPS", steps)
     assert _coupled._Pair(PAIR_THETAS, PLACEABLE, 1.0, 0, cells=False, radii=inf).search() is not None
     monkeypatch.setattr(_coupled, "PAIR_STEPS", steps - 1)
@@ -168,3 +171,74 @@ def test_side_cells_clip_to_ranges_widened_by_the_tolerance():
     assert lo.tolist() == pytest.approx([0, 0, 1, 2, 3, 4, 1.8, 2, 3, 4, 0.6, 1, 2, 3, 1.8, 2, 3, 5])
     assert hi.tolist() == pytest.approx([0, 1, 2, 3, 4, 5, 2, 3, 4, 4.4, 1, 2, 3, 3.2, 2, 3, 3.2, 5])
     assert np.flatnonzero(ends).tolist() == [17]
+
+
+def test_the_shared_side_couples_the_corners_up_to_k1_l_plus_k2_l_plus_4l():
+    """30 and 10 degrees (K = 2 and 6) at l = 2: coupled up to 2 l + 6 l + 4 l = 24 exactly, either order."""
+    for thetas in [(math.radians(30.0), math.radians(10.0)), (math.radians(10.0), math.radians(30.0))]:
+        assert _coupled._coupled(thetas, (1.0, 24.0, 1.0), 2.0)
+        assert not _coupled._coupled(thetas, (1.0, 24.000001, 1.0), 2.0)
+    assert _coupled._coupled((math.radians(30.0), None), (1.0, 100.0, 0.0), 2.0)
+
+
+def test_the_tolerances_of_the_search_and_of_the_proof():
+    """A right angle with A a single part a little below l (S of 2l): the search's nodes take parts down to
+    (1 - REL_TOL / 4) l, the proof's cells down to (1 - 2 REL_TOL) l (pairs are far apart here)."""
+    thetas, inf = (math.pi / 2, None), (math.inf,) * 4
+    side = lambda below: (1.0 - below * REL_TOL, 2.0, 0.0)  # noqa: E731
+    a, s, _ = _coupled.place_pair(thetas, side(0.22), 1.0)
+    assert a.tolist() == [side(0.22)[0]] and s[-1] == 2.0
+    assert _coupled.place_pair(thetas, side(0.3), 1.0) is None
+    assert not _coupled.pair_unplaceable(thetas, side(1.9), 1.0, inf)
+    assert _coupled.pair_unplaceable(thetas, side(2.5), 1.0, inf)
+
+
+def test_the_first_points_are_kept_from_the_other_side_from_the_start():
+    """10 degrees with A = l: its only point, l from the corner, is closer than l to every point of S but one
+    at 2 cos(10 deg) l or more; with S = 2l the first point of S is its end, and at a right angle on the other
+    side the same holds for B.  Nothing else is removed at the start: the corners are no points of the other side."""
+    ten = math.radians(10.0)
+    assert [p.tolist() for p in _coupled.place_pair((ten, None), (1.0, 2.0, 0.0), 1.0)] == [[1.0], [2.0], []]
+    assert [p.tolist() for p in _coupled.place_pair((math.pi / 2, ten), (1.0, 2.0, 1.0), 1.0)] == [[1.0], [2.0], [1.0]]
+    pair = _coupled._Pair((math.pi / 2, ten), (1.0, 2.0, 1.0), 1.0, 0, cells=False, radii=(math.inf,) * 4)
+    assert [p.tolist() for p in pair.search()] == [[1.0], [2.0], [1.0]]  # on the first grid already
+    for cross, (s, side) in [(pair.cross_a, (pair.s[0], pair.a[0])), (pair.cross_b, (2.0 - pair.s[0], pair.b[0]))]:
+        theta = math.pi / 2 if cross is pair.cross_a else ten
+        d2 = s[:, None] ** 2 + side[None, :] ** 2 - 2.0 * math.cos(theta) * s[:, None] * side[None, :]
+        expected = d2 >= (1.0 - REL_TOL / 4.0) ** 2
+        expected[:, 0] = True
+        expected[0 if cross is pair.cross_a else -1] = True
+        assert (cross == expected).all()
+
+
+def test_a_lone_corner_stops_the_shared_side_past_k_l():
+    """30 degrees alone (K = 2) with S of 20 l: S stops at its first point past 2 l, not at its far end."""
+    a, s, b = _coupled.place_pair((math.radians(30.0), None), (3.0, 20.0, 0.0), 1.0)
+    assert 2.0 <= s[-1] <= 4.0 and len(b) == 0
+
+
+def test_the_proof_uses_cells_on_every_side_and_a_radius_drops_the_pairs_of_its_corner():
+    """Cells have width (hi > lo) on A, S and B; a radius of 0 makes every pair of its corner count as apart."""
+    pair = _coupled._Pair(PAIR_THETAS, PAIR_LENGTHS, 1.0, 0, cells=True, radii=(math.inf,) * 4)
+    for lo, hi in (pair.a[:2], pair.s, pair.b[:2]):
+        assert (hi >= lo).all() and (hi > lo).any()
+    assert not pair.cross_a.all() and not pair.cross_b.all()
+    for i in range(4):
+        radii = tuple(0.0 if j == i else math.inf for j in range(4))
+        pair = _coupled._Pair(PAIR_THETAS, PAIR_LENGTHS, 1.0, 0, cells=True, radii=radii)
+        assert pair.cross_a.all() == (i < 2) and pair.cross_b.all() == (i >= 2)
+
+
+def test_a_pair_refuted_only_on_finer_cells_is_proven_there(monkeypatch):
+    """Corners of 16.11 and 14.64 degrees, sides of 3.905, 4.621 and 3.742 l: the cells of l/16 refute nothing and
+    its nodes hold no placement, the cells of l/32 refute every split; allowed no refinement, nothing is proven."""
+    thetas, lengths = (0.2811920832642171, 0.2556000676733454), (3.9053127292452765, 4.621055221556947, 3.7424774384218624)
+    inf = (math.inf,) * 4
+    assert _coupled._Pair(thetas, lengths, 1.0, 0, cells=True, radii=inf).search() is not None
+    assert _coupled._Pair(thetas, lengths, 1.0, 0, cells=False, radii=inf).search() is None
+    assert _coupled.pair_unplaceable(thetas, lengths, 1.0, inf)
+    assert _coupled.place_pair(thetas, lengths, 1.0) is None
+    monkeypatch.setattr(_coupled, "PAIR_REFINEMENTS", 1)
+    assert _coupled.pair_unplaceable(thetas, lengths, 1.0, inf)
+    monkeypatch.setattr(_coupled, "PAIR_REFINEMENTS", 0)
+    assert not _coupled.pair_unplaceable(thetas, lengths, 1.0, inf)
