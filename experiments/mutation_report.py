@@ -3,8 +3,9 @@
 For each algorithm module (Problem 1: ``increment.py`` and the reference
 insertion engine with its triangulation ``_region.py``; Problem 2: ``strip.py``,
 ``lattice.py``, ``_clearance.py``, ``placement.py``; ``bounds.py``; Step 2
-boundary resampling and separation in ``polygon.py`` and, on surfaces,
-``surface/ring.py``) mutmut makes small
+boundary resampling and separation in ``polygon.py``, two sharp corners
+decided jointly in ``_coupled.py`` and, on surfaces, ``surface/ring.py``)
+mutmut makes small
 changes to the code (an operator, a constant, a comparison), one at a time, and
 runs the tests selected for that module in :data:`MODULES`.  A mutant is
 *killed* when a test fails, *survived* when every test passes.  A survivor is

@@ -232,7 +232,8 @@ def test_the_proof_uses_cells_on_every_side_and_a_radius_drops_the_pairs_of_its_
 def test_a_pair_refuted_only_on_finer_cells_is_proven_there(monkeypatch):
     """Corners of 16.11 and 14.64 degrees, sides of 3.905, 4.621 and 3.742 l: the cells of l/16 refute nothing and
     its nodes hold no placement, the cells of l/32 refute every split; allowed no refinement, nothing is proven."""
-    thetas, lengths = (0.2811920832642171, 0.2556000676733454), (3.9053127292452765, 4.621055221556947, 3.7424774384218624)
+    thetas = (0.2811920832642171, 0.2556000676733454)
+    lengths = (3.9053127292452765, 4.621055221556947, 3.7424774384218624)
     inf = (math.inf,) * 4
     assert _coupled._Pair(thetas, lengths, 1.0, 0, cells=True, radii=inf).search() is not None
     assert _coupled._Pair(thetas, lengths, 1.0, 0, cells=False, radii=inf).search() is None
