@@ -3,8 +3,9 @@
 For each algorithm module (Problem 1: ``increment.py`` and the reference
 insertion engine with its triangulation ``_region.py``; Problem 2: ``strip.py``,
 ``lattice.py``, ``_clearance.py``, ``placement.py``; ``bounds.py``; Step 2
-boundary resampling and separation in ``polygon.py`` and, on surfaces,
-``surface/ring.py``) mutmut makes small
+boundary resampling and separation in ``polygon.py``, two sharp corners
+decided jointly in ``_coupled.py`` and, on surfaces, ``surface/ring.py``)
+mutmut makes small
 changes to the code (an operator, a constant, a comparison), one at a time, and
 runs the tests selected for that module in :data:`MODULES`.  A mutant is
 *killed* when a test fails, *survived* when every test passes.  A survivor is
@@ -75,9 +76,12 @@ MODULES = {
     # --- Step 2 at one sharp corner, decided on a grid ---
     "src/equimesh/planar/_corner.py": ["tests/test_polygon_corner.py"],
     # --- end of planar/_corner.py ---
+    # --- Step 2 at two sharp corners sharing a side ---
+    "src/equimesh/planar/_coupled.py": ["tests/test_polygon_corner.py", "tests/test_coupled.py"],
+    # --- end of the two sharp corners ---
 }
 
-# --- the fast engine's numba kernels (helper M2's entries) ---
+# --- the fast engine's numba kernels ---
 #: The fast engine's kernels -> their tests.  The kernels are compiled by a
 #: call (``insertion/_jit.py``), not by a decorator, so mutmut mutates them
 #: and puts its trampolines in front of them; numba cannot compile a
@@ -355,7 +359,75 @@ _EQUIVALENT_GROUPS = {
         (_NEGATIVE_RESHAPE, ["v = real_array(value, name, EquimeshError).reshape(-2)"]),
     ],
 }
-# --- the fast engine's numba kernels (helper M2's entries) ---
+# --- planar/_coupled.py (two sharp corners decided jointly) ---
+_TRUTH_CELLS = "equivalent: _Pair and _side read cells only as a truth value, and None is as false as False"
+_FOUR_RADII = "equivalent: _Pair reads radii[0] to radii[3] only, so a fifth radius is never read"
+_COUPLED_EQUIVALENT_GROUPS = {
+    "src/equimesh/planar/_coupled.py": [
+        (_TRUTH_CELLS, ["found = _Pair(thetas, lengths, l, level, cells=None, radii=(math.inf,) * 4).search()",
+                        "if level <= CORNER_REFINEMENTS and _Pair(thetas, lengths, l, level, cells=None, "
+                        "radii=(math.inf,) * 4).search():"]),
+        (_FOUR_RADII, ["found = _Pair(thetas, lengths, l, level, cells=False, radii=(math.inf,) * 5).search()",
+                       "if found is not None or _Pair(thetas, lengths, l, level, cells=True, radii=(math.inf,) * 5)"
+                       ".search() is None:",
+                       "if level <= CORNER_REFINEMENTS and _Pair(thetas, lengths, l, level, cells=False, "
+                       "radii=(math.inf,) * 5).search():"]),
+        ("equivalent: the cells are a relaxation (docs/proofs.md): no grid of cells refutes a pair the search places, "
+         "so without the search at the finest search grid the loop goes on to finer cells, refutes nothing and "
+         "returns False as well; the search only ends it earlier",
+         ["if level < CORNER_REFINEMENTS and _Pair(thetas, lengths, l, level, cells=False, radii=(math.inf,) * 4)"
+          ".search():"]),
+        ("equivalent: _cross reads only the first two entries (lo, hi) of the side it is given",
+         ["self.cross_a = _cross(thetas[0], self.s, self.a[:3], l, tol, (radii[1], radii[0]))",
+          "self.cross_b = np.ones((len(lo), 1), dtype=bool) if alone else _cross(thetas[1], (s - hi, s - lo), "
+          "self.b[:3], l, tol, (radii[3], radii[2]))"]),
+        ("equivalent: a lone corner's B is its corner alone, already its end: _reaches returns True at once, before "
+         "reading its parts or more than the first entry of left and ends (which broadcast), and search returns "
+         "its points at an empty path (no entry read)",
+         ["self.cross_b = np.ones((len(lo), 2), dtype=bool) if alone else _cross(thetas[1], (s - hi, s - lo), "
+          "self.b[:2], l, tol, (radii[3], radii[2]))",
+          "self.b = (np.zeros(2), np.zeros(1), np.ones(1, dtype=bool), np.zeros((1, 1), dtype=bool))",
+          "self.b = (np.zeros(1), np.zeros(2), np.ones(1, dtype=bool), np.zeros((1, 1), dtype=bool))",
+          "self.b = (np.zeros(1), np.zeros(1), np.ones(2, dtype=bool), np.zeros((1, 1), dtype=bool))",
+          "self.b = (np.zeros(1), np.zeros(1), np.ones(1, dtype=bool), np.zeros((1, 1), dtype=None))",
+          "self.b = (np.zeros(1), np.zeros(1), np.ones(1, dtype=bool), np.zeros((1, 1), ))",
+          "self.b = (np.zeros(1), np.zeros(1), np.ones(1, dtype=bool), np.zeros((2, 1), dtype=bool))",
+          "self.b = (np.zeros(1), np.zeros(1), np.ones(1, dtype=bool), np.zeros((1, 2), dtype=bool))"]),
+        ("equivalent: the dead prefixes only save work: a prefix tried again calls _splits on keys already tested "
+         "(no step counted) and fails again", ["self.dead.add(None)"]),
+        ("equivalent: every caller without path reads the result as a truth value, and a path found is a non-empty "
+         "list", ["def _reaches(parts, left, ends, path=True):"]),
+        ("equivalent: when is only compared with 0 (reached or not) and with the round before, and -2 is as "
+         "unreached as -1", ["when = np.full(len(left), -2)"]),
+        ("equivalent: position 0 (the corner) is an end only for a lone corner's B, whose one position has no "
+         "part: the loop then finds nothing fresh, and the result is the same",
+         ["while fresh.any() and (path or not (ends & (when > 0)).any()):",
+          "while fresh.any() and (path or not (ends & (when >= 1)).any()):"]),
+        ("equivalent: no part leads to position 0 (the corner, at 0: a part to it would be negative), so it is "
+         "never fresh again", ["fresh = parts[fresh].any(axis=0) & left & (when <= 0)",
+                               "fresh = parts[fresh].any(axis=0) & left & (when < 1)"]),
+        ("equivalent: for nodes lo is hi (one array), and a search on cells is only asked whether it is None",
+         ["return self.a[1][a[1:]], self.s[0][path[1:]], self.b[0][b[1:]]",
+          "return self.a[0][a[1:]], self.s[1][path[1:]], self.b[0][b[1:]]",
+          "return self.a[0][a[1:]], self.s[0][path[1:]], self.b[1][b[1:]]"]),
+        ("equivalent: a long side is longer than K l + 3l and its nodes stop at K l + 2l, so every node is at most "
+         "length - l before its end whatever the bound (the bound is redundant)",
+         ["ends = (lo >= reach) & (lo < length - l) if long_ else lo == length",
+          "ends = (lo >= reach) & (lo <= length + l) if long_ else lo == length"]),
+        ("equivalent: kinds are 0 to 5, so a seventh column of allowed is never indexed",
+         ["allowed = np.array([[j in follows[i] for j in range(7)] for i in range(6)])"]),
+        ("equivalent: the only node at 0 (the corner) is already in, and np.unique merges the copy",
+         ["lo = hi = np.unique(np.concatenate([[0.0], nodes[(nodes >= 0.0) & (nodes <= top)]]))",
+          "nodes = np.arange(count) * step"]),
+        ("equivalent: np.arange(n) is np.arange(0, n)",
+         ["edges = np.arange(count + 1) * step", "nodes = np.concatenate([nodes, length - np.arange(count) * step])"]),
+        ("equivalent: count - 1 steps already reach top (ceil(top / step) step >= top): a further node lies past "
+         "top, a further node from the far end below 0, and a further edge starts past top, all dropped",
+         ["edges = np.arange(0, count + 2) * step", "count = math.ceil(top / step) + 2"]),
+    ],
+}
+# --- end of planar/_coupled.py ---
+# --- the fast engine's numba kernels ---
 _LONGER_BUFFER = ("equivalent: a longer buffer; only h[:n] is read, and n never exceeds the original length (each "
                   "Grow-Expansion adds at most one component, and the original has room for all of them)")
 _KERNEL_EQUIVALENT_GROUPS = {
@@ -504,7 +576,8 @@ _KERNEL_EQUIVALENT_GROUPS = {
     ],
 }
 # --- end of the fast engine's kernels ---
-EQUIVALENT = {(module, line): why for module, groups in {**_EQUIVALENT_GROUPS, **_KERNEL_EQUIVALENT_GROUPS}.items()
+EQUIVALENT = {(module, line): why for module, groups in {**_EQUIVALENT_GROUPS, **_KERNEL_EQUIVALENT_GROUPS,
+                                                                    **_COUPLED_EQUIVALENT_GROUPS}.items()
               for why, lines in groups for line in lines}
 
 #: pytest options for every mutant run: stop at the first failure.

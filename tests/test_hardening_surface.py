@@ -202,7 +202,7 @@ def test_narrow_side_is_named_with_the_largest_l_that_fits():
 
 @pytest.fixture
 def located_refusals(monkeypatch):
-    """Problem 2's refusal carries the two points at fault (helper A's planar core does this itself).
+    """Problem 2's refusal carries the two points at fault (the planar core does this itself).
 
     Until it does, the closest pair of outline vertices, not neighbours, is attached here, so that the
     restatement in surface terms is tested on every branch.

@@ -1,0 +1,245 @@
+"""Direct tests of the internals of planar/_coupled.py (two sharp corners sharing a side, Step 2 with Lemma 3 (1)).
+
+The properties of the search and the proof are in tests/test_polygon_corner.py; these pin the pieces they are
+built of, so that mutation testing (experiments/mutation_report.py) sees each rule decide something.
+"""
+
+import math
+
+import numpy as np
+import pytest
+
+from equimesh.planar import _coupled
+from equimesh.tolerance import REL_TOL
+from test_polygon_corner import PAIR_LENGTHS, PAIR_THETAS, _assert_placement
+
+#: The pair of tests/test_polygon_corner.py with the shared side 5.25 l: placeable.
+PLACEABLE = (PAIR_LENGTHS[0], 5.25, PAIR_LENGTHS[2])
+
+
+def _chain(n, extra=()):
+    """``parts`` of n positions, each to the next, and the ``extra`` pairs."""
+    parts = np.zeros((n, n), dtype=bool)
+    parts[np.arange(n - 1), np.arange(1, n)] = True
+    for i, j in extra:
+        parts[i, j] = True
+    return parts
+
+
+def test_reaches_takes_the_shortest_path_through_the_positions_left():
+    """Breadth first: the shortcut 0 -> 2 is taken; without position 2 the chain is cut, with no end nothing."""
+    parts, ends = _chain(4, [(0, 2)]), np.array([False, False, False, True])
+    left = np.ones(4, dtype=bool)
+    assert _coupled._reaches(parts, left, ends, path=True) == [0, 2, 3]
+    assert _coupled._reaches(parts, left, ends)
+    left[2] = False
+    assert _coupled._reaches(parts, left, ends, path=True) is None
+    assert not _coupled._reaches(parts, left, ends)
+    assert not _coupled._reaches(parts, np.ones(4, dtype=bool), np.zeros(4, dtype=bool))
+
+
+def test_clipped_cuts_cells_to_the_range_and_keeps_those_left_even_a_single_point():
+    cells = np.array([0.0, 1.0, 2.0]), np.array([1.0, 2.0, 3.0])
+    lo, hi = _coupled._clipped(cells, 0.5, 2.5)
+    assert lo.tolist() == [0.5, 1.0, 2.0] and hi.tolist() == [1.0, 2.0, 2.5]
+    lo, hi = _coupled._clipped(cells, 1.0, 1.0)  # cells touching the range at one point keep that point
+    assert lo.tolist() == [1.0, 1.0] and hi.tolist() == [1.0, 1.0]
+
+
+def test_parts_between_positions_are_between_l_and_2l_up_to_the_tolerance():
+    """Nodes 0, 1, 2, 3 at l = 1: parts of exactly l and 2l are in, 3l and 0 are not; l = 2 scales all."""
+    for l in (1.0, 2.0):
+        x = np.array([0.0, 1.0, 2.0, 3.0]) * l
+        parts = _coupled._parts(x, x, l, 0.0)
+        assert np.argwhere(parts).tolist() == [[0, 1], [0, 2], [1, 2], [1, 3], [2, 3]]
+    tol = 0.01
+    x = np.array([0.0, 1.0 - tol / 2, 2.0 + tol, 1.0 - 2 * tol, 2.0 + 3 * tol])
+    assert _coupled._parts(x, x, 1.0, tol)[0].tolist() == [False, True, True, False, False]
+
+
+def test_parts_between_cells_ask_only_some_two_points_of_them():
+    """From [0, 0.5]: to [1.2, 1.4] and [2.4, 2.6] some part is in [l, 2l] (2.4 - 0.5 one), to [2.6, 2.9] and
+    [0.6, 0.9] none."""
+    lo, hi = np.array([0.0, 1.2, 2.6, 0.6, 2.4]), np.array([0.5, 1.4, 2.9, 0.9, 2.6])
+    parts = _coupled._parts(lo, hi, 1.0, 0.0)
+    assert parts[0].tolist() == [False, True, False, False, True]
+
+
+def test_cross_takes_the_largest_distance_over_the_corners_of_two_cells():
+    """theta = 0 (the two sides on one ray, d = |u - v|), l = 2: each corner of the cells in turn decides."""
+    l, far = 2.0, (np.inf, np.inf)
+    cell = lambda lo, hi: (np.array([lo]) * l, np.array([hi]) * l)  # noqa: E731
+    cases = [(cell(0.0, 0.2), cell(1.1, 1.1), True), (cell(2.0, 2.2), cell(1.1, 1.1), True),
+             (cell(1.1, 1.1), cell(0.0, 0.2), True), (cell(1.1, 1.1), cell(2.0, 2.2), True),
+             (cell(0.5, 0.7), cell(1.1, 1.3), False), (cell(1.0, 1.0), cell(0.0, 0.0), True),
+             (cell(0.5, 0.5), cell(0.0, 0.0), False)]
+    for mine, theirs, apart in cases:
+        assert _coupled._cross(0.0, mine, theirs, l, 0.0, far)[0, 0] == apart
+    cell = lambda lo, hi: (np.array([lo]), np.array([hi]))  # noqa: E731
+    # at 90 degrees d^2 = u^2 + v^2; the tolerance lowers the bound to ((1 - tol) l)^2
+    assert _coupled._cross(np.pi / 2, cell(0.6, 0.6), cell(0.85, 0.85), 1.0, 0.0, far)[0, 0]
+    assert not _coupled._cross(np.pi / 2, cell(0.5, 0.5), cell(0.75, 0.75), 1.0, 0.0, far)[0, 0]
+    assert _coupled._cross(np.pi / 2, cell(0.5, 0.5), cell(0.75, 0.75), 1.0, 0.2, far)[0, 0]
+    assert not _coupled._cross(np.pi / 2, cell(0.5, 0.5), cell(0.6, 0.6), 1.0, 0.2, far)[0, 0]
+    # at 60 degrees d^2 = u^2 + v^2 - u v: (1, 1) is exactly l apart, (0.9, 1) is not
+    assert _coupled._cross(np.pi / 3, (np.ones(1), np.ones(1)), (np.ones(1), np.ones(1)), 1.0, 1e-9, far)[0, 0]
+    assert not _coupled._cross(np.pi / 3, cell(0.9, 0.9), cell(1.0, 1.0), 1.0, 0.0, far)[0, 0]
+
+
+def test_cross_does_not_check_pairs_beyond_the_radii():
+    """A close pair counts as apart once either cell reaches past its radius (strictly)."""
+    mine, theirs = (np.array([0.5]), np.array([0.6])), (np.array([0.3]), np.array([0.4]))
+    close = lambda radii: _coupled._cross(0.0, mine, theirs, 1.0, 0.0, radii)[0, 0]  # noqa: E731
+    assert not close((np.inf, np.inf)) and not close((0.6, 0.4)) and not close((0.6, 0.5))
+    assert close((0.59, np.inf)) and close((np.inf, 0.39)) and close((0.5, 0.6))
+
+
+def test_side_nodes_are_the_multiples_of_the_step_from_either_end_and_a_long_side_stops_past_k_l():
+    """l = 2, step l/4, K l = 6: a side of 5.3 has the multiples of 0.5 from both ends and stops at its far end; one
+    of 12 = K l + 3l is still short; one of 12.5 is long: nodes up to K l + 2l = 10, any past K l an end."""
+    l, step, reach = 2.0, 0.5, 6.0
+    lo, hi, ends, _ = _coupled._side(5.3, reach, l, step, False, 0.0)
+    expected = {0.0} | {k * step for k in range(1, 11)} | {5.3 - k * step for k in range(11)}
+    assert lo.tolist() == sorted(expected) and hi is lo
+    assert np.flatnonzero(ends).tolist() == [len(lo) - 1]
+    for length in (12.0, 10.0):
+        lo, _, ends, _ = _coupled._side(length, reach, l, step, False, 0.0)
+        assert lo.tolist() == (np.arange(2 * length + 1) * step).tolist()
+        assert np.flatnonzero(ends).tolist() == [2 * length]
+    lo, _, ends, parts = _coupled._side(12.5, reach, l, step, False, 0.0)
+    assert lo.tolist() == (np.arange(21) * step).tolist() and np.flatnonzero(ends).tolist() == list(range(12, 21))
+    assert (parts == _coupled._parts(lo, lo, l, 0.0)).all()
+
+
+def test_side_cells_clip_those_of_the_first_and_last_points_and_order_the_kinds():
+    """l = 2, step 1, a side of 5: cells of 1, the first point's copies cut to [2, 4], the last point's to [1, 3],
+    both; the corner leads to a first cell (or both), a last cell (or both) to the far end, inner to inner or last."""
+    lo, hi, ends, parts = _coupled._side(5.0, 6.0, 2.0, 1.0, True, 0.0)
+    assert lo.tolist() == [0, 0, 1, 2, 3, 4, 2, 2, 3, 4, 1, 1, 2, 3, 2, 2, 3, 5]
+    assert hi.tolist() == [0, 1, 2, 3, 4, 5, 2, 3, 4, 4, 1, 2, 3, 3, 2, 3, 3, 5]
+    assert np.flatnonzero(ends).tolist() == [17]
+    assert np.flatnonzero(parts[0]).tolist() == [6, 7, 8, 9, 14, 15, 16]
+    assert np.flatnonzero(parts[1]).tolist() == [2, 3, 4, 5, 11, 12, 13]
+    assert np.flatnonzero(parts[6]).tolist() == [4, 5] and np.flatnonzero(parts[7]).tolist() == [4, 5]
+    assert np.flatnonzero(parts[:, 17]).tolist() == [10, 11, 12, 13, 14, 15, 16]
+    assert not parts[10:17, :17].any() and not parts[17].any()
+
+
+def test_long_side_cells_go_a_cell_past_k_l_plus_2l_and_end_at_any_cell_reaching_k_l():
+    """l = 2, step 1, K l = 6, a side of 13 > K l + 3l: cells up to 10, no far end and no last-point cells."""
+    lo, hi, ends, parts = _coupled._side(13.0, 6.0, 2.0, 1.0, True, 0.0)
+    assert lo.tolist() == [0, *range(10), 2, 2, 3, 4] and hi.tolist() == [0, *range(1, 11), 2, 3, 4, 4]
+    assert np.flatnonzero(ends).tolist() == [6, 7, 8, 9, 10]
+    assert np.flatnonzero(parts[0]).tolist() == [11, 12, 13, 14]
+
+
+def test_a_decision_past_pair_steps_tests_is_left_undecided(monkeypatch):
+    """The search of the placeable pair takes some number of distinct split tests: with exactly that many allowed
+    it ends, with one fewer it is undecided; then place_pair finds nothing and pair_unplaceable proves nothing."""
+    inf = (math.inf,) * 4
+    search = _coupled._Pair(PAIR_THETAS, PLACEABLE, 1.0, 0, cells=False, radii=inf)
+    assert search.search() is not None
+    steps = search.steps
+    assert steps == len(search.tested) > 1
+    monkeypatch.setattr(_coupled, "PAIR_STEPS", steps)
+    assert _coupled._Pair(PAIR_THETAS, PLACEABLE, 1.0, 0, cells=False, radii=inf).search() is not None
+    monkeypatch.setattr(_coupled, "PAIR_STEPS", steps - 1)
+    with pytest.raises(_coupled._Undecided):
+        _coupled._Pair(PAIR_THETAS, PLACEABLE, 1.0, 0, cells=False, radii=inf).search()
+    assert _coupled.place_pair(PAIR_THETAS, PLACEABLE, 1.0) is None
+    monkeypatch.setattr(_coupled, "PAIR_STEPS", 0)
+    assert not _coupled.pair_unplaceable(PAIR_THETAS, PAIR_LENGTHS, 1.0, inf)
+
+
+def test_a_corner_neither_placed_nor_refuted_on_the_first_grid_is_placed_on_a_finer_one(monkeypatch):
+    """12.41 degrees alone, sides of 2.837 l and 3.606 l (S): the nodes of l/16 hold no placement and the cells of
+    l/16 refute nothing, the nodes of l/32 hold one; with no refinement allowed nothing is found."""
+    thetas, lengths = (math.radians(12.41194009983165), None), (2.8369711193150855, 3.6063879049743512, 0.0)
+    inf = (math.inf,) * 4
+    assert _coupled._Pair(thetas, lengths, 1.0, 0, cells=False, radii=inf).search() is None
+    assert _coupled._Pair(thetas, lengths, 1.0, 0, cells=True, radii=inf).search() is not None
+    a, s, _ = _coupled.place_pair(thetas, lengths, 1.0)
+    _assert_placement(thetas[0], (lengths[1], lengths[0]), 1.0, (s, a))
+    assert not _coupled.pair_unplaceable(thetas, lengths, 1.0, inf)
+    monkeypatch.setattr(_coupled, "CORNER_REFINEMENTS", 0)
+    assert _coupled.place_pair(thetas, lengths, 1.0) is None
+
+
+def test_side_cells_clip_to_ranges_widened_by_the_tolerance():
+    """As above with tol = 0.1: the first point's cells cut to [1.8, 4.4], the last point's to [0.6, 3.2]."""
+    lo, hi, ends, _ = _coupled._side(5.0, 6.0, 2.0, 1.0, True, 0.1)
+    assert lo.tolist() == pytest.approx([0, 0, 1, 2, 3, 4, 1.8, 2, 3, 4, 0.6, 1, 2, 3, 1.8, 2, 3, 5])
+    assert hi.tolist() == pytest.approx([0, 1, 2, 3, 4, 5, 2, 3, 4, 4.4, 1, 2, 3, 3.2, 2, 3, 3.2, 5])
+    assert np.flatnonzero(ends).tolist() == [17]
+
+
+def test_the_shared_side_couples_the_corners_up_to_k1_l_plus_k2_l_plus_4l():
+    """30 and 10 degrees (K = 2 and 6) at l = 2: coupled up to 2 l + 6 l + 4 l = 24 exactly, either order."""
+    for thetas in [(math.radians(30.0), math.radians(10.0)), (math.radians(10.0), math.radians(30.0))]:
+        assert _coupled._coupled(thetas, (1.0, 24.0, 1.0), 2.0)
+        assert not _coupled._coupled(thetas, (1.0, 24.000001, 1.0), 2.0)
+    assert _coupled._coupled((math.radians(30.0), None), (1.0, 100.0, 0.0), 2.0)
+
+
+def test_the_tolerances_of_the_search_and_of_the_proof():
+    """A right angle with A a single part a little below l (S of 2l): the search's nodes take parts down to
+    (1 - REL_TOL / 4) l, the proof's cells down to (1 - 2 REL_TOL) l (pairs are far apart here)."""
+    thetas, inf = (math.pi / 2, None), (math.inf,) * 4
+    side = lambda below: (1.0 - below * REL_TOL, 2.0, 0.0)  # noqa: E731
+    a, s, _ = _coupled.place_pair(thetas, side(0.22), 1.0)
+    assert a.tolist() == [side(0.22)[0]] and s[-1] == 2.0
+    assert _coupled.place_pair(thetas, side(0.3), 1.0) is None
+    assert not _coupled.pair_unplaceable(thetas, side(1.9), 1.0, inf)
+    assert _coupled.pair_unplaceable(thetas, side(2.5), 1.0, inf)
+
+
+def test_the_first_points_are_kept_from_the_other_side_from_the_start():
+    """10 degrees with A = l: its only point, l from the corner, is closer than l to every point of S but one
+    at 2 cos(10 deg) l or more; with S = 2l the first point of S is its end, and at a right angle on the other
+    side the same holds for B.  Nothing else is removed at the start: the corners are no points of the other side."""
+    ten = math.radians(10.0)
+    assert [p.tolist() for p in _coupled.place_pair((ten, None), (1.0, 2.0, 0.0), 1.0)] == [[1.0], [2.0], []]
+    assert [p.tolist() for p in _coupled.place_pair((math.pi / 2, ten), (1.0, 2.0, 1.0), 1.0)] == [[1.0], [2.0], [1.0]]
+    pair = _coupled._Pair((math.pi / 2, ten), (1.0, 2.0, 1.0), 1.0, 0, cells=False, radii=(math.inf,) * 4)
+    assert [p.tolist() for p in pair.search()] == [[1.0], [2.0], [1.0]]  # on the first grid already
+    for cross, (s, side) in [(pair.cross_a, (pair.s[0], pair.a[0])), (pair.cross_b, (2.0 - pair.s[0], pair.b[0]))]:
+        theta = math.pi / 2 if cross is pair.cross_a else ten
+        d2 = s[:, None] ** 2 + side[None, :] ** 2 - 2.0 * math.cos(theta) * s[:, None] * side[None, :]
+        expected = d2 >= (1.0 - REL_TOL / 4.0) ** 2
+        expected[:, 0] = True
+        expected[0 if cross is pair.cross_a else -1] = True
+        assert (cross == expected).all()
+
+
+def test_a_lone_corner_stops_the_shared_side_past_k_l():
+    """30 degrees alone (K = 2) with S of 20 l: S stops at its first point past 2 l, not at its far end."""
+    a, s, b = _coupled.place_pair((math.radians(30.0), None), (3.0, 20.0, 0.0), 1.0)
+    assert 2.0 <= s[-1] <= 4.0 and len(b) == 0
+
+
+def test_the_proof_uses_cells_on_every_side_and_a_radius_drops_the_pairs_of_its_corner():
+    """Cells have width (hi > lo) on A, S and B; a radius of 0 makes every pair of its corner count as apart."""
+    pair = _coupled._Pair(PAIR_THETAS, PAIR_LENGTHS, 1.0, 0, cells=True, radii=(math.inf,) * 4)
+    for lo, hi in (pair.a[:2], pair.s, pair.b[:2]):
+        assert (hi >= lo).all() and (hi > lo).any()
+    assert not pair.cross_a.all() and not pair.cross_b.all()
+    for i in range(4):
+        radii = tuple(0.0 if j == i else math.inf for j in range(4))
+        pair = _coupled._Pair(PAIR_THETAS, PAIR_LENGTHS, 1.0, 0, cells=True, radii=radii)
+        assert pair.cross_a.all() == (i < 2) and pair.cross_b.all() == (i >= 2)
+
+
+def test_a_pair_refuted_only_on_finer_cells_is_proven_there(monkeypatch):
+    """Corners of 16.11 and 14.64 degrees, sides of 3.905, 4.621 and 3.742 l: the cells of l/16 refute nothing and
+    its nodes hold no placement, the cells of l/32 refute every split; allowed no refinement, nothing is proven."""
+    thetas = (0.2811920832642171, 0.2556000676733454)
+    lengths = (3.9053127292452765, 4.621055221556947, 3.7424774384218624)
+    inf = (math.inf,) * 4
+    assert _coupled._Pair(thetas, lengths, 1.0, 0, cells=True, radii=inf).search() is not None
+    assert _coupled._Pair(thetas, lengths, 1.0, 0, cells=False, radii=inf).search() is None
+    assert _coupled.pair_unplaceable(thetas, lengths, 1.0, inf)
+    assert _coupled.place_pair(thetas, lengths, 1.0) is None
+    monkeypatch.setattr(_coupled, "PAIR_REFINEMENTS", 1)
+    assert _coupled.pair_unplaceable(thetas, lengths, 1.0, inf)
+    monkeypatch.setattr(_coupled, "PAIR_REFINEMENTS", 0)
+    assert not _coupled.pair_unplaceable(thetas, lengths, 1.0, inf)
