@@ -48,18 +48,20 @@ COLUMNS = [
 ]
 
 
+def triangulate(outer, holes, engine="fast"):
+    """Problem 2 with l = 1 on ``outer`` and ``holes``: the mesh, or the kind of its refusal (a key of :data:`REFUSALS`)."""
+    try:
+        return equimesh.uniform_triangulation(outer, 1.0, holes=holes or None, engine=engine)
+    except equimesh.InvalidPolygonError as error:
+        return next(kind for kind, marker in REFUSALS.items() if marker in str(error))
+
+
 def measure(case):
     """One row of the CSV for ``(kind, angle, size)``."""
     kind, angle, size = case
     outer, holes = sharp_corner_shape(kind, angle, stagger_reach(angle, 1.0) + 2.0, size, 0.5, 0.5)
     row = dict(zip(COLUMNS, (kind, angle, size)))
-    meshes = {}
-    for engine in ("fast", "reference"):
-        try:
-            meshes[engine] = equimesh.uniform_triangulation(outer, 1.0, holes=holes or None, engine=engine)
-        except equimesh.InvalidPolygonError as error:
-            meshes[engine] = next(kind for kind, marker in REFUSALS.items() if marker in str(error))
-    mesh, reference = meshes["fast"], meshes["reference"]
+    mesh, reference = (triangulate(outer, holes, engine) for engine in ("fast", "reference"))
     row["outcome"] = mesh if isinstance(mesh, str) else "meshed"
     row["reference"] = reference if isinstance(reference, str) else "meshed"
     if isinstance(mesh, str):

@@ -23,9 +23,8 @@ import pandas as pd
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))  # _common.py, sharp_corners.py
 import _common  # noqa: E402
-from sharp_corners import KINDS as SHAPES, REFUSALS  # noqa: E402
+from sharp_corners import KINDS as SHAPES, REFUSALS, triangulate  # noqa: E402
 
-import equimesh  # noqa: E402
 from equimesh.planar.polygon import stagger_reach  # noqa: E402
 from equimesh.testing.shapes import sharp_corner_shape  # noqa: E402
 
@@ -39,12 +38,8 @@ def measure(case):
     """One row of the CSV for ``(kind, angle, u, v, w)``."""
     kind, angle, *sizes = case
     outer, holes = _pair_triangle(angle, *sizes) if kind == PAIR else sharp_corner_shape(kind, angle, stagger_reach(angle, 1.0) + 2.0, *sizes)
-    try:
-        equimesh.uniform_triangulation(outer, 1.0, holes=holes or None)
-        outcome = "meshed"
-    except equimesh.InvalidPolygonError as error:
-        outcome = next(name for name, marker in REFUSALS.items() if marker in str(error))
-    return dict(zip(COLUMNS, (*case, outcome)))
+    outcome = triangulate(outer, holes)
+    return dict(zip(COLUMNS, (*case, outcome if isinstance(outcome, str) else "meshed")))
 
 
 def _pair_triangle(angle, u, v, w):
