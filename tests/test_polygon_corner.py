@@ -15,7 +15,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from equimesh.planar import _corner, _coupled
-from corner_sampling import sampled_pair, sampled_placement
+from corner_sampling import sampled_chain, sampled_placement
 from equimesh.tolerance import REL_TOL
 
 
@@ -150,21 +150,21 @@ def test_two_corners_each_placeable_alone_are_proven_unplaceable_together():
     finds none either, nor the search."""
     for theta, sides in zip(PAIR_THETAS, [PAIR_LENGTHS[1::-1], PAIR_LENGTHS[:0:-1]]):
         assert _corner.place_corner(theta, sides, 1.0) is not None
-    assert _coupled.pair_unplaceable(PAIR_THETAS, PAIR_LENGTHS, 1.0, (math.inf,) * 4)
-    assert _coupled.place_pair(PAIR_THETAS, PAIR_LENGTHS, 1.0) is None
+    assert _coupled.chain_unplaceable(PAIR_THETAS, PAIR_LENGTHS, 1.0, (math.inf,) * 4)
+    assert _coupled.place_chain(PAIR_THETAS, PAIR_LENGTHS, 1.0) is None
     for step in (1.0 / 8.0, 1.0 / 32.0):
-        assert sampled_pair(PAIR_THETAS, PAIR_LENGTHS, 1.0, step) is None
+        assert sampled_chain(PAIR_THETAS, PAIR_LENGTHS, 1.0, step) is None
 
 
 def test_the_pair_enumeration_finds_placements_where_they_exist():
     """Not vacuous: with the shared side 5.25 l both the search and the enumeration place the pair, and the
     proof does not refuse it; with no pair seen (radii 0) nothing is proven."""
     lengths = (2.1, 5.25, 2.630842730287126)
-    found = _coupled.place_pair(PAIR_THETAS, lengths, 1.0)
+    found = _coupled.place_chain(PAIR_THETAS, lengths, 1.0)
     _assert_pair(PAIR_THETAS, lengths, 1.0, found)
-    assert sampled_pair(PAIR_THETAS, lengths, 1.0) is not None
-    assert not _coupled.pair_unplaceable(PAIR_THETAS, lengths, 1.0, (math.inf,) * 4)
-    assert not _coupled.pair_unplaceable(PAIR_THETAS, PAIR_LENGTHS, 1.0, (0.0,) * 4)
+    assert sampled_chain(PAIR_THETAS, lengths, 1.0) is not None
+    assert not _coupled.chain_unplaceable(PAIR_THETAS, lengths, 1.0, (math.inf,) * 4)
+    assert not _coupled.chain_unplaceable(PAIR_THETAS, PAIR_LENGTHS, 1.0, (0.0,) * 4)
 
 
 @given(st.floats(10.0, 59.0), st.floats(10.0, 59.0), st.floats(1.0, 4.0), st.floats(1.0, 7.0), st.floats(1.0, 4.0))
@@ -173,14 +173,14 @@ def test_a_pair_placement_found_meets_lemma_3_and_a_proven_pair_has_no_sampled_p
     the search returns is a placement at both corners (checked pair by pair), and a pair the proof refuses has
     no placement in the enumeration either."""
     thetas, lengths = (math.radians(angle_1), math.radians(angle_2)), (a, s, b)
-    if _coupled.pair_unplaceable(thetas, lengths, 1.0, (math.inf,) * 4):
-        assert sampled_pair(thetas, lengths, 1.0) is None
+    if _coupled.chain_unplaceable(thetas, lengths, 1.0, (math.inf,) * 4):
+        assert sampled_chain(thetas, lengths, 1.0) is None
         return
-    found = _coupled.place_pair(thetas, lengths, 1.0)
+    found = _coupled.place_chain(thetas, lengths, 1.0)
     if found is not None:
         _assert_pair(thetas, lengths, 1.0, found)
         for level in (0, 1):
-            assert _coupled._Pair(thetas, lengths, 1.0, level, cells=True, radii=(math.inf,) * 4).search() is not None
+            assert _coupled._Chain(thetas, lengths, 1.0, level, cells=True, radii=(math.inf,) * 4).search() is not None
 
 
 def test_a_single_corner_left_open_by_cells_of_l_over_64_is_proven_on_clipped_cells():
@@ -190,7 +190,7 @@ def test_a_single_corner_left_open_by_cells_of_l_over_64_is_proven_on_clipped_ce
     the enumeration finds no placement either."""
     theta, sides = math.radians(21.693585695037463), (3.18837772, 3.18837772)
     assert not _corner.corner_unplaceable(theta, sides, 1.0, (math.inf, math.inf))
-    assert _coupled.pair_unplaceable((theta, None), (sides[1], sides[0], 0.0), 1.0, (math.inf,) * 4)
+    assert _coupled.chain_unplaceable((theta, None), (sides[1], sides[0], 0.0), 1.0, (math.inf,) * 4)
     assert sampled_placement(theta, sides, 1.0) is None
 
 
@@ -199,8 +199,8 @@ def test_a_shared_side_too_long_to_couple_the_corners_is_not_decided_jointly():
     proof takes the pair (K = 3 at 29.4 and 23.07 degrees: up to 10 l)."""
     lengths = (2.1, 10.25, 2.630842730287126)
     assert not _coupled._coupled(PAIR_THETAS, lengths, 1.0) and _coupled._coupled(PAIR_THETAS, PAIR_LENGTHS, 1.0)
-    assert _coupled.place_pair(PAIR_THETAS, lengths, 1.0) is None
-    assert not _coupled.pair_unplaceable(PAIR_THETAS, lengths, 1.0, (math.inf,) * 4)
+    assert _coupled.place_chain(PAIR_THETAS, lengths, 1.0) is None
+    assert not _coupled.chain_unplaceable(PAIR_THETAS, lengths, 1.0, (math.inf,) * 4)
 
 
 def test_visibility_radii_belong_to_their_sides():

@@ -29,7 +29,7 @@ from equimesh.testing.shapes import flattened_square, letter_polygon, place, sha
 import invariants_uniform as inv
 from conftest import exercised
 import strategies_sharp as sss
-from corner_sampling import corners, sampled_pair, sampled_placement
+from corner_sampling import corners, sampled_chain, sampled_placement
 import strategies_simple as ss
 
 #: Largest polygon area drawn by the property tests, in units of l^2.
@@ -641,16 +641,22 @@ def _no_sampled_placement(vertices, holes, l):
     )
 
 
-def _no_sampled_pair_placement(vertices, holes, l):
-    """Sampled, independently of polygon.py: two consecutive corners below 60 degrees, sharing a side, with no
-    split of the shared side (steps of l/8) for which both other sides can be split keeping each corner's two
-    sides l apart (docs/proofs.md, "Sharp corners")."""
+def _no_sampled_chain_placement(vertices, holes, l):
+    """Sampled, independently of polygon.py: two or more consecutive corners below 60 degrees with no split of
+    the sides they share (steps of l/8) for which the first and last corners' other sides can be split too, keeping
+    every corner's two sides l apart (docs/proofs.md, "Sharp corners")."""
     for ring in inv.rings(vertices, holes):
         found = list(corners([ring]))
-        for (theta_1, shared, arriving), (theta_2, leaving, _) in zip(found, found[1:] + found[:1]):
-            sharp = max(theta_1, theta_2) < math.radians(60.0)
-            if sharp and sampled_pair((theta_1, theta_2), (arriving / l, shared / l, leaving / l), 1.0) is None:
-                return True
+        n = len(found)
+        for i in range(n):
+            run = 1
+            while run < n - 1 and found[(i + run) % n][0] < math.radians(60.0) and found[i][0] < math.radians(60.0):
+                run += 1
+                chain = [found[(i + k) % n] for k in range(run)]
+                thetas = tuple(theta for theta, _, _ in chain)
+                lengths = (chain[0][2] / l, *(leaving / l for _, leaving, _ in chain))
+                if sampled_chain(thetas, lengths, 1.0) is None:
+                    return True
     return False
 
 
@@ -687,7 +693,7 @@ def _meshed_or_refused_by_kind(vertices, holes, l):
         if kind == "no separation":
             confirm = _first_points_closer_than_l if "first boundary points" in str(error) else _no_sampled_placement
             together = exercised("two sharp corners are refused together", "together" in str(error))
-            assert (_no_sampled_pair_placement if together else confirm)(vertices, holes, l)
+            assert (_no_sampled_chain_placement if together else confirm)(vertices, holes, l)
         return
     exercised("a short-sided sharp corner is meshed", True)
     inv.assert_problem2_invariants(mesh, vertices, l, holes=holes)
@@ -759,7 +765,7 @@ PROVEN_REFUSALS = {
         [[0, 0], [4.25, 0], _at(29.4, 2.1)],
         r"^the corners at vertex 0 at \(0, 0\) \(29.4 degrees\) and vertex 1 at \(4.25, 0\) \(23.0697 degrees\) cannot meet "
         r"Lemma 3 \(1\) together for l = 1.0: .* not a proof that no mesh exists",
-        _no_sampled_pair_placement,
+        _no_sampled_chain_placement,
     ),
 }
 
