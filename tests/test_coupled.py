@@ -1,4 +1,4 @@
-"""Direct tests of the internals of planar/_coupled.py (two sharp corners sharing a side, Step 2 with Lemma 3 (1)).
+"""Direct tests of the internals of planar/_coupled.py (sharp corners in a row, Step 2 with Lemma 3 (1)).
 
 The properties of the search and the proof are in tests/test_polygon_corner.py; these pin the pieces they are
 built of, so that mutation testing (experiments/mutation_report.py) sees each rule decide something.
@@ -244,3 +244,27 @@ def test_a_pair_refuted_only_on_finer_cells_is_proven_there(monkeypatch):
     assert _coupled.chain_unplaceable(thetas, lengths, 1.0, inf)
     monkeypatch.setattr(_coupled, "PAIR_REFINEMENTS", 0)
     assert not _coupled.chain_unplaceable(thetas, lengths, 1.0, inf)
+
+
+def test_useful_keeps_the_positions_on_some_split_only():
+    """0 -> 1 -> 2 -> 3 (the end), with 4 reached from 1 but leading nowhere and 5 leading to the end but not
+    reached: only 0 to 3 are on a split; with 2 gone nothing is, and positions not left are never kept."""
+    parts = np.pad(_chain(4), ((0, 2), (0, 2)))
+    parts[1, 4] = parts[5, 3] = True
+    ends = np.array([False, False, False, True, False, False])
+    assert np.flatnonzero(_coupled._useful(parts, np.ones(6, dtype=bool), ends)).tolist() == [0, 1, 2, 3]
+    left = np.ones(6, dtype=bool)
+    left[2] = False
+    assert _coupled._useful(parts, left, ends) is None
+    parts[1, 3] = True
+    assert np.flatnonzero(_coupled._useful(parts, left, ends)).tolist() == [0, 1, 3]
+
+
+def test_a_side_couples_its_corners_up_to_k1_l_plus_k2_l_plus_4l_in_a_chain_too():
+    """The chain is coupled when every shared side is: 30, 10 and 30 degrees (K = 2, 6, 2) at l = 2 with shared
+    sides of 24 (the limit) and 24.000001 (past it) in either place."""
+    thetas = tuple(math.radians(x) for x in (30.0, 10.0, 30.0))
+    assert _coupled.shared(thetas[:2], 24.0, 2.0) and not _coupled.shared(thetas[:2], 24.000001, 2.0)
+    assert _coupled._coupled(thetas, (1.0, 24.0, 24.0, 1.0), 2.0)
+    assert not _coupled._coupled(thetas, (1.0, 24.0, 24.000001, 1.0), 2.0)
+    assert not _coupled._coupled(thetas, (1.0, 24.000001, 24.0, 1.0), 2.0)

@@ -675,3 +675,16 @@ def test_visible_radii_halve_the_sides_until_the_corners_triangle_is_in_the_poly
     t = radii[0] / sides[0]
     assert radii[1] == pytest.approx(sides[1] * t, rel=1e-15) and 0.5**halvings < t < 2.0 * 0.5**halvings
     assert not _sees_within(poly.region, ring, 0, *(x * (t + 2.0**-VISIBLE_BISECTIONS * 0.5**halvings) for x in sides))
+
+
+def test_a_run_of_sharp_corners_goes_on_through_coupling_sides_only():
+    """The dart of 30 degrees (corners 30, 30, 270, 30; sides 3.5, 1.28, 1.28, 3.5): the run through the tip is
+    barb, tip, barb (3, 0, 1), from any of them.  With a tip side longer
+    than 2 l + 2 l + 4 l (K = 2) it is cut there."""
+    from equimesh.planar.polygon import _run
+
+    angles, lengths = [30.0, 30.0, 270.0, 30.0], [3.5, 1.28, 1.28, 3.5]
+    for c in (3, 0, 1):
+        assert _run(lengths, angles, 1.0, c) == [3, 0, 1]
+    assert _run([8.5, 1.28, 1.28, 3.5], angles, 1.0, 3) == [3, 0] and _run([8.5, 1.28, 1.28, 8.5], angles, 1.0, 0) == [0]
+    assert _run([8.0, 1.28, 1.28, 8.0], angles, 1.0, 0) == [3, 0, 1]  # 8 l is the limit, included

@@ -24,7 +24,7 @@ from equimesh._geometry import orient
 from equimesh.planar.insertion._region import constrained_delaunay
 from equimesh.mesh import PlanarMesh
 from equimesh.planar.polygon import stagger_reach
-from equimesh.testing.shapes import flattened_square, letter_polygon, place, sharp_corner_shape
+from equimesh.testing.shapes import flattened_square, letter_polygon, place, sharp_corner_shape, sharp_dart
 
 import invariants_uniform as inv
 from conftest import exercised
@@ -682,7 +682,7 @@ def test_short_sided_sharp_corners_are_meshed_within_every_theorem_or_refused_by
 
 def _meshed_or_refused_by_kind(vertices, holes, l):
     """Problem 2 on ``vertices``: every guarantee checked on a mesh; a refusal's kind confirmed by sampling
-    (docs/proofs.md, "Sharp corners")."""
+    (docs/proofs.md, "Sharp corners").  Returns the kind, or "meshed"."""
     try:
         mesh = equimesh.uniform_triangulation(vertices, l, holes=holes or None)
     except equimesh.InvalidPolygonError as error:
@@ -694,9 +694,10 @@ def _meshed_or_refused_by_kind(vertices, holes, l):
             confirm = _first_points_closer_than_l if "first boundary points" in str(error) else _no_sampled_placement
             together = exercised("two sharp corners are refused together", "together" in str(error))
             assert (_no_sampled_chain_placement if together else confirm)(vertices, holes, l)
-        return
+        return kind
     exercised("a short-sided sharp corner is meshed", True)
     inv.assert_problem2_invariants(mesh, vertices, l, holes=holes)
+    return "meshed"
 
 
 @given(st.floats(10.0, 59.0), st.floats(10.0, 59.0), st.floats(0.0, 1.0))
@@ -709,6 +710,16 @@ def test_triangles_with_two_sharp_corners_on_one_side_are_meshed_or_refused_with
     a, b = math.radians(angle_1), math.radians(angle_2)
     side = base * math.sin(b) / math.sin(a + b)
     _meshed_or_refused_by_kind(np.array([[0.0, 0.0], [base, 0.0], [side * math.cos(a), side * math.sin(a)]]), [], 1.0)
+
+
+@given(sss.darts())
+@example((sharp_dart(30.0, (30.0, 30.0), 3.5), 1.0))  # the dart of PROVEN_REFUSALS["no chain placement"]
+def test_darts_are_meshed_or_refused_with_a_proof(case):
+    """Arrowheads with three sharp corners in a row (tip and barbs of 10 to 60 degrees): meshed within every
+    theorem, or refused by kind, a proof confirmed by sampling (jointly for the corners in a row:
+    planar/_coupled.py); none is "not handled" (docs/proofs.md, "Sharp corners")."""
+    vertices, l = case
+    assert _meshed_or_refused_by_kind(vertices, [], l) != "not handled"
 
 
 SHARP_EXAMPLES = {
@@ -758,6 +769,15 @@ PROVEN_REFUSALS = {
         r"^the corner at vertex 0 at \(0, 0\) \(20 degrees\) cannot meet Lemma 3 \(1\) for l = 1.0: no split of its sides "
         r"of 3.45 and 3.45 into parts of \[l, 2l\] .* not a proof that no mesh exists.* sides of at least 4.0 are handled",
         _no_sampled_placement,
+    ),
+    # A dart with tip and barbs of 30 degrees, tip sides 3.5 l: each two corners sharing a side can be separated,
+    # the three together cannot (decided jointly on a grid of cells).
+    "no chain placement": (
+        sharp_dart(30.0, (30.0, 30.0), 3.5).tolist(),
+        r"^the corners at vertex 3 at \(3.380740392, 0.9058666579\) \(30 degrees\), vertex 0 at \(0, 0\) \(30 degrees\) and "
+        r"vertex 1 at .* cannot meet Lemma 3 \(1\) together for l = 1.0: .*\(the middle ones shared\).* at every corner .*"
+        r"not a proof that no mesh exists",
+        _no_sampled_chain_placement,
     ),
     # 29.4 and 23.07 degrees sharing a side of 4.25 l: each corner alone can be separated, both together cannot
     # (no split of the shared side leaves both other sides a split; decided jointly on a grid of cells).

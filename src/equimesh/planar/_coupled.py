@@ -285,7 +285,7 @@ class _Chain:
     def search(self):
         """One array of points per side, as :func:`place_chain` returns them (for cells: their lower ends), or None."""
         left = [np.ones(len(side[0]), dtype=bool) for side in self.sides]
-        left = self._after(1, 0, left)
+        left = next(self._after(1, [0], left))
         found = None if left is None else self._extend(1, [[0]], left)
         if found is None:
             return None
@@ -300,28 +300,31 @@ class _Chain:
         if ends[i]:
             if k == self.m - 1:
                 return paths, left
-            following = self._after(k + 1, 0, left)
+            following = next(self._after(k + 1, [0], left))
             return None if following is None else self._extend(k + 1, paths + [[0]], following)
         key = (k, i, *(left[j].tobytes() for j in ((0, 2) if k == 1 else (k, k + 1))))
         if key in self.dead:
             return None
-        for j in np.flatnonzero(parts[i] & left[k]):
-            following = self._after(k, int(j), left)
+        steps = np.flatnonzero(parts[i] & left[k])
+        for j, following in zip(steps.tolist(), self._after(k, steps, left)):
             if following is not None:
-                found = self._extend(k, paths[:-1] + [paths[-1] + [int(j)]], following)
+                found = self._extend(k, paths[:-1] + [paths[-1] + [j]], following)
                 if found is not None:
                     return found
         self.dead.add(key)
         return None
 
-    def _after(self, k, j, left):
-        """``left`` with the positions closer than ``l`` to ``T_k``'s position ``j`` removed and reduced to the useful ones, or None."""
-        left = list(left)
-        for side, cross in ([(k + 1, self.ahead[k][j])] + ([(0, self.back[j])] if k == 1 else [])):
-            left[side] = self._useful(side, left[side] & cross)
-            if left[side] is None:
-                return None
-        return left
+    def _after(self, k, steps, left):
+        """For each position ``j`` of ``steps`` on ``T_k``: ``left`` with the positions closer than ``l`` to it removed
+        and reduced to the useful ones, or None (a generator, one ``j`` at a time)."""
+        ahead = left[k + 1][None, :] & self.ahead[k][steps]
+        back = left[0][None, :] & self.back[steps] if k == 1 else None
+        for row in range(len(steps)):
+            following = list(left)
+            following[k + 1] = self._useful(k + 1, ahead[row])
+            if following[k + 1] is not None and back is not None:
+                following[0] = self._useful(0, back[row])
+            yield None if following[k + 1] is None or following[0] is None else following
 
     def _useful(self, side, left):
         """:func:`_useful` of one side's positions left (cached; each new set counts towards :data:`PAIR_STEPS`)."""

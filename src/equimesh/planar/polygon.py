@@ -750,7 +750,7 @@ PAIR, CHAIN = "pair", "chain"
 
 
 def _run(lengths, angles, l, c):
-    """The run of sharp corners through corner ``c``: consecutive, each two sharing a side that couples them.
+    """The run of sharp corners through the sharp corner ``c``: consecutive, each two sharing a side that couples them.
 
     Coupled as :func:`._coupled.shared` says (no longer than ``K_1 l +
     K_2 l + 4l``); in ring order, at most all corners but one.
