@@ -389,21 +389,21 @@ def test_three_corners_each_pair_placeable_are_proven_unplaceable_together():
     assert not _coupled.chain_unplaceable(DART_THETAS, DART_LENGTHS, 1.0, (math.inf,) * 4 + (0.0,) * 2)
 
 
-@given(st.lists(st.floats(10.0, 59.0), min_size=3, max_size=3), st.floats(1.0, 3.0), st.floats(1.0, 5.0),
-       st.floats(1.0, 5.0), st.floats(1.0, 3.0))
-def test_a_chain_placement_found_meets_lemma_3_at_every_corner_and_a_proven_chain_has_no_sampled_placement(angles, a, s, t, b):
-    """Three sharp corners in a row: whatever the search returns is a placement at every corner (checked pair by
-    pair), the proof's cells never refute a chain it places (two coarsest grids), and a chain the proof refuses has
-    no placement in the enumeration either."""
-    thetas, lengths = tuple(math.radians(x) for x in angles), (a, s, t, b)
-    if _coupled.chain_unplaceable(thetas, lengths, 1.0, (math.inf,) * 6):
+@given(st.lists(st.floats(10.0, 59.0), min_size=3, max_size=4), st.floats(1.0, 3.0), st.lists(st.floats(1.0, 5.0),
+       min_size=3, max_size=3), st.floats(1.0, 3.0))
+def test_a_chain_placement_found_meets_lemma_3_at_every_corner_and_a_proven_chain_has_no_sampled_placement(angles, a, shared, b):
+    """Three or four sharp corners in a row: whatever the search returns is a placement at every corner (checked
+    pair by pair), the proof's cells never refute a chain it places (two coarsest grids), and a chain the proof
+    refuses has no placement in the enumeration either."""
+    thetas, lengths = tuple(math.radians(x) for x in angles), (a, *shared[: len(angles) - 1], b)
+    if _coupled.chain_unplaceable(thetas, lengths, 1.0, (math.inf,) * (2 * len(thetas))):
         assert sampled_chain(thetas, lengths, 1.0) is None
         return
     found = _coupled.place_chain(thetas, lengths, 1.0)
     if exercised("a chain of three is placed", found is not None):
         _assert_chain(thetas, lengths, 1.0, found)
         for level in (0, 1):
-            assert _coupled._Chain(thetas, lengths, 1.0, level, cells=True, radii=(math.inf,) * 6).search() is not None
+            assert _coupled._Chain(thetas, lengths, 1.0, level, cells=True, radii=(math.inf,) * (2 * len(thetas))).search() is not None
 
 
 def test_a_pair_left_open_by_the_old_step_bound_is_proven_on_cells_of_l_over_128():
