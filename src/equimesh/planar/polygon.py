@@ -734,10 +734,12 @@ def _place_corners_on_a_grid(sides, lengths, angles, l, spacing):
                 continue
             trial, touched = list(sides), set()
             for corner, keep in steps:
-                run = {PAIR: [corner, (corner + 1) % n], CHAIN: _run(lengths, angles, l, corner)}.get(keep, [corner])
-                if keep in (PAIR, CHAIN):  # a chain of two is the pair's trial
-                    trial = trial and len(run) > (keep is CHAIN) + 1 and _grid_chain(trial, lengths, angles, l, spacing, run)
+                if keep in (PAIR, CHAIN):
+                    run = [corner, (corner + 1) % n] if keep is PAIR else _run(lengths, angles, l, corner)
+                    # a run of two is the pair's trial
+                    trial = trial and (keep is PAIR or len(run) > 2) and _grid_chain(trial, lengths, angles, l, spacing, run)
                 else:
+                    run = [corner]
                     trial = trial and _grid_sides(trial, lengths, angles, l, spacing, corner, keep)
                 touched |= {(k + d) % n for k in run for d in (-1, 0, 1)}
             if trial and all(at_least(_corner_gap(trial, lengths, angles, l, k), l) for k in touched):
@@ -769,11 +771,10 @@ def _run(lengths, angles, l, c):
 
 
 def _grid_chain(sides, lengths, angles, l, spacing, run):
-    """``sides`` with the sides of the sharp corners ``run`` (consecutive) placed by :func:`._coupled.place_chain`, or None.
+    """``sides`` with the sides of the corners ``run`` (consecutive) placed by :func:`._coupled.place_chain`, or None.
 
-    None too when a corner is not sharp.  The shared
-    sides take the points found; the first and last side are completed by
-    :func:`_grid_side`.
+    None too when a corner is not sharp.  The shared sides take the points
+    found; the first and last side are completed by :func:`_grid_side`.
     """
     if not all(_stagger_count(angles[c]) for c in run):
         return None
