@@ -7,11 +7,14 @@ and the sizes ``u, v, w`` uniform in [0, 1] (``numpy.random.default_rng(seed)``)
 and as many triangles with two sharp corners sharing their base: angles
 ``10 + 50 (angle, u)`` degrees at its ends, the base ``1 + v (K_1 + K_2 + 2)``
 long (``K l`` = ``stagger_reach``, so up to where the two corners stop
-sharing any point of it),
+sharing any point of it), and as many darts (arrowheads,
+:func:`equimesh.testing.shapes.sharp_dart`: a tip of ``angle`` degrees, barbs
+of ``10 + 50 u`` and ``10 + 50 v`` degrees, tip sides ``1 + w (K_tip + K_barb + 3)``
+long with ``K_barb`` the larger barb's: three sharp corners in a row),
 runs ``uniform_triangulation`` with l = 1 (fast engine) and classifies each
 refusal by its message as ``experiments/sharp_corners.py`` does.  The count
 that matters is "not handled": a ring where nothing is proven either way
-(docs/proofs.md, "Sharp corners"; docs/decisions.md, items 58 and 59).
+(docs/proofs.md, "Sharp corners"; docs/decisions.md, items 58, 59 and 84).
 Writes results/sharp_sweep.csv and .md.
 """
 
@@ -26,18 +29,21 @@ import _common  # noqa: E402
 from sharp_corners import KINDS as SHAPES, REFUSALS, triangulate  # noqa: E402
 
 from equimesh.planar.polygon import stagger_reach  # noqa: E402
-from equimesh.testing.shapes import sharp_corner_shape  # noqa: E402
+from equimesh.testing.shapes import sharp_corner_shape, sharp_dart  # noqa: E402
 
 NAME = "sharp_sweep"
-PAIR = "two-corner triangle"
-KINDS = (*SHAPES, PAIR)
+PAIR, DART = "two-corner triangle", "dart"
+KINDS = (*SHAPES, PAIR, DART)
 COLUMNS = ["kind", "angle", "u", "v", "w", "outcome"]
 
 
 def measure(case):
     """One row of the CSV for ``(kind, angle, u, v, w)``."""
     kind, angle, *sizes = case
-    outer, holes = _pair_triangle(angle, *sizes) if kind == PAIR else sharp_corner_shape(kind, angle, stagger_reach(angle, 1.0) + 2.0, *sizes)
+    if kind in (PAIR, DART):
+        outer, holes = (_pair_triangle if kind == PAIR else _dart)(angle, *sizes), []
+    else:
+        outer, holes = sharp_corner_shape(kind, angle, stagger_reach(angle, 1.0) + 2.0, *sizes)
     outcome = triangulate(outer, holes)
     return dict(zip(COLUMNS, (*case, outcome if isinstance(outcome, str) else "meshed")))
 
@@ -48,7 +54,13 @@ def _pair_triangle(angle, u, v, w):
     base = 1.0 + v * (stagger_reach(angle, 1.0) + stagger_reach(other, 1.0) + 2.0)
     a, b = np.radians(angle), np.radians(other)
     side = base * np.sin(b) / np.sin(a + b)
-    return np.array([[0.0, 0.0], [base, 0.0], [side * np.cos(a), side * np.sin(a)]]), []
+    return np.array([[0.0, 0.0], [base, 0.0], [side * np.cos(a), side * np.sin(a)]])
+
+
+def _dart(angle, u, v, w):
+    """The dart of the module docstring: a tip of ``angle`` degrees, barbs of ``10 + 50 u`` and ``10 + 50 v`` degrees."""
+    barbs = (10.0 + 50.0 * u, 10.0 + 50.0 * v)
+    return sharp_dart(angle, barbs, 1.0 + w * (stagger_reach(angle, 1.0) + max(stagger_reach(b, 1.0) for b in barbs) + 3.0))
 
 
 def cases(count, seed, kinds=KINDS):

@@ -1,27 +1,31 @@
-"""Placements of the two sides of a corner (or of two corners sharing a side) enumerated on a grid, independently of planar/_corner.py and planar/_coupled.py.
+"""Placements of the two sides of a corner (or of sharp corners in a row) enumerated on a grid, independently of planar/_corner.py and planar/_coupled.py.
 
 A placement splits each side (lengths by distance from the corner) into parts of ``[l, 2l]`` and keeps every
 two points of different sides at least ``l`` apart (the corner excluded).  :func:`sampled_placement` tries
 every split whose parts, all but the last, are multiples of ``step l`` from ``l`` to ``2l``, checking every
 pair directly, with the other side's points pruned as soon as one is too close.  Finding none confirms,
-without proving, that a corner refused as impossible to separate has no placement.  :func:`sampled_pair`
-does the same for two corners sharing a side: every split of the shared side, then each corner's other side.
+without proving, that a corner refused as impossible to separate has no placement.  :func:`sampled_chain`
+does the same for sharp corners in a row (two sharing a side, or more): every split of each shared side, given the
+previous one's, then the first and last corner's other sides.
 """
 
+import functools
 import math
 
 import numpy as np
 
 
-def _splits(length, l, step):
-    """Every split of ``length`` into parts of [l, 2l], all but the last a multiple of ``step l``: its points."""
+def _splits(length, l, step, theta=0.0, fixed=()):
+    """Every split of ``length`` into parts of [l, 2l], all but the last a multiple of ``step l``, whose every point
+    is at least l from every point of ``fixed`` (distances from the corner on its other side): its points."""
+    fixed = np.asarray(fixed, dtype=float)
     out, stack = [], [(0.0, ())]
     while stack:
         at, points = stack.pop()
-        if l <= length - at <= 2.0 * l:
+        if l <= length - at <= 2.0 * l and _far_enough(theta, length, fixed, l):
             out.append(np.array(points + (length,)))
         for part in np.arange(l, 2.0 * l + 1e-9, step * l):
-            if at + part <= length - l:
+            if at + part <= length - l and _far_enough(theta, at + part, fixed, l):
                 stack.append((at + part, points + (at + part,)))
     return out
 
@@ -61,14 +65,29 @@ def _fits(theta, fixed, length, l, step):
     return False
 
 
-def sampled_pair(thetas, lengths, l, step=0.125):
-    """The split of the shared side for corners of ``thetas`` sharing it, with sides ``(A, L, B)`` (``A`` arriving at
-    the first corner, ``B`` leaving the second), for which both other sides can be split, or None."""
-    a, s, b = lengths
-    for xs in _splits(s, l, step):
-        if _fits(thetas[0], xs, a, l, step) and _fits(thetas[1], s - np.append(0.0, xs[:-1]), b, l, step):
-            return xs
-    return None
+def sampled_chain(thetas, lengths, l, step=0.125):
+    """Splits of the shared sides ``T_1 .. T_(m-1)`` of consecutive corners of ``thetas`` (sides ``T_0 .. T_m``:
+    ``T_0`` arriving at the first corner, ``T_m`` leaving the last) keeping every corner's two sides l apart, with
+    ``T_0`` and ``T_m`` split too, or None.  Each shared side's splits are enumerated given the previous one's points
+    near their common corner (within ``K l``, ``K l sin theta >= l``: farther points are l from the whole other side)."""
+    m = len(thetas)
+
+    @functools.lru_cache(maxsize=None)
+    def place(k, near):
+        for xs in _splits(lengths[k], l, step, thetas[k - 1], near):
+            if k == 1 and not _fits(thetas[0], xs, lengths[0], l, step):
+                continue
+            back = lengths[k] - np.append(0.0, xs[:-1])  # T_k's points by distance from corner k
+            if k == m - 1:
+                if _fits(thetas[k], back, lengths[m], l, step):
+                    return (xs,)
+                continue
+            found = place(k + 1, tuple(back[back * math.sin(thetas[k]) < l]))
+            if found is not None:
+                return (xs, *found)
+        return None
+
+    return place(1, ())
 
 
 def corners(rings):

@@ -17,6 +17,9 @@ the kind of refusal on the others.  Families, in units of ``l = 1``
 * **dart hole**: a rectangle with a dart-shaped hole whose notch makes a
   corner of ``angle`` degrees of the region on the hole's ring.
 
+:func:`darts` draws arrowheads (:func:`~equimesh.testing.shapes.sharp_dart`):
+three sharp corners in a row, decided jointly (planar/_coupled.py).
+
 :func:`sharp_cases` places them as :func:`strategies.placed` does (rotation,
 shift, rolled start vertex, scale by a drawn ``l``), holes alike.
 """
@@ -26,7 +29,7 @@ from hypothesis import strategies as st
 
 from equimesh.planar.polygon import SHARP_CORNER, stagger_reach
 from equimesh.testing.generators import rotate
-from equimesh.testing.shapes import sharp_corner_shape
+from equimesh.testing.shapes import sharp_corner_shape, sharp_dart
 from strategies import angles, lengths, shifts
 
 #: Smallest corner angle drawn, in degrees.
@@ -57,3 +60,14 @@ def sharp_cases(draw, kinds=KINDS):
         return np.roll(v, -draw(st.integers(0, len(v) - 1)), axis=0) * l
 
     return move(outer), [move(h) for h in holes], l
+
+
+@st.composite
+def darts(draw):
+    """``(vertices, l)``: an arrowhead with a tip and two barbs of 10 to 60 degrees, tip sides from l to where the
+    tip and a barb stop sharing any point of them, placed as :func:`sharp_cases` places its shapes."""
+    tip, first, second = (draw(st.floats(MIN_SHARP, SHARP_CORNER, exclude_max=True)) for _ in range(3))
+    reach = stagger_reach(tip, 1.0) + max(stagger_reach(first, 1.0), stagger_reach(second, 1.0)) + 3.0
+    outer = sharp_dart(tip, (first, second), 1.0 + draw(st.floats(0.0, 1.0)) * reach)
+    angle, shift, l = draw(angles), np.array(draw(shifts)), draw(lengths())
+    return np.roll(rotate(outer - outer.mean(axis=0), angle) + shift, -draw(st.integers(0, 3)), axis=0) * l, l

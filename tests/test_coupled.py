@@ -1,4 +1,4 @@
-"""Direct tests of the internals of planar/_coupled.py (two sharp corners sharing a side, Step 2 with Lemma 3 (1)).
+"""Direct tests of the internals of planar/_coupled.py (sharp corners in a row, Step 2 with Lemma 3 (1)).
 
 The properties of the search and the proof are in tests/test_polygon_corner.py; these pin the pieces they are
 built of, so that mutation testing (experiments/mutation_report.py) sees each rule decide something.
@@ -135,20 +135,20 @@ def test_long_side_cells_go_a_cell_past_k_l_plus_2l_and_end_at_any_cell_reaching
 
 def test_a_decision_past_pair_steps_tests_is_left_undecided(monkeypatch):
     """The search of the placeable pair takes some number of distinct split tests: with exactly that many allowed
-    it ends, with one fewer it is undecided; then place_pair finds nothing and pair_unplaceable proves nothing."""
+    it ends, with one fewer it is undecided; then place_chain finds nothing and chain_unplaceable proves nothing."""
     inf = (math.inf,) * 4
-    search = _coupled._Pair(PAIR_THETAS, PLACEABLE, 1.0, 0, cells=False, radii=inf)
+    search = _coupled._Chain(PAIR_THETAS, PLACEABLE, 1.0, 0, cells=False, radii=inf)
     assert search.search() is not None
     steps = search.steps
     assert steps == len(search.tested) > 1
     monkeypatch.setattr(_coupled, "PAIR_STEPS", steps)
-    assert _coupled._Pair(PAIR_THETAS, PLACEABLE, 1.0, 0, cells=False, radii=inf).search() is not None
+    assert _coupled._Chain(PAIR_THETAS, PLACEABLE, 1.0, 0, cells=False, radii=inf).search() is not None
     monkeypatch.setattr(_coupled, "PAIR_STEPS", steps - 1)
     with pytest.raises(_coupled._Undecided):
-        _coupled._Pair(PAIR_THETAS, PLACEABLE, 1.0, 0, cells=False, radii=inf).search()
-    assert _coupled.place_pair(PAIR_THETAS, PLACEABLE, 1.0) is None
+        _coupled._Chain(PAIR_THETAS, PLACEABLE, 1.0, 0, cells=False, radii=inf).search()
+    assert _coupled.place_chain(PAIR_THETAS, PLACEABLE, 1.0) is None
     monkeypatch.setattr(_coupled, "PAIR_STEPS", 0)
-    assert not _coupled.pair_unplaceable(PAIR_THETAS, PAIR_LENGTHS, 1.0, inf)
+    assert not _coupled.chain_unplaceable(PAIR_THETAS, PAIR_LENGTHS, 1.0, inf)
 
 
 def test_a_corner_neither_placed_nor_refuted_on_the_first_grid_is_placed_on_a_finer_one(monkeypatch):
@@ -156,13 +156,13 @@ def test_a_corner_neither_placed_nor_refuted_on_the_first_grid_is_placed_on_a_fi
     l/16 refute nothing, the nodes of l/32 hold one; with no refinement allowed nothing is found."""
     thetas, lengths = (math.radians(12.41194009983165), None), (2.8369711193150855, 3.6063879049743512, 0.0)
     inf = (math.inf,) * 4
-    assert _coupled._Pair(thetas, lengths, 1.0, 0, cells=False, radii=inf).search() is None
-    assert _coupled._Pair(thetas, lengths, 1.0, 0, cells=True, radii=inf).search() is not None
-    a, s, _ = _coupled.place_pair(thetas, lengths, 1.0)
+    assert _coupled._Chain(thetas, lengths, 1.0, 0, cells=False, radii=inf).search() is None
+    assert _coupled._Chain(thetas, lengths, 1.0, 0, cells=True, radii=inf).search() is not None
+    a, s, _ = _coupled.place_chain(thetas, lengths, 1.0)
     _assert_placement(thetas[0], (lengths[1], lengths[0]), 1.0, (s, a))
-    assert not _coupled.pair_unplaceable(thetas, lengths, 1.0, inf)
+    assert not _coupled.chain_unplaceable(thetas, lengths, 1.0, inf)
     monkeypatch.setattr(_coupled, "CORNER_REFINEMENTS", 0)
-    assert _coupled.place_pair(thetas, lengths, 1.0) is None
+    assert _coupled.place_chain(thetas, lengths, 1.0) is None
 
 
 def test_side_cells_clip_to_ranges_widened_by_the_tolerance():
@@ -186,11 +186,11 @@ def test_the_tolerances_of_the_search_and_of_the_proof():
     (1 - REL_TOL / 4) l, the proof's cells down to (1 - 2 REL_TOL) l (pairs are far apart here)."""
     thetas, inf = (math.pi / 2, None), (math.inf,) * 4
     side = lambda below: (1.0 - below * REL_TOL, 2.0, 0.0)  # noqa: E731
-    a, s, _ = _coupled.place_pair(thetas, side(0.22), 1.0)
+    a, s, _ = _coupled.place_chain(thetas, side(0.22), 1.0)
     assert a.tolist() == [side(0.22)[0]] and s[-1] == 2.0
-    assert _coupled.place_pair(thetas, side(0.3), 1.0) is None
-    assert not _coupled.pair_unplaceable(thetas, side(1.9), 1.0, inf)
-    assert _coupled.pair_unplaceable(thetas, side(2.5), 1.0, inf)
+    assert _coupled.place_chain(thetas, side(0.3), 1.0) is None
+    assert not _coupled.chain_unplaceable(thetas, side(1.9), 1.0, inf)
+    assert _coupled.chain_unplaceable(thetas, side(2.5), 1.0, inf)
 
 
 def test_the_first_points_are_kept_from_the_other_side_from_the_start():
@@ -198,35 +198,36 @@ def test_the_first_points_are_kept_from_the_other_side_from_the_start():
     at 2 cos(10 deg) l or more; with S = 2l the first point of S is its end, and at a right angle on the other
     side the same holds for B.  Nothing else is removed at the start: the corners are no points of the other side."""
     ten = math.radians(10.0)
-    assert [p.tolist() for p in _coupled.place_pair((ten, None), (1.0, 2.0, 0.0), 1.0)] == [[1.0], [2.0], []]
-    assert [p.tolist() for p in _coupled.place_pair((math.pi / 2, ten), (1.0, 2.0, 1.0), 1.0)] == [[1.0], [2.0], [1.0]]
-    pair = _coupled._Pair((math.pi / 2, ten), (1.0, 2.0, 1.0), 1.0, 0, cells=False, radii=(math.inf,) * 4)
+    assert [p.tolist() for p in _coupled.place_chain((ten, None), (1.0, 2.0, 0.0), 1.0)] == [[1.0], [2.0], []]
+    assert [p.tolist() for p in _coupled.place_chain((math.pi / 2, ten), (1.0, 2.0, 1.0), 1.0)] == [[1.0], [2.0], [1.0]]
+    pair = _coupled._Chain((math.pi / 2, ten), (1.0, 2.0, 1.0), 1.0, 0, cells=False, radii=(math.inf,) * 4)
     assert [p.tolist() for p in pair.search()] == [[1.0], [2.0], [1.0]]  # on the first grid already
-    for cross, (s, side) in [(pair.cross_a, (pair.s[0], pair.a[0])), (pair.cross_b, (2.0 - pair.s[0], pair.b[0]))]:
-        theta = math.pi / 2 if cross is pair.cross_a else ten
+    s = pair.sides[1][0]
+    for cross, (s, side) in [(pair.back, (s, pair.sides[0][0])), (pair.ahead[1], (2.0 - s, pair.sides[2][0]))]:
+        theta = math.pi / 2 if cross is pair.back else ten
         d2 = s[:, None] ** 2 + side[None, :] ** 2 - 2.0 * math.cos(theta) * s[:, None] * side[None, :]
         expected = d2 >= (1.0 - REL_TOL / 4.0) ** 2
         expected[:, 0] = True
-        expected[0 if cross is pair.cross_a else -1] = True
+        expected[0 if cross is pair.back else -1] = True
         assert (cross == expected).all()
 
 
 def test_a_lone_corner_stops_the_shared_side_past_k_l():
     """30 degrees alone (K = 2) with S of 20 l: S stops at its first point past 2 l, not at its far end."""
-    a, s, b = _coupled.place_pair((math.radians(30.0), None), (3.0, 20.0, 0.0), 1.0)
+    a, s, b = _coupled.place_chain((math.radians(30.0), None), (3.0, 20.0, 0.0), 1.0)
     assert 2.0 <= s[-1] <= 4.0 and len(b) == 0
 
 
 def test_the_proof_uses_cells_on_every_side_and_a_radius_drops_the_pairs_of_its_corner():
     """Cells have width (hi > lo) on A, S and B; a radius of 0 makes every pair of its corner count as apart."""
-    pair = _coupled._Pair(PAIR_THETAS, PAIR_LENGTHS, 1.0, 0, cells=True, radii=(math.inf,) * 4)
-    for lo, hi in (pair.a[:2], pair.s, pair.b[:2]):
+    pair = _coupled._Chain(PAIR_THETAS, PAIR_LENGTHS, 1.0, 0, cells=True, radii=(math.inf,) * 4)
+    for lo, hi, *_ in pair.sides:
         assert (hi >= lo).all() and (hi > lo).any()
-    assert not pair.cross_a.all() and not pair.cross_b.all()
+    assert not pair.back.all() and not pair.ahead[1].all()
     for i in range(4):
         radii = tuple(0.0 if j == i else math.inf for j in range(4))
-        pair = _coupled._Pair(PAIR_THETAS, PAIR_LENGTHS, 1.0, 0, cells=True, radii=radii)
-        assert pair.cross_a.all() == (i < 2) and pair.cross_b.all() == (i >= 2)
+        pair = _coupled._Chain(PAIR_THETAS, PAIR_LENGTHS, 1.0, 0, cells=True, radii=radii)
+        assert pair.back.all() == (i < 2) and pair.ahead[1].all() == (i >= 2)
 
 
 def test_a_pair_refuted_only_on_finer_cells_is_proven_there(monkeypatch):
@@ -235,11 +236,35 @@ def test_a_pair_refuted_only_on_finer_cells_is_proven_there(monkeypatch):
     thetas = (0.2811920832642171, 0.2556000676733454)
     lengths = (3.9053127292452765, 4.621055221556947, 3.7424774384218624)
     inf = (math.inf,) * 4
-    assert _coupled._Pair(thetas, lengths, 1.0, 0, cells=True, radii=inf).search() is not None
-    assert _coupled._Pair(thetas, lengths, 1.0, 0, cells=False, radii=inf).search() is None
-    assert _coupled.pair_unplaceable(thetas, lengths, 1.0, inf)
-    assert _coupled.place_pair(thetas, lengths, 1.0) is None
+    assert _coupled._Chain(thetas, lengths, 1.0, 0, cells=True, radii=inf).search() is not None
+    assert _coupled._Chain(thetas, lengths, 1.0, 0, cells=False, radii=inf).search() is None
+    assert _coupled.chain_unplaceable(thetas, lengths, 1.0, inf)
+    assert _coupled.place_chain(thetas, lengths, 1.0) is None
     monkeypatch.setattr(_coupled, "PAIR_REFINEMENTS", 1)
-    assert _coupled.pair_unplaceable(thetas, lengths, 1.0, inf)
+    assert _coupled.chain_unplaceable(thetas, lengths, 1.0, inf)
     monkeypatch.setattr(_coupled, "PAIR_REFINEMENTS", 0)
-    assert not _coupled.pair_unplaceable(thetas, lengths, 1.0, inf)
+    assert not _coupled.chain_unplaceable(thetas, lengths, 1.0, inf)
+
+
+def test_useful_keeps_the_positions_on_some_split_only():
+    """0 -> 1 -> 2 -> 3 (the end), with 4 reached from 1 but leading nowhere and 5 leading to the end but not
+    reached: only 0 to 3 are on a split; with 2 gone nothing is, and positions not left are never kept."""
+    parts = np.pad(_chain(4), ((0, 2), (0, 2)))
+    parts[1, 4] = parts[5, 3] = True
+    ends = np.array([False, False, False, True, False, False])
+    assert np.flatnonzero(_coupled._useful(parts, np.ones(6, dtype=bool), ends)).tolist() == [0, 1, 2, 3]
+    left = np.ones(6, dtype=bool)
+    left[2] = False
+    assert _coupled._useful(parts, left, ends) is None
+    parts[1, 3] = True
+    assert np.flatnonzero(_coupled._useful(parts, left, ends)).tolist() == [0, 1, 3]
+
+
+def test_a_side_couples_its_corners_up_to_k1_l_plus_k2_l_plus_4l_in_a_chain_too():
+    """The chain is coupled when every shared side is: 30, 10 and 30 degrees (K = 2, 6, 2) at l = 2 with shared
+    sides of 24 (the limit) and 24.000001 (past it) in either place."""
+    thetas = tuple(math.radians(x) for x in (30.0, 10.0, 30.0))
+    assert _coupled.shared(thetas[:2], 24.0, 2.0) and not _coupled.shared(thetas[:2], 24.000001, 2.0)
+    assert _coupled._coupled(thetas, (1.0, 24.0, 24.0, 1.0), 2.0)
+    assert not _coupled._coupled(thetas, (1.0, 24.0, 24.000001, 1.0), 2.0)
+    assert not _coupled._coupled(thetas, (1.0, 24.000001, 24.0, 1.0), 2.0)

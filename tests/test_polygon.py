@@ -410,7 +410,7 @@ def test_a_corner_not_handled_is_named_with_its_limit_in_the_callers_units(monke
     from equimesh.planar import _coupled
     from equimesh.planar.strip import BOUNDARY_SPACING
 
-    monkeypatch.setattr(_coupled, "pair_unplaceable", lambda *args: False)
+    monkeypatch.setattr(_coupled, "chain_unplaceable", lambda *args: False)
 
     triangle = np.array([[0, 0], [4.25, 0], [2.1 * math.cos(math.radians(29.4)), 2.1 * math.sin(math.radians(29.4))]])
     message, points = _separation_message(triangle * 4.0, 4.0, spacing=BOUNDARY_SPACING)
@@ -591,7 +591,9 @@ SEARCH_RINGS = [
 
 
 # The same rings after the grid search of the corners the short-side search leaves closer than l (None: unchanged).
-GRID_RINGS = [(18, 456.0), None, (10, 90.9375), None, None, None, (10, 57.0), None, (17, 354.1425)]
+# The second has no side too short for its staggers but its corners of 18.2 and 4.2 degrees are closer than l
+# (0.949 and 0.073): the grid search places them too (1.096 and 1.005).
+GRID_RINGS = [(18, 456.0), (10, 88.0), (10, 90.9375), None, None, None, (10, 57.0), None, (17, 354.1425)]
 
 
 @pytest.mark.parametrize("ring, grid", list(zip(SEARCH_RINGS, GRID_RINGS)))
@@ -656,12 +658,33 @@ def test_no_separation_reads_the_far_ends_of_the_first_point_ranges():
 @pytest.mark.parametrize("hole_at, halvings", [(3.3, 1), (1.5, 2), (5.0, 0)])
 def test_visible_radii_halve_the_sides_until_the_corners_triangle_is_in_the_polygon(hole_at, halvings):
     """A 20 degree triangle with sides 4 and a small hole at hole_at along the corner's bisector direction (none at
-    5: outside): the sides are halved until the triangle they span with the corner misses the hole."""
-    from equimesh.planar.polygon import _visible_radii
+    5: outside): the sides are halved until the triangle they span with the corner misses the hole, then scaled up
+    again by bisection to within 2^-VISIBLE_BISECTIONS of touching it."""
+    from equimesh.planar.polygon import VISIBLE_BISECTIONS, _sees_within, _visible_radii
 
     x, y = hole_at * math.cos(math.radians(7.0)), hole_at * math.sin(math.radians(7.0))
     holes = [[[x - 0.05, y - 0.03], [x + 0.05, y - 0.03], [x, y + 0.04]]] if hole_at < 4.0 else None
     poly = as_polygon([[0.0, 0.0], [4.0, 0.0], _at(20.0, 4.0)], None, holes)
     ring = poly.rings[0]
     sides = (ring.local_edge_lengths[0], ring.local_edge_lengths[-1])  # in the local frame, as the caller passes them
-    assert _visible_radii(poly.region, ring, 0, sides) == tuple(side / 2.0**halvings for side in sides)
+    radii = _visible_radii(poly.region, ring, 0, sides)
+    assert _sees_within(poly.region, ring, 0, *radii)
+    if not halvings:
+        assert radii == sides
+        return
+    t = radii[0] / sides[0]
+    assert radii[1] == pytest.approx(sides[1] * t, rel=1e-15) and 0.5**halvings < t < 2.0 * 0.5**halvings
+    assert not _sees_within(poly.region, ring, 0, *(x * (t + 2.0**-VISIBLE_BISECTIONS * 0.5**halvings) for x in sides))
+
+
+def test_a_run_of_sharp_corners_goes_on_through_coupling_sides_only():
+    """The dart of 30 degrees (corners 30, 30, 270, 30; sides 3.5, 1.28, 1.28, 3.5): the run through the tip is
+    barb, tip, barb (3, 0, 1), from any of them.  With a tip side longer
+    than 2 l + 2 l + 4 l (K = 2) it is cut there."""
+    from equimesh.planar.polygon import _run
+
+    angles, lengths = [30.0, 30.0, 270.0, 30.0], [3.5, 1.28, 1.28, 3.5]
+    for c in (3, 0, 1):
+        assert _run(lengths, angles, 1.0, c) == [3, 0, 1]
+    assert _run([8.5, 1.28, 1.28, 3.5], angles, 1.0, 3) == [3, 0] and _run([8.5, 1.28, 1.28, 8.5], angles, 1.0, 0) == [0]
+    assert _run([8.0, 1.28, 1.28, 8.0], angles, 1.0, 0) == [3, 0, 1]  # 8 l is the limit, included

@@ -15,7 +15,8 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from equimesh.planar import _corner, _coupled
-from corner_sampling import sampled_pair, sampled_placement
+from conftest import exercised
+from corner_sampling import sampled_chain, sampled_placement
 from equimesh.tolerance import REL_TOL
 
 
@@ -150,21 +151,21 @@ def test_two_corners_each_placeable_alone_are_proven_unplaceable_together():
     finds none either, nor the search."""
     for theta, sides in zip(PAIR_THETAS, [PAIR_LENGTHS[1::-1], PAIR_LENGTHS[:0:-1]]):
         assert _corner.place_corner(theta, sides, 1.0) is not None
-    assert _coupled.pair_unplaceable(PAIR_THETAS, PAIR_LENGTHS, 1.0, (math.inf,) * 4)
-    assert _coupled.place_pair(PAIR_THETAS, PAIR_LENGTHS, 1.0) is None
+    assert _coupled.chain_unplaceable(PAIR_THETAS, PAIR_LENGTHS, 1.0, (math.inf,) * 4)
+    assert _coupled.place_chain(PAIR_THETAS, PAIR_LENGTHS, 1.0) is None
     for step in (1.0 / 8.0, 1.0 / 32.0):
-        assert sampled_pair(PAIR_THETAS, PAIR_LENGTHS, 1.0, step) is None
+        assert sampled_chain(PAIR_THETAS, PAIR_LENGTHS, 1.0, step) is None
 
 
 def test_the_pair_enumeration_finds_placements_where_they_exist():
     """Not vacuous: with the shared side 5.25 l both the search and the enumeration place the pair, and the
     proof does not refuse it; with no pair seen (radii 0) nothing is proven."""
     lengths = (2.1, 5.25, 2.630842730287126)
-    found = _coupled.place_pair(PAIR_THETAS, lengths, 1.0)
+    found = _coupled.place_chain(PAIR_THETAS, lengths, 1.0)
     _assert_pair(PAIR_THETAS, lengths, 1.0, found)
-    assert sampled_pair(PAIR_THETAS, lengths, 1.0) is not None
-    assert not _coupled.pair_unplaceable(PAIR_THETAS, lengths, 1.0, (math.inf,) * 4)
-    assert not _coupled.pair_unplaceable(PAIR_THETAS, PAIR_LENGTHS, 1.0, (0.0,) * 4)
+    assert sampled_chain(PAIR_THETAS, lengths, 1.0) is not None
+    assert not _coupled.chain_unplaceable(PAIR_THETAS, lengths, 1.0, (math.inf,) * 4)
+    assert not _coupled.chain_unplaceable(PAIR_THETAS, PAIR_LENGTHS, 1.0, (0.0,) * 4)
 
 
 @given(st.floats(10.0, 59.0), st.floats(10.0, 59.0), st.floats(1.0, 4.0), st.floats(1.0, 7.0), st.floats(1.0, 4.0))
@@ -173,14 +174,14 @@ def test_a_pair_placement_found_meets_lemma_3_and_a_proven_pair_has_no_sampled_p
     the search returns is a placement at both corners (checked pair by pair), and a pair the proof refuses has
     no placement in the enumeration either."""
     thetas, lengths = (math.radians(angle_1), math.radians(angle_2)), (a, s, b)
-    if _coupled.pair_unplaceable(thetas, lengths, 1.0, (math.inf,) * 4):
-        assert sampled_pair(thetas, lengths, 1.0) is None
+    if _coupled.chain_unplaceable(thetas, lengths, 1.0, (math.inf,) * 4):
+        assert sampled_chain(thetas, lengths, 1.0) is None
         return
-    found = _coupled.place_pair(thetas, lengths, 1.0)
+    found = _coupled.place_chain(thetas, lengths, 1.0)
     if found is not None:
         _assert_pair(thetas, lengths, 1.0, found)
         for level in (0, 1):
-            assert _coupled._Pair(thetas, lengths, 1.0, level, cells=True, radii=(math.inf,) * 4).search() is not None
+            assert _coupled._Chain(thetas, lengths, 1.0, level, cells=True, radii=(math.inf,) * 4).search() is not None
 
 
 def test_a_single_corner_left_open_by_cells_of_l_over_64_is_proven_on_clipped_cells():
@@ -190,7 +191,7 @@ def test_a_single_corner_left_open_by_cells_of_l_over_64_is_proven_on_clipped_ce
     the enumeration finds no placement either."""
     theta, sides = math.radians(21.693585695037463), (3.18837772, 3.18837772)
     assert not _corner.corner_unplaceable(theta, sides, 1.0, (math.inf, math.inf))
-    assert _coupled.pair_unplaceable((theta, None), (sides[1], sides[0], 0.0), 1.0, (math.inf,) * 4)
+    assert _coupled.chain_unplaceable((theta, None), (sides[1], sides[0], 0.0), 1.0, (math.inf,) * 4)
     assert sampled_placement(theta, sides, 1.0) is None
 
 
@@ -199,8 +200,8 @@ def test_a_shared_side_too_long_to_couple_the_corners_is_not_decided_jointly():
     proof takes the pair (K = 3 at 29.4 and 23.07 degrees: up to 10 l)."""
     lengths = (2.1, 10.25, 2.630842730287126)
     assert not _coupled._coupled(PAIR_THETAS, lengths, 1.0) and _coupled._coupled(PAIR_THETAS, PAIR_LENGTHS, 1.0)
-    assert _coupled.place_pair(PAIR_THETAS, lengths, 1.0) is None
-    assert not _coupled.pair_unplaceable(PAIR_THETAS, lengths, 1.0, (math.inf,) * 4)
+    assert _coupled.place_chain(PAIR_THETAS, lengths, 1.0) is None
+    assert not _coupled.chain_unplaceable(PAIR_THETAS, lengths, 1.0, (math.inf,) * 4)
 
 
 def test_visibility_radii_belong_to_their_sides():
@@ -355,3 +356,66 @@ def test_tighten_and_the_reach_scale_with_l():
     found = _corner._tighten(theta, (18.0, 4.5), _corner.corner_reach(theta, 1.5), 1.5, [1, 0, 1, 0, 0, 0])
     assert [points.tolist() for points in found] == [[3.0, 6.0, 9.0, 12.0], [1.5, 4.5]]
     assert _corner.corner_reach(math.radians(30.0), 1.5) == 3.0
+
+
+# --------------------------------------------------------------------------- sharp corners in a row (_coupled.py, chains)
+
+#: The dart sharp_dart(30, (30, 30), 3.5): three corners of 30 degrees in a row (barb, tip, barb), the tip's sides
+#: 3.5 l shared, the barbs' other sides 1.2811 l (to the notch).
+DART_THETAS = (math.radians(30.0),) * 3
+DART_LENGTHS = (1.2810889132455352, 3.5, 3.5, 1.2810889132455352)
+
+
+def _assert_chain(thetas, lengths, l, found):
+    """A placement at every corner of the chain (:func:`_assert_placement`), each shared side the same at both ends."""
+    assert len(found) == len(lengths) == len(thetas) + 1
+    for k, theta in enumerate(thetas):
+        arriving = found[k] if k == 0 else lengths[k] - np.append(0.0, found[k][:-1])[::-1]
+        _assert_placement(theta, (lengths[k + 1], lengths[k]), l, (found[k + 1], arriving))
+
+
+def test_three_corners_each_pair_placeable_are_proven_unplaceable_together():
+    """The dart: each two of its corners sharing a side have a placement (search and enumeration), the three
+    together none (the chain's proof refutes every split of the two shared sides, and the independent enumeration of
+    every split in steps of l/8 and l/16 finds none), nor the search."""
+    for pair in (slice(0, 2), slice(1, 3)):
+        lengths = DART_LENGTHS[pair.start : pair.stop + 1]
+        _assert_chain(DART_THETAS[pair], lengths, 1.0, _coupled.place_chain(DART_THETAS[pair], lengths, 1.0))
+        assert sampled_chain(DART_THETAS[pair], lengths, 1.0) is not None
+    assert _coupled.chain_unplaceable(DART_THETAS, DART_LENGTHS, 1.0, (math.inf,) * 6)
+    assert _coupled.place_chain(DART_THETAS, DART_LENGTHS, 1.0) is None
+    for step in (1.0 / 8.0, 1.0 / 16.0):
+        assert sampled_chain(DART_THETAS, DART_LENGTHS, 1.0, step) is None
+    assert not _coupled.chain_unplaceable(DART_THETAS, DART_LENGTHS, 1.0, (math.inf,) * 4 + (0.0,) * 2)
+
+
+@given(st.lists(st.floats(10.0, 59.0), min_size=3, max_size=4), st.floats(1.0, 3.0), st.lists(st.floats(1.0, 5.0),
+       min_size=3, max_size=3), st.floats(1.0, 3.0))
+def test_a_chain_placement_found_meets_lemma_3_at_every_corner_and_a_proven_chain_has_no_sampled_placement(angles, a, shared, b):
+    """Three or four sharp corners in a row: whatever the search returns is a placement at every corner (checked
+    pair by pair), the proof's cells never refute a chain it places (two coarsest grids), and a chain the proof
+    refuses has no placement in the enumeration either."""
+    thetas, lengths = tuple(math.radians(x) for x in angles), (a, *shared[: len(angles) - 1], b)
+    if _coupled.chain_unplaceable(thetas, lengths, 1.0, (math.inf,) * (2 * len(thetas))):
+        assert sampled_chain(thetas, lengths, 1.0) is None
+        return
+    found = _coupled.place_chain(thetas, lengths, 1.0)
+    if exercised("a chain of three is placed", found is not None):
+        _assert_chain(thetas, lengths, 1.0, found)
+        for level in (0, 1):
+            assert _coupled._Chain(thetas, lengths, 1.0, level, cells=True, radii=(math.inf,) * (2 * len(thetas))).search() is not None
+
+
+def test_a_pair_left_open_by_the_old_step_bound_is_proven_on_cells_of_l_over_128():
+    """The triangle with corners of 16 and 24 degrees on a base of 5.5 l: cells of l/64 hold a path, the nodes no
+    placement; on cells of l/128 every split is refuted, which the enumeration of whole splits in PAIR_STEPS could
+    not reach (67884 split tests); the sampled enumeration finds no placement either."""
+    thetas = (math.radians(16.0), math.radians(24.0))
+    lengths = (3.4802343778963283, 5.5, 2.358485811095189)
+    inf = (math.inf,) * 4
+    assert _coupled._Chain(thetas, lengths, 1.0, 2, cells=True, radii=inf).search() is not None
+    assert _coupled._Chain(thetas, lengths, 1.0, 2, cells=False, radii=inf).search() is None
+    chain = _coupled._Chain(thetas, lengths, 1.0, 3, cells=True, radii=inf)
+    assert chain.search() is None and chain.steps <= _coupled.PAIR_STEPS
+    assert _coupled.chain_unplaceable(thetas, lengths, 1.0, inf)
+    assert sampled_chain(thetas, lengths, 1.0) is None

@@ -24,12 +24,12 @@ from equimesh._geometry import orient
 from equimesh.planar.insertion._region import constrained_delaunay
 from equimesh.mesh import PlanarMesh
 from equimesh.planar.polygon import stagger_reach
-from equimesh.testing.shapes import flattened_square, letter_polygon, place, sharp_corner_shape
+from equimesh.testing.shapes import flattened_square, letter_polygon, place, sharp_corner_shape, sharp_dart
 
 import invariants_uniform as inv
 from conftest import exercised
 import strategies_sharp as sss
-from corner_sampling import corners, sampled_pair, sampled_placement
+from corner_sampling import corners, sampled_chain, sampled_placement
 import strategies_simple as ss
 
 #: Largest polygon area drawn by the property tests, in units of l^2.
@@ -641,16 +641,22 @@ def _no_sampled_placement(vertices, holes, l):
     )
 
 
-def _no_sampled_pair_placement(vertices, holes, l):
-    """Sampled, independently of polygon.py: two consecutive corners below 60 degrees, sharing a side, with no
-    split of the shared side (steps of l/8) for which both other sides can be split keeping each corner's two
-    sides l apart (docs/proofs.md, "Sharp corners")."""
+def _no_sampled_chain_placement(vertices, holes, l):
+    """Sampled, independently of polygon.py: two or more consecutive corners below 60 degrees with no split of
+    the sides they share (steps of l/8) for which the first and last corners' other sides can be split too, keeping
+    every corner's two sides l apart (docs/proofs.md, "Sharp corners")."""
     for ring in inv.rings(vertices, holes):
         found = list(corners([ring]))
-        for (theta_1, shared, arriving), (theta_2, leaving, _) in zip(found, found[1:] + found[:1]):
-            sharp = max(theta_1, theta_2) < math.radians(60.0)
-            if sharp and sampled_pair((theta_1, theta_2), (arriving / l, shared / l, leaving / l), 1.0) is None:
-                return True
+        n = len(found)
+        for i in range(n):
+            run = 1
+            while run < n - 1 and found[(i + run) % n][0] < math.radians(60.0) and found[i][0] < math.radians(60.0):
+                run += 1
+                chain = [found[(i + k) % n] for k in range(run)]
+                thetas = tuple(theta for theta, _, _ in chain)
+                lengths = (chain[0][2] / l, *(leaving / l for _, leaving, _ in chain))
+                if sampled_chain(thetas, lengths, 1.0) is None:
+                    return True
     return False
 
 
@@ -676,7 +682,7 @@ def test_short_sided_sharp_corners_are_meshed_within_every_theorem_or_refused_by
 
 def _meshed_or_refused_by_kind(vertices, holes, l):
     """Problem 2 on ``vertices``: every guarantee checked on a mesh; a refusal's kind confirmed by sampling
-    (docs/proofs.md, "Sharp corners")."""
+    (docs/proofs.md, "Sharp corners").  Returns the kind, or "meshed"."""
     try:
         mesh = equimesh.uniform_triangulation(vertices, l, holes=holes or None)
     except equimesh.InvalidPolygonError as error:
@@ -687,10 +693,11 @@ def _meshed_or_refused_by_kind(vertices, holes, l):
         if kind == "no separation":
             confirm = _first_points_closer_than_l if "first boundary points" in str(error) else _no_sampled_placement
             together = exercised("two sharp corners are refused together", "together" in str(error))
-            assert (_no_sampled_pair_placement if together else confirm)(vertices, holes, l)
-        return
+            assert (_no_sampled_chain_placement if together else confirm)(vertices, holes, l)
+        return kind
     exercised("a short-sided sharp corner is meshed", True)
     inv.assert_problem2_invariants(mesh, vertices, l, holes=holes)
+    return "meshed"
 
 
 @given(st.floats(10.0, 59.0), st.floats(10.0, 59.0), st.floats(0.0, 1.0))
@@ -703,6 +710,16 @@ def test_triangles_with_two_sharp_corners_on_one_side_are_meshed_or_refused_with
     a, b = math.radians(angle_1), math.radians(angle_2)
     side = base * math.sin(b) / math.sin(a + b)
     _meshed_or_refused_by_kind(np.array([[0.0, 0.0], [base, 0.0], [side * math.cos(a), side * math.sin(a)]]), [], 1.0)
+
+
+@given(sss.darts())
+@example((sharp_dart(30.0, (30.0, 30.0), 3.5), 1.0))  # the dart of PROVEN_REFUSALS["no chain placement"]
+def test_darts_are_meshed_or_refused_with_a_proof(case):
+    """Arrowheads with three sharp corners in a row (tip and barbs of 10 to 60 degrees): meshed within every
+    theorem, or refused by kind, a proof confirmed by sampling (jointly for the corners in a row:
+    planar/_coupled.py); none is "not handled" (docs/proofs.md, "Sharp corners")."""
+    vertices, l = case
+    assert _meshed_or_refused_by_kind(vertices, [], l) != "not handled"
 
 
 SHARP_EXAMPLES = {
@@ -753,13 +770,22 @@ PROVEN_REFUSALS = {
         r"of 3.45 and 3.45 into parts of \[l, 2l\] .* not a proof that no mesh exists.* sides of at least 4.0 are handled",
         _no_sampled_placement,
     ),
+    # A dart with tip and barbs of 30 degrees, tip sides 3.5 l: each two corners sharing a side can be separated,
+    # the three together cannot (decided jointly on a grid of cells).
+    "no chain placement": (
+        sharp_dart(30.0, (30.0, 30.0), 3.5).tolist(),
+        r"^the corners at vertex 3 at \(3.380740392, 0.9058666579\) \(30 degrees\), vertex 0 at \(0, 0\) \(30 degrees\) and "
+        r"vertex 1 at .* cannot meet Lemma 3 \(1\) together for l = 1.0: .*\(the middle ones shared\).* at every corner .*"
+        r"not a proof that no mesh exists",
+        _no_sampled_chain_placement,
+    ),
     # 29.4 and 23.07 degrees sharing a side of 4.25 l: each corner alone can be separated, both together cannot
     # (no split of the shared side leaves both other sides a split; decided jointly on a grid of cells).
     "no joint placement": (
         [[0, 0], [4.25, 0], _at(29.4, 2.1)],
         r"^the corners at vertex 0 at \(0, 0\) \(29.4 degrees\) and vertex 1 at \(4.25, 0\) \(23.0697 degrees\) cannot meet "
         r"Lemma 3 \(1\) together for l = 1.0: .* not a proof that no mesh exists",
-        _no_sampled_pair_placement,
+        _no_sampled_chain_placement,
     ),
 }
 

@@ -1,28 +1,35 @@
-"""Step 2 at two sharp corners sharing a side, decided jointly on a grid: a search and a proof.
+"""Step 2 at sharp corners in a row, decided jointly on a grid: a search and a proof.
 
-Corners ``c`` (angle ``theta_1``) and ``c + 1`` (angle ``theta_2``) share the
-side ``S`` of length ``L``; ``A`` is the other side of ``c`` (arriving at it)
-and ``B`` the other side of ``c + 1`` (leaving it).  Any Step 2 splits the
-three sides into parts of ``[l, 2l]``; Lemma 3 (1) wants every two points of
-``S`` and ``A`` (corner ``c`` excluded) and of ``S`` and ``B`` (corner
-``c + 1`` excluded) at least ``l`` apart, where they see each other.  The two
-corners are coupled through the points of ``S`` only.
+Corners ``0 .. m - 1`` (angles ``theta_j``) follow each other along a ring:
+corner ``j`` joins side ``T_j`` (arriving at it) and side ``T_(j+1)`` (leaving
+it), so ``T_1 .. T_(m-1)`` are shared by two corners each, ``T_0`` and
+``T_m`` by one (``m = 2``: two corners sharing one side, ``T_0, T_1, T_2``
+being ``A``, ``S``, ``B``).  Any Step 2 splits every side into parts of
+``[l, 2l]``; Lemma 3 (1) wants, at every corner, every two points of its two
+sides (the corner excluded) at least ``l`` apart where they see each other.
+Consecutive corners are coupled through the points of the side they share
+only.
 
-Both readings enumerate the points of ``S`` from ``c`` to ``c + 1`` depth
-first on a grid of positions (nodes for the search, cells for the proof);
-every point of ``S`` removes the positions of ``A`` and of ``B`` closer than
-``l`` to it (:func:`_cross`), and a prefix is dropped as soon as ``A`` or ``B``
-has no split left (:func:`_reaches`: a path of parts in ``[l, 2l]`` through
-the positions left, from its corner to its far end, or past ``K l`` for a long
-side, where every point is ``l`` from the whole of ``S``).  What a prefix
-leaves depends only on its last point and the positions left, so a failed
-``(last, left on A, left on B)`` is not tried again: the work is polynomial in
-the grid, and bounded by :data:`PAIR_STEPS`.
+Both readings enumerate the points of the shared sides ``T_1``, then
+``T_2``, ..., depth first on a grid of positions (nodes for the search, cells
+for the proof).  A point of ``T_k`` removes the positions of ``T_(k+1)``
+closer than ``l`` to it at corner ``k`` (and, for ``T_1``, those of ``T_0`` at
+corner 0: :func:`_cross`); the points of ``T_(k+1)`` are then enumerated
+through the positions left.  A prefix is dropped as soon as a side still to
+come has no split left (:func:`_useful`: a path of parts in ``[l, 2l]``
+through the positions left, from its corner to its far end, or past ``K l``
+for a long side, where every point is ``l`` from the whole other side).
+What a prefix leaves to its continuations depends only on the side being
+enumerated, its last point and the positions left on the sides still to come,
+and those only through the positions on some split (the *useful* ones): a
+failed state is not tried again, and prefixes that remove only positions no
+split uses lead to the same state.  The work is bounded by
+:data:`PAIR_STEPS`.
 
-* :func:`place_pair` (a search) puts the points on grid nodes (multiples of
+* :func:`place_chain` (a search) puts the points on grid nodes (multiples of
   the step from each end of each side) and checks every pair exactly: what
   it returns is a placement, checked pair by pair.
-* :func:`pair_unplaceable` (a proof) lets positions be the grid *cells* and
+* :func:`chain_unplaceable` (a proof) lets positions be the grid *cells* and
   each far end; a part or a distance is allowed when *some* points of the
   two cells allow it, with the tolerances of the checks widened (parts from
   ``(1 - 2 REL_TOL) l`` to ``2 (1 + 2 REL_TOL) l``, distances from
@@ -32,9 +39,9 @@ the grid, and bounded by :data:`PAIR_STEPS`.
   clipped to the range a first or last point can have (:func:`_side`).
   Every placement the checks accept maps each point to a position holding
   it and is then an enumerated prefix that is never dropped; when every
-  prefix is dropped, no Step 2 meets Lemma 3 (1) at the two corners
-  together (docs/proofs.md, "Sharp corners").  With no second corner the
-  same proof decides one corner on finer cells than
+  prefix is dropped, no Step 2 meets Lemma 3 (1) at the corners together
+  (docs/proofs.md, "Sharp corners").  With no second corner (``theta_1``
+  None) the same proof decides one corner on finer cells than
   :func:`._corner.corner_unplaceable`.
 """
 
@@ -45,10 +52,11 @@ import numpy as np
 from ..tolerance import REL_TOL
 from ._corner import CORNER_GRID, CORNER_REFINEMENTS, corner_reach
 
-#: Tests of :func:`_reaches` one decision may take (per grid): a bound on the
-#: work, not a tolerance; past it the pair is left undecided.
+#: Distinct sets of positions left that one decision may reduce to their useful
+#: part (:func:`_useful`, per grid): a bound on the work, not a tolerance; past
+#: it the corners are left undecided.
 PAIR_STEPS = 20000
-#: Halvings of the grid step the proof tries (:func:`pair_unplaceable`, down to
+#: Halvings of the grid step the proof tries (:func:`chain_unplaceable`, down to
 #: ``l / (CORNER_GRID 2^PAIR_REFINEMENTS)`` = l/256): a bound on the work.  Finer
 #: than the search's (:data:`._corner.CORNER_REFINEMENTS`): where the last
 #: placements vanish at a part of exactly ``2l``, cells of l/64 still hold a path.
@@ -59,50 +67,53 @@ class _Undecided(Exception):
     """The enumeration ran out of :data:`PAIR_STEPS`."""
 
 
-def place_pair(thetas, lengths, l):
-    """Points of ``A``, ``S`` and ``B`` keeping both corners ``l`` apart, or None if none is found.
+def place_chain(thetas, lengths, l):
+    """Points of ``T_0 .. T_m`` keeping every corner's two sides ``l`` apart, or None if none is found.
 
-    ``thetas`` are ``(theta_1, theta_2)`` in radians, ``lengths`` are
-    ``(A, L, B)``.  Returns ``(a, s, b)``: ``a`` the points of ``A`` by
-    distance from ``c``, ``s`` those of ``S`` by distance from ``c``, ``b``
-    those of ``B`` by distance from ``c + 1``, each up to its far end, a long
-    ``A`` or ``B`` stopping at a point past ``K l`` at least ``l`` before it.
-    On each grid (``l / CORNER_GRID``, then halved up to
+    ``thetas`` are the ``m >= 2`` corners' angles in radians, ``lengths`` the
+    ``m + 1`` sides' (``theta_1`` None: corner 0 alone, ``T_2`` ignored).
+    Returns one array per side: ``T_0``'s points by distance from corner 0,
+    each shared side's by distance from its first corner, ``T_m``'s by
+    distance from corner ``m - 1``, each up to its far end, a long ``T_0`` or
+    ``T_m`` stopping at a point past ``K l`` at least ``l`` before it.  On
+    each grid (``l / CORNER_GRID``, then halved up to
     :data:`._corner.CORNER_REFINEMENTS` times) the search runs, then, if it
     found nothing, the proof with every pair checked: None once it refutes.
     """
     if not _coupled(thetas, lengths, l):
         return None
+    inf = (math.inf,) * (2 * len(thetas))
     for level in range(CORNER_REFINEMENTS + 1):
         try:
-            found = _Pair(thetas, lengths, l, level, cells=False, radii=(math.inf,) * 4).search()
-            if found is not None or _Pair(thetas, lengths, l, level, cells=True, radii=(math.inf,) * 4).search() is None:
+            found = _Chain(thetas, lengths, l, level, cells=False, radii=inf).search()
+            if found is not None or _Chain(thetas, lengths, l, level, cells=True, radii=inf).search() is None:
                 return found
         except _Undecided:
             return None
     return None
 
 
-def pair_unplaceable(thetas, lengths, l, radii):
-    """True when no Step 2 keeps both corners ``l`` apart (Lemma 3 (1)): proven on a grid of cells.
+def chain_unplaceable(thetas, lengths, l, radii):
+    """True when no Step 2 keeps every corner's two sides ``l`` apart (Lemma 3 (1)): proven on a grid of cells.
 
-    ``thetas`` and ``lengths`` as for :func:`place_pair`; ``theta_2`` None
-    decides corner ``c`` alone (``B`` ignored).  ``radii`` are ``(A, S from
-    c, B, S from c + 1)``: the distances from each corner within which the
-    points of its two sides see each other (the caller proves it); pairs
-    beyond are not checked.  Cells of ``l / CORNER_GRID`` down to
-    ``l / (CORNER_GRID 2^PAIR_REFINEMENTS)``; after each grid of cells that
-    refuted nothing, the search on its nodes (the finest of the search's), and False when it finds a
-    placement (then no proof exists).  False means only that no grid refuted
-    every prefix within :data:`PAIR_STEPS`.
+    ``thetas`` and ``lengths`` as for :func:`place_chain`.  ``radii`` are two
+    per corner, ``(T_j, T_(j+1))`` for corner ``j``: the distances from it
+    within which the points of its two sides see each other (the caller
+    proves it); pairs beyond are not checked.  Cells of ``l / CORNER_GRID``
+    down to ``l / (CORNER_GRID 2^PAIR_REFINEMENTS)``; after each grid of cells
+    that refuted nothing, the search on its nodes (the finest of the
+    search's), and False when it finds a placement (then no proof exists).
+    False means only that no grid refuted every prefix within
+    :data:`PAIR_STEPS`.
     """
     if not _coupled(thetas, lengths, l):
         return False
+    inf = (math.inf,) * (2 * len(thetas))
     for level in range(PAIR_REFINEMENTS + 1):
         try:
-            if _Pair(thetas, lengths, l, level, cells=True, radii=radii).search() is None:
+            if _Chain(thetas, lengths, l, level, cells=True, radii=radii).search() is None:
                 return True
-            if level <= CORNER_REFINEMENTS and _Pair(thetas, lengths, l, level, cells=False, radii=(math.inf,) * 4).search():
+            if level <= CORNER_REFINEMENTS and _Chain(thetas, lengths, l, level, cells=False, radii=inf).search():
                 return False
         except _Undecided:
             return False
@@ -110,15 +121,21 @@ def pair_unplaceable(thetas, lengths, l, radii):
 
 
 def _coupled(thetas, lengths, l):
-    """Whether the shared side is short enough for the two corners to read the same points of it.
+    """Whether every shared side is short enough for its two corners to read the same points of it.
 
-    Each corner's placement reads ``S`` only up to its first point past
+    Each corner's placement reads a side only up to its first point past
     ``K l`` (at most ``K l + 2l``; past ``K l`` a point is ``l`` from the
-    whole other side), so with ``L > K_1 l + K_2 l + 4l`` no point of ``S``
-    matters to both: not this module's case (and its grid would grow with
-    ``L``).  One corner alone is always decided here (``S`` cut like ``A``).
+    whole other side), so with ``T_k`` longer than ``K_(k-1) l + K_k l + 4l``
+    no point of it matters to both: not this module's case (and its grid
+    would grow with it).  One corner alone is always decided here (``T_1``
+    cut like ``T_0``).
     """
-    return thetas[1] is None or lengths[1] <= corner_reach(thetas[0], l) + corner_reach(thetas[1], l) + 4.0 * l
+    return thetas[1] is None or all(shared(thetas[k - 1 : k + 1], lengths[k], l) for k in range(1, len(thetas)))
+
+
+def shared(thetas, length, l):
+    """Whether a side of ``length`` between corners of ``thetas`` couples them: at most ``K_1 l + K_2 l + 4l`` long (:func:`_coupled`)."""
+    return length <= corner_reach(thetas[0], l) + corner_reach(thetas[1], l) + 4.0 * l
 
 
 def _side(length, reach, l, step, cells, tol):
@@ -213,61 +230,108 @@ def _reaches(parts, left, ends, path=False):
     return found[::-1]
 
 
-class _Pair:
+def _useful(parts, left, ends):
+    """The positions of ``left`` on some path of ``parts`` from position 0 to one of ``ends``, or None if there is none.
+
+    Every split through ``left`` runs through these only, so they stand for
+    ``left`` in every later test: a canonical form of the positions left.
+    """
+    start = np.zeros(len(left), dtype=bool)
+    start[0] = True
+    ahead = _spread(parts, left, start)
+    if not (ahead & ends).any():
+        return None
+    return ahead & _spread(parts.T, ahead, ends & ahead)
+
+
+def _spread(parts, left, seen):
+    """``seen`` and every position of ``left`` reached from it along ``parts``."""
+    fresh = seen
+    while fresh.any():
+        fresh = parts[fresh].any(axis=0) & left & ~seen
+        seen = seen | fresh
+    return seen
+
+
+class _Chain:
     """The enumeration of the module docstring on one grid (``l / (CORNER_GRID 2^level)``), nodes or cells."""
 
     def __init__(self, thetas, lengths, l, level, cells, radii):
         step = l / (CORNER_GRID * 2**level)
         tol = 2.0 * REL_TOL if cells else REL_TOL / 4.0
-        (a, s, b), alone = lengths, thetas[1] is None
-        self.a = _side(a, corner_reach(thetas[0], l), l, step, cells, tol)
-        self.b = (np.zeros(1), np.zeros(1), np.ones(1, dtype=bool), np.zeros((1, 1), dtype=bool))
-        if not alone:
-            self.b = _side(b, corner_reach(thetas[1], l), l, step, cells, tol)
-        # alone, S is cut past K l like A; a pair reads all of S (short enough: _coupled)
-        lo, hi, self.s_ends, s_parts = _side(s, corner_reach(thetas[0], l) if alone else math.inf, l, step, cells, tol)
-        self.s = lo, hi
-        self.parts = [self.a[3], s_parts, self.b[3]]
-        self.cross_a = _cross(thetas[0], self.s, self.a[:2], l, tol, (radii[1], radii[0]))
-        self.cross_b = np.ones((len(lo), 1), dtype=bool) if alone else _cross(thetas[1], (s - hi, s - lo), self.b[:2], l, tol, (radii[3], radii[2]))
-        self.cross_a[0] = self.cross_b[-1] = True  # a corner is no point of the other side
-        self.cross_a[:, 0] = self.cross_b[:, 0] = True
+        m, alone = len(thetas), thetas[1] is None
+        self.m = m
+        # sides: (lo, hi, ends, parts); T_0 and T_m by distance from their sharp corner, the others from their first
+        sides = [_side(lengths[0], corner_reach(thetas[0], l), l, step, cells, tol)]
+        for k in range(1, m):  # alone, T_1 is cut past K l like T_0; shared sides are read whole (_coupled)
+            sides.append(_side(lengths[k], corner_reach(thetas[0], l) if alone else math.inf, l, step, cells, tol))
+        dummy = (np.zeros(1), np.zeros(1), np.ones(1, dtype=bool), np.zeros((1, 1), dtype=bool))
+        sides.append(dummy if alone else _side(lengths[m], corner_reach(thetas[m - 1], l), l, step, cells, tol))
+        self.sides = sides
+        # back: T_1's points against T_0's at corner 0; ahead[k]: T_k's against T_(k+1)'s at corner k
+        self.back = _cross(thetas[0], sides[1][:2], sides[0][:2], l, tol, (radii[1], radii[0]))
+        self.ahead = [None]
+        for k in range(1, m):
+            lo, hi = sides[k][:2]
+            if alone:
+                cross = np.ones((len(lo), 1), dtype=bool)
+            else:
+                cross = _cross(thetas[k], (lengths[k] - hi, lengths[k] - lo), sides[k + 1][:2], l, tol, (radii[2 * k], radii[2 * k + 1]))
+            cross[-1] = cross[:, 0] = True  # a corner is no point of the other side
+            self.ahead.append(cross)
+        self.back[0] = self.back[:, 0] = True
         self.dead, self.steps, self.tested = set(), 0, {}
 
     def search(self):
-        """``(a, s, b)`` as :func:`place_pair` returns them (for cells: their lower ends), or None."""
-        left_a, left_b = self.cross_a[0].copy(), self.cross_b[0].copy()
-        found = self._extend([0], left_a, left_b)
+        """One array of points per side, as :func:`place_chain` returns them (for cells: their lower ends), or None."""
+        left = [np.ones(len(side[0]), dtype=bool) for side in self.sides]
+        left = next(self._after(1, [0], left))
+        found = None if left is None else self._extend(1, [[0]], left)
         if found is None:
             return None
-        path, left_a, left_b = found
-        a = _reaches(self.parts[0], left_a, self.a[2], path=True)
-        b = _reaches(self.parts[2], left_b, self.b[2], path=True)
-        return self.a[0][a[1:]], self.s[0][path[1:]], self.b[0][b[1:]]
+        paths, left = found
+        first, last = (_reaches(self.sides[k][3], left[k], self.sides[k][2], path=True) for k in (0, self.m))
+        return tuple(side[0][path[1:]] for side, path in zip(self.sides, [first, *paths, last]))
 
-    def _extend(self, path, left_a, left_b):
-        """A continuation of the points ``path`` of ``S`` to its far end with ``A`` and ``B`` still split, or None."""
-        i = path[-1]
-        if self.s_ends[i]:
-            return path, left_a, left_b
-        key = (i, left_a.tobytes(), left_b.tobytes())
+    def _extend(self, k, paths, left):
+        """A continuation of the points ``paths`` of ``T_1 .. T_k`` to ``T_(m-1)``'s far end, every side to come still split, or None."""
+        i = paths[-1][-1]
+        lo, _, ends, parts = self.sides[k]
+        if ends[i]:
+            if k == self.m - 1:
+                return paths, left
+            following = next(self._after(k + 1, [0], left))
+            return None if following is None else self._extend(k + 1, paths + [[0]], following)
+        key = (k, i, *(left[j].tobytes() for j in ((0, 2) if k == 1 else (k, k + 1))))
         if key in self.dead:
             return None
-        for j in np.flatnonzero(self.parts[1][i]):
-            next_a, next_b = left_a & self.cross_a[j], left_b & self.cross_b[j]
-            if self._splits(next_a, next_b):
-                found = self._extend(path + [int(j)], next_a, next_b)
+        steps = np.flatnonzero(parts[i] & left[k])
+        for j, following in zip(steps.tolist(), self._after(k, steps, left)):
+            if following is not None:
+                found = self._extend(k, paths[:-1] + [paths[-1] + [j]], following)
                 if found is not None:
                     return found
         self.dead.add(key)
         return None
 
-    def _splits(self, left_a, left_b):
-        """Whether ``A`` and ``B`` can still be split through the positions left (cached)."""
-        key = (left_a.tobytes(), left_b.tobytes())
+    def _after(self, k, steps, left):
+        """For each position ``j`` of ``steps`` on ``T_k``: ``left`` with the positions closer than ``l`` to it removed
+        and reduced to the useful ones, or None (a generator, one ``j`` at a time)."""
+        ahead = left[k + 1][None, :] & self.ahead[k][steps]
+        back = left[0][None, :] & self.back[steps] if k == 1 else None
+        for row in range(len(steps)):
+            following = list(left)
+            following[k + 1] = self._useful(k + 1, ahead[row])
+            if following[k + 1] is not None and back is not None:
+                following[0] = self._useful(0, back[row])
+            yield None if following[k + 1] is None or following[0] is None else following
+
+    def _useful(self, side, left):
+        """:func:`_useful` of one side's positions left (cached; each new set counts towards :data:`PAIR_STEPS`)."""
+        key = (side, left.tobytes())
         if key not in self.tested:
             self.steps += 1
             if self.steps > PAIR_STEPS:
                 raise _Undecided
-            self.tested[key] = _reaches(self.parts[0], left_a, self.a[2]) and _reaches(self.parts[2], left_b, self.b[2])
+            self.tested[key] = _useful(self.sides[side][3], left, self.sides[side][2])
         return self.tested[key]

@@ -14,7 +14,6 @@ origin is validated as precisely as the same polygon near it.  Validation is
 O(n log n) in the number of vertices.
 """
 
-import functools
 import math
 import numbers
 from dataclasses import dataclass, replace
@@ -541,8 +540,11 @@ def side_positions(lengths, angles, l, spacing=2.0):
       paper's Step 2 (numerators ``0 .. k - 1``, denominator ``k``), bit for
       bit.
     * Sides too short for all their staggered points are placed by
-      :func:`_separate_short_sides`.  Every part is in ``[l, 2l]`` in every
-      case (docs/proofs.md, "Sharp corners").
+      :func:`_separate_short_sides`; then each sharp corner still closer
+      than ``l`` (also one whose sides fit their staggers but end, shorter
+      than the proven length, near a staggered point of the other side) is
+      decided by :func:`_place_corners_on_a_grid`.  Every part is in
+      ``[l, 2l]`` in every case (docs/proofs.md, "Sharp corners").
     """
     lengths = np.asarray(lengths, dtype=float)
     n = len(lengths)
@@ -556,6 +558,7 @@ def side_positions(lengths, angles, l, spacing=2.0):
         sides.append(_place(length, start, end, l, spacing))
     if short:
         _separate_short_sides(sides, short, corners, lengths, angles, l, spacing)
+    if short or not all(at_least(_corner_gap(sides, lengths, angles, l, c), l) for c in range(n)):
         _place_corners_on_a_grid(sides, lengths, angles, l, spacing)
     return sides
 
@@ -702,10 +705,11 @@ def _place_corners_on_a_grid(sides, lengths, angles, l, spacing):
     both free; the leaving side kept; the arriving one kept; or, for a side
     shared with the next (previous) sharp corner, that corner placed first
     with both its sides free and this one then with the shared side kept,
-    or the other way round; last, with each neighbouring sharp corner
-    jointly (:func:`_grid_pair`).  The first trial after which every corner
-    it touched, and their neighbours, have a :func:`_corner_gap` of at least
-    ``l`` is taken, in place.  A corner that
+    or the other way round; then with each neighbouring sharp corner
+    jointly; last, with the whole run of three or more sharp corners it
+    belongs to (:func:`_run`), jointly (:func:`_grid_chain`).  The first
+    trial after which every corner it touched, and their neighbours, have a
+    :func:`_corner_gap` of at least ``l`` is taken, in place.  A corner that
     :func:`._corner.corner_unplaceable` proves impossible even with every
     pair checked ends the search: the ring cannot be separated, and
     :func:`check_boundary_separation` refuses it, naming the first such
@@ -723,43 +727,67 @@ def _place_corners_on_a_grid(sides, lengths, angles, l, spacing):
             [(c, free)], [(c, leaving)], [(c, arriving)],
             [(after, free), (c, leaving)], [(before, free), (c, arriving)],
             [(c, free), (after, arriving)], [(c, free), (before, leaving)],
-            [(c, PAIR)], [(before, PAIR)],
+            [(c, PAIR)], [(before, PAIR)], [(c, CHAIN)],
         )
         for steps in trials:
             if not all(_stagger_count(angles[corner]) for corner, _ in steps):
                 continue
-            trial = list(sides)
+            trial, touched = list(sides), set()
             for corner, keep in steps:
-                place = _grid_pair if keep is PAIR else functools.partial(_grid_sides, keep=keep)
-                trial = trial and place(trial, lengths, angles, l, spacing, corner)
-            touched = {(corner + k) % n for corner, keep in steps for k in (-1, 0, 1, 2)[: 3 + (keep is PAIR)]}
+                if keep in (PAIR, CHAIN):
+                    run = [corner, (corner + 1) % n] if keep is PAIR else _run(lengths, angles, l, corner)
+                    # a run of two is the pair's trial
+                    trial = trial and (keep is PAIR or len(run) > 2) and _grid_chain(trial, lengths, angles, l, spacing, run)
+                else:
+                    run = [corner]
+                    trial = trial and _grid_sides(trial, lengths, angles, l, spacing, corner, keep)
+                touched |= {(k + d) % n for k in run for d in (-1, 0, 1)}
             if trial and all(at_least(_corner_gap(trial, lengths, angles, l, k), l) for k in touched):
                 sides[:] = trial
                 break
 
 
-#: The trial of :func:`_place_corners_on_a_grid` placing a corner and the next one jointly.
-PAIR = "pair"
+#: The trials of :func:`_place_corners_on_a_grid` placing a corner and the next one jointly, and its whole run.
+PAIR, CHAIN = "pair", "chain"
 
 
-def _grid_pair(sides, lengths, angles, l, spacing, c):
-    """``sides`` with the sides of corners ``c`` and ``c + 1`` placed by :func:`._coupled.place_pair`, or None.
+def _run(lengths, angles, l, c):
+    """The run of sharp corners through the sharp corner ``c``: consecutive, each two sharing a side that couples them.
 
-    None too when either corner is not sharp.
+    Coupled as :func:`._coupled.shared` says (no longer than ``K_1 l +
+    K_2 l + 4l``); in ring order, at most all corners but one.
     """
     n = len(lengths)
-    after = (c + 1) % n
-    if not (_stagger_count(angles[after]) and _stagger_count(angles[c])):
+
+    def joined(k):  # corners k and k + 1 (sharp), sharing side k
+        return _coupled.shared((math.radians(angles[k]), math.radians(angles[(k + 1) % n])), lengths[k], l)
+
+    run = [c]
+    while len(run) < n - 1 and _stagger_count(angles[(run[-1] + 1) % n]) and joined(run[-1]):
+        run.append((run[-1] + 1) % n)
+    while len(run) < n - 1 and _stagger_count(angles[run[0] - 1]) and joined((run[0] - 1) % n):
+        run.insert(0, (run[0] - 1) % n)
+    return run
+
+
+def _grid_chain(sides, lengths, angles, l, spacing, run):
+    """``sides`` with the sides of the corners ``run`` (consecutive) placed by :func:`._coupled.place_chain`, or None.
+
+    None too when a corner is not sharp.  The shared sides take the points
+    found; the first and last side are completed by :func:`_grid_side`.
+    """
+    if not all(_stagger_count(angles[c]) for c in run):
         return None
-    thetas, three = (math.radians(angles[c]), math.radians(angles[after])), (lengths[c - 1], lengths[c], lengths[after])
-    found = _coupled.place_pair(thetas, three, l)
+    n, m = len(lengths), len(run)
+    edges = [(run[0] - 1 + k) % n for k in range(m + 1)]  # T_0 .. T_m
+    found = _coupled.place_chain(tuple(math.radians(angles[c]) for c in run), tuple(lengths[i] for i in edges), l)
     if found is None:
         return None
-    a, s, b = found
     trial = list(sides)
-    trial[c] = np.concatenate([[0.0], s[:-1]]), lengths[c]
-    trial[c - 1] = _grid_side(lengths[c - 1], a, _from_corner(sides, lengths, c, c - 1), False, l, spacing)
-    trial[after] = _grid_side(lengths[after], b, _from_corner(sides, lengths, after, after), True, l, spacing)
+    for i, points in zip(edges[1:-1], found[1:-1]):
+        trial[i] = np.concatenate([[0.0], points[:-1]]), lengths[i]
+    for i, points, c, leaving in ((edges[0], found[0], run[0], False), (edges[-1], found[-1], run[-1], True)):
+        trial[i] = _grid_side(lengths[i], points, _from_corner(sides, lengths, c, i), leaving, l, spacing)
     return trial
 
 
@@ -865,7 +893,7 @@ def check_boundary_separation(poly, boundary, l):
     that no Step 2 can meet Lemma 3 (1) at a corner (its first points,
     :func:`_unseparable_corner`; or all its points, decided on a grid,
     :func:`_unplaceable_corner` at the corners of the offending pairs, or
-    :func:`_unplaceable_pair` at two of them sharing a side), or neither (a
+    :func:`_unplaceable_chain` at two or more of them in a row), or neither (a
     corner or neck this method does not handle).
     """
     pts = boundary.points
@@ -886,7 +914,7 @@ def check_boundary_separation(poly, boundary, l):
         _unmeshable_corner(poly, l)
         or _unseparable_corner(poly, l)
         or _unplaceable_corner(poly, l, _corners_of(poly, boundary, pairs))
-        or _unplaceable_pair(poly, l, _corners_of(poly, boundary, pairs))
+        or _unplaceable_chain(poly, l, _corners_of(poly, boundary, pairs))
         or _separation_error(poly, boundary, l, int(i), int(j))
     )
 
@@ -995,13 +1023,33 @@ def _sees_within(grown, ring, i, leaving, arriving):
     return grown.covers(shapely.Polygon([v, *far]))
 
 
+#: Bisection steps of :func:`_visible_radii` between the last halving of the sides that is seen and the one
+#: before: a bound on the work (the radii are then within ``2^-VISIBLE_BISECTIONS`` of the largest seen at that
+#: ratio), not a tolerance.
+VISIBLE_BISECTIONS = 20
+
+
 def _visible_radii(grown, ring, i, sides):
-    """``sides`` halved until :func:`_sees_within` holds for them (at most 64 times; then nothing is seen: ``(0, 0)``)."""
+    """``sides`` scaled down until :func:`_sees_within` holds for them, or ``(0, 0)`` (nothing seen).
+
+    Halved first (at most 64 times), then bisected between the first
+    halving seen and the one before (:data:`VISIBLE_BISECTIONS` steps): the
+    triangles of the corner and ``t sides`` grow with ``t``, so every ``t``
+    below one seen is seen too.  Never below the halving alone.
+    """
     for k in range(64):
-        radii = tuple(x / 2.0**k for x in sides)
-        if _sees_within(grown, ring, i, *radii):
-            return radii
-    return 0.0, 0.0
+        if _sees_within(grown, ring, i, *(x / 2.0**k for x in sides)):
+            break
+    else:
+        return 0.0, 0.0
+    low, high = 0.5**k, 2.0 * 0.5**k
+    for _ in range(VISIBLE_BISECTIONS * bool(k)):
+        middle = (low + high) / 2.0
+        if _sees_within(grown, ring, i, *(x * middle for x in sides)):
+            low = middle
+        else:
+            high = middle
+    return tuple(x * low for x in sides)
 
 
 def _corners_of(poly, boundary, pairs):
@@ -1026,7 +1074,7 @@ def _unplaceable_corner(poly, l, corners):
 
     Only corners sharper than :data:`SHARP_CORNER` are decided
     (:func:`._corner.corner_unplaceable`, then on finer cells
-    :func:`._coupled.pair_unplaceable` with no second corner): distances are
+    :func:`._coupled.chain_unplaceable` with no second corner): distances are
     checked within the largest of the sides' lengths halved until the triangle they span with
     the corner lies in P (grown by ``REL_TOL l``), where every two points of
     the two sides see each other (:func:`_sees_within`).  When no split of
@@ -1045,7 +1093,7 @@ def _unplaceable_corner(poly, l, corners):
             continue
         radii = _visible_radii(grown, ring, i, sides)
         theta = math.radians(angle)
-        if not _corner.corner_unplaceable(theta, sides, lp, radii) and not _coupled.pair_unplaceable(
+        if not _corner.corner_unplaceable(theta, sides, lp, radii) and not _coupled.chain_unplaceable(
             (theta, None), (sides[1], sides[0], 0.0), lp, (radii[1], radii[0], 0.0, 0.0)
         ):
             continue
@@ -1060,38 +1108,48 @@ def _unplaceable_corner(poly, l, corners):
     return None
 
 
-def _unplaceable_pair(poly, l, corners):
-    """The error for the first two sharp corners sharing a side, one of ``corners``, that no Step 2 separates together, or None.
+def _unplaceable_chain(poly, l, corners):
+    """The error for the first sharp corners in a row, one of ``corners``, that no Step 2 separates together, or None.
 
-    Corners ``i`` and ``i + 1`` both sharper than :data:`SHARP_CORNER`
-    (either in ``corners``) are decided by :func:`._coupled.pair_unplaceable`,
-    distances checked within each corner's :func:`_visible_radii` as in
-    :func:`_unplaceable_corner`.  When no split of the three sides into
-    parts of ``[l, 2l]`` keeps both corners' sides ``l`` apart there, no
-    boundary resampling meets Lemma 3 (1); it is not a proof that no mesh
-    exists (docs/proofs.md, "Sharp corners").
+    First each two consecutive corners ``i``, ``i + 1`` both sharper than
+    :data:`SHARP_CORNER` (either in ``corners``), then each run of three or
+    more through one of ``corners`` (:func:`_run`), are decided by
+    :func:`._coupled.chain_unplaceable`, distances checked within each
+    corner's :func:`_visible_radii` as in :func:`_unplaceable_corner`.  When
+    no split of their sides into parts of ``[l, 2l]`` keeps every corner's
+    two sides ``l`` apart there, no boundary resampling meets Lemma 3 (1);
+    it is not a proof that no mesh exists (docs/proofs.md, "Sharp corners").
     """
     lp = poly.local_length(l)
     grown = poly.region.buffer(REL_TOL * lp)
-    for r, i in sorted({(r, (j - k) % len(poly.rings[r].local)) for r, j in corners for k in (0, 1)}):
+    pairs = sorted({(r, (j - k) % len(poly.rings[r].local)) for r, j in corners for k in (0, 1)})
+    runs = [(r, [i, (i + 1) % len(poly.rings[r].local)]) for r, i in pairs]
+    for r, j in corners:
+        ring = poly.rings[r]
+        angles = [ring.inner_angle(i) for i in range(len(ring.local))]
+        if _stagger_count(angles[j]):
+            run = _run(ring.local_edge_lengths, angles, lp, j)
+            if len(run) > 2 and (r, run) not in runs:
+                runs.append((r, run))
+    for r, run in runs:
         ring = poly.rings[r]
         n, lengths = len(ring.local), ring.local_edge_lengths
-        after = (i + 1) % n
-        angles = (ring.inner_angle(i), ring.inner_angle(after))
+        angles = [ring.inner_angle(c) for c in run]
         if not max(angles) < SHARP_CORNER:
             continue
-        three = (lengths[i - 1], lengths[i], lengths[after])
-        radii = _visible_radii(grown, ring, i, three[1::-1])[::-1] + _visible_radii(grown, ring, after, three[:0:-1])
-        if not _coupled.pair_unplaceable(tuple(math.radians(a) for a in angles), three, lp, radii):
+        edges = [lengths[(run[0] - 1 + k) % n] for k in range(len(run) + 1)]
+        radii = sum((_visible_radii(grown, ring, c, (edges[k + 1], edges[k]))[::-1] for k, c in enumerate(run)), ())
+        if not _coupled.chain_unplaceable(tuple(math.radians(a) for a in angles), tuple(edges), lp, radii):
             continue
-        sides = ", ".join(_num(x / poly.frame.scale) for x in three)
+        names = [f"{ring.vertex_name(c)} ({a:.6g} degrees)" for c, a in zip(run, angles)]
+        sides = ", ".join(_num(x / poly.frame.scale) for x in edges)
         return InvalidPolygonError(
-            f"the corners at {ring.vertex_name(i)} ({angles[0]:.6g} degrees) and {ring.vertex_name(after)} "
-            f"({angles[1]:.6g} degrees) cannot meet Lemma 3 (1) together for l = {_num(l)}: no split of their sides of "
-            f"{sides} (the middle one shared) into parts of [l, 2l] keeps every two points of different sides l apart "
-            "at both corners (decided on a grid of cells), so no Step 2 separates them (a limit of the paper's method, "
-            "not a proof that no mesh exists; docs/proofs.md, 'Sharp corners'); use a smaller l, longer sides or wider "
-            "corners"
+            f"the corners at {', '.join(names[:-1])} and {names[-1]} cannot meet Lemma 3 (1) together for l = {_num(l)}: "
+            f"no split of their sides of {sides} (the middle {'ones' if len(run) > 2 else 'one'} shared) into parts of "
+            f"[l, 2l] keeps every two points of different sides l apart at {'both corners' if len(run) == 2 else 'every corner'} "
+            "(decided on a grid of cells), so "
+            "no Step 2 separates them (a limit of the paper's method, not a proof that no mesh exists; docs/proofs.md, "
+            "'Sharp corners'); use a smaller l, longer sides or wider corners"
         )
     return None
 

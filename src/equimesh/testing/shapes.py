@@ -122,6 +122,29 @@ def sharp_rhombus(angle, side):
     return np.array([[0.0, 0.0], [side, 0.0], [side * (1 + math.cos(t)), side * math.sin(t)], [side * math.cos(t), side * math.sin(t)]])
 
 
+def sharp_dart(angle, barbs, side):
+    """An arrowhead: a tip of ``angle`` degrees at the origin, sides ``side`` long, barbs of ``barbs`` degrees, a notch.
+
+    Counter-clockwise: the tip, the lower barb, the notch, the upper barb.
+    The notch is where the barbs' inner sides meet; it is reflex and lies
+    inside the triangle of the tip and the barbs whenever ``angle`` and both
+    ``barbs`` are below 60 (the triangle's base angles are then above 60).
+    With all three sharp, the sides between them are shared by two sharp
+    corners each: a run of three (docs/proofs.md, "Sharp corners").
+    """
+    h = math.radians(angle) / 2.0
+    lower, upper = side * np.array([math.cos(h), -math.sin(h)]), side * np.array([math.cos(h), math.sin(h)])
+
+    def inward(barb, towards, turn):  # the direction from a barb, turned from the side to the tip
+        d = (towards - barb) / np.linalg.norm(towards - barb)
+        c, s = math.cos(turn), math.sin(turn)
+        return np.array([c * d[0] - s * d[1], s * d[0] + c * d[1]])
+
+    d1, d2 = inward(lower, 0.0 * lower, -math.radians(barbs[0])), inward(upper, 0.0 * upper, math.radians(barbs[1]))
+    t = np.linalg.solve(np.column_stack([d1, -d2]), upper - lower)[0]
+    return np.array([[0.0, 0.0], lower, lower + t * d1, upper])
+
+
 def sharp_corner_shape(kind, angle, reach, u, v, w):
     """``(outer, holes)``: a corner of ``angle`` degrees with sides between l and ``reach`` (``l = 1``).
 
