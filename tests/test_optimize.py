@@ -74,8 +74,8 @@ def test_paper_objective_and_barrier_jacobians_match_finite_differences():
     )
 
 
-def test_sliding_nodes_jacobians_match_finite_differences():
-    """Item 52: boundary nodes sliding along the domain's outline by arc position; the chain rule through ``d uv / d s``."""
+def sliding_problem():
+    """A stand-in dome's problem with its boundary nodes sliding along the unit square (four corners fixed), and the plain one."""
     mesh, plain = problem_for(dome(rise=15.0), 12.0, 3)
     square = np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]])
     arc = loop_arc(square)
@@ -84,6 +84,12 @@ def test_sliding_nodes_jacobians_match_finite_differences():
     slide, corners = between_corners(nodes, square, arc, (1.0 - t) * arc[seg] + t * arc[seg + 1], arc[:-1])
     assert len(corners) == 4 and len(slide.nodes) == mesh.n_boundary - 4
     problem = UVProblem(plain.surface, plain.uv, mesh.edges, mesh.edge_groups, 12.0, plain.free, (slide,))
+    return mesh, plain, problem, slide
+
+
+def test_sliding_nodes_jacobians_match_finite_differences():
+    """Item 52: boundary nodes sliding along the domain's outline by arc position; the chain rule through ``d uv / d s``."""
+    mesh, plain, problem, slide = sliding_problem()
     x = problem.x0
     assert len(x) == len(plain.x0) + len(slide.nodes)
     np.testing.assert_allclose(problem.uv_of(x), plain.uv, rtol=0, atol=1e-15)
@@ -209,13 +215,7 @@ def test_step_limit_is_a_trust_region_per_node(seed, radius):
     """``UVProblem.step_limit``: no node moves further than ``radius`` on the surface (to first order, measured
     by ``|X_u| du`` and ``|X_v| dv`` at its start), a limited node keeps its (u, v) direction, a node within
     the radius is untouched; sliding nodes (one arc variable each) are limited the same way."""
-    mesh, plain = problem_for(dome(rise=15.0), 12.0, 3)
-    square = np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]])
-    arc = loop_arc(square)
-    nodes = np.arange(mesh.n_boundary)
-    seg, t, _ = _nearest_segment(plain.uv[nodes], square, np.roll(square, -1, axis=0))
-    slide, _ = between_corners(nodes, square, arc, (1.0 - t) * arc[seg] + t * arc[seg + 1], arc[:-1])
-    problem = UVProblem(plain.surface, plain.uv, mesh.edges, mesh.edge_groups, 12.0, plain.free, (slide,))
+    _, _, problem, slide = sliding_problem()
     direction = np.random.default_rng(seed).standard_normal(len(problem.x0)) * 0.05
     step = problem.step_limit(radius)(direction)
     su, sv = optimize.derivatives(problem.surface, problem.uv)
