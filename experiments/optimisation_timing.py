@@ -12,12 +12,18 @@ run, start it once per checkout, side by side::
     PYTHONPATH=/path/to/old/src python experiments/optimisation_timing.py --length 0.52 &
     PYTHONPATH=src python experiments/optimisation_timing.py --length 0.52
 
+``--trace`` also prints one JSON line per solve of the optimisation (a
+round of ``"bounded"``, the paper's stage): its iterations, evaluations,
+final damping, and the share of all members within 0.5 % of l and in
+[l, 2l] where it ended (docs/decisions.md, "A trust region per node").
+
 Usage::
 
-    python experiments/optimisation_timing.py [--length 0.52] [--objective paper bounded]
+    python experiments/optimisation_timing.py [--length 0.52] [--objective paper bounded] [--trace]
 """
 
 import argparse
+import contextlib
 import json
 import sys
 from pathlib import Path
@@ -26,6 +32,7 @@ import numpy as np
 
 import equimesh
 from equimesh.surface import _solver
+from equimesh.surface import optimize
 from equimesh.surface.optimize import OBJECTIVES
 
 DOME = Path(__file__).resolve().parent / "surfaces" / "reference_dome.json"
@@ -52,13 +59,47 @@ def measure(length, objective):
     }
 
 
+@contextlib.contextmanager
+def traced(length):
+    """Print a JSON line after every solve of :func:`equimesh.surface.optimize.optimize_uv` while inside."""
+    every = {}
+    terms, solver = optimize.edge_length_terms, optimize.least_squares
+
+    def edge_length_terms(problem, edges):
+        lengths, jacobian = terms(problem, edges)
+        if len(edges) == len(problem.edges):  # the lengths of all members (the bounded objective asks for them)
+            every["lengths"] = lengths
+        return lengths, jacobian
+
+    def least_squares(*args, **kwargs):
+        solution = solver(*args, **kwargs)
+        every["solves"] = every.get("solves", 0) + 1
+        record = {"solve": every["solves"], "iterations": solution.iterations,
+                  "evaluations": solution.evaluations, "damping": solution.damping}
+        if "lengths" in every:
+            ratio = every["lengths"](solution.x) / length
+            record.update(within_band=float(np.mean(np.abs(ratio - 1.0) <= BAND)),
+                          inside=bool(np.all((ratio >= 1.0) & (ratio <= 2.0))))
+        print(json.dumps(record), flush=True)
+        return solution
+
+    optimize.edge_length_terms, optimize.least_squares = edge_length_terms, least_squares
+    try:
+        yield
+    finally:
+        optimize.edge_length_terms, optimize.least_squares = terms, solver
+
+
 def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--length", type=float, default=0.52, help="member length l (default 0.52: about 10^5 members)")
     p.add_argument("--objective", nargs="+", default=["paper"], choices=sorted(OBJECTIVES))
+    p.add_argument("--trace", action="store_true", help="also print a JSON line per solve (round or stage)")
     args = p.parse_args(argv)
     for objective in args.objective:
-        print(json.dumps(measure(args.length, objective)), flush=True)
+        with traced(args.length) if args.trace else contextlib.nullcontext():
+            record = measure(args.length, objective)
+        print(json.dumps(record), flush=True)
     return 0
 
 

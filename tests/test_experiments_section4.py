@@ -139,3 +139,23 @@ def test_optimisation_timing_prints_one_record_per_objective(load_experiment, ca
         assert r["members"] > 0 and 0.0 <= r["within_band"] <= 1.0
         assert "optimisation of inner nodes" in r["seconds"]
     assert records[1]["within_band"] >= records[0]["within_band"]
+
+
+def test_optimisation_timing_traces_every_solve(load_experiment, capsys):
+    """``--trace``: a line per solve before the record; the solves report where they ended, and the mesh
+    returned is where one of them ended in [l, 2l] (the best point kept)."""
+    timing = load_experiment("optimisation_timing")
+    assert timing.main(["--length", "10", "--objective", "bounded", "--trace"]) == 0
+    lines = [json.loads(line) for line in capsys.readouterr().out.splitlines()]
+    solves, record = lines[:-1], lines[-1]
+    assert [s["solve"] for s in solves] == list(range(1, len(solves) + 1)) and record["objective"] == "bounded"
+    assert record["jacobians"] == sum(s["iterations"] + 1 for s in solves)
+    assert record["within_band"] in {s["within_band"] for s in solves if s["inside"]}
+    assert optimize_is_restored(timing)
+
+
+def optimize_is_restored(timing):
+    """After a traced run the optimisation's functions are the library's again."""
+    from equimesh.surface import _solver, optimize
+
+    return optimize.least_squares is _solver.least_squares and timing.optimize.edge_length_terms.__module__ == optimize.__name__

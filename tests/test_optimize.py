@@ -74,8 +74,8 @@ def test_paper_objective_and_barrier_jacobians_match_finite_differences():
     )
 
 
-def test_sliding_nodes_jacobians_match_finite_differences():
-    """Item 52: boundary nodes sliding along the domain's outline by arc position; the chain rule through ``d uv / d s``."""
+def sliding_problem():
+    """A stand-in dome's problem with its boundary nodes sliding along the unit square (four corners fixed), and the plain one."""
     mesh, plain = problem_for(dome(rise=15.0), 12.0, 3)
     square = np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]])
     arc = loop_arc(square)
@@ -84,6 +84,12 @@ def test_sliding_nodes_jacobians_match_finite_differences():
     slide, corners = between_corners(nodes, square, arc, (1.0 - t) * arc[seg] + t * arc[seg + 1], arc[:-1])
     assert len(corners) == 4 and len(slide.nodes) == mesh.n_boundary - 4
     problem = UVProblem(plain.surface, plain.uv, mesh.edges, mesh.edge_groups, 12.0, plain.free, (slide,))
+    return mesh, plain, problem, slide
+
+
+def test_sliding_nodes_jacobians_match_finite_differences():
+    """Item 52: boundary nodes sliding along the domain's outline by arc position; the chain rule through ``d uv / d s``."""
+    mesh, plain, problem, slide = sliding_problem()
     x = problem.x0
     assert len(x) == len(plain.x0) + len(slide.nodes)
     np.testing.assert_allclose(problem.uv_of(x), plain.uv, rtol=0, atol=1e-15)
@@ -201,3 +207,37 @@ def test_no_free_nodes_is_a_no_op():
     uv = np.array([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]])
     opt = optimize_uv(dome(), uv, np.array([[0, 1], [1, 2], [0, 2]]), np.array([1, 1, 1]), 5.0, fixed=[0, 1, 2])
     assert np.array_equal(opt.uv, uv) and opt.cost_after == opt.cost_before and opt.nfev == 0
+
+
+@settings(max_examples=5, deadline=None)
+@given(seed=st.integers(0, 2**32 - 1), radius=st.floats(0.05, 3.0))
+def test_step_limit_is_a_trust_region_per_node(seed, radius):
+    """``UVProblem.step_limit``: no node moves further than ``radius`` on the surface (to first order, measured
+    by ``|X_u| du`` and ``|X_v| dv`` at its start), a limited node keeps its (u, v) direction, a node within
+    the radius is untouched; sliding nodes (one arc variable each) are limited the same way."""
+    _, _, problem, slide = sliding_problem()
+    direction = np.random.default_rng(seed).standard_normal(len(problem.x0)) * 0.05
+    step = problem.step_limit(radius)(direction)
+    su, sv = optimize.derivatives(problem.surface, problem.uv)
+    tangent = np.column_stack([np.linalg.norm(su, axis=1), np.linalg.norm(sv, axis=1)])
+
+    def moves(d):
+        """Per node: its (u, v) step (zero for a fixed node) and its move on the surface to first order."""
+        n = int(problem.variables.sum())
+        duv = np.zeros(problem.uv.size)
+        duv[problem.variables] = d[:n]
+        duv = duv.reshape(-1, 2)
+        move = np.linalg.norm(duv * tangent, axis=1)
+        move[slide.nodes] = np.abs(d[n:]) * tangent[slide.nodes].max(axis=1)
+        duv[slide.nodes, 0] = d[n:]
+        return duv, move
+
+    before, move_before = moves(direction)
+    after, move_after = moves(step)
+    assert np.all(move_after <= radius * (1 + 1e-12))
+    inside = move_before <= radius
+    assert np.array_equal(after[inside], before[inside])
+    assert np.any(~inside)  # the draw exercises the limit
+    ratio = move_after[~inside] / move_before[~inside]
+    np.testing.assert_allclose(after[~inside], before[~inside] * ratio[:, None], rtol=1e-12)
+    np.testing.assert_allclose(move_after[~inside], radius, rtol=1e-12)

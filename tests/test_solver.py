@@ -135,6 +135,21 @@ def test_a_failed_factorisation_is_damped_more(monkeypatch, failure):
     np.testing.assert_allclose(solution.x, np.linalg.lstsq(a.toarray(), b, rcond=None)[0], atol=1e-8)
 
 
+def test_a_limit_bounds_every_step_and_the_solve_still_converges():
+    """``limit`` (a trust region per variable group) is applied to every step tried: on a linear problem whose
+    minimum is far away, each accepted step stays within the limit, and the solve still ends at the minimum."""
+    a, b = scipy.sparse.csr_matrix(np.array([[2.0, 0.0], [1.0, 1.0], [0.0, 3.0]])), np.array([10.0, 20.0, 30.0])
+    tried = [np.zeros(2)]
+    solution = least_squares(
+        lambda x: a @ x - b, lambda x: a, np.zeros(2), np.full(2, -100.0), np.full(2, 100.0), ftol=1e-15,
+        accept=lambda x: tried.append(np.array(x)) or True, limit=lambda d: np.clip(d, -0.5, 0.5),
+    )
+    assert solution.converged, solution.message
+    np.testing.assert_allclose(solution.x, np.linalg.lstsq(a.toarray(), b, rcond=None)[0], atol=1e-8)
+    steps = np.abs(np.diff(np.array(tried), axis=0))
+    assert steps.max() <= 0.5 and len(tried) > 10  # the minimum is about 10 away: many limited steps
+
+
 def test_rejected_steps_and_bounds_on_rosenbrock():
     """A nonlinear problem that needs rejected steps (retries) ends at its known minimum (1, 1), bit-identically twice."""
 

@@ -107,4 +107,10 @@ BOUNDED_ROUNDS = 200
 BOUNDED_PENALTY = 1000.0
 BOUNDED_FTOL = 1e-2
 BOUNDED_LOSS_TOL = 1e-3
+#: Each step of a round of ``"bounded"`` moves every node by at most
+#: ``BOUNDED_STEP l`` on the surface (a trust region per node,
+#: :meth:`equimesh.surface.optimize.UVProblem.step_limit`): one region of the
+#: mesh where the Gauss-Newton model fails then shortens its own nodes'
+#: steps instead of the whole step (docs/decisions.md, "A trust region per node").
+BOUNDED_STEP = 0.1
 PAPER_FTOL = 1e-8

@@ -50,6 +50,7 @@ import numpy as np
 import scipy.sparse
 import scipy.sparse.linalg
 
+from ..planar.insertion._jit import compiled
 from ..tolerance import LM_BACKTRACKS, LM_DIAGONAL_FLOOR, LM_INITIAL_DAMPING
 
 try:
@@ -72,7 +73,7 @@ class Solution:
 
 
 def least_squares(residuals, jacobian, x0, lower, upper, *, accept=None, gtol=1e-10, xtol=1e-10, ftol=1e-12,
-                  max_iterations=500, damping=LM_INITIAL_DAMPING, normal_equations=None):
+                  max_iterations=500, damping=LM_INITIAL_DAMPING, normal_equations=None, limit=None):
     """Minimise ``|residuals(x)|^2 / 2`` over the box ``[lower, upper]`` (see the module docstring).
 
     ``x0`` must lie in the box and satisfy ``accept`` (if given); every
@@ -82,7 +83,10 @@ def least_squares(residuals, jacobian, x0, lower, upper, *, accept=None, gtol=1e
     ``normal_equations`` (a :class:`NormalEquations`, a new one by default)
     keeps the index maps and the symbolic factorisation: a continuation
     passes the same one to every solve so that the analysis of the one
-    pattern is done once.
+    pattern is done once.  ``limit`` (optional) maps each solved direction to
+    the step tried along it: a trust region per group of variables (e.g.
+    each node's move on the surface at most a fraction of l), applied
+    before the line search; the gain ratio is that of the limited step.
     """
     x = np.clip(np.asarray(x0, dtype=float), lower, upper)
     r = residuals(x)
@@ -104,6 +108,8 @@ def least_squares(residuals, jacobian, x0, lower, upper, *, accept=None, gtol=1e
             if direction is None:  # not numerically positive definite: damp more
                 lam, nu, retried = lam * nu, 2.0 * nu, True
                 continue
+            if limit is not None:
+                direction = limit(direction)
             for halving in range(LM_BACKTRACKS + 1):
                 x_new = np.clip(x + 0.5**halving * direction, lower, upper)
                 s = x_new - x
@@ -164,15 +170,9 @@ class NormalEquations:
             np.array_equal(jac.indptr, self._structure[0]) and np.array_equal(jac.indices, self._structure[1])
         ):
             self._analyse(jac)
-        data = jac.data
-        slots, products = [np.zeros(0, dtype=np.int64)], [np.zeros(0)]
-        for entries, left, right, slot in self._groups:
-            active = np.flatnonzero(np.any(data[entries] != 0.0, axis=1))  # an inactive barrier row adds nothing
-            if len(active) < len(entries):
-                left, right, slot = left[active], right[active], slot[active]
-            slots.append(slot.ravel())
-            products.append((data[left] * data[right]).ravel())
-        values = np.bincount(np.concatenate(slots), np.concatenate(products), len(self._rows)).astype(float, copy=False)
+        values = np.zeros(len(self._rows))
+        for left, right, slot in self._groups:
+            _sum_products(jac.data, left, right, slot, values)
         diagonal = values[self._diagonal]
         self._damping = np.maximum(diagonal, LM_DIAGONAL_FLOOR * max(float(diagonal.max(initial=0.0)), 1.0))
         values[held[self._rows] | held[self._cols]] = 0.0
@@ -199,7 +199,7 @@ class NormalEquations:
         """Index maps from the products of each row's entries to the upper-triangular pattern, and its symbolic factorisation.
 
         Rows are grouped by their number ``k`` of entries; a group keeps, per
-        row, the positions of its entries in ``jac.data`` and of the
+        row, the positions in ``jac.data`` of the two factors of each of its
         ``k (k + 1) / 2`` products ``J_ri J_rj`` (``i <= j``), and the slot of
         the pattern each product is summed into.
         """
@@ -212,12 +212,12 @@ class NormalEquations:
             left, right = entries[:, i], entries[:, j]
             a, b = jac.indices[left].astype(np.int64), jac.indices[right].astype(np.int64)
             keys.append((np.minimum(a, b) * n + np.maximum(a, b)).ravel())
-            groups.append((entries, left, right))
+            groups.append((left, right))
         unique, slots = np.unique(np.concatenate(keys), return_inverse=True)
-        offsets = np.cumsum([n] + [left.size for _, left, _ in groups])
+        offsets = np.cumsum([n] + [left.size for left, _ in groups])
         self._groups = [
-            (entries, left, right, slots[offsets[g] - left.size : offsets[g]].reshape(left.shape))
-            for g, (entries, left, right) in enumerate(groups, start=1)
+            (left, right, slots[offsets[g] - left.size : offsets[g]].reshape(left.shape))
+            for g, (left, right) in enumerate(groups, start=1)
         ]
         self._rows, self._cols = unique // n, unique % n
         self._diagonal = np.flatnonzero(self._rows == self._cols)
@@ -307,6 +307,22 @@ class _FactorisationError(ArithmeticError):
 FACTORISATIONS = {"superlu": _SuperLU, "pardiso": _Pardiso}
 #: PARDISO when ``pypardiso`` (the optional extra ``fast``) is installed, else SuperLU.
 DEFAULT_FACTORISATION = "superlu" if pypardiso is None else "pardiso"
+
+
+def _sum_products(data, left, right, slot, values):
+    """``values[slot[r, p]] += data[left[r, p]] * data[right[r, p]]`` for every row ``r`` and product ``p``, in order.
+
+    The products ``J_ri J_rj`` of one group of rows summed into the normal
+    matrix (:meth:`NormalEquations.assemble`), compiled: one pass without
+    the temporary arrays of a vectorised ``np.bincount`` (which summed the
+    same terms in the same order, so the bits are the same).
+    """
+    for r in range(left.shape[0]):
+        for p in range(left.shape[1]):
+            values[slot[r, p]] += data[left[r, p]] * data[right[r, p]]
+
+
+_sum_products = compiled(_sum_products)
 
 
 def _factorise(matrix, ordering):

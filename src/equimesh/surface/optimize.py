@@ -55,7 +55,7 @@ from .chart import domain_of
 from .regularity import derivatives, evaluate
 from ..tolerance import (
     BOUNDED_BAND, BOUNDED_FTOL, BOUNDED_LOSS_TOL, BOUNDED_OFFSET, BOUNDED_PENALTY, BOUNDED_PULL, BOUNDED_ROUND_ITERATIONS, BOUNDED_ROUNDS,
-    BOUNDED_SCALE, LM_INITIAL_DAMPING, PAPER_FTOL,
+    BOUNDED_SCALE, BOUNDED_STEP, LM_INITIAL_DAMPING, PAPER_FTOL,
 )
 
 
@@ -149,6 +149,30 @@ class UVProblem:
         )
         return (jacobian @ chain).tocsr()
 
+    def step_limit(self, radius):
+        """A trust region per node: ``direction -> step`` with every node's move on the surface at most ``radius``.
+
+        A node's move is taken to first order at its start (the tangent
+        lengths ``|X_u|``, ``|X_v|`` at :attr:`uv` times its steps in u and v,
+        or ``max(|X_u|, |X_v|)`` times its step along its loop, which is in
+        (u, v) arc length), and the steps of a node that would move further
+        are scaled down together (its direction in (u, v) is kept).
+        """
+        su, sv = derivatives(self.surface, self.uv)
+        tangent = np.column_stack([np.linalg.norm(su, axis=1), np.linalg.norm(sv, axis=1)])
+        variables = self.variables
+        node = np.concatenate([np.repeat(np.arange(len(self.uv)), 2)[variables], *(s.nodes for s in self.slides)])
+        scale = np.concatenate([tangent.ravel()[variables], *(tangent[s.nodes].max(axis=1) for s in self.slides)])
+
+        def limit(direction):
+            move = np.sqrt(np.bincount(node, (scale * direction) ** 2, len(self.uv)))
+            factor = np.ones_like(move)
+            far = move > radius
+            factor[far] = radius / move[far]
+            return direction * factor[node]
+
+        return limit
+
     @property
     def bounds(self):
         """``(lower, upper)`` of the variables: the parameter domain, and each sliding node's range of arc positions."""
@@ -177,7 +201,9 @@ class Objective:
     by this objective's solve.  ``final(x)`` (optional, on the objective that
     ends a continuation) gives the point returned instead of its solution ``x``
     (an earlier iterate the continuation kept as its best) and the objective
-    whose solve ended there (its costs are reported).
+    whose solve ended there (its costs are reported).  ``step`` (optional)
+    bounds every node's move on the surface per solver step, in units of l
+    (:meth:`UVProblem.step_limit`).
     """
 
     residuals: Callable[[np.ndarray], np.ndarray]
@@ -191,6 +217,7 @@ class Objective:
     start: np.ndarray = None
     hold: np.ndarray = None
     final: Callable[[np.ndarray], tuple] = None
+    step: float = None
 
 
 def edge_length_terms(problem, edges):
@@ -273,7 +300,11 @@ def bounded_objective(problem):
       on the others; a member pushed below ``t`` is pulled back up, ten times
       harder, next round.  Each round takes at most
       :data:`~equimesh.tolerance.BOUNDED_ROUND_ITERATIONS` solver iterations
-      (the damping warm-started from the previous round).  The rounds do not
+      (the damping warm-started from the previous round), each step moving
+      every node by at most :data:`~equimesh.tolerance.BOUNDED_STEP` l on
+      the surface (:meth:`UVProblem.step_limit`, a trust region per node:
+      where the model fails, the line search shortens the step of every
+      node, so one bad region slowed the whole mesh, more so the larger it was).  The rounds do not
       lock the bounds in (a step may push a member out, the next round pulls
       it back; locking them in stalled the sparsity, docs/decisions.md).  A
       series of rounds ends at the first round whose Cauchy loss is within
@@ -381,7 +412,7 @@ def bounded_objective(problem):
 
         objective = Objective(
             residuals, jacobian, f"members into [l, 2l] and to {target:g} l, round {k + 1}", None, None, refine,
-            BOUNDED_FTOL, BOUNDED_ROUND_ITERATIONS, start=start, final=chosen,
+            BOUNDED_FTOL, BOUNDED_ROUND_ITERATIONS, start=start, final=chosen, step=BOUNDED_STEP,
         )
         return objective
 
@@ -539,6 +570,7 @@ def optimize_uv(
     tri = None if triangles is None else np.asarray(triangles, dtype=np.int64).reshape(-1, 3)
     x, nfev, njev, damping = x0, 0, 0, LM_INITIAL_DAMPING
     normal_equations = NormalEquations()  # one pattern for every stage: analysed once
+    limits = {}  # one trust region per step bound
     while True:
         if obj.start is not None:  # a restart is a fresh solve: its own start and the initial damping
             x, damping = obj.start, LM_INITIAL_DAMPING
@@ -546,10 +578,13 @@ def optimize_uv(
         solve = obj if tri is None or area_floor <= 0 else _with_barrier(problem, obj, tri, area_floor, x)
         tol = obj.ftol if ftol is None else ftol
         box = problem.bounds if obj.hold is None else tuple(np.where(obj.hold, x, bound) for bound in problem.bounds)
+        if obj.step is not None and obj.step not in limits:
+            limits[obj.step] = problem.step_limit(obj.step * problem.length)
         while True:
             solution = least_squares(
                 solve.residuals, solve.jacobian, x, *box, accept=guard, gtol=gtol, xtol=xtol, ftol=tol,
                 max_iterations=obj.max_iterations, damping=damping, normal_equations=normal_equations,
+                limit=limits.get(obj.step),
             )
             x, nfev, njev = solution.x, nfev + solution.evaluations, njev + solution.iterations + 1
             damping = solution.damping  # warm start: the next solve begins where this one's damping ended
