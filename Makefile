@@ -38,6 +38,7 @@ EXPERIMENTS := \
 	experiments/compare_peers.py \
 	experiments/scaling.py \
 	experiments/bounded.py \
+	experiments/bounded_sweep.py \
 	experiments/inputs.py
 
 # The hypothesis profile comes from EQUIMESH_HYPOTHESIS_PROFILE (tests/conftest.py;

@@ -4,7 +4,8 @@ The real planar step (Problem 2, ``uniform_triangulation``) is tested on its
 own; the remap and optimisation stages are tested here on a simpler mesh of
 the same kind: a triangular lattice of spacing l (its edges are the G1 edges)
 kept at least l from the polygon boundary, plus the boundary resampled, all
-triangulated by ``triangle`` without Steiner points.
+triangulated by ``triangle`` without Steiner points.  The doubly curved
+dome is :func:`equimesh.testing.surfaces.dome` (the experiments use it too).
 """
 
 import numpy as np
@@ -55,17 +56,6 @@ def flat_patch(width=40.0, depth=30.0, degree=(2, 3), shear=0.0):
     m, n = degree
     i, j = np.meshgrid(np.linspace(0, 1, m + 1), np.linspace(0, 1, n + 1), indexing="ij")
     return BezierSurface(np.stack([width * i + shear * j, depth * j, np.zeros_like(i)], axis=-1))
-
-
-def dome(size=60.0, rise=12.0, seed=None, jitter=0.0):
-    """A doubly curved bicubic patch over a ``size x size`` square (mild curvature)."""
-    i, j = np.meshgrid(np.arange(4) / 3, np.arange(4) / 3, indexing="ij")
-    z = rise * 16 / 9 * (4 * i * (1 - i)) * (4 * j * (1 - j)) * 0.9
-    net = np.stack([size * i, size * j, z], axis=-1)
-    if seed is not None:
-        rng = np.random.default_rng(seed)
-        net[..., 2] += jitter * rng.standard_normal(z.shape)
-    return BezierSurface(net)
 
 
 def lattice_mesh(polygon, l, angle=0.0):

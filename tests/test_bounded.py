@@ -7,7 +7,7 @@ import pandas as pd
 import pytest
 from hypothesis import example, given, settings
 from hypothesis import strategies as st
-from section4_standin import dome, parabolic_vault
+from section4_standin import parabolic_vault
 
 from equimesh import InternalError
 from equimesh.errors import InvalidSurfaceError
@@ -15,6 +15,7 @@ from equimesh.io.provenance import provenance
 from equimesh.surface import pipeline
 from equimesh.surface.optimize import optimize_uv, parameter_box
 from equimesh.surface.pipeline import mesh_surface
+from equimesh.testing.surfaces import dome
 
 #: "Within 0.5 % of l", the issue's measure of an exact member.
 BAND = 0.005
@@ -44,6 +45,11 @@ EXAMPLES = {"thorough": 60}.get(os.environ.get("EQUIMESH_HYPOTHESIS_PROFILE", "c
 # Rounds from the remapped mesh alone crawled here for 200 rounds with one member at 2.005 l and the last
 # stage ended at 0.462 against the paper's 0.654 (docs/decisions.md, "The bounded objective").
 @example(rise=8.623446459779622, seed=2893441600, l=4.876515103851089)
+# Dome 3 of experiments/bounded_sweep.py: 0.7444 against the paper's 0.7333 when docs/decisions.md item 74 was
+# merged, 0.7259 since the line search of item 70 (b1569af). Remove .xfail once "bounded" reaches the paper here.
+@example(rise=6.326581062262999, seed=2437408156, l=4.593367092801857).xfail(
+    reason="bounded ends below the paper's share on this dome since b1569af", raises=AssertionError
+)
 def test_bounded_keeps_members_in_bounds_and_reaches_the_papers_share(rise, seed, l):
     """Mildly curved Bezier patches: 100 % of the members in [l, 2l], and a share within 0.5 % of l at least the paper's."""
     surface = dome(rise=rise, seed=seed, jitter=1.0)

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
-from section4_standin import CircularVault, dome, flat_patch, parabolic_vault
+from section4_standin import CircularVault, flat_patch, parabolic_vault
 
 from equimesh import InvalidSurfaceError
 from equimesh._geometry import orient
@@ -15,6 +15,7 @@ from equimesh.surface._jacobian import AreaBarrier
 from equimesh.surface.flatten import _Preconditioner, energy_terms, flatten
 from equimesh.mesh import edge_lengths
 from equimesh.surface.bezier import BezierSurface
+from equimesh.testing.surfaces import dome
 
 
 def run(surface, n_u=15, n_v=15, **kw):
