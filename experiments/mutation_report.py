@@ -576,9 +576,30 @@ _KERNEL_EQUIVALENT_GROUPS = {
     ],
 }
 # --- end of the fast engine's kernels ---
-EQUIVALENT = {(module, line): why for module, groups in {**_EQUIVALENT_GROUPS, **_KERNEL_EQUIVALENT_GROUPS,
-                                                                    **_COUPLED_EQUIVALENT_GROUPS}.items()
-              for why, lines in groups for line in lines}
+# --- the sharp-corner Step 2: polygon.py's grid decisions and planar/_corner.py, the last survivors ---
+_SHARP_EQUIVALENT_GROUPS = {
+    "src/equimesh/planar/polygon.py": [
+        ("equivalent: inner_angle is never exactly 60: np.degrees of the floats next to pi / 3 are 59.99999999999999 "
+         "and 60.00000000000001 (reflex angles are past 180), so < 60 and <= 60 agree",
+         ["if not angle <= SHARP_CORNER:", "if not max(angles) <= SHARP_CORNER:"]),
+        ("equivalent: with no second corner (theta_2 None) _Pair reads neither B's length nor radii[2:] (B is a dummy "
+         "side of one position)",
+         ["(theta, None), (sides[1], sides[0], 1.0), lp, (radii[1], radii[0], 0.0, 0.0)",
+          "(theta, None), (sides[1], sides[0], 0.0), lp, (radii[1], radii[0], 1.0, 0.0)",
+          "(theta, None), (sides[1], sides[0], 0.0), lp, (radii[1], radii[0], 0.0, 1.0)"]),
+        ("equivalent: the halving never reaches k = 64: a side is at most sqrt(2) MAX_EXTENT l = 2^16.5 l, so from "
+         "k = 49 on the triangle lies within REL_TOL l / 2 of its corner, a point of P, inside P grown by REL_TOL l",
+         ["for k in range(65):", "return 1.0, 0.0", "return 0.0, 1.0"]),
+        ("equivalent: a side left dirty is settled again with the neighbours it was settled with (else they would "
+         "have marked it dirty), and _short_side then keeps it: it is the first candidate separating both corners "
+         "or, if none does, none of the same candidates has a larger gap; the extra passes change nothing",
+         ["dirty.discard(None)"]),
+    ],
+}
+# --- end of the sharp-corner Step 2's last survivors ---
+EQUIVALENT = {(module, line): why for table in (_EQUIVALENT_GROUPS, _KERNEL_EQUIVALENT_GROUPS, _COUPLED_EQUIVALENT_GROUPS,
+                                                _SHARP_EQUIVALENT_GROUPS)
+              for module, groups in table.items() for why, lines in groups for line in lines}
 
 #: pytest options for every mutant run: stop at the first failure.
 PYTEST_ARGS = ["-p", "no:cacheprovider", "-q", "-x"]

@@ -104,3 +104,201 @@ def test_a_short_side_takes_the_fewest_multiples_from_a_corner_that_is_not_sharp
     numerators, denominator = side_positions(lengths, angles, 1.0, 1.5)[1]
     assert denominator == lengths[1]
     np.testing.assert_allclose(numerators, [0.0, 1.0, lengths[1] - 1.0], atol=1e-12)
+
+
+# --------------------------------------------------------------------------- the grid placement's helpers, by hand
+
+
+def ring_polygon():
+    """A pentagon (ring 0) with a square hole (ring 1), at l = 1."""
+    pentagon = [(10.0 * math.cos(2 * math.pi * k / 5), 10.0 * math.sin(2 * math.pi * k / 5)) for k in range(5)]
+    return as_polygon(np.array(pentagon), 1.0, holes=[np.array([(-1.0, -1.0), (-1.0, 1.0), (1.0, 1.0), (1.0, -1.0)])])
+
+
+#: Boundary points by (ring, edge, is a vertex): 0 inside edge 4, 1 inside edge 0, 2 the vertex 1 (on edges 0 and 1),
+#: 3 inside edge 2, 4 inside edge 0 of the hole.
+RING_POINTS = Boundary(np.zeros((5, 2)), np.array([False, False, True, False, False]), np.array([4, 0, 1, 2, 0]),
+                       np.array([0, 0, 0, 0, 1]))
+
+
+@pytest.mark.parametrize("pairs, corners", [
+    ([(0, 1)], [(0, 0)]),  # edges 4 and 0 meet at corner 0 (the ring wraps)
+    ([(1, 0)], [(0, 0)]),  # either order
+    ([(2, 0)], [(0, 0)]),  # the vertex 1 lies on edge 0 too
+    ([(2, 3)], [(0, 2)]),  # and on edge 1, which meets edge 2 at corner 2
+    ([(1, 3)], []),  # edges 0 and 2 share no corner
+    ([(0, 1), (1, 3), (1, 2)], [(0, 0), (0, 1)]),  # every pair adds its corners
+    ([(4, 1), (3, 2)], [(0, 2)]),  # a pair on two rings has no corner, and the next pair still counts
+])
+def test_corners_of_a_pair_are_where_their_edges_meet(pairs, corners):
+    """``_corners_of``: the corners at which two boundary points lie on the two sides, a vertex on both its edges."""
+    assert polygon._corners_of(ring_polygon(), RING_POINTS, np.array(pairs)) == corners
+
+
+def test_from_corner_measures_a_side_from_either_end():
+    """Side 1 (5 long, points at 0, 1 and 3 of it) measured from corner 1, which it leaves, and from corner 2, where it
+    arrives; the far end is included."""
+    sides, lengths = [None, (np.array([0.0, 1.0, 3.0]), 5.0), None], [4.0, 5.0, 6.0]
+    np.testing.assert_array_equal(polygon._from_corner(sides, lengths, 1, 1), [1.0, 3.0, 5.0])
+    np.testing.assert_array_equal(polygon._from_corner(sides, lengths, 2, 1), [2.0, 4.0, 5.0])
+
+
+@pytest.mark.parametrize("leaving, expected", [(True, [0.0, 1.0, 2.5, 3.5, 5.0, 7.0]), (False, [0.0, 2.0, 4.0, 5.5, 6.5, 8.0])])
+def test_grid_side_keeps_the_points_at_least_l_past_the_cut(leaving, expected):
+    """A side 9 long (l = 1) that the grid cut at 2.5 (points 1 and 2.5 from the corner): of its current points 1.5,
+    2.5, 3.5, 5 and 7, those at least l past the cut are kept, 3.5 (exactly l past it) included, and the middle
+    between, exactly l, is one part.  Positions are from the side's first corner: the corner itself if it leaves
+    it, the far end if it arrives."""
+    numerators, length = polygon._grid_side(9.0, np.array([1.0, 2.5]), np.array([1.5, 2.5, 3.5, 5.0, 7.0, 9.0]), leaving,
+                                            1.0, 1.5)
+    assert length == 9.0
+    np.testing.assert_array_equal(numerators, expected)
+
+
+def test_grid_side_drops_the_points_within_l_of_the_cut():
+    """A side 10 long cut at 6: its current point 5.5, before the cut but less than l from it, is not kept (else the
+    middle would be too short and the grid's own last point dropped); 7.5 is."""
+    numerators, _ = polygon._grid_side(10.0, np.array([1.5, 3.0, 4.5, 6.0]), np.array([1.0, 2.5, 4.0, 5.5, 7.5, 10.0]),
+                                       True, 1.0, 1.5)
+    np.testing.assert_array_equal(numerators, [0.0, 1.5, 3.0, 4.5, 6.0, 7.5])
+
+
+def test_grid_side_ending_at_the_far_end_is_the_grid_points():
+    """Points ending at the side's far end are the side (from its first corner either way)."""
+    for leaving, expected in ((True, [0.0, 1.5, 3.0]), (False, [0.0, 1.0, 2.5])):
+        numerators, length = polygon._grid_side(4.0, np.array([1.5, 3.0, 4.0]), np.array([4.0]), leaving, 1.0, 1.5)
+        np.testing.assert_array_equal(numerators, expected)
+
+
+def pentagon_point(k):
+    return 10.0 * np.array([math.cos(2 * math.pi * k / 5), math.sin(2 * math.pi * k / 5)])
+
+
+@pytest.mark.parametrize("edges, start", [
+    ((4, 0), "the corner at vertex 0 at (10, 0) (108 degrees) is not handled for l = 1.0: boundary points on edge "
+             "(4, 0) and edge (0, 1) are "),
+    ((0, 1), "the corner at vertex 1 at "),
+    ((1, 0), "the corner at vertex 1 at "),
+    ((0, 2), "polygon is too narrow for l = 1.0: boundary points on edge (0, 1) and edge (2, 3) are "),
+])
+def test_separation_error_names_the_corner_of_two_adjacent_sides(edges, start):
+    """``_separation_error``: two points on the sides of one corner (edges 4 and 0 meet at corner 0, the ring wrapping)
+    name that corner; on sides apart, the neck."""
+    poly = ring_polygon()
+    points = np.array([(pentagon_point(e) + pentagon_point(e + 1)) / 2.0 for e in edges])
+    error = polygon._separation_error(poly, Boundary(points, np.zeros(2, bool), np.array(edges), np.zeros(2, int)), 1.0,
+                                      0, 1)
+    assert str(error).startswith(start)
+
+
+# --------------------------------------------------------------------------- refusals decided on a grid of cells
+
+
+def at(angle, r):
+    """The point ``r`` from the origin at ``angle`` degrees."""
+    return np.array([r * math.cos(math.radians(angle)), r * math.sin(math.radians(angle))])
+
+
+def refusal(vertices, l):
+    """The message of :func:`check_boundary_separation` on the Step 2 points of Problem 2 (spacing 1.5)."""
+    poly = as_polygon(np.array(vertices) * l, l)
+    with pytest.raises(InvalidPolygonError) as error:
+        check_boundary_separation(poly, polygon.resample_boundary(poly, l, 1.5), l)
+    return str(error.value)
+
+
+HANDLED = ("no Step 2 separates them (a limit of the paper's method, not a proof that no mesh exists; docs/proofs.md, "
+           "'Sharp corners'); sides of at least 12.0 are handled; use a smaller l, longer sides or a wider corner")
+
+
+@pytest.mark.parametrize("vertices, message", [
+    # 20 degrees, sides 3.45 l and 3.3 l: refused by the relaxation of the corner alone
+    ([(0.0, 0.0), (3.45, 0.0), at(20.0, 3.3)],
+     "the corner at vertex 0 at (0, 0) (20 degrees) cannot meet Lemma 3 (1) for l = 3.0: no split of its sides of "
+     "10.350000000000001 and 9.9 into parts of [l, 2l] keeps every two points of different sides l apart "
+     "(decided on a grid of cells), so " + HANDLED),
+    # 21 degrees, sides 3.48 l and 3.25 l: refused only on the finer cells of the joint decision with no second corner
+    ([(0.0, 0.0), (3.48, 0.0), at(21.0, 3.25)],
+     "the corner at vertex 0 at (0, 0) (21 degrees) cannot meet Lemma 3 (1) for l = 3.0: no split of its sides of "
+     "10.44 and 9.75 into parts of [l, 2l] keeps every two points of different sides l apart "
+     "(decided on a grid of cells), so " + HANDLED),
+    # 29.4 and 23.07 degrees sharing a side of 4.25 l: each corner alone can be separated, not both
+    ([(0.0, 0.0), (4.25, 0.0), at(29.4, 2.1)],
+     "the corners at vertex 0 at (0, 0) (29.4 degrees) and vertex 1 at (12.75, 0) (23.0697 degrees) cannot meet "
+     "Lemma 3 (1) together for l = 3.0: no split of their sides of 6.300000000000001, 12.75, 7.892528190861376 (the "
+     "middle one shared) into parts of [l, 2l] keeps every two points of different sides l apart at both corners "
+     "(decided on a grid of cells), so no Step 2 separates them (a limit of the paper's method, not a proof that no "
+     "mesh exists; docs/proofs.md, 'Sharp corners'); use a smaller l, longer sides or wider corners"),
+])
+def test_a_corner_refused_on_a_grid_says_so_in_the_callers_lengths(vertices, message):
+    """At l = 3 (local length 1.5, scale 1/2) the refusals of one corner and of two corners sharing a side, in full."""
+    assert refusal(vertices, 3.0) == message
+
+
+def test_unplaceable_corner_goes_past_corners_not_sharp_or_placeable():
+    """A quadrilateral with a 20-degree corner that cannot be separated (vertex 0), a 160.7-degree one and a 7.5-degree
+    one with long sides (placeable): asked in that order, the first two are passed over and the third refused."""
+    l = 3.0
+    poly = as_polygon(np.array([(0.0, 0.0), (3.45, 0.0), (12.0, 3.0), at(20.0, 3.3)]) * l, l)
+    ring = poly.rings[0]
+    assert [round(ring.inner_angle(i), 2) for i in range(4)] == [20.0, 160.67, 7.46, 171.88]
+    assert polygon._unplaceable_corner(poly, l, [(0, 2)]) is None
+    assert str(polygon._unplaceable_corner(poly, l, [(0, 1), (0, 2), (0, 0)])).startswith("the corner at vertex 0 at")
+
+
+def test_unplaceable_pair_asks_each_corner_with_the_previous_and_the_next():
+    """The triangle of the joint refusal with its vertices rolled, so that the two sharp corners are 1 and 2: asked at
+    either of them, or at the blunt corner 0 before them, the pair (1, 2) is refused; asked at the blunt corner
+    alone, it is paired with its neighbours, one blunt."""
+    l = 3.0
+    poly = as_polygon(np.array([at(29.4, 2.1), (0.0, 0.0), (4.25, 0.0)]) * l, l)
+    for corners in ([(0, 1)], [(0, 2)], [(0, 0), (0, 2)]):
+        assert str(polygon._unplaceable_pair(poly, l, corners)).startswith("the corners at vertex 1 at (0, 0) (29.4 degrees)")
+    assert polygon._unplaceable_pair(poly, l, [(0, 0)]) is None
+
+
+def test_unplaceable_pair_passes_over_a_pair_that_can_be_separated():
+    """An arrowhead: notch 255.7 degrees, barb 45.8, tip 36.9, barb 21.7.  The tip with the first barb can be separated,
+    with the second it cannot: asked at both barbs, the first pair is passed over and the second refused."""
+    poly = as_polygon(np.array([(3.7, 0.0), (4.39, 2.27), (0.0, 0.0), (5.12, -0.86)]), 1.0)
+    assert polygon._unplaceable_pair(poly, 1.0, [(0, 1)]) is None
+    assert str(polygon._unplaceable_pair(poly, 1.0, [(0, 1), (0, 3)])).startswith(
+        "the corners at vertex 2 at (0, 0) (36.8777 degrees) and vertex 3 at (5.12, -0.86) (21.6656 degrees) cannot")
+
+
+@pytest.mark.parametrize("vertices, l, start", [
+    # the shared side (3.749) is longer than the other side of the 24.1-degree corner (1.872)
+    ([(0.0, 0.0), (3.749, 0.0), (2.861, 0.669), (4.108, 1.838)], 1.0, "the corners at vertex 3 at (4.108, 1.838) (19.0462"),
+    # the other side of the 18.96-degree corner (6.512) is longer than that of the 1.86-degree corner (1.896)
+    ([(0.0, 0.0), (1.896, 0.0), (1.926, 0.506), (6.161, 2.117)], 1.5, "the corners at vertex 3 at (6.161, 2.117) (1.8635"),
+])
+def test_unplaceable_pair_checks_each_side_within_its_own_radius(vertices, l, start):
+    """Two sharp corners at vertices 3 and 0 whose sides have different lengths, each seen whole from its corner: each
+    side is checked up to its own length, and the pair is refused."""
+    assert str(polygon._unplaceable_pair(as_polygon(np.array(vertices), l), l, [(0, 0)])).startswith(start)
+
+
+def test_a_lone_corner_checks_each_side_within_its_own_radius():
+    """A 19.05-degree corner with sides 3.11 l and 1.15 l, refused only on the finer cells of the joint decision: the
+    leaving side is checked up to 3.11 l, not to the arriving side's 1.15 l."""
+    poly = as_polygon(np.array([(0.0, 0.0), (3.11, 0.0), at(19.05, 1.15)]), 1.0)
+    lengths = poly.rings[0].local_edge_lengths
+    assert not polygon._corner.corner_unplaceable(math.radians(19.05), (lengths[0], lengths[2]), 1.0, (lengths[0], lengths[2]))
+    assert str(polygon._unplaceable_corner(poly, 1.0, [(0, 0)])).startswith("the corner at vertex 0 at (0, 0) (19.05 degrees)")
+
+
+def with_dent(vertices, side, dent):
+    """``vertices`` with a vertex added in the middle of side ``side``, moved ``dent`` towards vertex 0."""
+    p, q = np.asarray(vertices[side]), np.asarray(vertices[(side + 1) % len(vertices)])
+    m = (p + q) / 2.0
+    return np.insert(np.asarray(vertices), side + 1, m - dent * (m - vertices[0]) / np.linalg.norm(m - vertices[0]), axis=0)
+
+
+@pytest.mark.parametrize("dent, refused", [(1.1e-9, True), (2e-9, False)])
+def test_a_corner_triangle_dented_by_less_than_rel_tol_l_is_seen_whole(dent, refused):
+    """At l = 1.5 (the local frame the caller's) a dent of 1.1e-9 in the side opposite a sharp corner (20 degrees,
+    3.45 l and 3.3 l) is inside P grown by REL_TOL l = 1.5e-9 (not REL_TOL / l = 6.7e-10): the corner's sides are seen
+    whole and it is refused as without the dent; a dent of 2e-9 halves the radii, and it is not refused then."""
+    l = 1.5
+    corner = as_polygon(with_dent(np.array([(0.0, 0.0), (3.45, 0.0), at(20.0, 3.3)]) * l, 1, dent), l)
+    assert (polygon._unplaceable_corner(corner, l, [(0, 0)]) is not None) == refused
