@@ -355,3 +355,39 @@ def test_tighten_and_the_reach_scale_with_l():
     found = _corner._tighten(theta, (18.0, 4.5), _corner.corner_reach(theta, 1.5), 1.5, [1, 0, 1, 0, 0, 0])
     assert [points.tolist() for points in found] == [[3.0, 6.0, 9.0, 12.0], [1.5, 4.5]]
     assert _corner.corner_reach(math.radians(30.0), 1.5) == 3.0
+
+
+def test_horizon_of_a_long_side_is_k_l_plus_2l_at_any_l():
+    """At l = 2 and K l = 12 a long side (past K l + 3 l = 18) is read up to K l + 2 l = 16, a short one whole."""
+    assert _corner._horizon((40.0, 9.0), 12.0, 2.0) == 16.0
+    assert _corner._horizon((17.0, 9.0), 12.0, 2.0) == 17.0
+
+
+def test_beyond_the_radii_only_past_them():
+    """A point (or a cell's far end) exactly at its side's visibility radius is seen; only one past it is not."""
+    beyond = _corner._beyond(np.array([0.0, 1.0, 2.0]), 1.0, 2.0)
+    assert beyond.tolist() == [[False, False, False], [False, False, False], [True, True, True]]
+
+
+def _graph(lo, lengths, hi=None):
+    """The graph at theta = 0 (the distance of u and v is |u - v|) with tolerance 0, so that parts are exactly in
+    [l, 2l] (l = 1), K l = 2; on the points ``lo`` or, with ``hi``, on cells."""
+    lo = np.array(lo)
+    return _corner._Graph(0.0, lengths, 2.0, 1.0, lo, lo if hi is None else np.array(hi), 0.0, (math.inf, math.inf))
+
+
+def test_graph_thresholds_are_closed():
+    """Every threshold of _Graph holds with equality (tolerance 0, l = 1): parts of exactly l and 2l are steps; cross
+    pairs exactly l apart are far enough, for points and for cells; a short side (3) ends only at a position that is
+    its far end whole, and no cell starting there goes on; a long side (20, K l = 2) stops at a point exactly at K l
+    and may step to one exactly at K l + 2l."""
+    points = _graph([0.0, 1.0, 3.0], (3.0, 3.0))
+    assert points.next[0].tolist() == [[False, True, False], [False, False, True], [False, False, False]]
+    assert _graph([0.0, 1.0, 2.0], (3.0, 3.0)).cross[0][1, 2]
+    assert _graph([0.0, 1.0, 2.0], (3.0, 3.0), hi=[0.0, 1.0, 2.0]).cross[0][1, 2]
+    cells = _graph([0.0, 1.5, 3.0, 3.0], (3.0, 3.0), hi=[0.0, 2.0, 3.5, 3.0])
+    assert cells.ends[0].tolist() == [False, False, False, True]
+    assert cells.next[0][1].tolist() == [False, False, False, True]  # not to the cell from 3 to 3.5
+    long_ = _graph([0.0, 1.0, 2.0, 3.0, 4.0], (20.0, 20.0))
+    assert long_.stops[0].tolist() == [False, False, True, True, True]
+    assert long_.next[0][2, 4]

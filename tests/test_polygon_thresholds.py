@@ -302,3 +302,12 @@ def test_a_corner_triangle_dented_by_less_than_rel_tol_l_is_seen_whole(dent, ref
     l = 1.5
     corner = as_polygon(with_dent(np.array([(0.0, 0.0), (3.45, 0.0), at(20.0, 3.3)]) * l, 1, dent), l)
     assert (polygon._unplaceable_corner(corner, l, [(0, 0)]) is not None) == refused
+
+
+@pytest.mark.parametrize("dent, refused", [(1.1e-9, True), (2e-9, False)])
+def test_a_pair_whose_triangle_is_dented_by_less_than_rel_tol_l_is_seen_whole(dent, refused):
+    """The same for two corners (40.3 and 35.4 degrees) sharing a side of 4.03 l at l = 1.5, dented in the middle of the
+    side after them: refused with the dent of 1.1e-9, not with 2e-9 (the first corner's radii halved)."""
+    l, side = 1.5, 4.03 * math.sin(math.radians(35.4)) / math.sin(math.radians(75.7))
+    pair = as_polygon(with_dent(np.array([(0.0, 0.0), (4.03, 0.0), at(40.3, side)]) * l, 1, dent), l)
+    assert (polygon._unplaceable_pair(pair, l, [(0, 0)]) is not None) == refused
