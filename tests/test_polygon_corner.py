@@ -391,3 +391,46 @@ def test_graph_thresholds_are_closed():
     long_ = _graph([0.0, 1.0, 2.0, 3.0, 4.0], (20.0, 20.0))
     assert long_.stops[0].tolist() == [False, False, True, True, True]
     assert long_.next[0][2, 4]
+
+
+def test_no_node_past_the_horizon_where_the_quotient_rounds_up():
+    """At l = 1.2187810373376886 and a step of l / 32 the side 5.674949205103612 is an ulp short of 149 steps, and
+    its quotient by the step rounds up to 149: the multiple past the side's end is not a node, the end itself is."""
+    l = 1.2187810373376886
+    step, length = l / 32.0, 5.674949205103612
+    assert math.floor(length / step) * step > length
+    nodes = _corner._nodes((length, 2.0), 3.0 * l, l, step, (None, None))
+    assert nodes.max() == length
+
+
+@pytest.mark.parametrize("first, placed", [(1.9604759331026373, True), (1.96047593041909, False)])
+def test_the_search_accepts_a_cross_pair_within_rel_tol_over_4(first, placed):
+    """A 30-degree corner whose arriving side (1.5 l) is a single part and whose leaving side is kept at ``first`` and
+    ``first + 1.5``: the arriving side's end is (1 - 2.25e-10) l from the first point at 1.9604759331026373, accepted
+    by the search's tolerance REL_TOL / 4 (but not REL_TOL / 5); (1 - 2e-9) l at 1.96047593041909, refused (it would be
+    within 4 REL_TOL), on every grid."""
+    theta, kept = math.radians(30.0), np.array([first, first + 1.5])
+    squared = 1.5**2 + first**2 - 2.0 * math.cos(theta) * 1.5 * first
+    assert (squared >= (1.0 - REL_TOL / 4.0) ** 2) == placed and squared >= (1.0 - 4.0 * REL_TOL) ** 2
+    assert squared < (1.0 - REL_TOL / 5.0) ** 2
+    found = _corner.place_corner(theta, (first + 1.5, 1.5), 1.0, (kept, None))
+    assert (found is not None) == placed
+    if placed:
+        assert [points.tolist() for points in found] == [kept.tolist(), [1.5]]
+
+
+@pytest.mark.parametrize("first, second, arriving", [
+    (1.1263, 2.3221, [61 / 32, 3.3]),  # the window holds a node of the grid of l / 32, none of l / 16
+    (1.1207, 2.3181, None),  # the window holds a node of l / 128 only, past CORNER_REFINEMENTS
+])
+def test_a_kept_side_is_searched_on_each_finer_grid(first, second, arriving, monkeypatch):
+    """A 25-degree corner whose leaving side is kept at ``first``, ``second`` and ``second + 1.5`` and whose arriving
+    side is 3.3 l: its first point must lie at least l beyond ``first`` and l before ``second`` (on the other side),
+    a window 0.012 l wide around 61/32 (0.004 l around 243/128) that no multiple of l/16 from either end reaches.  The
+    search tries the grids of l/16, l/32 and l/64 in turn, and takes the first placement found; with one more
+    refinement the second corner is placed at 243/128."""
+    theta, kept = math.radians(25.0), np.array([first, second, second + 1.5])
+    found = _corner.place_corner(theta, (second + 1.5, 3.3), 1.0, (kept, None))
+    assert (found if found is None else found[1].tolist()) == arriving
+    monkeypatch.setattr(_corner, "CORNER_REFINEMENTS", 3)
+    assert _corner.place_corner(theta, (second + 1.5, 3.3), 1.0, (kept, None))[1].tolist() == (arriving or [243 / 128, 3.3])
