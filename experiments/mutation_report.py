@@ -594,6 +594,10 @@ _SHARP_EQUIVALENT_GROUPS = {
          "have marked it dirty), and _short_side then keeps it: it is the first candidate separating both corners "
          "or, if none does, none of the same candidates has a larger gap; the extra passes change nothing",
          ["dirty.discard(None)"]),
+        ("equivalent: _grid_side reads leaving only as a truth value, and None is as false as False",
+         ["trial[c - 1] = _grid_side(lengths[c - 1], a, _from_corner(sides, lengths, c, c - 1), None, l, spacing)"]),
+        ("equivalent: _from_corner reads c only in i == c, and i = c - 1 is no more c than None is",
+         ["trial[c - 1] = _grid_side(lengths[c - 1], a, _from_corner(sides, lengths, None, c - 1), False, l, spacing)"]),
     ],
 }
 # --- end of the sharp-corner Step 2's last survivors ---
@@ -689,7 +693,7 @@ def statuses(folder):
     return dict(re.findall(r"^\s*(\S+): (.+)$", mutmut(folder, "results", "--all", "true"), re.M))
 
 
-def run_module(module, work_dir, max_children, keep=None, seconds=None, progress=print):
+def run_module(module, work_dir, max_children, keep=None, seconds=None, progress=print, previous=None):
     """Mutate ``module``, run its tests on every mutant; its counts and survivors.
 
     With ``keep="so-far"`` nothing runs: the row counts the mutants that an
@@ -702,10 +706,16 @@ def run_module(module, work_dir, max_children, keep=None, seconds=None, progress
     maps each test to the functions it calls once, when it first sees the
     test: a survivor is run against new tests and the tests that reached its
     function before, so kill it with a new test (or run the module afresh).
+    When the scratch copy is gone, the survivors are those of ``previous``
+    (the module's row in ``results/mutation.json``, same source), run in a
+    fresh copy; every other mutant keeps that row's verdict.
     """
     folder = prepare(module, work_dir, keep)
-    full = keep not in ("survivors", "so-far") or not (folder / "mutants").exists()
-    again = [] if full else sorted(n for n, s in statuses(folder).items() if s == "survived")
+    fresh = not (folder / "mutants").exists()
+    from_row = keep == "survivors" and fresh and previous is not None
+    full = keep not in ("survivors", "so-far") or (fresh and not from_row)
+    again = ([s["mutant"] for s in previous["survivors"]] if from_row else [] if full
+             else sorted(n for n, s in statuses(folder).items() if s == "survived"))
     progress(f"{NAME}: {module} against {' '.join(MODULES[module])}" + ("" if full else ", so far" if keep == "so-far" else f", {len(again)} survivors again"))
     start = time.perf_counter()
     if keep == "so-far":
@@ -719,16 +729,20 @@ def run_module(module, work_dir, max_children, keep=None, seconds=None, progress
         seconds = time.perf_counter() - start
     status = statuses(folder)
     counts = {s: sum(v == s for v in status.values()) for s in STATUSES}
+    if from_row:  # the mutants not run again keep the previous row's verdicts
+        status = {name: status[name] for name in again}
+        counts = {s: previous.get(s, 0) - len(again) * (s == "survived") + sum(v == s for v in status.values()) for s in STATUSES}
     survivors = []
     for name in sorted((n for n, s in status.items() if s == "survived"), key=_natural):
         line = mutated_line(folder, name)
         survivors.append({"mutant": name, "line": line, "equivalent": EQUIVALENT.get((module, line))})
     equivalent = sum(s["equivalent"] is not None for s in survivors)
-    relevant = len(status) - equivalent - counts["no tests"] - counts["skipped"] - counts["not checked"]
+    total = previous["mutants"] if from_row else len(status)
+    relevant = total - equivalent - counts["no tests"] - counts["skipped"] - counts["not checked"]
     score = (counts["killed"] + counts["timeout"]) / relevant if relevant else 1.0
-    progress(f"{NAME}: {module}: {len(status)} mutants, {counts['killed']} killed, "
+    progress(f"{NAME}: {module}: {total} mutants, {counts['killed']} killed, "
              f"{counts['survived']} survived ({equivalent} equivalent), {seconds:.0f} s")
-    return {"module": module, "tests": MODULES[module], "environment": ENVIRONMENT.get(module, {}), "mutants": len(status), **counts,
+    return {"module": module, "tests": MODULES[module], "environment": ENVIRONMENT.get(module, {}), "mutants": total, **counts,
             "equivalent": equivalent, "score": score, "seconds": round(seconds), "survivors": survivors}
 
 
@@ -777,8 +791,8 @@ def main(argv=None):
     args.out_dir.mkdir(parents=True, exist_ok=True)
     for module in wanted:
         keep = "survivors" if args.survivors else "resume" if args.resume else "so-far" if args.so_far else None
-        seconds = _rows(json_path).get(module, {}).get("seconds")
-        row = run_module(module, args.work_dir, args.max_children, keep, seconds)
+        previous = _rows(json_path).get(module)
+        row = run_module(module, args.work_dir, args.max_children, keep, (previous or {}).get("seconds"), previous=previous)
         done = _rows(json_path)  # read again: another process may have run other modules meanwhile
         done[module] = row
         modules = [done[m] for m in MODULES if m in done]

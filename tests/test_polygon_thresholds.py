@@ -9,6 +9,15 @@ the corner triangle of ``_unseparable_corner``; a short side tries the
 candidates with the fewest multiples of l from a corner that is not sharp
 first.  The floats are built so that the distance is exactly the threshold
 (asserted), at l far from 1 so that l and 1 / l differ.
+
+The sharp-corner code after the short-side search, by hand: which corners a
+pair of boundary points lies at, a side measured from either corner, a side
+cut by the grid and completed, the message naming a corner; the refusals
+decided on a grid of cells in full at l = 3 (local length 1.5), the order in
+which they go through the corners, each side checked within its own
+visibility radius (a dent below ``REL_TOL l`` leaves it seen whole); the grid
+placement of one corner's or two corners' sides, and the trials of the grid
+search in their order (stubbed placements).
 """
 
 import math
@@ -19,7 +28,7 @@ import pytest
 from equimesh.errors import InvalidPolygonError
 from equimesh.planar import polygon
 from equimesh.planar.polygon import Boundary, as_polygon, check_boundary_separation, side_positions
-from equimesh.tolerance import REL_TOL
+from equimesh.tolerance import REL_TOL, at_least
 
 
 def first_corner(vertices, l):
@@ -311,3 +320,87 @@ def test_a_pair_whose_triangle_is_dented_by_less_than_rel_tol_l_is_seen_whole(de
     l, side = 1.5, 4.03 * math.sin(math.radians(35.4)) / math.sin(math.radians(75.7))
     pair = as_polygon(with_dent(np.array([(0.0, 0.0), (4.03, 0.0), at(40.3, side)]) * l, 1, dent), l)
     assert (polygon._unplaceable_pair(pair, l, [(0, 0)]) is not None) == refused
+
+
+# --------------------------------------------------------------------------- the grid search of a ring's sharp corners
+
+#: A ring of sides 5.25, 9, 7 and 9 l with corners of 29.4, 23.07, 100 and 207.5 degrees (side_positions reads lengths
+#: and angles only): corners 0 and 1 share the side 5.25 l, their other sides are long (cut past K l = 3 l).
+GRID_LENGTHS, GRID_ANGLES = np.array([5.25, 9.0, 7.0, 9.0]), [29.4, 23.069711979788835, 100.0, 207.5]
+
+
+def positions(sides):
+    return [np.round(num, 9).tolist() for num, _ in sides]
+
+
+@pytest.mark.parametrize("last, placed", [
+    (9.0, [[0.0, 1.0, 2.0, 3.25], [0.0, 1.0, 3.0, 4.5, 6.0, 7.5], [0.0, 1.0, 2.0, 3.0, 4.0], [0.0, 1.5, 3.0, 4.5, 6.0, 7.0625]]),
+    (2.1, [[0.0, 1.75, 2.75, 4.0625], [0.0, 2.0, 3.0, 4.5, 6.0, 7.5], [0.0, 1.0, 2.0, 3.0, 4.0], [0.0, 1.1]]),
+])
+def test_grid_pair_places_the_three_sides_of_two_corners(last, placed):
+    """_grid_pair at corners 0 and 1: side 3 (arriving at 0, ``last`` long), 0 (shared) and 1 (leaving 1) placed
+    jointly, a long side kept past its cut from where it was; both corners then l apart, side 2 untouched; None when
+    the next corner is not sharp."""
+    lengths = np.append(GRID_LENGTHS[:3], last)
+    sides = side_positions(lengths, GRID_ANGLES, 1.0, 1.5)
+    trial = polygon._grid_pair(sides, lengths, GRID_ANGLES, 1.0, 1.5, 0)
+    assert positions(trial) == placed
+    assert trial[2] is sides[2]
+    assert all(at_least(polygon._corner_gap(trial, lengths, GRID_ANGLES, 1.0, c), 1.0) for c in (0, 1))
+    assert polygon._grid_pair(sides, lengths, GRID_ANGLES, 1.0, 1.5, 1) is None
+
+
+@pytest.mark.parametrize("keep, first, last", [
+    ((False, False), [0.0, 1.25, 3.25], [0.0, 1.5, 3.0, 4.5, 6.0, 7.0625]),
+    ((True, False), [0.0, 1.0, 2.0, 3.25], [0.0, 1.5, 3.0, 4.5, 6.0, 7.0625]),
+    ((False, True), [0.0, 1.25, 3.25], [0.0, 1.5, 3.0, 4.5, 6.0, 7.0]),
+])
+def test_grid_sides_places_a_corners_two_sides_keeping_those_asked(keep, first, last):
+    """_grid_sides at corner 0: its leaving side 0 and arriving side 3 placed on the grid, a side flagged in ``keep``
+    passed as it is (up to the cut past K l of a long side); the other sides untouched."""
+    sides = side_positions(GRID_LENGTHS, GRID_ANGLES, 1.0, 1.5)
+    trial = polygon._grid_sides(sides, GRID_LENGTHS, GRID_ANGLES, 1.0, 1.5, 0, keep)
+    assert positions(trial) == [first, positions(sides)[1], positions(sides)[2], last]
+    if keep[0]:
+        assert positions(trial)[0] == positions(sides)[0]
+
+
+def test_place_corners_on_a_grid_tries_the_trials_in_order(monkeypatch):
+    """Every corner reported closer than l, in turn, goes through the trials of the docstring in order: itself free,
+    leaving side kept, arriving side kept, the next (previous) corner first then this one keeping the shared side,
+    this one first then the next (previous), jointly with the next, jointly with the previous; a trial with a corner
+    that is not sharp (corner 2, 100 degrees) is skipped, the others still tried (corner 2's own joint trial with the
+    previous corner too).  (The grid placements are stubbed: each returns its input, and no trial separates anything.)"""
+    calls, angles = [], [29.4, 23.0, 100.0, 20.0, 15.0]
+    sides = side_positions(np.full(5, 4.0), angles, 1.0, 1.5)
+    monkeypatch.setattr(polygon._corner, "corner_unplaceable", lambda *args: False)
+    monkeypatch.setattr(polygon, "_corner_gap", lambda *args: 0.0)
+    monkeypatch.setattr(polygon, "_grid_sides", lambda sides, *args, keep: calls.append((args[-1], keep)) or sides)
+    monkeypatch.setattr(polygon, "_grid_pair", lambda sides, *args: calls.append((args[-1], "pair")) or sides)
+    polygon._place_corners_on_a_grid(sides, np.full(5, 4.0), angles, 1.0, 1.5)
+    free, leaving, arriving = (False, False), (True, False), (False, True)
+
+    def trials(c, after, before):
+        return [
+            [(c, free)], [(c, leaving)], [(c, arriving)], [(after, free), (c, leaving)], [(before, free), (c, arriving)],
+            [(c, free), (after, arriving)], [(c, free), (before, leaving)], [(c, "pair")], [(before, "pair")],
+        ]
+
+    expected = [step for c in range(5) for trial in trials(c, (c + 1) % 5, (c - 1) % 5)
+                if all(corner != 2 for corner, _ in trial) for step in trial]
+    assert calls == expected
+
+
+def test_place_corners_on_a_grid_checks_every_corner_a_trial_touched(monkeypatch):
+    """A trial is taken when the corners it touched and their neighbours are l apart: for a joint trial the two
+    corners and one neighbour on each side (here the first trial that returns anything, the joint one)."""
+    checked = []
+    sides = side_positions(np.full(5, 4.0), [20.0] * 5, 1.0, 1.5)
+    monkeypatch.setattr(polygon._corner, "corner_unplaceable", lambda *args: False)
+    monkeypatch.setattr(polygon, "_corner_gap", lambda trial, *args: 0.0 if trial is sides else checked.append(args[-1]))
+    monkeypatch.setattr(polygon, "_grid_sides", lambda *args, keep: None)
+    monkeypatch.setattr(polygon, "_grid_pair", lambda trial, *args: list(trial))
+    monkeypatch.setattr(polygon, "at_least", lambda value, l: value is None)
+    polygon._place_corners_on_a_grid(sides, np.full(5, 4.0), [20.0] * 5, 1.0, 1.5)
+    assert [set(checked[k : k + 4]) for k in range(0, 20, 4)] == [{4, 0, 1, 2}, {0, 1, 2, 3}, {1, 2, 3, 4}, {2, 3, 4, 0},
+                                                                   {3, 4, 0, 1}]
