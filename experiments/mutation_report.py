@@ -627,6 +627,8 @@ def parse_args(argv=None):
                    help="write the rows of interrupted modules from the mutants already run (runs nothing)")
     p.add_argument("--survivors", action="store_true",
                    help="run only the last run's survivors again, against the current tests (keeps the other verdicts)")
+    p.add_argument("--unexplained", action="store_true",
+                   help="as --survivors, but only the survivors not argued equivalent in EQUIVALENT")
     _common.add_output_options(p, fig_dir=False)
     args = p.parse_args(argv)
     unknown = [m for m in args.modules if m not in MODULES]
@@ -693,7 +695,7 @@ def statuses(folder):
     return dict(re.findall(r"^\s*(\S+): (.+)$", mutmut(folder, "results", "--all", "true"), re.M))
 
 
-def run_module(module, work_dir, max_children, keep=None, seconds=None, progress=print, previous=None):
+def run_module(module, work_dir, max_children, keep=None, seconds=None, progress=print, previous=None, unexplained=False):
     """Mutate ``module``, run its tests on every mutant; its counts and survivors.
 
     With ``keep="so-far"`` nothing runs: the row counts the mutants that an
@@ -708,7 +710,9 @@ def run_module(module, work_dir, max_children, keep=None, seconds=None, progress
     function before, so kill it with a new test (or run the module afresh).
     When the scratch copy is gone, the survivors are those of ``previous``
     (the module's row in ``results/mutation.json``, same source), run in a
-    fresh copy; every other mutant keeps that row's verdict.
+    fresh copy; every other mutant keeps that row's verdict.  With
+    ``unexplained`` only the survivors not argued in :data:`EQUIVALENT` run
+    again (the others keep their verdict).
     """
     folder = prepare(module, work_dir, keep)
     fresh = not (folder / "mutants").exists()
@@ -716,6 +720,9 @@ def run_module(module, work_dir, max_children, keep=None, seconds=None, progress
     full = keep not in ("survivors", "so-far") or (fresh and not from_row)
     again = ([s["mutant"] for s in previous["survivors"]] if from_row else [] if full
              else sorted(n for n, s in statuses(folder).items() if s == "survived"))
+    if unexplained and not full:
+        lines = {s["mutant"]: s["line"] for s in previous["survivors"]} if from_row else {}
+        again = [n for n in again if EQUIVALENT.get((module, lines.get(n) or mutated_line(folder, n))) is None]
     progress(f"{NAME}: {module} against {' '.join(MODULES[module])}" + ("" if full else ", so far" if keep == "so-far" else f", {len(again)} survivors again"))
     start = time.perf_counter()
     if keep == "so-far":
@@ -730,8 +737,8 @@ def run_module(module, work_dir, max_children, keep=None, seconds=None, progress
     status = statuses(folder)
     counts = {s: sum(v == s for v in status.values()) for s in STATUSES}
     if from_row:  # the mutants not run again keep the previous row's verdicts
-        status = {name: status[name] for name in again}
-        counts = {s: previous.get(s, 0) - len(again) * (s == "survived") + sum(v == s for v in status.values()) for s in STATUSES}
+        counts = {s: previous.get(s, 0) - len(again) * (s == "survived") + sum(status[n] == s for n in again) for s in STATUSES}
+        status = {s["mutant"]: status[s["mutant"]] if s["mutant"] in again else "survived" for s in previous["survivors"]}
     survivors = []
     for name in sorted((n for n, s in status.items() if s == "survived"), key=_natural):
         line = mutated_line(folder, name)
@@ -790,9 +797,10 @@ def main(argv=None):
     json_path = args.out_dir / f"{NAME}.json"
     args.out_dir.mkdir(parents=True, exist_ok=True)
     for module in wanted:
-        keep = "survivors" if args.survivors else "resume" if args.resume else "so-far" if args.so_far else None
+        keep = "survivors" if args.survivors or args.unexplained else "resume" if args.resume else "so-far" if args.so_far else None
         previous = _rows(json_path).get(module)
-        row = run_module(module, args.work_dir, args.max_children, keep, (previous or {}).get("seconds"), previous=previous)
+        row = run_module(module, args.work_dir, args.max_children, keep, (previous or {}).get("seconds"), previous=previous,
+                         unexplained=args.unexplained)
         done = _rows(json_path)  # read again: another process may have run other modules meanwhile
         done[module] = row
         modules = [done[m] for m in MODULES if m in done]
