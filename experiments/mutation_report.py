@@ -29,7 +29,9 @@ report is rewritten after each module, and modules already in
 run one at a time; ``--resume`` continues an interrupted module where mutmut
 stopped instead of starting it afresh, and ``--survivors`` runs only the
 survivors of the module's last run again, against the current tests (after
-adding the tests that should kill them), keeping every other verdict.
+adding the tests that should kill them), keeping every other verdict
+(``--unexplained``: only those not argued equivalent; without a scratch copy
+both take the survivors from the module's row in ``results/mutation.json``).
 
 Usage::
 
