@@ -29,7 +29,9 @@ report is rewritten after each module, and modules already in
 run one at a time; ``--resume`` continues an interrupted module where mutmut
 stopped instead of starting it afresh, and ``--survivors`` runs only the
 survivors of the module's last run again, against the current tests (after
-adding the tests that should kill them), keeping every other verdict.
+adding the tests that should kill them), keeping every other verdict
+(``--unexplained``: only those not argued equivalent; without a scratch copy
+both take the survivors from the module's row in ``results/mutation.json``).
 
 Usage::
 
@@ -576,9 +578,34 @@ _KERNEL_EQUIVALENT_GROUPS = {
     ],
 }
 # --- end of the fast engine's kernels ---
-EQUIVALENT = {(module, line): why for module, groups in {**_EQUIVALENT_GROUPS, **_KERNEL_EQUIVALENT_GROUPS,
-                                                                    **_COUPLED_EQUIVALENT_GROUPS}.items()
-              for why, lines in groups for line in lines}
+# --- the sharp-corner Step 2: polygon.py's grid decisions and planar/_corner.py, the last survivors ---
+_SHARP_EQUIVALENT_GROUPS = {
+    "src/equimesh/planar/polygon.py": [
+        ("equivalent: inner_angle is never exactly 60: np.degrees of the floats next to pi / 3 are 59.99999999999999 "
+         "and 60.00000000000001 (reflex angles are past 180), so < 60 and <= 60 agree",
+         ["if not angle <= SHARP_CORNER:", "if not max(angles) <= SHARP_CORNER:"]),
+        ("equivalent: with no second corner (theta_2 None) _Pair reads neither B's length nor radii[2:] (B is a dummy "
+         "side of one position)",
+         ["(theta, None), (sides[1], sides[0], 1.0), lp, (radii[1], radii[0], 0.0, 0.0)",
+          "(theta, None), (sides[1], sides[0], 0.0), lp, (radii[1], radii[0], 1.0, 0.0)",
+          "(theta, None), (sides[1], sides[0], 0.0), lp, (radii[1], radii[0], 0.0, 1.0)"]),
+        ("equivalent: the halving never reaches k = 64: a side is at most sqrt(2) MAX_EXTENT l = 2^16.5 l, so from "
+         "k = 49 on the triangle lies within REL_TOL l / 2 of its corner, a point of P, inside P grown by REL_TOL l",
+         ["for k in range(65):", "return 1.0, 0.0", "return 0.0, 1.0"]),
+        ("equivalent: a side left dirty is settled again with the neighbours it was settled with (else they would "
+         "have marked it dirty), and _short_side then keeps it: it is the first candidate separating both corners "
+         "or, if none does, none of the same candidates has a larger gap; the extra passes change nothing",
+         ["dirty.discard(None)"]),
+        ("equivalent: _grid_side reads leaving only as a truth value, and None is as false as False",
+         ["trial[c - 1] = _grid_side(lengths[c - 1], a, _from_corner(sides, lengths, c, c - 1), None, l, spacing)"]),
+        ("equivalent: _from_corner reads c only in i == c, and i = c - 1 is no more c than None is",
+         ["trial[c - 1] = _grid_side(lengths[c - 1], a, _from_corner(sides, lengths, None, c - 1), False, l, spacing)"]),
+    ],
+}
+# --- end of the sharp-corner Step 2's last survivors ---
+EQUIVALENT = {(module, line): why for table in (_EQUIVALENT_GROUPS, _KERNEL_EQUIVALENT_GROUPS, _COUPLED_EQUIVALENT_GROUPS,
+                                                _SHARP_EQUIVALENT_GROUPS)
+              for module, groups in table.items() for why, lines in groups for line in lines}
 
 #: pytest options for every mutant run: stop at the first failure.
 PYTEST_ARGS = ["-p", "no:cacheprovider", "-q", "-x"]
@@ -602,6 +629,8 @@ def parse_args(argv=None):
                    help="write the rows of interrupted modules from the mutants already run (runs nothing)")
     p.add_argument("--survivors", action="store_true",
                    help="run only the last run's survivors again, against the current tests (keeps the other verdicts)")
+    p.add_argument("--unexplained", action="store_true",
+                   help="as --survivors, but only the survivors not argued equivalent in EQUIVALENT")
     _common.add_output_options(p, fig_dir=False)
     args = p.parse_args(argv)
     unknown = [m for m in args.modules if m not in MODULES]
@@ -668,7 +697,7 @@ def statuses(folder):
     return dict(re.findall(r"^\s*(\S+): (.+)$", mutmut(folder, "results", "--all", "true"), re.M))
 
 
-def run_module(module, work_dir, max_children, keep=None, seconds=None, progress=print):
+def run_module(module, work_dir, max_children, keep=None, seconds=None, progress=print, previous=None, unexplained=False):
     """Mutate ``module``, run its tests on every mutant; its counts and survivors.
 
     With ``keep="so-far"`` nothing runs: the row counts the mutants that an
@@ -681,10 +710,21 @@ def run_module(module, work_dir, max_children, keep=None, seconds=None, progress
     maps each test to the functions it calls once, when it first sees the
     test: a survivor is run against new tests and the tests that reached its
     function before, so kill it with a new test (or run the module afresh).
+    When the scratch copy is gone, the survivors are those of ``previous``
+    (the module's row in ``results/mutation.json``, same source), run in a
+    fresh copy; every other mutant keeps that row's verdict.  With
+    ``unexplained`` only the survivors not argued in :data:`EQUIVALENT` run
+    again (the others keep their verdict).
     """
     folder = prepare(module, work_dir, keep)
-    full = keep not in ("survivors", "so-far") or not (folder / "mutants").exists()
-    again = [] if full else sorted(n for n, s in statuses(folder).items() if s == "survived")
+    fresh = not (folder / "mutants").exists()
+    from_row = keep == "survivors" and fresh and previous is not None
+    full = keep not in ("survivors", "so-far") or (fresh and not from_row)
+    again = ([s["mutant"] for s in previous["survivors"]] if from_row else [] if full
+             else sorted(n for n, s in statuses(folder).items() if s == "survived"))
+    if unexplained and not full:
+        lines = {s["mutant"]: s["line"] for s in previous["survivors"]} if from_row else {}
+        again = [n for n in again if EQUIVALENT.get((module, lines.get(n) or mutated_line(folder, n))) is None]
     progress(f"{NAME}: {module} against {' '.join(MODULES[module])}" + ("" if full else ", so far" if keep == "so-far" else f", {len(again)} survivors again"))
     start = time.perf_counter()
     if keep == "so-far":
@@ -698,16 +738,20 @@ def run_module(module, work_dir, max_children, keep=None, seconds=None, progress
         seconds = time.perf_counter() - start
     status = statuses(folder)
     counts = {s: sum(v == s for v in status.values()) for s in STATUSES}
+    if from_row:  # the mutants not run again keep the previous row's verdicts
+        counts = {s: previous.get(s, 0) - len(again) * (s == "survived") + sum(status[n] == s for n in again) for s in STATUSES}
+        status = {s["mutant"]: status[s["mutant"]] if s["mutant"] in again else "survived" for s in previous["survivors"]}
     survivors = []
     for name in sorted((n for n, s in status.items() if s == "survived"), key=_natural):
         line = mutated_line(folder, name)
         survivors.append({"mutant": name, "line": line, "equivalent": EQUIVALENT.get((module, line))})
     equivalent = sum(s["equivalent"] is not None for s in survivors)
-    relevant = len(status) - equivalent - counts["no tests"] - counts["skipped"] - counts["not checked"]
+    total = previous["mutants"] if from_row else len(status)
+    relevant = total - equivalent - counts["no tests"] - counts["skipped"] - counts["not checked"]
     score = (counts["killed"] + counts["timeout"]) / relevant if relevant else 1.0
-    progress(f"{NAME}: {module}: {len(status)} mutants, {counts['killed']} killed, "
+    progress(f"{NAME}: {module}: {total} mutants, {counts['killed']} killed, "
              f"{counts['survived']} survived ({equivalent} equivalent), {seconds:.0f} s")
-    return {"module": module, "tests": MODULES[module], "environment": ENVIRONMENT.get(module, {}), "mutants": len(status), **counts,
+    return {"module": module, "tests": MODULES[module], "environment": ENVIRONMENT.get(module, {}), "mutants": total, **counts,
             "equivalent": equivalent, "score": score, "seconds": round(seconds), "survivors": survivors}
 
 
@@ -755,9 +799,10 @@ def main(argv=None):
     json_path = args.out_dir / f"{NAME}.json"
     args.out_dir.mkdir(parents=True, exist_ok=True)
     for module in wanted:
-        keep = "survivors" if args.survivors else "resume" if args.resume else "so-far" if args.so_far else None
-        seconds = _rows(json_path).get(module, {}).get("seconds")
-        row = run_module(module, args.work_dir, args.max_children, keep, seconds)
+        keep = "survivors" if args.survivors or args.unexplained else "resume" if args.resume else "so-far" if args.so_far else None
+        previous = _rows(json_path).get(module)
+        row = run_module(module, args.work_dir, args.max_children, keep, (previous or {}).get("seconds"), previous=previous,
+                         unexplained=args.unexplained)
         done = _rows(json_path)  # read again: another process may have run other modules meanwhile
         done[module] = row
         modules = [done[m] for m in MODULES if m in done]

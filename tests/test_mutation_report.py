@@ -63,3 +63,24 @@ def test_kernel_modules_run_as_python_and_say_so(mutation):
     assert "| `src/k.py` | NUMBA_DISABLE_JIT=1 tests/a.py, tests/b.py | 1 | 1 |" in mutation.report([module], record)
     module["not checked"] = 1
     assert "Interrupted: 1 of 1 mutants not run" in mutation.report([module], record)
+
+
+def test_survivors_rerun_from_the_json_row_keeps_every_other_verdict(mutation, monkeypatch, tmp_path):
+    """With no scratch copy left, ``--unexplained`` runs again only the previous row's survivors not argued
+    equivalent, in a fresh copy, and the row keeps the previous verdicts of every other mutant (mutmut stubbed)."""
+    module = "src/equimesh/planar/bounds.py"
+    monkeypatch.setitem(mutation.EQUIVALENT, (module, "argued"), "equivalent: stand-in")
+    previous = {"module": module, "mutants": 10, "killed": 6, "survived": 3, "timeout": 1, "seconds": 50, "survivors": [
+        {"mutant": "m_1", "line": "argued", "equivalent": "equivalent: stand-in"},
+        {"mutant": "m_2", "line": "a", "equivalent": None}, {"mutant": "m_3", "line": "b", "equivalent": None}]}
+    runs = []
+    monkeypatch.setattr(mutation, "prepare", lambda *args: tmp_path)
+    monkeypatch.setattr(mutation, "mutmut", lambda folder, *args, environment=None: runs.append(args))
+    monkeypatch.setattr(mutation, "statuses", lambda folder: {"m_1": "not checked", "m_2": "killed", "m_3": "survived",
+                                                              "m_4": "not checked"})
+    lines = {"m_1": "argued", "m_3": "b"}
+    monkeypatch.setattr(mutation, "mutated_line", lambda folder, name: lines[name])
+    row = mutation.run_module(module, tmp_path, 1, "survivors", 50, lambda text: None, previous, unexplained=True)
+    assert runs == [("run", "--max-children", "1", "m_2", "m_3")]
+    assert (row["mutants"], row["killed"], row["survived"], row["timeout"], row["equivalent"], row["seconds"]) == (10, 7, 2, 1, 1, 50)
+    assert [s["mutant"] for s in row["survivors"]] == ["m_1", "m_3"] and row["score"] == 8 / 9

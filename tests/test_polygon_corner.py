@@ -358,6 +358,85 @@ def test_tighten_and_the_reach_scale_with_l():
     assert _corner.corner_reach(math.radians(30.0), 1.5) == 3.0
 
 
+def test_horizon_of_a_long_side_is_k_l_plus_2l_at_any_l():
+    """At l = 2 and K l = 12 a long side (past K l + 3 l = 18) is read up to K l + 2 l = 16, a short one whole."""
+    assert _corner._horizon((40.0, 9.0), 12.0, 2.0) == 16.0
+    assert _corner._horizon((17.0, 9.0), 12.0, 2.0) == 17.0
+
+
+def test_beyond_the_radii_only_past_them():
+    """A point (or a cell's far end) exactly at its side's visibility radius is seen; only one past it is not."""
+    beyond = _corner._beyond(np.array([0.0, 1.0, 2.0]), 1.0, 2.0)
+    assert beyond.tolist() == [[False, False, False], [False, False, False], [True, True, True]]
+
+
+def _graph(lo, lengths, hi=None):
+    """The graph at theta = 0 (the distance of u and v is |u - v|) with tolerance 0, so that parts are exactly in
+    [l, 2l] (l = 1), K l = 2; on the points ``lo`` or, with ``hi``, on cells."""
+    lo = np.array(lo)
+    return _corner._Graph(0.0, lengths, 2.0, 1.0, lo, lo if hi is None else np.array(hi), 0.0, (math.inf, math.inf))
+
+
+def test_graph_thresholds_are_closed():
+    """Every threshold of _Graph holds with equality (tolerance 0, l = 1): parts of exactly l and 2l are steps; cross
+    pairs exactly l apart are far enough, for points and for cells; a short side (3) ends only at a position that is
+    its far end whole, and no cell starting there goes on; a long side (20, K l = 2) stops at a point exactly at K l
+    and may step to one exactly at K l + 2l."""
+    points = _graph([0.0, 1.0, 3.0], (3.0, 3.0))
+    assert points.next[0].tolist() == [[False, True, False], [False, False, True], [False, False, False]]
+    assert _graph([0.0, 1.0, 2.0], (3.0, 3.0)).cross[0][1, 2]
+    assert _graph([0.0, 1.0, 2.0], (3.0, 3.0), hi=[0.0, 1.0, 2.0]).cross[0][1, 2]
+    cells = _graph([0.0, 1.5, 3.0, 3.0], (3.0, 3.0), hi=[0.0, 2.0, 3.5, 3.0])
+    assert cells.ends[0].tolist() == [False, False, False, True]
+    assert cells.next[0][1].tolist() == [False, False, False, True]  # not to the cell from 3 to 3.5
+    long_ = _graph([0.0, 1.0, 2.0, 3.0, 4.0], (20.0, 20.0))
+    assert long_.stops[0].tolist() == [False, False, True, True, True]
+    assert long_.next[0][2, 4]
+
+
+def test_no_node_past_the_horizon_where_the_quotient_rounds_up():
+    """At l = 1.2187810373376886 and a step of l / 32 the side 5.674949205103612 is an ulp short of 149 steps, and
+    its quotient by the step rounds up to 149: the multiple past the side's end is not a node, the end itself is."""
+    l = 1.2187810373376886
+    step, length = l / 32.0, 5.674949205103612
+    assert math.floor(length / step) * step > length
+    nodes = _corner._nodes((length, 2.0), 3.0 * l, l, step, (None, None))
+    assert nodes.max() == length
+
+
+@pytest.mark.parametrize("first, placed", [(1.9604759331026373, True), (1.96047593041909, False)])
+def test_the_search_accepts_a_cross_pair_within_rel_tol_over_4(first, placed):
+    """A 30-degree corner whose arriving side (1.5 l) is a single part and whose leaving side is kept at ``first`` and
+    ``first + 1.5``: the arriving side's end is (1 - 2.25e-10) l from the first point at 1.9604759331026373, accepted
+    by the search's tolerance REL_TOL / 4 (but not REL_TOL / 5); (1 - 2e-9) l at 1.96047593041909, refused (it would be
+    within 4 REL_TOL), on every grid."""
+    theta, kept = math.radians(30.0), np.array([first, first + 1.5])
+    squared = 1.5**2 + first**2 - 2.0 * math.cos(theta) * 1.5 * first
+    assert (squared >= (1.0 - REL_TOL / 4.0) ** 2) == placed and squared >= (1.0 - 4.0 * REL_TOL) ** 2
+    assert squared < (1.0 - REL_TOL / 5.0) ** 2
+    found = _corner.place_corner(theta, (first + 1.5, 1.5), 1.0, (kept, None))
+    assert (found is not None) == placed
+    if placed:
+        assert [points.tolist() for points in found] == [kept.tolist(), [1.5]]
+
+
+@pytest.mark.parametrize("first, second, arriving", [
+    (1.1263, 2.3221, [61 / 32, 3.3]),  # the window holds a node of the grid of l / 32, none of l / 16
+    (1.1207, 2.3181, None),  # the window holds a node of l / 128 only, past CORNER_REFINEMENTS
+])
+def test_a_kept_side_is_searched_on_each_finer_grid(first, second, arriving, monkeypatch):
+    """A 25-degree corner whose leaving side is kept at ``first``, ``second`` and ``second + 1.5`` and whose arriving
+    side is 3.3 l: its first point must lie at least l beyond ``first`` and l before ``second`` (on the other side),
+    a window 0.012 l wide around 61/32 (0.004 l around 243/128) that no multiple of l/16 from either end reaches.  The
+    search tries the grids of l/16, l/32 and l/64 in turn, and takes the first placement found; with one more
+    refinement the second corner is placed at 243/128."""
+    theta, kept = math.radians(25.0), np.array([first, second, second + 1.5])
+    found = _corner.place_corner(theta, (second + 1.5, 3.3), 1.0, (kept, None))
+    assert (found if found is None else found[1].tolist()) == arriving
+    monkeypatch.setattr(_corner, "CORNER_REFINEMENTS", 3)
+    assert _corner.place_corner(theta, (second + 1.5, 3.3), 1.0, (kept, None))[1].tolist() == (arriving or [243 / 128, 3.3])
+
+
 # --------------------------------------------------------------------------- sharp corners in a row (_coupled.py, chains)
 
 #: The dart sharp_dart(30, (30, 30), 3.5): three corners of 30 degrees in a row (barb, tip, barb), the tip's sides
