@@ -267,6 +267,17 @@ def test_cross_exact_fills_its_buffer():
     assert_expansion(h, n, Fraction(one[0]) ** 2 - Fraction(tiny[0]) ** 2)
 
 
+def test_incircle_exact_fills_its_buffer():
+    """d at the origin, a, b, c of odd 16-bit integers scaled by 1, 2^-150, 2^-300: every difference, lift and cross
+    product is one component, and the three terms lift * cross, 2^150 apart, are inexact products of two 31-bit
+    numbers: six nonoverlapping components, the most its buffer (2 * 3 + 1) has room for."""
+    a = (41547.0, 43305.0)
+    b = (math.ldexp(54385.0, -150), math.ldexp(63279.0, -150))
+    c = (math.ldexp(21587.0, -300), math.ldexp(-26565.0, -300))
+    d = (0.0, 0.0)
+    assert _top_component(pr._incircle_exact(*a, *b, *c, *d), exact_incircle(a, b, c, d)[0])
+
+
 def test_predicates_by_hand():
     """Values far from degenerate are the plain determinants: orient = twice the signed area."""
     assert orient2d(0.0, 0.0, 2.0, 0.0, 0.0, 3.0) == 6.0
@@ -418,25 +429,31 @@ def _ring(corners, step):
     return out
 
 
-@st.composite
-def square_rings(draw):
-    """A 6 x 6 square with (or without) a 2 x 2 square hole, boundary points 1 apart, and generic interior points.
-
-    Returns ``(P, V, SA, SB)``: points, the CDT's triangles, the constraint segments' ends.
-    """
-    outer = _ring([(0.0, 0.0), (6.0, 0.0), (6.0, 6.0), (0.0, 6.0)], 1.0)
-    rings = [outer] + ([_ring([(2.0, 2.0), (2.0, 4.0), (4.0, 4.0), (4.0, 2.0)], 1.0)] if draw(st.booleans()) else [])
-    inner = draw(st.lists(st.tuples(st.floats(0.3, 5.7), st.floats(0.3, 5.7)), max_size=6))
-    inner = [p for p in inner if len(rings) == 1 or not (1.7 <= p[0] <= 4.3 and 1.7 <= p[1] <= 4.3)]
-    P = np.array([p for ring in rings for p in ring] + inner)
+def _square_ring(size, step, hole, inner=()):
+    """A ``size`` square with (or without) a square hole of a third of its size in the middle, boundary points
+    ``step`` apart, and the points ``inner``: ``(P, V, SA, SB)``, points, the CDT's triangles, the constraint
+    segments' ends."""
+    a, b = size / 3.0, 2.0 * size / 3.0
+    rings = [_ring([(0.0, 0.0), (size, 0.0), (size, size), (0.0, size)], step)]
+    rings += [_ring([(a, a), (a, b), (b, b), (b, a)], step)] if hole else []
+    P = np.array([p for ring in rings for p in ring] + list(inner))
     segments, start = [], 0
     for ring in rings:
         segments += [(start + i, start + (i + 1) % len(ring)) for i in range(len(ring))]
         start += len(ring)
     segments = np.array(segments, dtype=np.int64)
-    holes = np.array([[3.0, 3.0]]) if len(rings) == 2 else np.empty((0, 2))
+    holes = np.array([[size / 2.0, size / 2.0]]) if hole else np.empty((0, 2))
     V = np.ascontiguousarray(constrained_delaunay(P, segments, holes), dtype=np.int64)
     return P, V, segments[:, 0].copy(), segments[:, 1].copy()
+
+
+@st.composite
+def square_rings(draw):
+    """A 6 x 6 square with (or without) a 2 x 2 square hole, boundary points 1 apart, and generic interior points
+    (:func:`_square_ring`)."""
+    hole = draw(st.booleans())
+    inner = draw(st.lists(st.tuples(st.floats(0.3, 5.7), st.floats(0.3, 5.7)), max_size=6))
+    return _square_ring(6.0, 1.0, hole, [p for p in inner if not (hole and 1.7 <= p[0] <= 4.3 and 1.7 <= p[1] <= 4.3)])
 
 
 def _half_edges(V):
@@ -486,6 +503,38 @@ def test_walk_decides_visibility_like_the_brute_force_test(ring, data):
         assert _contains(P, V, where, *c)
     # A start point on an edge of t is degenerate.
     assert walk(P, V, N, S, t, *P[V[t, 0]], *c, len(V) + 1) == (-1, -1)
+
+
+def test_walk_through_a_vertex_is_degenerate_and_a_constraint_end_is_touching():
+    """On an 18 x 18 ring of points 3 apart (every centroid g an integer point): c on a vertex of g's triangle,
+    or past it, or opposite it on the line through g and the vertex, is degenerate (-1); c inside a constraint
+    edge of g's triangle touches it (0), constraint 0 included."""
+    P, V, SA, SB = _square_ring(18.0, 3.0, hole=True)
+    N, S, _ = adjacency(V, SA, SB, len(P))
+    for t in range(len(V)):
+        g = P[V[t]].sum(axis=0) / 3.0
+        for e in range(3):
+            v = P[V[t, e]]
+            for c in (v, 2.0 * v - g, 2.0 * g - v, 4.0 * g - 3.0 * v):
+                if not (_contains(P, V, t, *c) and tuple(c) != tuple(v)):
+                    assert walk(P, V, N, S, t, *g, *c, len(V) + 1) == (-1, -1)
+            if S[t, e] >= 0:
+                middle = (v + P[V[t, (e + 1) % 3]]) / 2.0
+                assert walk(P, V, N, S, t, *g, *middle, len(V) + 1) == (0, t)
+    assert 0 in S
+
+
+def test_walk_is_the_same_at_any_scale():
+    """Scaled by 2^-20 (exactly: every orientation by 2^-40, far below 1), every walk from every triangle to the
+    points of a grid gives the same answer (the signs decide, never a magnitude)."""
+    P, V, SA, SB = _square_ring(6.0, 1.0, True, [(0.5, 4.3), (5.2, 1.1), (3.1, 5.4)])
+    N, S, _ = adjacency(V, SA, SB, len(P))
+    scale = 2.0**-20
+    for t in range(len(V)):
+        g = tuple(P[V[t]].sum(axis=0) / 3.0)
+        for c in [(x + 0.3, y + 0.1) for x in range(-1, 7, 3) for y in range(-1, 7, 3)]:
+            expected = walk(P, V, N, S, t, *g, *c, len(V) + 1)
+            assert walk(P * scale, V, N, S, t, *(np.array(g) * scale), *(np.array(c) * scale), len(V) + 1) == expected
 
 
 @given(square_rings(), st.data())
@@ -565,20 +614,34 @@ def test_insertion_by_bowyer_watson_keeps_a_delaunay_triangulation(ring, p):
                 assert exact_incircle(a, b, c, P2[V2[N2[t, e], (half[(v, u)][1] + 2) % 3]])[0] <= 0
 
 
-def test_cavity_boundary_refuses_a_constraint_inside_the_cavity_and_skips_the_split_segment():
-    """Two triangles sharing the constraint 2-0: both in the cavity is a broken cavity, unless 2-0 is the split segment."""
+@pytest.mark.parametrize("segment", [0, 7])
+def test_cavity_boundary_refuses_a_constraint_inside_the_cavity_and_skips_the_split_segment(segment):
+    """Two triangles sharing the constraint 2-0: both in the cavity is a broken cavity, unless 2-0 is the split
+    segment (numbered 0, the first, or 7)."""
     V = np.array([[0, 1, 2], [0, 2, 3]], dtype=np.int64)
     N = np.array([[-1, -1, 1], [0, -1, -1]], dtype=np.int64)
-    S = np.array([[-1, -1, 7], [7, -1, -1]], dtype=np.int64)
+    S = np.array([[-1, -1, segment], [segment, -1, -1]], dtype=np.int64)
     mark = np.ones(2, dtype=np.int64)
     edges = np.empty((4, 4), dtype=np.int64)
     assert cavity_boundary(V, N, S, np.array([0, 1]), 2, -1, mark, 1, edges) == -1
-    assert cavity_boundary(V, N, S, np.array([0, 1]), 2, 7, mark, 1, edges) == 4
+    assert cavity_boundary(V, N, S, np.array([0, 1]), 2, segment, mark, 1, edges) == 4
     assert sorted(map(tuple, edges.tolist())) == [(0, 1, -1, -1), (1, 2, -1, -1), (2, 3, -1, -1), (3, 0, -1, -1)]
     # Only triangle 0 in the cavity: its edges, the one across 2-0 with its neighbour and segment.
     mark = np.array([1, 0])
     assert cavity_boundary(V, N, S, np.array([0]), 1, -1, mark, 1, edges) == 3
-    assert edges[:3].tolist() == [[0, 1, -1, -1], [1, 2, -1, -1], [2, 0, 1, 7]]
+    assert edges[:3].tolist() == [[0, 1, -1, -1], [1, 2, -1, -1], [2, 0, 1, segment]]
+
+
+def test_a_point_on_a_neighbours_circumcircle_stays_out_of_the_cavity():
+    """p = (0, 5) inside the triangle (-4, 3), (4, 3), (0, 10) lies on the circle of radius 5 about the origin,
+    the circumcircle of its neighbour (4, 3), (-4, 3), (0, -5): not strictly inside, so the neighbour stays out;
+    one ulp lower it is inside, and the neighbour joins."""
+    P = np.array([[-4.0, 3.0], [4.0, 3.0], [0.0, 10.0], [0.0, -5.0]])
+    V = np.array([[0, 1, 2], [1, 0, 3]], dtype=np.int64)
+    N, S, _ = adjacency(V, np.array([1, 2, 0, 3]), np.array([2, 0, 3, 1]), len(P))
+    mark, cav = np.zeros(2, dtype=np.int64), np.empty(2, dtype=np.int64)
+    assert cavity(P, V, N, S, 0, 0.0, 5.0, mark, 1, cav) == 1
+    assert cavity(P, V, N, S, 0, 0.0, np.nextafter(5.0, 0.0), mark, 2, cav) == 2 and cav.tolist() == [0, 1]
 
 
 def test_fill_refuses_a_fan_that_is_not_counter_clockwise():
