@@ -399,6 +399,22 @@ def test_compact_keeps_exactly_the_live_entries_in_heap_order(keys, data):
     assert [e[:3] for e in popped] == sorted((keys[i] for i in live), key=lambda e: (-e[0], e[1], e[2]))
 
 
+@given(heap_keys, st.integers(0, 40), st.data())
+def test_room_makes_room_and_keeps_the_live_entries_in_heap_order(keys, need, data):
+    """Both arrays, of one length, have room for need more entries; all entries are kept while there is room
+    already, else exactly the live ones."""
+    HK, HI, n = _heap(keys)
+    ver = np.array([10 + i + data.draw(st.sampled_from([0, 0, 1])) for i in range(len(keys))], dtype=np.int64)
+    salive = np.array([data.draw(st.booleans()), data.draw(st.booleans())])
+    live = [i for i in range(len(keys)) if ver[i] == 10 + i and (i % 3 - 1 < 0 or salive[i % 3 - 1])]
+    room = n + need <= len(HK)
+    HK, HI, k = fast._room(HK, HI, n, need, ver, salive)
+    assert len(HK) == len(HI) >= k + need
+    popped = _pop_all(HK, HI, k)
+    assert sorted(e[3] for e in popped) == (list(range(n)) if room else live)
+    assert [e[:3] for e in popped] == sorted((e[:3] for e in popped), key=lambda e: (-e[0], e[1], e[2]))
+
+
 def test_grown_pads_with_zeros():
     a = np.array([[1, 2], [3, 4]], dtype=np.int64)
     g = fast._grown(a, 5)
@@ -703,6 +719,23 @@ def test_candidates_are_the_reference_candidates(ring, l, data):
             assert gap >= nearest and (gap == nearest or nearest > reach / 2.0)
 
 
+@pytest.mark.parametrize("hole", [False, True])
+def test_gap_is_the_nearest_constraint_within_half_its_reach(hole):
+    """From the triangle containing each point of a grid, for reaches from a fraction of a triangle to most of the
+    region: the distance to the nearest constraint, exact whenever it is at most half the reach."""
+    P, V, SA, SB = _square_ring(6.0, 1.0, hole, [(0.5, 4.3), (5.2, 1.1), (3.1, 5.4), (2.5, 0.6)])
+    N, S, _ = adjacency(V, SA, SB, len(P))
+    salive, seen = np.ones(len(SA), dtype=np.bool_), np.empty(len(V), dtype=np.int64)
+    for x, y in [(0.25 + 0.7 * i, 0.15 + 0.7 * j) for i in range(9) for j in range(9)]:
+        t = locate(P, V, N, np.ones(len(V), dtype=np.bool_), len(V), 0, x, y, len(V) + 1)
+        if t < 0:
+            continue
+        nearest = min(fast._point_segment_distance(x, y, *P[a], *P[b]) for a, b in zip(SA, SB))
+        for reach in (0.3, 1.0, 2.0, 6.0):
+            gap = fast._gap(P, V, N, S, SA, SB, salive, len(SA), t, x, y, reach, seen)
+            assert gap >= nearest and (gap == nearest or nearest > reach / 2.0)
+
+
 def test_a_cavity_larger_than_its_buffer():
     """A regular 70-gon: its vertices are cocircular, so the first point (a circumcentre near the centre) has a
     cavity of more than ``_CAVITY`` (64) triangles: the buffer must grow, and the mesh is Problem 1's."""
@@ -740,13 +773,21 @@ def test_integer_points_and_float_indices_are_converted():
     assert a.points.tobytes() == b.points.tobytes() and a.segments.tolist() == b.segments.tolist()
 
 
-@pytest.mark.parametrize("l", [0.6, 30.0])
-def test_a_quadrilateral_of_four_long_constraints_is_the_reference(l):
-    """Only the four corners: every point comes from splitting the long constraints or from circumcentres, and
-    the heap is compacted while midpoints are in it; with l = 30 nothing is inserted (two triangles).  The
-    reference's insertion bit for bit."""
-    corners = np.array([(0.0, 0.0), (20.3, 0.7), (19.6, 4.1), (0.4, 3.3)])
-    region = Region(corners, np.array([[0, 1], [1, 2], [2, 3], [3, 0]]), np.empty((0, 2)))
+#: A quadrilateral of four long constraints.
+_QUADRILATERAL = [(0.0, 0.0), (20.3, 0.7), (19.6, 4.1), (0.4, 3.3)]
+#: A notched heptagon (found by a search): the walk of a circumcentre from its triangle's centroid runs through a
+#: vertex both when it is pushed and when it surfaces, so both times the brute-force test decides.
+_THROUGH_A_VERTEX = [(0.0, 1.0), (-3.0, 0.0), (-5.2, -4.2), (-4.5, -11.3), (-0.3, -3.8), (3.2, -3.8), (3.0, 0.0)]
+
+
+@pytest.mark.parametrize("corners, l", [(_QUADRILATERAL, 0.6), (_QUADRILATERAL, 30.0), (_THROUGH_A_VERTEX, 2.0)],
+                         ids=["quadrilateral", "quadrilateral-nothing", "walk-through-a-vertex"])
+def test_the_corners_alone_give_the_reference_insertion(corners, l):
+    """Only the corners: every point comes from splitting the long constraints or from circumcentres, and the heap
+    is compacted while midpoints are in it; with l = 30 nothing is inserted in the quadrilateral (two triangles).
+    The reference's insertion bit for bit."""
+    region = Region(np.array(corners), np.array([[i, (i + 1) % len(corners)] for i in range(len(corners))]),
+                    np.empty((0, 2)))
     a, b = fast.run(region, l), reference.run(region, l)
     assert a.points.tobytes() == b.points.tobytes() and a.values.tobytes() == b.values.tobytes()
     assert a.segments.dtype == b.segments.dtype == np.int64 and a.segments.tolist() == b.segments.tolist()
