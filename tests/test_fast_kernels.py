@@ -319,6 +319,7 @@ def test_point_segment_distance_by_hand():
     assert fast._point_segment_distance(-3.0, 4.0, 0.0, 0.0, 2.0, 0.0) == 5.0
     assert fast._point_segment_distance(1.5, -2.0, 0.0, 0.0, 2.0, 0.0) == 2.0
     assert fast._point_segment_distance(4.0, 5.0, 1.0, 1.0, 1.0, 1.0) == 5.0
+    assert fast._point_segment_distance(0.25, 1.0, 0.0, 0.0, 0.5, 0.0) == 1.0  # a segment shorter than 1
 
 
 small_grid = st.tuples(st.integers(-3, 3), st.integers(-3, 3)).map(lambda p: (p[0] / 2.0, p[1] / 2.0))
@@ -675,24 +676,14 @@ def test_fill_refuses_a_fan_that_is_not_counter_clockwise():
 # --------------------------------------------------------------------------- the engine's candidates
 
 
-def _lim(l):
-    return np.array([(1.0 - REL_TOL) * l, (1.0 + REL_TOL) * l, REL_TOL * l, SLIVER_GAP * l, fast._REACH * SLIVER_GAP * l])
-
-
-@given(square_rings(), st.floats(0.3, 2.0), st.data())
-def test_candidates_are_the_reference_candidates(ring, l, data):
+def _assert_candidates(P, V, SA, SB, l):
     """Per triangle: the visible circumcentre and the constraint midpoints of value at least (1 - REL_TOL) l the
-    reference lists, same bits, same values.
-
-    ``_gap`` is the distance to the nearest constraint whenever it is at most
-    half the search reach, also when the search gives up (a buffer of one
-    triangle) and measures every constraint.
-    """
-    P, V, SA, SB = ring
+    reference lists, same bits, same values; the same circumcentres when the distance search gives up at once (a
+    buffer of one triangle) and measures every constraint."""
     N, S, _ = adjacency(V, SA, SB, len(P))
     segments = np.column_stack([SA, SB])
     salive, alive = np.ones(len(SA), dtype=np.bool_), np.ones(len(V), dtype=np.bool_)
-    lim, seen = _lim(l), np.empty(fast._NEAR_TRIANGLES, dtype=np.int64)
+    lim, seen = fast._limits(l), np.empty(fast._NEAR_TRIANGLES, dtype=np.int64)
     centres, radii = reference.circle_candidates(P, V, segments, l)
     listed = {(x, y): r for (x, y), r in zip(centres.tolist(), radii.tolist())}
     HK, HI = np.empty((4 * len(V), 3)), np.empty((4 * len(V), 3), dtype=np.int64)
@@ -702,6 +693,7 @@ def test_candidates_are_the_reference_candidates(ring, l, data):
         assert (r >= 0.0) == ((cx, cy) in listed)
         if r >= 0.0:
             assert r == listed[(cx, cy)] and _contains(P, V, where, cx, cy)
+        assert fast._visible_circumcentre(P, V, N, S, SA, SB, salive, len(SA), alive, len(V), t, lim, seen[:1])[0] == r
         nh = fast._push_candidates(P, V, N, S, SA, SB, salive, len(SA), alive, np.arange(len(V)), len(V), t, lim, seen,
                                    HK, HI, nh)
     mids, values, split = reference.midpoint_candidates(P, V, segments, l)
@@ -710,13 +702,31 @@ def test_candidates_are_the_reference_candidates(ring, l, data):
     pushed = sorted((*HK[i], HI[i, 2]) for i in range(nh))
     assert pushed == expected
     assert all(HI[i, 1] == HI[i, 0] for i in range(nh))  # each entry carries its triangle's version
+
+
+@given(square_rings(), st.floats(0.3, 2.0), st.data())
+def test_candidates_are_the_reference_candidates(ring, l, data):
+    """:func:`_assert_candidates`; and ``_gap`` is the distance to the nearest constraint whenever it is at most
+    half the search reach, also when the search gives up (a buffer of one triangle) and measures every constraint.
+    """
+    P, V, SA, SB = ring
+    _assert_candidates(P, V, SA, SB, l)
+    N, S, _ = adjacency(V, SA, SB, len(P))
+    salive, lim, seen = np.ones(len(SA), dtype=np.bool_), fast._limits(l), np.empty(fast._NEAR_TRIANGLES, dtype=np.int64)
     x, y = data.draw(st.tuples(st.floats(0.0, 6.0), st.floats(0.0, 6.0)))
-    t = locate(P, V, N, alive, len(V), 0, x, y, len(V) + 1)
+    t = locate(P, V, N, np.ones(len(V), dtype=np.bool_), len(V), 0, x, y, len(V) + 1)
     if t >= 0:
-        nearest = min(fast._point_segment_distance(x, y, *P[a], *P[b]) for a, b in segments)
+        nearest = min(fast._point_segment_distance(x, y, *P[a], *P[b]) for a, b in zip(SA, SB))
         for reach, buffer in ((lim[4], seen), (lim[4], seen[:1]), (0.0, seen)):
             gap = fast._gap(P, V, N, S, SA, SB, salive, len(SA), t, x, y, reach, buffer)
             assert gap >= nearest and (gap == nearest or nearest > reach / 2.0)
+
+
+@pytest.mark.parametrize("hole", [False, True])
+def test_candidates_where_every_boundary_midpoint_counts(hole):
+    """l = 0.45 on a ring of points 1 apart: the midpoint of every constraint edge is a candidate, whichever edge
+    of its triangle it is."""
+    _assert_candidates(*_square_ring(6.0, 1.0, hole, [(0.5, 4.3), (5.2, 1.1), (3.1, 5.4), (2.5, 0.6)]), 0.45)
 
 
 @pytest.mark.parametrize("hole", [False, True])
@@ -802,14 +812,43 @@ def test_fast_engine_refuses_an_interior_constraint():
         insert(region, 1.0, engine="fast")
 
 
+def _l_at(value, factor):
+    """The l for which ``factor * l`` is ``value`` exactly."""
+    l = value / factor
+    for _ in range(64):
+        if factor * l == value:
+            return float(l)
+        l = np.nextafter(l, np.inf if factor * l < value else -np.inf)
+    raise AssertionError(f"no l with {factor!r} * l == {value!r}")
+
+
 def _thresholds():
-    """(points, l) of the reference engine's threshold tests (``tests/test_reference_engine.py``)."""
+    """(points, l) of the reference engine's threshold tests (``tests/test_reference_engine.py``), and a radius
+    at (1 - REL_TOL) l and at (1 + REL_TOL) l (this one within SLIVER_GAP l of a constraint) and a constraint of
+    half-length (1 - REL_TOL) l, each exactly."""
     cases = [(circle_triangle(gap, radius)[0], 1.0) for gap, radius, _ in NEAR_CONSTRAINT]
     cases += [(circle_triangle(0.5, 1.5)[0], 1.5 / factor) for factor in (1.0 - 0.5 * REL_TOL, 1.0 - 2.0 * REL_TOL)]
     for tol, radius in [(REL_TOL, 3.0), (SLIVER_GAP, 1.0)]:
         points, _, l = at_exactly(tol, radius)
         cases += [(points, l), (points, np.nextafter(l, 0.0) * (1.0 - 4.0 * REL_TOL))]
+    for gap, radius, factor in [(0.5, 1.5, 1.0 - REL_TOL), (0.5 * SLIVER_GAP, 1.0, 1.0 + REL_TOL)]:
+        points = circle_triangle(gap, radius)[0]
+        cases.append((points, _l_at(fast._circumcircle(points, 0, 1, 2)[2], factor)))
+    cases.append((np.array([[-1.0, 0.0], [1.0, 0.0], [0.0, 5.0]]), _l_at(1.0, 1.0 - REL_TOL)))
     return cases
+
+
+def test_every_limit_is_a_multiple_of_l():
+    """Scaling l by a power of two scales every threshold and the search reach by it exactly."""
+    for k in (-7, 1, 30):
+        assert fast._limits(math.ldexp(1.3, k)).tolist() == [math.ldexp(x, k) for x in fast._limits(1.3)]
+
+
+@pytest.mark.parametrize("points, l", _thresholds())
+def test_candidates_at_the_thresholds_of_the_rules(points, l):
+    """One triangle bounded by its three constraints at each threshold of the rules: the reference's candidates
+    (:func:`_assert_candidates`)."""
+    _assert_candidates(points, np.array([[0, 1, 2]]), np.array([0, 1, 2]), np.array([1, 2, 0]), l)
 
 
 @pytest.mark.parametrize("points, l", _thresholds())

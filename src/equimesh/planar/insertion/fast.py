@@ -456,14 +456,19 @@ def _insert_all(P0, T0, SEG0, lim):
 _insert_all = compiled(_insert_all)
 
 
+def _limits(l):
+    """The thresholds of the candidate rules for ``l`` and the reach of the distance search, the ``lim`` of
+    :func:`_visible_circumcentre`: ``(1 - REL_TOL) l, (1 + REL_TOL) l, REL_TOL l, SLIVER_GAP l, _REACH SLIVER_GAP l``."""
+    return np.array([(1.0 - REL_TOL) * l, (1.0 + REL_TOL) * l, REL_TOL * l, SLIVER_GAP * l, _REACH * SLIVER_GAP * l])
+
+
 def run(region, l):
     """Farthest-point insertion in ``region`` (Steps 3-5), fast engine; the same result as :func:`.reference.run`."""
     points = np.array(region.points, dtype=float).reshape(-1, 2)
     segments = np.array(region.segments, dtype=np.int64).reshape(-1, 2)
     triangles = constrained_delaunay(points, segments, region.holes)
-    lim = np.array([(1.0 - REL_TOL) * l, (1.0 + REL_TOL) * l, REL_TOL * l, SLIVER_GAP * l, _REACH * SLIVER_GAP * l])
     status, points, triangles, segments, values = _insert_all(
-        points, np.ascontiguousarray(triangles, dtype=np.int64), segments, lim
+        points, np.ascontiguousarray(triangles, dtype=np.int64), segments, _limits(l)
     )
     if status == _BROKEN:
         raise InternalError("fast engine: a Bowyer-Watson cavity did not re-triangulate (broken triangulation)")
