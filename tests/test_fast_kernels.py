@@ -722,6 +722,22 @@ def test_candidates_are_the_reference_candidates(ring, l, data):
             assert gap >= nearest and (gap == nearest or nearest > reach / 2.0)
 
 
+def test_a_circumcentre_the_walks_cannot_reach_is_found_by_the_scan():
+    """A hexagon with a reflex corner at (-1, -2), triangulated by hand (not Delaunay; the rules do not need it):
+    the circumcentre (0, -4) of the first triangle is seen from its centroid along x = 0, through its apex (0, 1),
+    a degenerate walk; locate's walk towards it steps over the boundary edge (-3, 0)-(-1, -2) of the second
+    triangle, out of the region, and the scan finds it, when it is listed and when it surfaces (the first point)."""
+    P = np.array([(0.0, 1.0), (-3.0, 0.0), (-1.0, -2.0), (-1.0, -6.0), (3.0, -6.0), (3.0, 0.0)])
+    V = np.array([[1, 5, 0], [5, 1, 2], [5, 2, 3], [5, 3, 4]], dtype=np.int64)
+    SA = np.arange(6, dtype=np.int64)
+    SB = (SA + 1) % 6
+    N, S, _ = adjacency(V, SA, SB, len(P))
+    assert walk(P, V, N, S, 0, 0.0, 1.0 / 3.0, 0.0, -4.0, len(V) + 1) == (-1, -1)
+    _assert_candidates(P, V, SA, SB, 4.0)
+    status, points, _, _, values = fast._insert_all(P, V, np.column_stack([SA, SB]), fast._limits(4.0))
+    assert status == fast._OK and points[len(P)].tolist() == [0.0, -4.0] and values[0] == 5.0
+
+
 @pytest.mark.parametrize("hole", [False, True])
 def test_candidates_where_every_boundary_midpoint_counts(hole):
     """l = 0.45 on a ring of points 1 apart: the midpoint of every constraint edge is a candidate, whichever edge
