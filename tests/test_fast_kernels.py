@@ -28,6 +28,7 @@ from hypothesis import strategies as st
 
 import equimesh
 from equimesh import EquimeshError
+from equimesh.errors import InternalError
 from equimesh._geometry import circumcenters, point_segment_distance, segments_intersect
 from equimesh.planar.insertion import Region, fast, insert, reference
 from equimesh.planar.insertion import _predicates as pr
@@ -818,6 +819,25 @@ def test_the_corners_alone_give_the_reference_insertion(corners, l):
     assert a.points.tobytes() == b.points.tobytes() and a.values.tobytes() == b.values.tobytes()
     assert a.segments.dtype == b.segments.dtype == np.int64 and a.segments.tolist() == b.segments.tolist()
     assert sorted(map(sorted, a.triangles.tolist())) == sorted(map(sorted, b.triangles.tolist()))
+
+
+def test_the_triangles_come_out_in_slot_order_the_cavitys_slots_first():
+    """A 2 x 2 square (triangles 3 0 1 and 1 2 3) with l = 1.4: only its centre is inserted, on the diagonal, and its
+    cavity is both triangles.  Its fan of four takes their slots 1 and 0 (the last freed first) and then new
+    slots 2 and 3, and the triangles come out in slot order: fixed, so the same input gives the same arrays."""
+    square = np.array([(0.0, 0.0), (2.0, 0.0), (2.0, 2.0), (0.0, 2.0)])
+    region = Region(square, np.array([[0, 1], [1, 2], [2, 3], [3, 0]]), np.empty((0, 2)))
+    assert constrained_delaunay(square, region.segments, region.holes).tolist() == [[3, 0, 1], [1, 2, 3]]
+    assert fast.run(region, 1.4).triangles.tolist() == [[0, 1, 4], [3, 0, 4], [1, 2, 4], [2, 3, 4]]
+
+
+def test_a_broken_cavity_is_an_internal_error(monkeypatch):
+    """When the compiled loop reports a cavity it could not re-triangulate (a bug), run raises InternalError, never
+    returns the mesh."""
+    monkeypatch.setattr(fast, "_insert_all", lambda P0, T0, SEG0, lim: (fast._BROKEN, P0, T0, SEG0, np.empty(0)))
+    with pytest.raises(InternalError) as caught:
+        fast.run(Region(rectangle(2.0, 2.0), np.array([[0, 1], [1, 2], [2, 3], [3, 0]]), np.empty((0, 2))), 1.0)
+    assert str(caught.value) == "fast engine: a Bowyer-Watson cavity did not re-triangulate (broken triangulation)"
 
 
 def test_fast_engine_refuses_an_interior_constraint():
