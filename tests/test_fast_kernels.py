@@ -739,6 +739,13 @@ def test_a_circumcentre_the_walks_cannot_reach_is_found_by_the_scan():
     assert status == fast._OK and points[len(P)].tolist() == [0.0, -4.0] and values[0] == 5.0
 
 
+def test_candidates_after_a_short_constraint():
+    """A triangle whose first edge is a constraint too short for a candidate and whose other two are long: their
+    midpoints are candidates all the same."""
+    P = np.array([(0.0, 0.0), (1.0, 0.0), (0.0, 6.0)])
+    _assert_candidates(P, np.array([[0, 1, 2]]), np.array([0, 1, 2]), np.array([1, 2, 0]), 1.0)
+
+
 @pytest.mark.parametrize("hole", [False, True])
 def test_candidates_where_every_boundary_midpoint_counts(hole):
     """l = 0.45 on a ring of points 1 apart: the midpoint of every constraint edge is a candidate, whichever edge
