@@ -578,10 +578,10 @@ _KERNEL_EQUIVALENT_GROUPS = {
         ("equivalent: under a0 != b0 (a1 != b1), a0 <= b0 is a0 < b0 (a1 <= b1 is a1 < b1)",
          ["return a0 <= b0", "return a1 <= b1"]),
         ("equivalent: _visible_circumcentre compares the gap only with REL_TOL l and SLIVER_GAP l = reach / 2, so "
-         "any search that stays exact up to reach / 2 and never reports less than the distance decides the same. "
-         "An edge at exactly reach is crossed by no segment from the point to a constraint point nearer than reach; "
-         "under the engine's contract every boundary edge is a constraint, so a non-constraint edge always has a "
-         "triangle across it (n >= 0) and n < 0 and ... only searches farther",
+         "a search that is exact up to reach / 2 and never reports less than the distance decides the same. No "
+         "segment from the point to a constraint point nearer than reach crosses an edge at exactly reach; and under "
+         "the engine's contract every boundary edge is a constraint, so a non-constraint edge has a triangle across "
+         "it (n >= 0), and the mutant with 'and' only searches farther",
          ["if n < 0 or _edge_distance(P, V[t, e], V[t, (e + 1) % 3], x, y) >= reach:",
           "if n < 0 and _edge_distance(P, V[t, e], V[t, (e + 1) % 3], x, y) > reach:"]),
         ("equivalent: known = None before the loop is as false as False; in the loop, a search that never finds a "
