@@ -518,6 +518,12 @@ _KERNEL_EQUIVALENT_GROUPS = {
          "later one across an edge), so s0, s1, s2, nonzero here, are not all of one sign; the first two branches miss "
          "only the signs (-, +, +) and (-, +, -), where s0 < 0 < s1 holds anyway",
          ["elif s0 < 0.0 or s1 > 0.0:", "elif s0 < 1.0 and s1 > 0.0:"]),
+        ("equivalent: o_out is negative here: c is not in t, and on the line from g it lies past the edge the line "
+         "leaves t by", ["if o_out >= 1.0:"]),
+        ("equivalent: these returns of walk are never reached: the else (the signs of a line through t's interior are "
+         "never all one), o_out >= 0 (c, not in t, lies past the edge the line leaves t by), t < 0 (under the "
+         "engine's contract every boundary edge is a constraint, where the walk stopped) and the loop's end (one step "
+         "per triangle the segment crosses, and the engine allows n_slots + 1)", ["return +1, -1"]),
     ],
     "src/equimesh/planar/insertion/fast.py": [
         ("equivalent: as floats 1.0 / 0.0 these flags are only read as truth values and written True / False",
