@@ -373,8 +373,10 @@ def _insert_all(P0, T0, SEG0, lim):
     HK, HI = np.empty((0, 3)), np.empty((0, 3), dtype=np.int64)
     nh, m, stamp = 0, n_slots, 0
     while True:
-        # Push the candidates of the new triangles slots[:m] (at first: every triangle), at most four each.
-        HK, HI, nh = _room(HK, HI, nh, 4 * m, ver, salive)
+        # Push the candidates of the new triangles slots[:m] (at first: every triangle), at most four each
+        # (_room only when short of room: a call at every pop made the engine 5 % slower).
+        if nh + 4 * m > len(HK):
+            HK, HI, nh = _room(HK, HI, nh, 4 * m, ver, salive)
         for f in range(m):
             nh = _push_candidates(
                 P, V, N, S, SA, SB, salive, n_segs, alive, ver, n_slots, slots[f], lim, seen, HK, HI, nh
