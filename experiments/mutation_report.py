@@ -557,6 +557,8 @@ _KERNEL_EQUIVALENT_GROUPS = {
          "fan may take their slots in the other order: the same mesh, its triangles listed in another order)",
          ["HK, HI, nh = _room(HK, HI, nh, 5 * m, ver, salive)", "if n + need >= len(HK):",
           "if 3 * (n + need) > len(HK):", "if 2 * (n + need) >= len(HK):"]),
+        ("equivalent: the guard before _room only spares the call; _room checks the room itself, so calling it more "
+         "often changes nothing", ["if nh + 5 * m > len(HK):", "if nh + 4 * m >= len(HK):"]),
         ("equivalent: heapify sifts down from a higher index, a leaf (indices from k // 2 have no child below k), "
          "which _sift_down writes back unchanged", ["for i in range(k // 2 + 1, -1, -1):", "for i in range(k // 2, -1, -1):"]),
         ("equivalent: stamps are only compared for equality with marks that start at 0, and are incremented before "
