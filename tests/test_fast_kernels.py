@@ -11,7 +11,14 @@ What must hold:
 * the circumcircle, the distance to a segment and the touch test are the
   reference's (``equimesh._geometry``) bit for bit;
 * the heap pops its entries in the reference's order (largest value, then
-  smallest x, then smallest y) and compaction keeps exactly the live entries.
+  smallest x, then smallest y), compaction keeps exactly the live entries,
+  and ``_room`` leaves room for the pushes to come;
+* the CDT operations: a walk decides visibility as the brute-force test does,
+  or says it cannot (-1), at any scale; Bowyer-Watson keeps the triangulation
+  constrained Delaunay;
+* each triangle's candidates are the reference's, also exactly at the
+  thresholds of the rules, and the whole engine inserts the reference's
+  points, its triangles in a fixed (slot) order.
 
 Small inputs, so that the file runs in seconds with the kernels run as
 Python (``NUMBA_DISABLE_JIT=1``, as mutation testing runs them:
