@@ -592,6 +592,9 @@ _KERNEL_EQUIVALENT_GROUPS = {
          "it (n >= 0), and the mutant with 'and' only searches farther",
          ["if n < 0 or _edge_distance(P, V[t, e], V[t, (e + 1) % 3], x, y) >= reach:",
           "if n < 0 and _edge_distance(P, V[t, e], V[t, (e + 1) % 3], x, y) > reach:"]),
+        ("equivalent: a search reach far larger than 2 SLIVER_GAP l only searches farther: the gap stays exact up to "
+         "SLIVER_GAP l and is never below the distance, and only there does it decide (argument of _gap's search)",
+         ["return np.array([(1.0 - REL_TOL) * l, (1.0 + REL_TOL) * l, REL_TOL * l, SLIVER_GAP * l, _REACH / SLIVER_GAP * l])"]),
         ("equivalent: known = None before the loop is as false as False; in the loop, a search that never finds a "
          "triangle known adds triangles again until its buffer is full and then measures every constraint: the exact "
          "distance, which decides as the search's does (only up to reach / 2 = SLIVER_GAP l does the gap decide)",
