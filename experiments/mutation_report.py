@@ -516,6 +516,16 @@ _KERNEL_EQUIVALENT_GROUPS = {
         ("equivalent: o_out == 0 would put c on the line of the edge the segment gc leaves t by, where gc meets that "
          "line, hence on the edge itself and in the closed triangle t, which was tested before",
          ["if o_out > 0.0:"]),
+        ("equivalent: the line gc crosses the interior of t (g is inside the first triangle, and the walk enters each "
+         "later one across an edge), so s0, s1, s2, nonzero here, are not all of one sign; the first two branches miss "
+         "only the signs (-, +, +) and (-, +, -), where s0 < 0 < s1 holds anyway",
+         ["elif s0 < 0.0 or s1 > 0.0:", "elif s0 < 1.0 and s1 > 0.0:"]),
+        ("equivalent: o_out is negative here: c is not in t, and on the line from g it lies past the edge the line "
+         "leaves t by", ["if o_out >= 1.0:"]),
+        ("equivalent: these returns of walk are never reached: the else (the signs of a line through t's interior are "
+         "never all one), o_out >= 0 (c, not in t, lies past the edge the line leaves t by), t < 0 (under the "
+         "engine's contract every boundary edge is a constraint, where the walk stopped) and the loop's end (one step "
+         "per triangle the segment crosses, and the engine allows n_slots + 1)", ["return +1, -1"]),
     ],
     "src/equimesh/planar/insertion/fast.py": [
         ("equivalent: as floats 1.0 / 0.0 these flags are only read as truth values and written True / False",
@@ -529,23 +539,28 @@ _KERNEL_EQUIVALENT_GROUPS = {
         ("equivalent: run raises on any status but _OK before it reads the arrays returned with it",
          ["return -2 - s, P0, T0, SEG0, np.empty(None)", "return -2 - s, P0, T0, SEG0, np.empty(1)"]),
         ("equivalent: a buffer's capacity is checked against the need before every use (len(edges) against k + 2, "
-         "len(HK) against the pushes to come, len(P) against n) and grown then; a longer HI, values, vfan or vstamp "
-         "than the array checked, or an unused column, is never read",
+         "len(HK) against the pushes to come, len(P) against n) and grown then; a longer values, vfan or vstamp "
+         "than the array checked, or an unused column, is never read; the heap's arrays start empty, and the first "
+         "_room (need 4 n_slots > 1) grows both to one length, 2 len(HK) + need, so a row more in either at the start "
+         "changes nothing after it",
          ["edges = np.empty((_CAVITY - 2, 4), dtype=np.int64)", "edges = np.empty((_CAVITY + 3, 4), dtype=np.int64)",
-          "edges = np.empty((_CAVITY + 2, 5), dtype=np.int64)", "HK = np.empty((4 * n_slots + 16, 4))",
-          "HI = np.empty((5 * n_slots + 16, 3), dtype=np.int64)", "HI = np.empty((4 * n_slots + 17, 3), dtype=np.int64)",
-          "HI = np.empty((4 * n_slots + 16, 4), dtype=np.int64)",
-          "HK, HI = _grown(HK, 2 * len(HK) + 4 * m), _grown(HI, 3 * len(HI) + 4 * m)",
-          "HK, HI = _grown(HK, 2 * len(HK) + 4 * m), _grown(HI, 2 * len(HI) + 5 * m)",
+          "edges = np.empty((_CAVITY + 2, 5), dtype=np.int64)",
+          "HK, HI = np.empty((1, 3)), np.empty((0, 3), dtype=np.int64)",
+          "HK, HI = np.empty((0, 3)), np.empty((1, 3), dtype=np.int64)",
+          "HK, HI = np.empty((0, 4)), np.empty((0, 3), dtype=np.int64)",
+          "HK, HI = np.empty((0, 3)), np.empty((0, 4), dtype=np.int64)", "size = 3 * len(HK) + need",
           "P, values = _grown(P, 2 * n), _grown(values, 3 * n)", "vfan, vstamp = _grown(vfan, 3 * n), _grown(vstamp, 2 * n)",
           "vfan, vstamp = _grown(vfan, 2 * n), _grown(vstamp, 3 * n)"]),
         ("equivalent: compacting or growing the heap earlier (never later) changes only its array, hence only the "
          "order in which entries with identical keys (value, x, y) surface; such entries are one point (a circumcentre "
          "shared by cocircular triangles; a circumcentre within REL_TOL l of a constraint is never pushed, so never "
          "equals a midpoint), inserted once with the same value, and its cavity, grown from any triangle containing "
-         "it, is the same, so the same triangles follow",
-         ["if nh + 5 * m > len(HK):", "if nh + 4 * m >= len(HK):", "if 3 * (nh + 4 * m) > len(HK):",
-          "if 2 * (nh + 5 * m) > len(HK):", "if 2 * (nh + 4 * m) >= len(HK):"]),
+         "it, is the same, so the same triangles follow (when the point lies on the edge between two of them, the "
+         "fan may take their slots in the other order: the same mesh, its triangles listed in another order)",
+         ["HK, HI, nh = _room(HK, HI, nh, 5 * m, ver, salive)", "if n + need >= len(HK):",
+          "if 3 * (n + need) > len(HK):", "if 2 * (n + need) >= len(HK):"]),
+        ("equivalent: the guard before _room only spares the call; _room checks the room itself, so calling it more "
+         "often changes nothing", ["if nh + 5 * m > len(HK):", "if nh + 4 * m >= len(HK):"]),
         ("equivalent: heapify sifts down from a higher index, a leaf (indices from k // 2 have no child below k), "
          "which _sift_down writes back unchanged", ["for i in range(k // 2 + 1, -1, -1):", "for i in range(k // 2, -1, -1):"]),
         ("equivalent: stamps are only compared for equality with marks that start at 0, and are incremented before "
@@ -566,15 +581,59 @@ _KERNEL_EQUIVALENT_GROUPS = {
         ("equivalent: cavity returns -1 (buffer too short) or k >= 1 (the start triangle is always in), and "
          "cavity_boundary -1 or m >= 3 (a cavity's boundary is a closed polygon)",
          ["while k <= 0:", "while k < 1:", "if m <= 0:", "if m < 1:"]),
-        ("equivalent: r is -1 (no candidate) or at least (1 - REL_TOL) l > 0", ["if r <= 0.0:"]),
+        ("equivalent: r is -1 (no candidate) or at least (1 - REL_TOL) l > 0", ["if r <= 0.0:", "if r > 0.0:"]),
+        ("equivalent: the callers compare a rejected circumcentre's r with 0 only (r >= 0.0 when it is pushed, r < 0.0 "
+         "when it surfaces), and -2 is as negative as -1; they never read its triangle",
+         ["return -2.0, cx, cy, -1", "return -1.0, cx, cy, +1", "return -1.0, cx, cy, -2"]),
+        ("equivalent: under a0 != b0 (a1 != b1), a0 <= b0 is a0 < b0 (a1 <= b1 is a1 < b1)",
+         ["return a0 <= b0", "return a1 <= b1"]),
+        ("equivalent: _visible_circumcentre compares the gap only with REL_TOL l and SLIVER_GAP l = reach / 2, so "
+         "a search that is exact up to reach / 2 and never reports less than the distance decides the same. No "
+         "segment from the point to a constraint point nearer than reach crosses an edge at exactly reach; and under "
+         "the engine's contract every boundary edge is a constraint, so a non-constraint edge has a triangle across "
+         "it (n >= 0), and the mutant with 'and' only searches farther",
+         ["if n < 0 or _edge_distance(P, V[t, e], V[t, (e + 1) % 3], x, y) >= reach:",
+          "if n < 0 and _edge_distance(P, V[t, e], V[t, (e + 1) % 3], x, y) > reach:"]),
+        ("equivalent: a search reach far larger than 2 SLIVER_GAP l only searches farther: the gap stays exact up to "
+         "SLIVER_GAP l and is never below the distance, and only there does it decide (argument of _gap's search)",
+         ["return np.array([(1.0 - REL_TOL) * l, (1.0 + REL_TOL) * l, REL_TOL * l, SLIVER_GAP * l, _REACH / SLIVER_GAP * l])"]),
+        ("equivalent: known = None before the loop is as false as False; in the loop, a search that never finds a "
+         "triangle known adds triangles again until its buffer is full and then measures every constraint: the exact "
+         "distance, which decides as the search's does (only up to reach / 2 = SLIVER_GAP l does the gap decide)",
+         ["known = None", "known = known and seen[j] == n"]),
+        ("equivalent: the candidates of slots[0], a live triangle of the last fan, pushed again after an entry is "
+         "skipped, are copies of entries in the heap (same key, triangle, version and segment) or are refused again "
+         "(the state is the one that refused them when they surfaced); the first copy to surface is processed as the "
+         "original would be, and the others are then stale or refused alike", ["m = 1"]),
+        ("equivalent: the fan of a cavity of k triangles has k + 2 of them (k + 1 when the point splits a segment; a "
+         "cavity that is not a disc fails fill and the run raises), so every slot freed is taken again by the same "
+         "insertion and alive is True for every slot below n_slots whenever it is read",
+         ["alive[cav[i]] = None", "alive[cav[i]] = True"]),
+        ("equivalent: versions are only compared for equality with the version an entry was pushed with, and a slot's "
+         "version still takes a new value at each retirement", ["ver[cav[i]] -= 1", "ver[cav[i]] += 2"]),
+        ("equivalent: None stored in a NumPy bool array is False", ["salive[s] = None"]),
+        ("equivalent: denom is 0 only when a = b, and then the numerator is 0 too: t = 0 either way",
+         ["t = ((x - ax) * abx + (y - ay) * aby) / (denom if denom > 0 else 2.0)"]),
+        ("equivalent: a walk takes one step per triangle its segment crosses, so it needs all n_slots steps only when "
+         "it crosses every triangle, and then c is strictly inside the last or on a constraint (a triangle across an "
+         "edge holding c would be one it did not cross): one step fewer gives status -1, and the brute-force test and "
+         "locate decide the same and find the same triangle; more steps are never taken",
+         ["status, where = walk(P, V, N, S, t, gx, gy, cx, cy, n_slots - 1)",
+          "status, where = walk(P, V, N, S, t, gx, gy, cx, cy, n_slots + 2)"]),
+        ("equivalent: locate's answer, the lowest live slot containing the point, does not depend on its step bound "
+         "(its walk answers the same, else the scan does)",
+         ["where = locate(P, V, N, alive, n_slots, t, cx, cy, n_slots - 1)",
+          "where = locate(P, V, N, alive, n_slots, t, cx, cy, n_slots + 2)"]),
         ("equivalent: an entry of a split segment s belongs to the triangle that had s as an edge, the start of the "
          "split's cavity, so its version is stale and it is skipped whatever the segment test says",
          ["if ver[t] != version or (s > 0 and not salive[s]):", "if ver[t] != version or (s >= 1 and not salive[s]):"]),
         (_NEGATIVE_RESHAPE, ["points = np.array(region.points, dtype=float).reshape(-2, 2)",
                              "segments = np.array(region.segments, dtype=np.int64).reshape(-2, 2)"]),
         ("equivalent: constrained_delaunay returns int64 triangles already",
-         ["points, np.ascontiguousarray(triangles, dtype=None), segments, lim",
-          "points, np.ascontiguousarray(triangles, ), segments, lim"]),
+         ["points, np.ascontiguousarray(triangles, dtype=None), segments, _limits(l)",
+          "points, np.ascontiguousarray(triangles, ), segments, _limits(l)"]),
+        ("equivalent: status 0 means the walk found gc touching a constraint; the brute-force test then finds it too "
+         "and returns -1 as the branch for status 0 does", ["if status <= 0:", "if status < 1:"]),
     ],
 }
 # --- end of the fast engine's kernels ---

@@ -11,7 +11,14 @@ What must hold:
 * the circumcircle, the distance to a segment and the touch test are the
   reference's (``equimesh._geometry``) bit for bit;
 * the heap pops its entries in the reference's order (largest value, then
-  smallest x, then smallest y) and compaction keeps exactly the live entries.
+  smallest x, then smallest y), compaction keeps exactly the live entries,
+  and ``_room`` leaves room for the pushes to come;
+* the CDT operations: a walk decides visibility as the brute-force test does,
+  or says it cannot (-1), at any scale; Bowyer-Watson keeps the triangulation
+  constrained Delaunay;
+* each triangle's candidates are the reference's, also exactly at the
+  thresholds of the rules, and the whole engine inserts the reference's
+  points, its triangles in a fixed (slot) order.
 
 Small inputs, so that the file runs in seconds with the kernels run as
 Python (``NUMBA_DISABLE_JIT=1``, as mutation testing runs them:
@@ -28,6 +35,7 @@ from hypothesis import strategies as st
 
 import equimesh
 from equimesh import EquimeshError
+from equimesh.errors import InternalError
 from equimesh._geometry import circumcenters, point_segment_distance, segments_intersect
 from equimesh.planar.insertion import Region, fast, insert, reference
 from equimesh.planar.insertion import _predicates as pr
@@ -267,6 +275,17 @@ def test_cross_exact_fills_its_buffer():
     assert_expansion(h, n, Fraction(one[0]) ** 2 - Fraction(tiny[0]) ** 2)
 
 
+def test_incircle_exact_fills_its_buffer():
+    """d at the origin, a, b, c of odd 16-bit integers scaled by 1, 2^-150, 2^-300: every difference, lift and cross
+    product is one component, and the three terms lift * cross, 2^150 apart, are inexact products of two 31-bit
+    numbers: six nonoverlapping components, the most its buffer (2 * 3 + 1) has room for."""
+    a = (41547.0, 43305.0)
+    b = (math.ldexp(54385.0, -150), math.ldexp(63279.0, -150))
+    c = (math.ldexp(21587.0, -300), math.ldexp(-26565.0, -300))
+    d = (0.0, 0.0)
+    assert _top_component(pr._incircle_exact(*a, *b, *c, *d), exact_incircle(a, b, c, d)[0])
+
+
 def test_predicates_by_hand():
     """Values far from degenerate are the plain determinants: orient = twice the signed area."""
     assert orient2d(0.0, 0.0, 2.0, 0.0, 0.0, 3.0) == 6.0
@@ -308,6 +327,7 @@ def test_point_segment_distance_by_hand():
     assert fast._point_segment_distance(-3.0, 4.0, 0.0, 0.0, 2.0, 0.0) == 5.0
     assert fast._point_segment_distance(1.5, -2.0, 0.0, 0.0, 2.0, 0.0) == 2.0
     assert fast._point_segment_distance(4.0, 5.0, 1.0, 1.0, 1.0, 1.0) == 5.0
+    assert fast._point_segment_distance(0.25, 1.0, 0.0, 0.0, 0.5, 0.0) == 1.0  # a segment shorter than 1
 
 
 small_grid = st.tuples(st.integers(-3, 3), st.integers(-3, 3)).map(lambda p: (p[0] / 2.0, p[1] / 2.0))
@@ -388,6 +408,22 @@ def test_compact_keeps_exactly_the_live_entries_in_heap_order(keys, data):
     assert [e[:3] for e in popped] == sorted((keys[i] for i in live), key=lambda e: (-e[0], e[1], e[2]))
 
 
+@given(heap_keys, st.integers(0, 40), st.data())
+def test_room_makes_room_and_keeps_the_live_entries_in_heap_order(keys, need, data):
+    """Both arrays, of one length, have room for need more entries; all entries are kept while there is room
+    already, else exactly the live ones."""
+    HK, HI, n = _heap(keys)
+    ver = np.array([10 + i + data.draw(st.sampled_from([0, 0, 1])) for i in range(len(keys))], dtype=np.int64)
+    salive = np.array([data.draw(st.booleans()), data.draw(st.booleans())])
+    live = [i for i in range(len(keys)) if ver[i] == 10 + i and (i % 3 - 1 < 0 or salive[i % 3 - 1])]
+    room = n + need <= len(HK)
+    HK, HI, k = fast._room(HK, HI, n, need, ver, salive)
+    assert len(HK) == len(HI) >= k + need
+    popped = _pop_all(HK, HI, k)
+    assert sorted(e[3] for e in popped) == (list(range(n)) if room else live)
+    assert [e[:3] for e in popped] == sorted((e[:3] for e in popped), key=lambda e: (-e[0], e[1], e[2]))
+
+
 def test_grown_pads_with_zeros():
     a = np.array([[1, 2], [3, 4]], dtype=np.int64)
     g = fast._grown(a, 5)
@@ -418,25 +454,31 @@ def _ring(corners, step):
     return out
 
 
-@st.composite
-def square_rings(draw):
-    """A 6 x 6 square with (or without) a 2 x 2 square hole, boundary points 1 apart, and generic interior points.
-
-    Returns ``(P, V, SA, SB)``: points, the CDT's triangles, the constraint segments' ends.
-    """
-    outer = _ring([(0.0, 0.0), (6.0, 0.0), (6.0, 6.0), (0.0, 6.0)], 1.0)
-    rings = [outer] + ([_ring([(2.0, 2.0), (2.0, 4.0), (4.0, 4.0), (4.0, 2.0)], 1.0)] if draw(st.booleans()) else [])
-    inner = draw(st.lists(st.tuples(st.floats(0.3, 5.7), st.floats(0.3, 5.7)), max_size=6))
-    inner = [p for p in inner if len(rings) == 1 or not (1.7 <= p[0] <= 4.3 and 1.7 <= p[1] <= 4.3)]
-    P = np.array([p for ring in rings for p in ring] + inner)
+def _square_ring(size, step, hole, inner=()):
+    """A ``size`` square with (or without) a square hole of a third of its size in the middle, boundary points
+    ``step`` apart, and the points ``inner``: ``(P, V, SA, SB)``, points, the CDT's triangles, the constraint
+    segments' ends."""
+    a, b = size / 3.0, 2.0 * size / 3.0
+    rings = [_ring([(0.0, 0.0), (size, 0.0), (size, size), (0.0, size)], step)]
+    rings += [_ring([(a, a), (a, b), (b, b), (b, a)], step)] if hole else []
+    P = np.array([p for ring in rings for p in ring] + list(inner))
     segments, start = [], 0
     for ring in rings:
         segments += [(start + i, start + (i + 1) % len(ring)) for i in range(len(ring))]
         start += len(ring)
     segments = np.array(segments, dtype=np.int64)
-    holes = np.array([[3.0, 3.0]]) if len(rings) == 2 else np.empty((0, 2))
+    holes = np.array([[size / 2.0, size / 2.0]]) if hole else np.empty((0, 2))
     V = np.ascontiguousarray(constrained_delaunay(P, segments, holes), dtype=np.int64)
     return P, V, segments[:, 0].copy(), segments[:, 1].copy()
+
+
+@st.composite
+def square_rings(draw):
+    """A 6 x 6 square with (or without) a 2 x 2 square hole, boundary points 1 apart, and generic interior points
+    (:func:`_square_ring`)."""
+    hole = draw(st.booleans())
+    inner = draw(st.lists(st.tuples(st.floats(0.3, 5.7), st.floats(0.3, 5.7)), max_size=6))
+    return _square_ring(6.0, 1.0, hole, [p for p in inner if not (hole and 1.7 <= p[0] <= 4.3 and 1.7 <= p[1] <= 4.3)])
 
 
 def _half_edges(V):
@@ -486,6 +528,38 @@ def test_walk_decides_visibility_like_the_brute_force_test(ring, data):
         assert _contains(P, V, where, *c)
     # A start point on an edge of t is degenerate.
     assert walk(P, V, N, S, t, *P[V[t, 0]], *c, len(V) + 1) == (-1, -1)
+
+
+def test_walk_through_a_vertex_is_degenerate_and_a_constraint_end_is_touching():
+    """On an 18 x 18 ring of points 3 apart (every centroid g an integer point): c on a vertex of g's triangle,
+    or past it, or opposite it on the line through g and the vertex, is degenerate (-1); c inside a constraint
+    edge of g's triangle touches it (0), constraint 0 included."""
+    P, V, SA, SB = _square_ring(18.0, 3.0, hole=True)
+    N, S, _ = adjacency(V, SA, SB, len(P))
+    for t in range(len(V)):
+        g = P[V[t]].sum(axis=0) / 3.0
+        for e in range(3):
+            v = P[V[t, e]]
+            for c in (v, 2.0 * v - g, 2.0 * g - v, 4.0 * g - 3.0 * v):
+                if not (_contains(P, V, t, *c) and tuple(c) != tuple(v)):
+                    assert walk(P, V, N, S, t, *g, *c, len(V) + 1) == (-1, -1)
+            if S[t, e] >= 0:
+                middle = (v + P[V[t, (e + 1) % 3]]) / 2.0
+                assert walk(P, V, N, S, t, *g, *middle, len(V) + 1) == (0, t)
+    assert 0 in S
+
+
+def test_walk_is_the_same_at_any_scale():
+    """Scaled by 2^-20 (exactly: every orientation by 2^-40, far below 1), every walk from every triangle to the
+    points of a grid gives the same answer (the signs decide, never a magnitude)."""
+    P, V, SA, SB = _square_ring(6.0, 1.0, True, [(0.5, 4.3), (5.2, 1.1), (3.1, 5.4)])
+    N, S, _ = adjacency(V, SA, SB, len(P))
+    scale = 2.0**-20
+    for t in range(len(V)):
+        g = tuple(P[V[t]].sum(axis=0) / 3.0)
+        for c in [(x + 0.3, y + 0.1) for x in range(-1, 7, 3) for y in range(-1, 7, 3)]:
+            expected = walk(P, V, N, S, t, *g, *c, len(V) + 1)
+            assert walk(P * scale, V, N, S, t, *(np.array(g) * scale), *(np.array(c) * scale), len(V) + 1) == expected
 
 
 @given(square_rings(), st.data())
@@ -565,20 +639,34 @@ def test_insertion_by_bowyer_watson_keeps_a_delaunay_triangulation(ring, p):
                 assert exact_incircle(a, b, c, P2[V2[N2[t, e], (half[(v, u)][1] + 2) % 3]])[0] <= 0
 
 
-def test_cavity_boundary_refuses_a_constraint_inside_the_cavity_and_skips_the_split_segment():
-    """Two triangles sharing the constraint 2-0: both in the cavity is a broken cavity, unless 2-0 is the split segment."""
+@pytest.mark.parametrize("segment", [0, 7])
+def test_cavity_boundary_refuses_a_constraint_inside_the_cavity_and_skips_the_split_segment(segment):
+    """Two triangles sharing the constraint 2-0: both in the cavity is a broken cavity, unless 2-0 is the split
+    segment (numbered 0, the first, or 7)."""
     V = np.array([[0, 1, 2], [0, 2, 3]], dtype=np.int64)
     N = np.array([[-1, -1, 1], [0, -1, -1]], dtype=np.int64)
-    S = np.array([[-1, -1, 7], [7, -1, -1]], dtype=np.int64)
+    S = np.array([[-1, -1, segment], [segment, -1, -1]], dtype=np.int64)
     mark = np.ones(2, dtype=np.int64)
     edges = np.empty((4, 4), dtype=np.int64)
     assert cavity_boundary(V, N, S, np.array([0, 1]), 2, -1, mark, 1, edges) == -1
-    assert cavity_boundary(V, N, S, np.array([0, 1]), 2, 7, mark, 1, edges) == 4
+    assert cavity_boundary(V, N, S, np.array([0, 1]), 2, segment, mark, 1, edges) == 4
     assert sorted(map(tuple, edges.tolist())) == [(0, 1, -1, -1), (1, 2, -1, -1), (2, 3, -1, -1), (3, 0, -1, -1)]
     # Only triangle 0 in the cavity: its edges, the one across 2-0 with its neighbour and segment.
     mark = np.array([1, 0])
     assert cavity_boundary(V, N, S, np.array([0]), 1, -1, mark, 1, edges) == 3
-    assert edges[:3].tolist() == [[0, 1, -1, -1], [1, 2, -1, -1], [2, 0, 1, 7]]
+    assert edges[:3].tolist() == [[0, 1, -1, -1], [1, 2, -1, -1], [2, 0, 1, segment]]
+
+
+def test_a_point_on_a_neighbours_circumcircle_stays_out_of_the_cavity():
+    """p = (0, 5) inside the triangle (-4, 3), (4, 3), (0, 10) lies on the circle of radius 5 about the origin,
+    the circumcircle of its neighbour (4, 3), (-4, 3), (0, -5): not strictly inside, so the neighbour stays out;
+    one ulp lower it is inside, and the neighbour joins."""
+    P = np.array([[-4.0, 3.0], [4.0, 3.0], [0.0, 10.0], [0.0, -5.0]])
+    V = np.array([[0, 1, 2], [1, 0, 3]], dtype=np.int64)
+    N, S, _ = adjacency(V, np.array([1, 2, 0, 3]), np.array([2, 0, 3, 1]), len(P))
+    mark, cav = np.zeros(2, dtype=np.int64), np.empty(2, dtype=np.int64)
+    assert cavity(P, V, N, S, 0, 0.0, 5.0, mark, 1, cav) == 1
+    assert cavity(P, V, N, S, 0, 0.0, np.nextafter(5.0, 0.0), mark, 2, cav) == 2 and cav.tolist() == [0, 1]
 
 
 def test_fill_refuses_a_fan_that_is_not_counter_clockwise():
@@ -596,24 +684,14 @@ def test_fill_refuses_a_fan_that_is_not_counter_clockwise():
 # --------------------------------------------------------------------------- the engine's candidates
 
 
-def _lim(l):
-    return np.array([(1.0 - REL_TOL) * l, (1.0 + REL_TOL) * l, REL_TOL * l, SLIVER_GAP * l, fast._REACH * SLIVER_GAP * l])
-
-
-@given(square_rings(), st.floats(0.3, 2.0), st.data())
-def test_candidates_are_the_reference_candidates(ring, l, data):
+def _assert_candidates(P, V, SA, SB, l):
     """Per triangle: the visible circumcentre and the constraint midpoints of value at least (1 - REL_TOL) l the
-    reference lists, same bits, same values.
-
-    ``_gap`` is the distance to the nearest constraint whenever it is at most
-    half the search reach, also when the search gives up (a buffer of one
-    triangle) and measures every constraint.
-    """
-    P, V, SA, SB = ring
+    reference lists, same bits, same values; the same circumcentres when the distance search gives up at once (a
+    buffer of one triangle) and measures every constraint."""
     N, S, _ = adjacency(V, SA, SB, len(P))
     segments = np.column_stack([SA, SB])
     salive, alive = np.ones(len(SA), dtype=np.bool_), np.ones(len(V), dtype=np.bool_)
-    lim, seen = _lim(l), np.empty(fast._NEAR_TRIANGLES, dtype=np.int64)
+    lim, seen = fast._limits(l), np.empty(fast._NEAR_TRIANGLES, dtype=np.int64)
     centres, radii = reference.circle_candidates(P, V, segments, l)
     listed = {(x, y): r for (x, y), r in zip(centres.tolist(), radii.tolist())}
     HK, HI = np.empty((4 * len(V), 3)), np.empty((4 * len(V), 3), dtype=np.int64)
@@ -623,6 +701,7 @@ def test_candidates_are_the_reference_candidates(ring, l, data):
         assert (r >= 0.0) == ((cx, cy) in listed)
         if r >= 0.0:
             assert r == listed[(cx, cy)] and _contains(P, V, where, cx, cy)
+        assert fast._visible_circumcentre(P, V, N, S, SA, SB, salive, len(SA), alive, len(V), t, lim, seen[:1])[0] == r
         nh = fast._push_candidates(P, V, N, S, SA, SB, salive, len(SA), alive, np.arange(len(V)), len(V), t, lim, seen,
                                    HK, HI, nh)
     mids, values, split = reference.midpoint_candidates(P, V, segments, l)
@@ -631,12 +710,70 @@ def test_candidates_are_the_reference_candidates(ring, l, data):
     pushed = sorted((*HK[i], HI[i, 2]) for i in range(nh))
     assert pushed == expected
     assert all(HI[i, 1] == HI[i, 0] for i in range(nh))  # each entry carries its triangle's version
+
+
+@given(square_rings(), st.floats(0.3, 2.0), st.data())
+def test_candidates_are_the_reference_candidates(ring, l, data):
+    """:func:`_assert_candidates`; and ``_gap`` is the distance to the nearest constraint whenever it is at most
+    half the search reach, also when the search gives up (a buffer of one triangle) and measures every constraint.
+    """
+    P, V, SA, SB = ring
+    _assert_candidates(P, V, SA, SB, l)
+    N, S, _ = adjacency(V, SA, SB, len(P))
+    salive, lim, seen = np.ones(len(SA), dtype=np.bool_), fast._limits(l), np.empty(fast._NEAR_TRIANGLES, dtype=np.int64)
     x, y = data.draw(st.tuples(st.floats(0.0, 6.0), st.floats(0.0, 6.0)))
-    t = locate(P, V, N, alive, len(V), 0, x, y, len(V) + 1)
+    t = locate(P, V, N, np.ones(len(V), dtype=np.bool_), len(V), 0, x, y, len(V) + 1)
     if t >= 0:
-        nearest = min(fast._point_segment_distance(x, y, *P[a], *P[b]) for a, b in segments)
+        nearest = min(fast._point_segment_distance(x, y, *P[a], *P[b]) for a, b in zip(SA, SB))
         for reach, buffer in ((lim[4], seen), (lim[4], seen[:1]), (0.0, seen)):
             gap = fast._gap(P, V, N, S, SA, SB, salive, len(SA), t, x, y, reach, buffer)
+            assert gap >= nearest and (gap == nearest or nearest > reach / 2.0)
+
+
+def test_a_circumcentre_the_walks_cannot_reach_is_found_by_the_scan():
+    """A hexagon with a reflex corner at (-1, -2), triangulated by hand (not Delaunay; the rules do not need it):
+    the circumcentre (0, -4) of the first triangle is seen from its centroid along x = 0, through its apex (0, 1),
+    a degenerate walk; locate's walk towards it steps over the boundary edge (-3, 0)-(-1, -2) of the second
+    triangle, out of the region, and the scan finds it, when it is listed and when it surfaces (the first point)."""
+    P = np.array([(0.0, 1.0), (-3.0, 0.0), (-1.0, -2.0), (-1.0, -6.0), (3.0, -6.0), (3.0, 0.0)])
+    V = np.array([[1, 5, 0], [5, 1, 2], [5, 2, 3], [5, 3, 4]], dtype=np.int64)
+    SA = np.arange(6, dtype=np.int64)
+    SB = (SA + 1) % 6
+    N, S, _ = adjacency(V, SA, SB, len(P))
+    assert walk(P, V, N, S, 0, 0.0, 1.0 / 3.0, 0.0, -4.0, len(V) + 1) == (-1, -1)
+    _assert_candidates(P, V, SA, SB, 4.0)
+    status, points, _, _, values = fast._insert_all(P, V, np.column_stack([SA, SB]), fast._limits(4.0))
+    assert status == fast._OK and points[len(P)].tolist() == [0.0, -4.0] and values[0] == 5.0
+
+
+def test_candidates_after_a_short_constraint():
+    """A triangle whose first edge is a constraint too short for a candidate and whose other two are long: their
+    midpoints are candidates all the same."""
+    P = np.array([(0.0, 0.0), (1.0, 0.0), (0.0, 6.0)])
+    _assert_candidates(P, np.array([[0, 1, 2]]), np.array([0, 1, 2]), np.array([1, 2, 0]), 1.0)
+
+
+@pytest.mark.parametrize("hole", [False, True])
+def test_candidates_where_every_boundary_midpoint_counts(hole):
+    """l = 0.45 on a ring of points 1 apart: the midpoint of every constraint edge is a candidate, whichever edge
+    of its triangle it is."""
+    _assert_candidates(*_square_ring(6.0, 1.0, hole, [(0.5, 4.3), (5.2, 1.1), (3.1, 5.4), (2.5, 0.6)]), 0.45)
+
+
+@pytest.mark.parametrize("hole", [False, True])
+def test_gap_is_the_nearest_constraint_within_half_its_reach(hole):
+    """From the triangle containing each point of a grid, for reaches from a fraction of a triangle to most of the
+    region: the distance to the nearest constraint, exact whenever it is at most half the reach."""
+    P, V, SA, SB = _square_ring(6.0, 1.0, hole, [(0.5, 4.3), (5.2, 1.1), (3.1, 5.4), (2.5, 0.6)])
+    N, S, _ = adjacency(V, SA, SB, len(P))
+    salive, seen = np.ones(len(SA), dtype=np.bool_), np.empty(len(V), dtype=np.int64)
+    for x, y in [(0.25 + 0.7 * i, 0.15 + 0.7 * j) for i in range(9) for j in range(9)]:
+        t = locate(P, V, N, np.ones(len(V), dtype=np.bool_), len(V), 0, x, y, len(V) + 1)
+        if t < 0:
+            continue
+        nearest = min(fast._point_segment_distance(x, y, *P[a], *P[b]) for a, b in zip(SA, SB))
+        for reach in (0.3, 1.0, 2.0, 6.0):
+            gap = fast._gap(P, V, N, S, SA, SB, salive, len(SA), t, x, y, reach, seen)
             assert gap >= nearest and (gap == nearest or nearest > reach / 2.0)
 
 
@@ -677,17 +814,44 @@ def test_integer_points_and_float_indices_are_converted():
     assert a.points.tobytes() == b.points.tobytes() and a.segments.tolist() == b.segments.tolist()
 
 
-@pytest.mark.parametrize("l", [0.6, 30.0])
-def test_a_quadrilateral_of_four_long_constraints_is_the_reference(l):
-    """Only the four corners: every point comes from splitting the long constraints or from circumcentres, and
-    the heap is compacted while midpoints are in it; with l = 30 nothing is inserted (two triangles).  The
-    reference's insertion bit for bit."""
-    corners = np.array([(0.0, 0.0), (20.3, 0.7), (19.6, 4.1), (0.4, 3.3)])
-    region = Region(corners, np.array([[0, 1], [1, 2], [2, 3], [3, 0]]), np.empty((0, 2)))
+#: A quadrilateral of four long constraints.
+_QUADRILATERAL = [(0.0, 0.0), (20.3, 0.7), (19.6, 4.1), (0.4, 3.3)]
+#: A notched heptagon (found by a search): the walk of a circumcentre from its triangle's centroid runs through a
+#: vertex both when it is pushed and when it surfaces, so both times the brute-force test decides.
+_THROUGH_A_VERTEX = [(0.0, 1.0), (-3.0, 0.0), (-5.2, -4.2), (-4.5, -11.3), (-0.3, -3.8), (3.2, -3.8), (3.0, 0.0)]
+
+
+@pytest.mark.parametrize("corners, l", [(_QUADRILATERAL, 0.6), (_QUADRILATERAL, 30.0), (_THROUGH_A_VERTEX, 2.0)],
+                         ids=["quadrilateral", "quadrilateral-nothing", "walk-through-a-vertex"])
+def test_the_corners_alone_give_the_reference_insertion(corners, l):
+    """Only the corners: every point comes from splitting the long constraints or from circumcentres, and the heap
+    is compacted while midpoints are in it; with l = 30 nothing is inserted in the quadrilateral (two triangles).
+    The reference's insertion bit for bit."""
+    region = Region(np.array(corners), np.array([[i, (i + 1) % len(corners)] for i in range(len(corners))]),
+                    np.empty((0, 2)))
     a, b = fast.run(region, l), reference.run(region, l)
     assert a.points.tobytes() == b.points.tobytes() and a.values.tobytes() == b.values.tobytes()
     assert a.segments.dtype == b.segments.dtype == np.int64 and a.segments.tolist() == b.segments.tolist()
     assert sorted(map(sorted, a.triangles.tolist())) == sorted(map(sorted, b.triangles.tolist()))
+
+
+def test_the_triangles_come_out_in_slot_order_the_cavitys_slots_first():
+    """A 2 x 2 square (triangles 3 0 1 and 1 2 3) with l = 1.4: only its centre is inserted, on the diagonal, and its
+    cavity is both triangles.  Its fan of four takes their slots 1 and 0 (the last freed first) and then new
+    slots 2 and 3, and the triangles come out in slot order: fixed, so the same input gives the same arrays."""
+    square = np.array([(0.0, 0.0), (2.0, 0.0), (2.0, 2.0), (0.0, 2.0)])
+    region = Region(square, np.array([[0, 1], [1, 2], [2, 3], [3, 0]]), np.empty((0, 2)))
+    assert constrained_delaunay(square, region.segments, region.holes).tolist() == [[3, 0, 1], [1, 2, 3]]
+    assert fast.run(region, 1.4).triangles.tolist() == [[0, 1, 4], [3, 0, 4], [1, 2, 4], [2, 3, 4]]
+
+
+def test_a_broken_cavity_is_an_internal_error(monkeypatch):
+    """When the compiled loop reports a cavity it could not re-triangulate (a bug), run raises InternalError, never
+    returns the mesh."""
+    monkeypatch.setattr(fast, "_insert_all", lambda P0, T0, SEG0, lim: (fast._BROKEN, P0, T0, SEG0, np.empty(0)))
+    with pytest.raises(InternalError) as caught:
+        fast.run(Region(rectangle(2.0, 2.0), np.array([[0, 1], [1, 2], [2, 3], [3, 0]]), np.empty((0, 2))), 1.0)
+    assert str(caught.value) == "fast engine: a Bowyer-Watson cavity did not re-triangulate (broken triangulation)"
 
 
 def test_fast_engine_refuses_an_interior_constraint():
@@ -698,14 +862,43 @@ def test_fast_engine_refuses_an_interior_constraint():
         insert(region, 1.0, engine="fast")
 
 
+def _l_at(value, factor):
+    """The l for which ``factor * l`` is ``value`` exactly."""
+    l = value / factor
+    for _ in range(64):
+        if factor * l == value:
+            return float(l)
+        l = np.nextafter(l, np.inf if factor * l < value else -np.inf)
+    raise AssertionError(f"no l with {factor!r} * l == {value!r}")
+
+
 def _thresholds():
-    """(points, l) of the reference engine's threshold tests (``tests/test_reference_engine.py``)."""
+    """(points, l) of the reference engine's threshold tests (``tests/test_reference_engine.py``), and a radius
+    at (1 - REL_TOL) l and at (1 + REL_TOL) l (this one within SLIVER_GAP l of a constraint) and a constraint of
+    half-length (1 - REL_TOL) l, each exactly."""
     cases = [(circle_triangle(gap, radius)[0], 1.0) for gap, radius, _ in NEAR_CONSTRAINT]
     cases += [(circle_triangle(0.5, 1.5)[0], 1.5 / factor) for factor in (1.0 - 0.5 * REL_TOL, 1.0 - 2.0 * REL_TOL)]
     for tol, radius in [(REL_TOL, 3.0), (SLIVER_GAP, 1.0)]:
         points, _, l = at_exactly(tol, radius)
         cases += [(points, l), (points, np.nextafter(l, 0.0) * (1.0 - 4.0 * REL_TOL))]
+    for gap, radius, factor in [(0.5, 1.5, 1.0 - REL_TOL), (0.5 * SLIVER_GAP, 1.0, 1.0 + REL_TOL)]:
+        points = circle_triangle(gap, radius)[0]
+        cases.append((points, _l_at(fast._circumcircle(points, 0, 1, 2)[2], factor)))
+    cases.append((np.array([[-1.0, 0.0], [1.0, 0.0], [0.0, 5.0]]), _l_at(1.0, 1.0 - REL_TOL)))
     return cases
+
+
+def test_every_limit_is_a_multiple_of_l():
+    """Scaling l by a power of two scales every threshold and the search reach by it exactly."""
+    for k in (-7, 1, 30):
+        assert fast._limits(math.ldexp(1.3, k)).tolist() == [math.ldexp(x, k) for x in fast._limits(1.3)]
+
+
+@pytest.mark.parametrize("points, l", _thresholds())
+def test_candidates_at_the_thresholds_of_the_rules(points, l):
+    """One triangle bounded by its three constraints at each threshold of the rules: the reference's candidates
+    (:func:`_assert_candidates`)."""
+    _assert_candidates(points, np.array([[0, 1, 2]]), np.array([0, 1, 2]), np.array([1, 2, 0]), l)
 
 
 @pytest.mark.parametrize("points, l", _thresholds())

@@ -304,6 +304,24 @@ def _grown(a, size):
 _grown = compiled(_grown)
 
 
+def _room(HK, HI, n, need, ver, salive):
+    """The heap ``[:n]`` with room for ``need`` more entries: ``(HK, HI, n)``.
+
+    When it is short of room, drops the dead entries (:func:`_compact`), and
+    if they still fill more than half of it, grows both arrays to twice their
+    length plus ``need``.
+    """
+    if n + need > len(HK):
+        n = _compact(HK, HI, n, ver, salive)
+        if 2 * (n + need) > len(HK):
+            size = 2 * len(HK) + need
+            HK, HI = _grown(HK, size), _grown(HI, size)
+    return HK, HI, n
+
+
+_room = compiled(_room)
+
+
 def _push_candidates(P, V, N, S, SA, SB, salive, n_segs, alive, ver, n_slots, t, lim, seen, HK, HI, nh):
     """Push the candidates of triangle ``t`` (its circumcentre, its constraint midpoints); the new heap size."""
     r, cx, cy, _ = _visible_circumcentre(P, V, N, S, SA, SB, salive, n_segs, alive, n_slots, t, lim, seen)
@@ -352,15 +370,13 @@ def _insert_all(P0, T0, SEG0, lim):
     edges = np.empty((_CAVITY + 2, 4), dtype=np.int64)
     slots = np.arange(n_slots)
     seen = np.empty(_NEAR_TRIANGLES, dtype=np.int64)
-    HK = np.empty((4 * n_slots + 16, 3))
-    HI = np.empty((4 * n_slots + 16, 3), dtype=np.int64)
+    HK, HI = np.empty((0, 3)), np.empty((0, 3), dtype=np.int64)
     nh, m, stamp = 0, n_slots, 0
     while True:
-        # Push the candidates of the new triangles slots[:m] (at first: every triangle).
+        # Push the candidates of the new triangles slots[:m] (at first: every triangle), at most four each
+        # (_room only when short of room: a call at every pop made the engine 5 % slower).
         if nh + 4 * m > len(HK):
-            nh = _compact(HK, HI, nh, ver, salive)
-            if 2 * (nh + 4 * m) > len(HK):
-                HK, HI = _grown(HK, 2 * len(HK) + 4 * m), _grown(HI, 2 * len(HI) + 4 * m)
+            HK, HI, nh = _room(HK, HI, nh, 4 * m, ver, salive)
         for f in range(m):
             nh = _push_candidates(
                 P, V, N, S, SA, SB, salive, n_segs, alive, ver, n_slots, slots[f], lim, seen, HK, HI, nh
@@ -442,14 +458,19 @@ def _insert_all(P0, T0, SEG0, lim):
 _insert_all = compiled(_insert_all)
 
 
+def _limits(l):
+    """The thresholds of the candidate rules for ``l`` and the reach of the distance search, the ``lim`` of
+    :func:`_visible_circumcentre`: ``(1 - REL_TOL) l, (1 + REL_TOL) l, REL_TOL l, SLIVER_GAP l, _REACH SLIVER_GAP l``."""
+    return np.array([(1.0 - REL_TOL) * l, (1.0 + REL_TOL) * l, REL_TOL * l, SLIVER_GAP * l, _REACH * SLIVER_GAP * l])
+
+
 def run(region, l):
     """Farthest-point insertion in ``region`` (Steps 3-5), fast engine; the same result as :func:`.reference.run`."""
     points = np.array(region.points, dtype=float).reshape(-1, 2)
     segments = np.array(region.segments, dtype=np.int64).reshape(-1, 2)
     triangles = constrained_delaunay(points, segments, region.holes)
-    lim = np.array([(1.0 - REL_TOL) * l, (1.0 + REL_TOL) * l, REL_TOL * l, SLIVER_GAP * l, _REACH * SLIVER_GAP * l])
     status, points, triangles, segments, values = _insert_all(
-        points, np.ascontiguousarray(triangles, dtype=np.int64), segments, lim
+        points, np.ascontiguousarray(triangles, dtype=np.int64), segments, _limits(l)
     )
     if status == _BROKEN:
         raise InternalError("fast engine: a Bowyer-Watson cavity did not re-triangulate (broken triangulation)")
