@@ -30,11 +30,17 @@ run one at a time; ``--resume`` continues an interrupted module where mutmut
 stopped instead of starting it afresh, and ``--survivors`` runs only the
 survivors of the module's last run again, against the current tests (after
 adding the tests that should kill them), keeping every other verdict.
+``--functions F ...`` runs only the mutants of the functions named (after
+they changed): their verdicts replace theirs in the module's row, and every
+other function's stand from the last full run (each row keeps its verdicts
+per function with the function's hash, and a function not named whose hash
+changed since is refused).
 
 Usage::
 
     python experiments/mutation_report.py [--max-children 2] [MODULE ...]
     python experiments/mutation_report.py src/equimesh/planar/bounds.py
+    python experiments/mutation_report.py --functions _run _grid_chain src/equimesh/planar/polygon.py
 """
 
 import json
@@ -602,11 +608,16 @@ def parse_args(argv=None):
                    help="write the rows of interrupted modules from the mutants already run (runs nothing)")
     p.add_argument("--survivors", action="store_true",
                    help="run only the last run's survivors again, against the current tests (keeps the other verdicts)")
+    p.add_argument("--functions", nargs="+", metavar="F",
+                   help="run only the mutants of these functions of one module (Class.method for a method); "
+                        "the others keep the verdicts of its last full run")
     _common.add_output_options(p, fig_dir=False)
     args = p.parse_args(argv)
     unknown = [m for m in args.modules if m not in MODULES]
     if unknown:
         p.error(f"unknown module {unknown[0]!r}; known: {', '.join(MODULES)}")
+    if args.functions and (len(args.modules) != 1 or args.survivors or args.so_far):
+        p.error("--functions needs exactly one module, and neither --survivors nor --so-far")
     return args
 
 
@@ -668,7 +679,73 @@ def statuses(folder):
     return dict(re.findall(r"^\s*(\S+): (.+)$", mutmut(folder, "results", "--all", "true"), re.M))
 
 
-def run_module(module, work_dir, max_children, keep=None, seconds=None, progress=print):
+def _function(mangled):
+    """The function of a mutant or of mutmut's mangled name, as ``--functions`` names it.
+
+    ``equimesh.planar.polygon.x__run__mutmut_3`` -> ``_run``, ``xǁPolygonǁarea`` -> ``Polygon.area``.
+    """
+    return mangled.rsplit("__mutmut_", 1)[0].rpartition(".")[2][2:].replace("ǁ", ".")
+
+
+def _glob(module, function):
+    """mutmut's name pattern of the mutants of ``function`` in ``module`` (a path under ``src/``)."""
+    dotted = ".".join(Path(module).with_suffix("").parts[1:])
+    return f"{dotted}.x{'ǁ' if '.' in function else '_'}{function.replace('.', 'ǁ')}__mutmut_*"
+
+
+def _by_function(status, hashes):
+    """Function -> its hash and the count of its mutants per status (only those present)."""
+    rows = {_function(f): {"hash": h} for f, h in hashes.items()}
+    for name, verdict in status.items():
+        row = rows.setdefault(_function(name), {"hash": None})
+        row[verdict] = row.get(verdict, 0) + 1
+    return rows
+
+
+def _hashes(folder, module):
+    """mutmut's hash of each function of ``module`` (mangled name -> hash) in the scratch copy ``folder``."""
+    meta = folder / "mutants" / (module + ".meta")
+    return json.loads(meta.read_text())["hash_by_function_name"]
+
+
+def _scored(row):
+    """``row`` with its survivors' arguments, the equivalent count and the score filled in."""
+    for s in row["survivors"]:
+        s["equivalent"] = EQUIVALENT.get((row["module"], s["line"]))
+    row["equivalent"] = sum(s["equivalent"] is not None for s in row["survivors"])
+    left_out = row["equivalent"] + row["no tests"] + row["skipped"] + row.get("not checked", 0)
+    relevant = row["mutants"] - left_out
+    row["score"] = (row["killed"] + row["timeout"]) / relevant if relevant else 1.0
+    return row
+
+
+def merged(before, part, functions):
+    """The row of a full run ``before`` with the verdicts of ``functions`` replaced by those of ``part``.
+
+    ``part`` is :func:`run_module`'s row of a run of those functions only.
+    Functions gone from the module are dropped; one not named must have the
+    hash it had in ``before`` (its verdicts still hold), else SystemExit.
+    """
+    module = before["module"]
+    if "by_function" not in before:
+        raise SystemExit(f"{NAME}: the row of {module} has no verdicts per function: run the module in full first")
+    now = part["by_function"]
+    missing = sorted(set(functions) - set(now))
+    if missing:
+        raise SystemExit(f"{NAME}: {module} has no function {missing[0]!r}")
+    stale = [f for f in now if f not in functions and before["by_function"].get(f, {}).get("hash") != now[f]["hash"]]
+    if stale:
+        raise SystemExit(f"{NAME}: {module}: {', '.join(stale)} changed since its full run: name it in --functions")
+    by_function = {f: now[f] if f in functions else before["by_function"][f] for f in now}
+    counts = {s: sum(row.get(s, 0) for row in by_function.values()) for s in STATUSES}
+    kept = [s for s in before["survivors"] if _function(s["mutant"]) in by_function and _function(s["mutant"]) not in functions]
+    survivors = sorted(kept + part["survivors"], key=lambda s: _natural(s["mutant"]))
+    rerun = {"functions": list(functions), "mutants": part["mutants"], "seconds": part["seconds"]}
+    return _scored({**before, "mutants": sum(counts.values()), **counts, "survivors": survivors,
+                    "by_function": by_function, "rerun": rerun})
+
+
+def run_module(module, work_dir, max_children, keep=None, seconds=None, progress=print, functions=None):
     """Mutate ``module``, run its tests on every mutant; its counts and survivors.
 
     With ``keep="so-far"`` nothing runs: the row counts the mutants that an
@@ -681,6 +758,8 @@ def run_module(module, work_dir, max_children, keep=None, seconds=None, progress
     maps each test to the functions it calls once, when it first sees the
     test: a survivor is run against new tests and the tests that reached its
     function before, so kill it with a new test (or run the module afresh).
+    With ``functions`` only their mutants run, and the row counts those
+    only (:func:`merged` puts it in the module's row).
     """
     folder = prepare(module, work_dir, keep)
     full = keep not in ("survivors", "so-far") or not (folder / "mutants").exists()
@@ -693,22 +772,23 @@ def run_module(module, work_dir, max_children, keep=None, seconds=None, progress
         meta = [json.loads(f.read_text()) for f in (folder / "mutants").rglob("*.meta")]
         seconds = sum(d or 0.0 for m in meta for d in m["durations_by_key"].values())
     elif full or again:
-        mutmut(folder, "run", "--max-children", str(max_children), *again, environment=ENVIRONMENT.get(module))
+        names = again or [_glob(module, f) for f in functions or ()]
+        mutmut(folder, "run", "--max-children", str(max_children), *names, environment=ENVIRONMENT.get(module))
     if full or seconds is None:
         seconds = time.perf_counter() - start
     status = statuses(folder)
+    by_function = _by_function(status, _hashes(folder, module))
+    if functions:
+        status = {n: s for n, s in status.items() if _function(n) in functions}
     counts = {s: sum(v == s for v in status.values()) for s in STATUSES}
-    survivors = []
-    for name in sorted((n for n, s in status.items() if s == "survived"), key=_natural):
-        line = mutated_line(folder, name)
-        survivors.append({"mutant": name, "line": line, "equivalent": EQUIVALENT.get((module, line))})
-    equivalent = sum(s["equivalent"] is not None for s in survivors)
-    relevant = len(status) - equivalent - counts["no tests"] - counts["skipped"] - counts["not checked"]
-    score = (counts["killed"] + counts["timeout"]) / relevant if relevant else 1.0
+    survivors = [{"mutant": name, "line": mutated_line(folder, name)}
+                 for name in sorted((n for n, s in status.items() if s == "survived"), key=_natural)]
+    row = _scored({"module": module, "tests": MODULES[module], "environment": ENVIRONMENT.get(module, {}),
+                   "mutants": len(status), **counts, "seconds": round(seconds), "survivors": survivors,
+                   "by_function": by_function})
     progress(f"{NAME}: {module}: {len(status)} mutants, {counts['killed']} killed, "
-             f"{counts['survived']} survived ({equivalent} equivalent), {seconds:.0f} s")
-    return {"module": module, "tests": MODULES[module], "environment": ENVIRONMENT.get(module, {}), "mutants": len(status), **counts,
-            "equivalent": equivalent, "score": score, "seconds": round(seconds), "survivors": survivors}
+             f"{counts['survived']} survived ({row['equivalent']} equivalent), {seconds:.0f} s")
+    return row
 
 
 def _natural(name):
@@ -731,6 +811,10 @@ def report(modules, record):
                     f"| {m['equivalent']} | {m['timeout']} | {m['no tests']} | {100 * m['score']:.1f} % | {m['seconds']} s |")
     for m in modules:
         body += ["", f"## Survivors in `{m['module']}`", ""]
+        if m.get("rerun"):
+            body += [f"Only the mutants of {', '.join(f'`{f}`' for f in m['rerun']['functions'])} "
+                     f"({m['rerun']['mutants']}) were run again ({m['rerun']['seconds']} s, `--functions`); the other "
+                     "functions' verdicts and the time are from the module's last full run.", ""]
         if m.get("not checked"):
             body += [f"Interrupted: {m['not checked']} of {m['mutants']} mutants not run (not in the score; "
                      "`--resume` continues the run).", ""]
@@ -757,8 +841,12 @@ def main(argv=None):
     for module in wanted:
         keep = "survivors" if args.survivors else "resume" if args.resume else "so-far" if args.so_far else None
         seconds = _rows(json_path).get(module, {}).get("seconds")
-        row = run_module(module, args.work_dir, args.max_children, keep, seconds)
+        row = run_module(module, args.work_dir, args.max_children, keep, seconds, functions=args.functions)
         done = _rows(json_path)  # read again: another process may have run other modules meanwhile
+        if args.functions:
+            if module not in done:
+                raise SystemExit(f"{NAME}: no full run of {module} in {json_path}: run it without --functions first")
+            row = merged(done[module], row, args.functions)
         done[module] = row
         modules = [done[m] for m in MODULES if m in done]
         atomic_write_text(json_path, json.dumps({"modules": modules}, indent=1) + "\n")

@@ -63,3 +63,52 @@ def test_kernel_modules_run_as_python_and_say_so(mutation):
     assert "| `src/k.py` | NUMBA_DISABLE_JIT=1 tests/a.py, tests/b.py | 1 | 1 |" in mutation.report([module], record)
     module["not checked"] = 1
     assert "Interrupted: 1 of 1 mutants not run" in mutation.report([module], record)
+
+
+def test_functions_name_their_mutants(mutation):
+    """--functions names a function as mutmut mangles it: a plain function or Class.method."""
+    assert mutation._function("equimesh.planar.polygon.x__run__mutmut_3") == "_run"
+    assert mutation._function("equimesh.planar.polygon.xǁPolygonǁinner_angle__mutmut_12") == "Polygon.inner_angle"
+    assert mutation._function("xǁPolygonǁarea") == "Polygon.area"
+    module = "src/equimesh/planar/polygon.py"
+    assert mutation._glob(module, "_run") == "equimesh.planar.polygon.x__run__mutmut_*"
+    assert mutation._glob(module, "Polygon.area") == "equimesh.planar.polygon.xǁPolygonǁarea__mutmut_*"
+
+
+def _row(mutation, status, hashes, survivors):
+    counts = {s: sum(v == s for v in status.values()) for s in mutation.STATUSES}
+    return mutation._scored({"module": "src/m.py", "tests": ["tests/test_m.py"], "environment": {}, "mutants": len(status),
+                             **counts, "seconds": 60, "survivors": [{"mutant": n, "line": line} for n, line in survivors],
+                             "by_function": mutation._by_function(status, hashes)})
+
+
+def test_a_run_of_some_functions_replaces_their_verdicts_only(mutation):
+    """The functions named get the new verdicts; the others keep the full run's; one gone is dropped."""
+    full = _row(mutation, {"m.x_f__mutmut_1": "killed", "m.x_f__mutmut_2": "survived", "m.x_g__mutmut_1": "survived",
+                           "m.x_gone__mutmut_1": "survived", "m.x_gone__mutmut_2": "timeout"},
+                {"x_f": "f1", "x_g": "g1", "x_gone": "h1"}, [("m.x_f__mutmut_2", "a"), ("m.x_g__mutmut_1", "b"),
+                                                             ("m.x_gone__mutmut_1", "c")])
+    assert (full["mutants"], full["survived"], full["score"]) == (5, 3, 2 / 5)
+    part = _row(mutation, {"m.x_g__mutmut_1": "killed", "m.x_g__mutmut_2": "killed", "m.x_g__mutmut_3": "survived",
+                           "m.x_new__mutmut_1": "killed"}, {"x_f": "f1", "x_g": "g2", "x_new": "n1"},
+                [("m.x_g__mutmut_3", "d")])
+    part["by_function"]["f"] = {"hash": "f1"}  # f's mutants were not run: not in this run's verdicts
+    row = mutation.merged(full, part, ["g", "new"])
+    assert [s["mutant"] for s in row["survivors"]] == ["m.x_f__mutmut_2", "m.x_g__mutmut_3"]
+    assert (row["mutants"], row["killed"], row["survived"], row["timeout"]) == (6, 4, 2, 0)
+    assert row["score"] == 4 / 6 and row["rerun"] == {"functions": ["g", "new"], "mutants": 4, "seconds": 60}
+    with pytest.raises(SystemExit, match="f changed since its full run"):
+        mutation.merged(full, {**part, "by_function": {**part["by_function"], "f": {"hash": "f2"}}}, ["g", "new"])
+    with pytest.raises(SystemExit, match="no function 'h'"):
+        mutation.merged(full, part, ["g", "new", "h"])
+    with pytest.raises(SystemExit, match="no verdicts per function"):
+        mutation.merged({k: v for k, v in full.items() if k != "by_function"}, part, ["g"])
+    record = {"git": {"commit": "abc", "dirty": False}, "date": "2026-01-01", "parameters": {},
+              "python": "3.11", "platform": "linux", "versions": {}}
+    assert "Only the mutants of `g`, `new` (4) were run again (60 s, `--functions`)" in mutation.report([row], record)
+
+
+def test_functions_need_one_module(mutation, capsys):
+    with pytest.raises(SystemExit):
+        mutation.parse_args(["--functions", "_run"])
+    assert "--functions needs exactly one module" in capsys.readouterr().err
