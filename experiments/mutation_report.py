@@ -40,7 +40,7 @@ Usage::
 
     python experiments/mutation_report.py [--max-children 2] [MODULE ...]
     python experiments/mutation_report.py src/equimesh/planar/bounds.py
-    python experiments/mutation_report.py --functions _run _grid_chain src/equimesh/planar/polygon.py
+    python experiments/mutation_report.py src/equimesh/planar/polygon.py --functions _run _grid_chain
 """
 
 import json

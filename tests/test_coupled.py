@@ -30,12 +30,10 @@ def test_reaches_takes_the_shortest_path_through_the_positions_left():
     """Breadth first: the shortcut 0 -> 2 is taken; without position 2 the chain is cut, with no end nothing."""
     parts, ends = _chain(4, [(0, 2)]), np.array([False, False, False, True])
     left = np.ones(4, dtype=bool)
-    assert _coupled._reaches(parts, left, ends, path=True) == [0, 2, 3]
-    assert _coupled._reaches(parts, left, ends)
+    assert _coupled._reaches(parts, left, ends) == [0, 2, 3]
     left[2] = False
-    assert _coupled._reaches(parts, left, ends, path=True) is None
-    assert not _coupled._reaches(parts, left, ends)
-    assert not _coupled._reaches(parts, np.ones(4, dtype=bool), np.zeros(4, dtype=bool))
+    assert _coupled._reaches(parts, left, ends) is None
+    assert _coupled._reaches(parts, np.ones(4, dtype=bool), np.zeros(4, dtype=bool)) is None
 
 
 def test_clipped_cuts_cells_to_the_range_and_keeps_those_left_even_a_single_point():
