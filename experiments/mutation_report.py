@@ -34,7 +34,8 @@ adding the tests that should kill them), keeping every other verdict.
 they changed): their verdicts replace theirs in the module's row, and every
 other function's stand from the last full run (each row keeps its verdicts
 per function with the function's hash, and a function not named whose hash
-changed since is refused).
+changed since is refused); with ``--survivors`` or ``--so-far`` it reruns
+or reports that run of the functions only.
 
 Usage::
 
@@ -616,8 +617,8 @@ def parse_args(argv=None):
     unknown = [m for m in args.modules if m not in MODULES]
     if unknown:
         p.error(f"unknown module {unknown[0]!r}; known: {', '.join(MODULES)}")
-    if args.functions and (len(args.modules) != 1 or args.survivors or args.so_far):
-        p.error("--functions needs exactly one module, and neither --survivors nor --so-far")
+    if args.functions and (len(args.modules) != 1 or args.resume):
+        p.error("--functions needs exactly one module, and no --resume")
     return args
 
 
@@ -840,7 +841,8 @@ def main(argv=None):
     args.out_dir.mkdir(parents=True, exist_ok=True)
     for module in wanted:
         keep = "survivors" if args.survivors else "resume" if args.resume else "so-far" if args.so_far else None
-        seconds = _rows(json_path).get(module, {}).get("seconds")
+        before = _rows(json_path).get(module, {})
+        seconds = (before.get("rerun", {}) if args.functions else before).get("seconds")
         row = run_module(module, args.work_dir, args.max_children, keep, seconds, functions=args.functions)
         done = _rows(json_path)  # read again: another process may have run other modules meanwhile
         if args.functions:

@@ -111,4 +111,4 @@ def test_a_run_of_some_functions_replaces_their_verdicts_only(mutation):
 def test_functions_need_one_module(mutation, capsys):
     with pytest.raises(SystemExit):
         mutation.parse_args(["--functions", "_run"])
-    assert "--functions needs exactly one module" in capsys.readouterr().err
+    assert "--functions needs exactly one module, and no --resume" in capsys.readouterr().err
