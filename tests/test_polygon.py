@@ -782,3 +782,24 @@ def test_the_joint_refusal_reads_each_corners_visible_radii_in_side_order(monkey
     edges = tuple(poly.rings[0].local_edge_lengths[[2, 3, 0, 1]])  # T_0 .. T_3 of the run 3, 0, 1
     assert seen[-3:] == [(3, (edges[1], edges[0])), (0, (edges[2], edges[1])), (1, (edges[3], edges[2]))]
     assert decided[-1][1:] == (edges, lp, (32.0, 31.0, 2.0, 1.0, 12.0, 11.0))
+
+
+def test_a_pair_placed_jointly_takes_the_shared_sides_points_and_completes_the_others():
+    """The triangle of 29.4 and 23.07 degrees on a base of 5.25 l (placeable together): the base takes place_chain's
+    points of T_1, the other two sides are completed; every part in [l, 2l], both corners' sides l apart.  A run with
+    a corner that is not sharp is not placed."""
+    from equimesh.planar import _coupled
+    from equimesh.planar.polygon import _corner_gap, _grid_chain, side_positions
+
+    apex = 5.25 * math.sin(math.radians(23.069711979788835)) / math.sin(math.radians(180.0 - 29.4 - 23.069711979788835))
+    ring = as_polygon([[0.0, 0.0], [5.25, 0.0], _at(29.4, apex)], 1.0).rings[0]
+    lengths, angles = ring.local_edge_lengths, [ring.inner_angle(i) for i in range(3)]
+    found = _coupled.place_chain(tuple(math.radians(a) for a in angles[:2]), tuple(lengths[[2, 0, 1]]), 1.0)
+    sides = side_positions(lengths, angles, 1.0)
+    trial = _grid_chain(sides, lengths, angles, 1.0, 2.0, [0, 1])
+    assert trial[0][1] == lengths[0] and np.array_equal(trial[0][0], np.concatenate([[0.0], found[1][:-1]]))
+    for (num, den), length in zip(trial, lengths):
+        parts = np.diff(np.append(num / den * length, length))
+        assert np.all(parts >= (1.0 - REL_TOL)) and np.all(parts <= 2.0 * (1.0 + REL_TOL))
+    assert min(_corner_gap(trial, lengths, angles, 1.0, c) for c in (0, 1)) >= 1.0 - REL_TOL
+    assert _grid_chain(sides, lengths, angles, 1.0, 2.0, [1, 2]) is None
