@@ -366,57 +366,35 @@ _EQUIVALENT_GROUPS = {
         (_NEGATIVE_RESHAPE, ["v = real_array(value, name, EquimeshError).reshape(-2)"]),
     ],
 }
-# --- planar/_coupled.py (two sharp corners decided jointly) ---
-_TRUTH_CELLS = "equivalent: _Pair and _side read cells only as a truth value, and None is as false as False"
-_FOUR_RADII = "equivalent: _Pair reads radii[0] to radii[3] only, so a fifth radius is never read"
+# --- planar/_coupled.py (sharp corners in a row decided jointly) ---
+_TRUTH_CELLS = "equivalent: _Chain and _side read cells only as a truth value, and None is as false as False"
 _COUPLED_EQUIVALENT_GROUPS = {
     "src/equimesh/planar/_coupled.py": [
-        (_TRUTH_CELLS, ["found = _Pair(thetas, lengths, l, level, cells=None, radii=(math.inf,) * 4).search()",
-                        "if level <= CORNER_REFINEMENTS and _Pair(thetas, lengths, l, level, cells=None, "
-                        "radii=(math.inf,) * 4).search():"]),
-        (_FOUR_RADII, ["found = _Pair(thetas, lengths, l, level, cells=False, radii=(math.inf,) * 5).search()",
-                       "if found is not None or _Pair(thetas, lengths, l, level, cells=True, radii=(math.inf,) * 5)"
-                       ".search() is None:",
-                       "if level <= CORNER_REFINEMENTS and _Pair(thetas, lengths, l, level, cells=False, "
-                       "radii=(math.inf,) * 5).search():"]),
-        ("equivalent: the cells are a relaxation (docs/proofs.md): no grid of cells refutes a pair the search places, "
+        (_TRUTH_CELLS, ["found = _Chain(thetas, lengths, l, level, cells=None, radii=inf).search()",
+                        "if level <= CORNER_REFINEMENTS and _Chain(thetas, lengths, l, level, cells=None, radii=inf).search():"]),
+        ("equivalent: _Chain reads radii[0] to radii[2 m - 1] only (two per corner), so more radii are never read",
+         ["inf = (math.inf,) * (3 * len(thetas))"]),
+        ("equivalent: shared reads only the first two angles of the slice it is given",
+         ["return thetas[1] is None or all(shared(thetas[k - 1 : k + 2], lengths[k], l) for k in range(1, len(thetas)))"]),
+        ("equivalent: the cells are a relaxation (docs/proofs.md): no grid of cells refutes a chain the search places, "
          "so without the search at the finest search grid the loop goes on to finer cells, refutes nothing and "
          "returns False as well; the search only ends it earlier",
-         ["if level < CORNER_REFINEMENTS and _Pair(thetas, lengths, l, level, cells=False, radii=(math.inf,) * 4)"
-          ".search():"]),
-        ("equivalent: _cross reads only the first two entries (lo, hi) of the side it is given",
-         ["self.cross_a = _cross(thetas[0], self.s, self.a[:3], l, tol, (radii[1], radii[0]))",
-          "self.cross_b = np.ones((len(lo), 1), dtype=bool) if alone else _cross(thetas[1], (s - hi, s - lo), "
-          "self.b[:3], l, tol, (radii[3], radii[2]))"]),
-        ("equivalent: a lone corner's B is its corner alone, already its end: _reaches returns True at once, before "
-         "reading its parts or more than the first entry of left and ends (which broadcast), and search returns "
-         "its points at an empty path (no entry read)",
-         ["self.cross_b = np.ones((len(lo), 2), dtype=bool) if alone else _cross(thetas[1], (s - hi, s - lo), "
-          "self.b[:2], l, tol, (radii[3], radii[2]))",
-          "self.b = (np.zeros(2), np.zeros(1), np.ones(1, dtype=bool), np.zeros((1, 1), dtype=bool))",
-          "self.b = (np.zeros(1), np.zeros(2), np.ones(1, dtype=bool), np.zeros((1, 1), dtype=bool))",
-          "self.b = (np.zeros(1), np.zeros(1), np.ones(2, dtype=bool), np.zeros((1, 1), dtype=bool))",
-          "self.b = (np.zeros(1), np.zeros(1), np.ones(1, dtype=bool), np.zeros((1, 1), dtype=None))",
-          "self.b = (np.zeros(1), np.zeros(1), np.ones(1, dtype=bool), np.zeros((1, 1), ))",
-          "self.b = (np.zeros(1), np.zeros(1), np.ones(1, dtype=bool), np.zeros((2, 1), dtype=bool))",
-          "self.b = (np.zeros(1), np.zeros(1), np.ones(1, dtype=bool), np.zeros((1, 2), dtype=bool))"]),
-        ("equivalent: the dead prefixes only save work: a prefix tried again calls _splits on keys already tested "
-         "(no step counted) and fails again", ["self.dead.add(None)"]),
-        ("equivalent: every caller without path reads the result as a truth value, and a path found is a non-empty "
-         "list", ["def _reaches(parts, left, ends, path=True):"]),
-        ("equivalent: when is only compared with 0 (reached or not) and with the round before, and -2 is as "
-         "unreached as -1", ["when = np.full(len(left), -2)"]),
-        ("equivalent: position 0 (the corner) is an end only for a lone corner's B, whose one position has no "
-         "part: the loop then finds nothing fresh, and the result is the same",
-         ["while fresh.any() and (path or not (ends & (when > 0)).any()):",
-          "while fresh.any() and (path or not (ends & (when >= 1)).any()):"]),
-        ("equivalent: no part leads to position 0 (the corner, at 0: a part to it would be negative), so it is "
-         "never fresh again", ["fresh = parts[fresh].any(axis=0) & left & (when <= 0)",
-                               "fresh = parts[fresh].any(axis=0) & left & (when < 1)"]),
+         ["if level < CORNER_REFINEMENTS and _Chain(thetas, lengths, l, level, cells=False, radii=inf).search():"]),
+        ("equivalent: a lone corner's T_2 is its corner alone (the dummy side): its cross is all True without reading "
+         "its (lo, hi), search reads its lo at an empty path, and its parts are read only as truth values (any, "
+         "and), where float zeros are as false as bool ones",
+         ["dummy = (np.zeros(1), np.zeros(2), np.ones(1, dtype=bool), np.zeros((1, 1), dtype=bool))",
+          "dummy = (np.zeros(1), np.zeros(1), np.ones(1, dtype=bool), np.zeros((1, 1), dtype=None))",
+          "dummy = (np.zeros(1), np.zeros(1), np.ones(1, dtype=bool), np.zeros((1, 1), ))"]),
+        ("equivalent: the dead prefixes only save work: a prefix tried again reduces only sets already reduced "
+         "(cached in tested, no step counted) and fails again", ["self.dead.add(None)"]),
+        ("equivalent: when is only compared with 0 (reached or not) and with the round before a reached position "
+         "(at least 0), and -2 is as unreached as -1", ["when = np.full(len(left), -2)"]),
+        ("equivalent: no part leads to position 0 (the corner, at 0: a part to it would be negative; a lone corner's "
+         "dummy side has no part), so it is never fresh again",
+         ["fresh = parts[fresh].any(axis=0) & left & (when <= 0)", "fresh = parts[fresh].any(axis=0) & left & (when < 1)"]),
         ("equivalent: for nodes lo is hi (one array), and a search on cells is only asked whether it is None",
-         ["return self.a[1][a[1:]], self.s[0][path[1:]], self.b[0][b[1:]]",
-          "return self.a[0][a[1:]], self.s[1][path[1:]], self.b[0][b[1:]]",
-          "return self.a[0][a[1:]], self.s[0][path[1:]], self.b[1][b[1:]]"]),
+         ["return tuple(side[1][path[1:]] for side, path in zip(self.sides, [first, *paths, last]))"]),
         ("equivalent: a long side is longer than K l + 3l and its nodes stop at K l + 2l, so every node is at most "
          "length - l before its end whatever the bound (the bound is redundant)",
          ["ends = (lo >= reach) & (lo < length - l) if long_ else lo == length",

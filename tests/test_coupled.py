@@ -266,3 +266,12 @@ def test_a_side_couples_its_corners_up_to_k1_l_plus_k2_l_plus_4l_in_a_chain_too(
     assert _coupled._coupled(thetas, (1.0, 24.0, 24.0, 1.0), 2.0)
     assert not _coupled._coupled(thetas, (1.0, 24.0, 24.000001, 1.0), 2.0)
     assert not _coupled._coupled(thetas, (1.0, 24.000001, 24.0, 1.0), 2.0)
+
+
+def test_a_long_last_side_stops_past_its_own_corners_k_l():
+    """Corners of 12 and 40 degrees (K = 5 and 2) with T_2 6 l long: longer than 2 l + 3 l, so it stops at a point past
+    its own corner's K l = 2 l (with the first corner's 5 l it would not be long and would end at its far end)."""
+    thetas = (math.radians(12.0), math.radians(40.0))
+    found = _coupled.place_chain(thetas, (3.0, 6.0, 6.0), 1.0)
+    assert _coupled.corner_reach(thetas[1], 1.0) == 2.0
+    assert 2.0 <= found[-1][-1] <= 5.0
