@@ -395,6 +395,11 @@ _COUPLED_EQUIVALENT_GROUPS = {
          ["fresh = parts[fresh].any(axis=0) & left & (when <= 0)", "fresh = parts[fresh].any(axis=0) & left & (when < 1)"]),
         ("equivalent: for nodes lo is hi (one array), and a search on cells is only asked whether it is None",
          ["return tuple(side[1][path[1:]] for side, path in zip(self.sides, [first, *paths, last]))"]),
+        ("equivalent: _cross reads only the first two entries (lo, hi) of the sides it is given",
+         ["self.back = _cross(thetas[0], sides[1][:3], sides[0][:2], l, tol, (radii[1], radii[0]))",
+          "self.back = _cross(thetas[0], sides[1][:2], sides[0][:3], l, tol, (radii[1], radii[0]))",
+          "cross = _cross(thetas[k], (lengths[k] - hi, lengths[k] - lo), sides[k + 1][:3], l, tol, (radii[2 * k], "
+          "radii[2 * k + 1]))"]),
         ("equivalent: a long side is longer than K l + 3l and its nodes stop at K l + 2l, so every node is at most "
          "length - l before its end whatever the bound (the bound is redundant)",
          ["ends = (lo >= reach) & (lo < length - l) if long_ else lo == length",
