@@ -286,3 +286,13 @@ def test_entering_a_shared_side_removes_the_positions_of_the_next_side_near_its_
     assert math.dist((1.1, 0.0), (2.0 * math.cos(thetas[2]), 2.0 * math.sin(thetas[2]))) < 1.0
     assert _coupled.place_chain(thetas, lengths, 1.0) is None
     assert _coupled.chain_unplaceable(thetas, lengths, 1.0, (math.inf,) * 6)
+
+
+def test_a_point_leaving_the_next_side_no_split_reduces_nothing_of_t0(monkeypatch):
+    """Corners of 49.6, 35.3 and 24 degrees (sides 1.19, 2.34, 2.43, 1.16 l): the first cells refute the chain with 7
+    distinct reductions; a point of T_1 that leaves T_2 no split is dropped before T_0's positions are reduced for it
+    (reducing them too would count an 8th and pass the bound)."""
+    thetas, lengths = tuple(math.radians(a) for a in (49.6, 35.3, 24.0)), (1.19, 2.34, 2.43, 1.16)
+    monkeypatch.setattr(_coupled, "PAIR_STEPS", 7)
+    chain = _coupled._Chain(thetas, lengths, 1.0, 0, cells=True, radii=(math.inf,) * 6)
+    assert chain.search() is None and chain.steps == 7
