@@ -30,7 +30,7 @@ run one at a time; ``--resume`` continues an interrupted module where mutmut
 stopped instead of starting it afresh, and ``--survivors`` runs only the
 survivors of the module's last run again, against the current tests (after
 adding the tests that should kill them), keeping every other verdict.
-``--functions F ...`` runs only the mutants of the functions named (after
+``--functions F,G,...`` runs only the mutants of the functions named (after
 they changed): their verdicts replace theirs in the module's row, and every
 other function's stand from the last full run (each row keeps its verdicts
 per function with the function's hash, and a function not named whose hash
@@ -41,7 +41,7 @@ Usage::
 
     python experiments/mutation_report.py [--max-children 2] [MODULE ...]
     python experiments/mutation_report.py src/equimesh/planar/bounds.py
-    python experiments/mutation_report.py src/equimesh/planar/polygon.py --functions _run _grid_chain
+    python experiments/mutation_report.py --functions _run,_grid_chain src/equimesh/planar/polygon.py
 """
 
 import json
@@ -592,9 +592,9 @@ def parse_args(argv=None):
                    help="write the rows of interrupted modules from the mutants already run (runs nothing)")
     p.add_argument("--survivors", action="store_true",
                    help="run only the last run's survivors again, against the current tests (keeps the other verdicts)")
-    p.add_argument("--functions", nargs="+", metavar="F",
-                   help="run only the mutants of these functions of one module (Class.method for a method); "
-                        "the others keep the verdicts of its last full run")
+    p.add_argument("--functions", type=lambda text: text.split(","), metavar="F,G,...",
+                   help="run only the mutants of these functions of one module (comma-separated; Class.method for a "
+                        "method); the others keep the verdicts of its last full run")
     _common.add_output_options(p, fig_dir=False)
     args = p.parse_args(argv)
     unknown = [m for m in args.modules if m not in MODULES]

@@ -109,6 +109,9 @@ def test_a_run_of_some_functions_replaces_their_verdicts_only(mutation):
 
 
 def test_functions_need_one_module(mutation, capsys):
+    """--functions takes a comma-separated list (so that make's MUTATION_ARGS may come before the module)."""
+    args = mutation.parse_args(["--functions", "_run,Polygon.area", "src/equimesh/planar/polygon.py"])
+    assert args.functions == ["_run", "Polygon.area"] and args.modules == ["src/equimesh/planar/polygon.py"]
     with pytest.raises(SystemExit):
         mutation.parse_args(["--functions", "_run"])
     assert "--functions needs exactly one module, and no --resume" in capsys.readouterr().err
