@@ -747,7 +747,8 @@ def run_module(module, work_dir, max_children, keep=None, seconds=None, progress
     """
     folder = prepare(module, work_dir, keep)
     full = keep not in ("survivors", "so-far") or not (folder / "mutants").exists()
-    again = [] if full else sorted(n for n, s in statuses(folder).items() if s == "survived")
+    again = [] if full else sorted(n for n, s in statuses(folder).items()
+                                   if s == "survived" and (not functions or _function(n) in functions))
     progress(f"{NAME}: {module} against {' '.join(MODULES[module])}" + ("" if full else ", so far" if keep == "so-far" else f", {len(again)} survivors again"))
     start = time.perf_counter()
     if keep == "so-far":
