@@ -709,6 +709,7 @@ def merged(before, part, functions):
     ``part`` is :func:`run_module`'s row of a run of those functions only.
     Functions gone from the module are dropped; one not named must have the
     hash it had in ``before`` (its verdicts still hold), else SystemExit.
+    The functions run again since the full run accumulate in ``rerun``.
     """
     module = before["module"]
     if "by_function" not in before:
@@ -724,7 +725,9 @@ def merged(before, part, functions):
     counts = {s: sum(row.get(s, 0) for row in by_function.values()) for s in STATUSES}
     kept = [s for s in before["survivors"] if _function(s["mutant"]) in by_function and _function(s["mutant"]) not in functions]
     survivors = sorted(kept + part["survivors"], key=lambda s: _natural(s["mutant"]))
-    rerun = {"functions": list(functions), "mutants": part["mutants"], "seconds": part["seconds"]}
+    named = [f for f in dict.fromkeys([*before.get("rerun", {}).get("functions", ()), *functions]) if f in by_function]
+    mutants = sum(count for f in named for s, count in by_function[f].items() if s != "hash")
+    rerun = {"functions": named, "mutants": mutants, "seconds": part["seconds"]}
     return _scored({**before, "mutants": sum(counts.values()), **counts, "survivors": survivors,
                     "by_function": by_function, "rerun": rerun})
 

@@ -106,6 +106,8 @@ def test_a_run_of_some_functions_replaces_their_verdicts_only(mutation):
     record = {"git": {"commit": "abc", "dirty": False}, "date": "2026-01-01", "parameters": {},
               "python": "3.11", "platform": "linux", "versions": {}}
     assert "Only the mutants of `g`, `new` (4) were run again (60 s, `--functions`)" in mutation.report([row], record)
+    again = mutation.merged(row, {**part, "survivors": [], "by_function": {**part["by_function"], "new": {"hash": "n1", "killed": 1}}}, ["new"])
+    assert again["rerun"]["functions"] == ["g", "new"] and again["survivors"] == row["survivors"]  # accumulated
 
 
 def test_functions_need_one_module(mutation, capsys):
