@@ -161,6 +161,11 @@ _EQUIVALENT_GROUPS = {
           'isinstance(value, numbers.Real) or (np.ndim(value) == 0 and np.asarray(value).dtype.kind in "XXiufXX")']),
         ("equivalent: _check_simple reads the local coordinates, the vertices, their indices and the label, never "
          "the frame", ["_check_simple(Polygon(v, index, None, local, label=label))"]),
+        ("equivalent: _from_corner reads its corner only as i == c, and T_0 (side run[0] - 1) is neither corner "
+         "run[0] nor run[1] of a ring of at least 3 sides",
+         ["for i, points, c, leaving in ((edges[0], found[0], run[1], False), (edges[-1], found[-1], run[-1], True)):"]),
+        ("equivalent: a run of two through corner j is (j - 1, j) or (j, j + 1), both already among the pairs of j",
+         ["if len(run) >= 2 and (r, run) not in runs:"]),
         ("equivalent: the turn at the lowest-leftmost vertex is never straight: its neighbours lie in the closed "
          "half-plane right of or above it, so collinear neighbours would be on one ray from it, a fold refused before",
          ["counter_clockwise = orient_sign(local[low - 1], local[low], local[(low + 1) % len(v)]) >= 0"]),

@@ -803,3 +803,19 @@ def test_a_pair_placed_jointly_takes_the_shared_sides_points_and_completes_the_o
         assert np.all(parts >= (1.0 - REL_TOL)) and np.all(parts <= 2.0 * (1.0 + REL_TOL))
     assert min(_corner_gap(trial, lengths, angles, 1.0, c) for c in (0, 1)) >= 1.0 - REL_TOL
     assert _grid_chain(sides, lengths, angles, 1.0, 2.0, [1, 2]) is None
+
+
+@pytest.mark.parametrize("angles, lengths, run", [([29.4, 23.07, 150.0, 157.53], [5.25, 10.0, 6.0, 2.6], [0, 1]),
+                                                  ([30.0, 30.0, 30.0, 150.0, 120.0], [3.5, 3.5, 10.0, 6.0, 3.5], [0, 1, 2])])
+def test_a_long_last_side_placed_jointly_keeps_its_points_beyond_the_cut(angles, lengths, run):
+    """The side leaving the run's last corner is 10 l long with uneven points (parts 1, 1.5, 2, 2, 2, 1.5 l from that
+    corner): place_chain cuts it past K l, its own points at least l beyond the cut are kept, read from that corner
+    (the middle is split again), for a pair and for a run of three."""
+    from equimesh.planar.polygon import _grid_chain
+
+    far = run[-1]
+    sides = [(np.arange(math.ceil(x / 2.0)) * (x / math.ceil(x / 2.0)), x) for x in lengths]
+    sides[far] = np.array([0.0, 1.0, 2.5, 4.5, 6.5, 8.5]), 10.0
+    num, den = _grid_chain(sides, np.array(lengths), angles, 1.0, 2.0, run)[far]
+    assert den == 10.0 and num[0] == 0.0 and set(num[-3:]) == {4.5, 6.5, 8.5}
+    assert np.all(np.diff(np.append(num, den)) >= 1.0 - REL_TOL) and np.all(np.diff(np.append(num, den)) <= 2.0 + REL_TOL)
