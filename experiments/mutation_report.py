@@ -809,8 +809,8 @@ def report(modules, record):
                      f"({m['rerun']['mutants']}) were run again ({m['rerun']['seconds']} s, `--functions`); the other "
                      "functions' verdicts and the time are from the module's last full run.", ""]
         if m.get("not checked"):
-            body += [f"Interrupted: {m['not checked']} of {m['mutants']} mutants not run (not in the score; "
-                     "`--resume` continues the run).", ""]
+            how = "`--functions` with the functions left runs them" if m.get("rerun") else "`--resume` continues the run"
+            body += [f"Interrupted: {m['not checked']} of {m['mutants']} mutants not run (not in the score; {how}).", ""]
         if not m["survivors"]:
             body.append("None.")
         for s in m["survivors"]:
