@@ -164,6 +164,13 @@ _EQUIVALENT_GROUPS = {
         ("equivalent: _from_corner reads its corner only as i == c, and T_0 (side run[0] - 1) is neither corner "
          "run[0] nor run[1] of a ring of at least 3 sides",
          ["for i, points, c, leaving in ((edges[0], found[0], run[1], False), (edges[-1], found[-1], run[-1], True)):"]),
+        ("equivalent: _run gets the angles of a planar ring (from resample_boundary or _unplaceable_chain), whose "
+         "inner angles sum to (n - 2) 180 or, for a hole, (n + 2) 180 degrees, so some corner is not sharp; neither "
+         "loop passes it, so a run never holds more than the n - 1 corners the bound allows",
+         ["while len(run) <= n - 1 and _stagger_count(angles[(run[-1] + 1) % n]) and joined(run[-1]):",
+          "while len(run) < n + 1 and _stagger_count(angles[(run[-1] + 1) % n]) and joined(run[-1]):",
+          "while len(run) <= n - 1 and _stagger_count(angles[run[0] - 1]) and joined((run[0] - 1) % n):",
+          "while len(run) < n + 1 and _stagger_count(angles[run[0] - 1]) and joined((run[0] - 1) % n):"]),
         ("equivalent: a run of two through corner j is (j - 1, j) or (j, j + 1), both already among the pairs of j",
          ["if len(run) >= 2 and (r, run) not in runs:"]),
         ("equivalent: the turn at the lowest-leftmost vertex is never straight: its neighbours lie in the closed "
@@ -806,7 +813,7 @@ def report(modules, record):
         body += ["", f"## Survivors in `{m['module']}`", ""]
         if m.get("rerun"):
             body += [f"Only the mutants of {', '.join(f'`{f}`' for f in m['rerun']['functions'])} "
-                     f"({m['rerun']['mutants']}) were run again ({m['rerun']['seconds']} s, `--functions`); the other "
+                     f"({m['rerun']['mutants']}) were run again (`--functions`, the last run {m['rerun']['seconds']} s); the other "
                      "functions' verdicts and the time are from the module's last full run.", ""]
         if m.get("not checked"):
             how = "`--functions` with the functions left runs them" if m.get("rerun") else "`--resume` continues the run"

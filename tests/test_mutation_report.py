@@ -105,7 +105,7 @@ def test_a_run_of_some_functions_replaces_their_verdicts_only(mutation):
         mutation.merged({k: v for k, v in full.items() if k != "by_function"}, part, ["g"])
     record = {"git": {"commit": "abc", "dirty": False}, "date": "2026-01-01", "parameters": {},
               "python": "3.11", "platform": "linux", "versions": {}}
-    assert "Only the mutants of `g`, `new` (4) were run again (60 s, `--functions`)" in mutation.report([row], record)
+    assert "Only the mutants of `g`, `new` (4) were run again (`--functions`, the last run 60 s)" in mutation.report([row], record)
     again = mutation.merged(row, {**part, "survivors": [], "by_function": {**part["by_function"], "new": {"hash": "n1", "killed": 1}}}, ["new"])
     assert again["rerun"]["functions"] == ["g", "new"] and again["survivors"] == row["survivors"]  # accumulated
 
