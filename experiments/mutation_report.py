@@ -29,14 +29,21 @@ report is rewritten after each module, and modules already in
 run one at a time; ``--resume`` continues an interrupted module where mutmut
 stopped instead of starting it afresh, and ``--survivors`` runs only the
 survivors of the module's last run again, against the current tests (after
-adding the tests that should kill them), keeping every other verdict
-(``--unexplained``: only those not argued equivalent; without a scratch copy
-both take the survivors from the module's row in ``results/mutation.json``).
+adding the tests that should kill them), keeping every other verdict.
+``--functions F,G,...`` runs only the mutants of the functions named (after
+they changed): their verdicts replace theirs in the module's row, and every
+other function's stand from the last full run (each row keeps its verdicts
+per function with the function's hash, and a function not named whose hash
+changed since is refused); with ``--survivors`` or ``--so-far`` it reruns
+or reports that run of the functions only.  ``--unexplained`` is
+``--survivors`` for the survivors not argued equivalent in :data:`EQUIVALENT`
+only (the others keep their verdicts).
 
 Usage::
 
     python experiments/mutation_report.py [--max-children 2] [MODULE ...]
     python experiments/mutation_report.py src/equimesh/planar/bounds.py
+    python experiments/mutation_report.py --functions _run,_grid_chain src/equimesh/planar/polygon.py
 """
 
 import json
@@ -156,6 +163,18 @@ _EQUIVALENT_GROUPS = {
           'isinstance(value, numbers.Real) or (np.ndim(value) == 0 and np.asarray(value).dtype.kind in "XXiufXX")']),
         ("equivalent: _check_simple reads the local coordinates, the vertices, their indices and the label, never "
          "the frame", ["_check_simple(Polygon(v, index, None, local, label=label))"]),
+        ("equivalent: _from_corner reads its corner only as i == c, and T_0 (side run[0] - 1) is neither corner "
+         "run[0] nor run[1] of a ring of at least 3 sides",
+         ["for i, points, c, leaving in ((edges[0], found[0], run[1], False), (edges[-1], found[-1], run[-1], True)):"]),
+        ("equivalent: _run gets the angles of a planar ring (from resample_boundary or _unplaceable_chain), whose "
+         "inner angles sum to (n - 2) 180 or, for a hole, (n + 2) 180 degrees, so some corner is not sharp; neither "
+         "loop passes it, so a run never holds more than the n - 1 corners the bound allows",
+         ["while len(run) <= n - 1 and _stagger_count(angles[(run[-1] + 1) % n]) and joined(run[-1]):",
+          "while len(run) < n + 1 and _stagger_count(angles[(run[-1] + 1) % n]) and joined(run[-1]):",
+          "while len(run) <= n - 1 and _stagger_count(angles[run[0] - 1]) and joined((run[0] - 1) % n):",
+          "while len(run) < n + 1 and _stagger_count(angles[run[0] - 1]) and joined((run[0] - 1) % n):"]),
+        ("equivalent: a run of two through corner j is (j - 1, j) or (j, j + 1), both already among the pairs of j",
+         ["if len(run) >= 2 and (r, run) not in runs:"]),
         ("equivalent: the turn at the lowest-leftmost vertex is never straight: its neighbours lie in the closed "
          "half-plane right of or above it, so collinear neighbours would be on one ray from it, a fold refused before",
          ["counter_clockwise = orient_sign(local[low - 1], local[low], local[(low + 1) % len(v)]) >= 0"]),
@@ -361,57 +380,40 @@ _EQUIVALENT_GROUPS = {
         (_NEGATIVE_RESHAPE, ["v = real_array(value, name, EquimeshError).reshape(-2)"]),
     ],
 }
-# --- planar/_coupled.py (two sharp corners decided jointly) ---
-_TRUTH_CELLS = "equivalent: _Pair and _side read cells only as a truth value, and None is as false as False"
-_FOUR_RADII = "equivalent: _Pair reads radii[0] to radii[3] only, so a fifth radius is never read"
+# --- planar/_coupled.py (sharp corners in a row decided jointly) ---
+_TRUTH_CELLS = "equivalent: _Chain and _side read cells only as a truth value, and None is as false as False"
 _COUPLED_EQUIVALENT_GROUPS = {
     "src/equimesh/planar/_coupled.py": [
-        (_TRUTH_CELLS, ["found = _Pair(thetas, lengths, l, level, cells=None, radii=(math.inf,) * 4).search()",
-                        "if level <= CORNER_REFINEMENTS and _Pair(thetas, lengths, l, level, cells=None, "
-                        "radii=(math.inf,) * 4).search():"]),
-        (_FOUR_RADII, ["found = _Pair(thetas, lengths, l, level, cells=False, radii=(math.inf,) * 5).search()",
-                       "if found is not None or _Pair(thetas, lengths, l, level, cells=True, radii=(math.inf,) * 5)"
-                       ".search() is None:",
-                       "if level <= CORNER_REFINEMENTS and _Pair(thetas, lengths, l, level, cells=False, "
-                       "radii=(math.inf,) * 5).search():"]),
-        ("equivalent: the cells are a relaxation (docs/proofs.md): no grid of cells refutes a pair the search places, "
+        (_TRUTH_CELLS, ["found = _Chain(thetas, lengths, l, level, cells=None, radii=inf).search()",
+                        "if level <= CORNER_REFINEMENTS and _Chain(thetas, lengths, l, level, cells=None, radii=inf).search():"]),
+        ("equivalent: _Chain reads radii[0] to radii[2 m - 1] only (two per corner), so more radii are never read",
+         ["inf = (math.inf,) * (3 * len(thetas))"]),
+        ("equivalent: shared reads only the first two angles of the slice it is given",
+         ["return thetas[1] is None or all(shared(thetas[k - 1 : k + 2], lengths[k], l) for k in range(1, len(thetas)))"]),
+        ("equivalent: the cells are a relaxation (docs/proofs.md): no grid of cells refutes a chain the search places, "
          "so without the search at the finest search grid the loop goes on to finer cells, refutes nothing and "
          "returns False as well; the search only ends it earlier",
-         ["if level < CORNER_REFINEMENTS and _Pair(thetas, lengths, l, level, cells=False, radii=(math.inf,) * 4)"
-          ".search():"]),
-        ("equivalent: _cross reads only the first two entries (lo, hi) of the side it is given",
-         ["self.cross_a = _cross(thetas[0], self.s, self.a[:3], l, tol, (radii[1], radii[0]))",
-          "self.cross_b = np.ones((len(lo), 1), dtype=bool) if alone else _cross(thetas[1], (s - hi, s - lo), "
-          "self.b[:3], l, tol, (radii[3], radii[2]))"]),
-        ("equivalent: a lone corner's B is its corner alone, already its end: _reaches returns True at once, before "
-         "reading its parts or more than the first entry of left and ends (which broadcast), and search returns "
-         "its points at an empty path (no entry read)",
-         ["self.cross_b = np.ones((len(lo), 2), dtype=bool) if alone else _cross(thetas[1], (s - hi, s - lo), "
-          "self.b[:2], l, tol, (radii[3], radii[2]))",
-          "self.b = (np.zeros(2), np.zeros(1), np.ones(1, dtype=bool), np.zeros((1, 1), dtype=bool))",
-          "self.b = (np.zeros(1), np.zeros(2), np.ones(1, dtype=bool), np.zeros((1, 1), dtype=bool))",
-          "self.b = (np.zeros(1), np.zeros(1), np.ones(2, dtype=bool), np.zeros((1, 1), dtype=bool))",
-          "self.b = (np.zeros(1), np.zeros(1), np.ones(1, dtype=bool), np.zeros((1, 1), dtype=None))",
-          "self.b = (np.zeros(1), np.zeros(1), np.ones(1, dtype=bool), np.zeros((1, 1), ))",
-          "self.b = (np.zeros(1), np.zeros(1), np.ones(1, dtype=bool), np.zeros((2, 1), dtype=bool))",
-          "self.b = (np.zeros(1), np.zeros(1), np.ones(1, dtype=bool), np.zeros((1, 2), dtype=bool))"]),
-        ("equivalent: the dead prefixes only save work: a prefix tried again calls _splits on keys already tested "
-         "(no step counted) and fails again", ["self.dead.add(None)"]),
-        ("equivalent: every caller without path reads the result as a truth value, and a path found is a non-empty "
-         "list", ["def _reaches(parts, left, ends, path=True):"]),
-        ("equivalent: when is only compared with 0 (reached or not) and with the round before, and -2 is as "
-         "unreached as -1", ["when = np.full(len(left), -2)"]),
-        ("equivalent: position 0 (the corner) is an end only for a lone corner's B, whose one position has no "
-         "part: the loop then finds nothing fresh, and the result is the same",
-         ["while fresh.any() and (path or not (ends & (when > 0)).any()):",
-          "while fresh.any() and (path or not (ends & (when >= 1)).any()):"]),
-        ("equivalent: no part leads to position 0 (the corner, at 0: a part to it would be negative), so it is "
-         "never fresh again", ["fresh = parts[fresh].any(axis=0) & left & (when <= 0)",
-                               "fresh = parts[fresh].any(axis=0) & left & (when < 1)"]),
+         ["if level < CORNER_REFINEMENTS and _Chain(thetas, lengths, l, level, cells=False, radii=inf).search():"]),
+        ("equivalent: a lone corner's T_2 is its corner alone (the dummy side): its cross is all True without reading "
+         "its (lo, hi), search reads its lo at an empty path, and its parts are read only as truth values (any, "
+         "and), where float zeros are as false as bool ones",
+         ["dummy = (np.zeros(1), np.zeros(2), np.ones(1, dtype=bool), np.zeros((1, 1), dtype=bool))",
+          "dummy = (np.zeros(1), np.zeros(1), np.ones(1, dtype=bool), np.zeros((1, 1), dtype=None))",
+          "dummy = (np.zeros(1), np.zeros(1), np.ones(1, dtype=bool), np.zeros((1, 1), ))"]),
+        ("equivalent: the dead prefixes only save work: a prefix tried again reduces only sets already reduced "
+         "(cached in tested, no step counted) and fails again", ["self.dead.add(None)"]),
+        ("equivalent: when is only compared with 0 (reached or not) and with the round before a reached position "
+         "(at least 0), and -2 is as unreached as -1", ["when = np.full(len(left), -2)"]),
+        ("equivalent: no part leads to position 0 (the corner, at 0: a part to it would be negative; a lone corner's "
+         "dummy side has no part), so it is never fresh again",
+         ["fresh = parts[fresh].any(axis=0) & left & (when <= 0)", "fresh = parts[fresh].any(axis=0) & left & (when < 1)"]),
         ("equivalent: for nodes lo is hi (one array), and a search on cells is only asked whether it is None",
-         ["return self.a[1][a[1:]], self.s[0][path[1:]], self.b[0][b[1:]]",
-          "return self.a[0][a[1:]], self.s[1][path[1:]], self.b[0][b[1:]]",
-          "return self.a[0][a[1:]], self.s[0][path[1:]], self.b[1][b[1:]]"]),
+         ["return tuple(side[1][path[1:]] for side, path in zip(self.sides, [first, *paths, last]))"]),
+        ("equivalent: _cross reads only the first two entries (lo, hi) of the sides it is given",
+         ["self.back = _cross(thetas[0], sides[1][:3], sides[0][:2], l, tol, (radii[1], radii[0]))",
+          "self.back = _cross(thetas[0], sides[1][:2], sides[0][:3], l, tol, (radii[1], radii[0]))",
+          "cross = _cross(thetas[k], (lengths[k] - hi, lengths[k] - lo), sides[k + 1][:3], l, tol, (radii[2 * k], "
+          "radii[2 * k + 1]))"]),
         ("equivalent: a long side is longer than K l + 3l and its nodes stop at K l + 2l, so every node is at most "
          "length - l before its end whatever the bound (the bound is redundant)",
          ["ends = (lo >= reach) & (lo < length - l) if long_ else lo == length",
@@ -690,11 +692,16 @@ def parse_args(argv=None):
                    help="run only the last run's survivors again, against the current tests (keeps the other verdicts)")
     p.add_argument("--unexplained", action="store_true",
                    help="as --survivors, but only the survivors not argued equivalent in EQUIVALENT")
+    p.add_argument("--functions", type=lambda text: text.split(","), metavar="F,G,...",
+                   help="run only the mutants of these functions of one module (comma-separated; Class.method for a "
+                        "method); the others keep the verdicts of its last full run")
     _common.add_output_options(p, fig_dir=False)
     args = p.parse_args(argv)
     unknown = [m for m in args.modules if m not in MODULES]
     if unknown:
         p.error(f"unknown module {unknown[0]!r}; known: {', '.join(MODULES)}")
+    if args.functions and (len(args.modules) != 1 or args.resume):
+        p.error("--functions needs exactly one module, and no --resume")
     return args
 
 
@@ -756,7 +763,76 @@ def statuses(folder):
     return dict(re.findall(r"^\s*(\S+): (.+)$", mutmut(folder, "results", "--all", "true"), re.M))
 
 
-def run_module(module, work_dir, max_children, keep=None, seconds=None, progress=print, previous=None, unexplained=False):
+def _function(mangled):
+    """The function of a mutant or of mutmut's mangled name, as ``--functions`` names it.
+
+    ``equimesh.planar.polygon.x__run__mutmut_3`` -> ``_run``, ``xǁPolygonǁarea`` -> ``Polygon.area``.
+    """
+    return mangled.rsplit("__mutmut_", 1)[0].rpartition(".")[2][2:].replace("ǁ", ".")
+
+
+def _glob(module, function):
+    """mutmut's name pattern of the mutants of ``function`` in ``module`` (a path under ``src/``)."""
+    dotted = ".".join(Path(module).with_suffix("").parts[1:])
+    return f"{dotted}.x{'ǁ' if '.' in function else '_'}{function.replace('.', 'ǁ')}__mutmut_*"
+
+
+def _by_function(status, hashes):
+    """Function -> its hash and the count of its mutants per status (only those present)."""
+    rows = {_function(f): {"hash": h} for f, h in hashes.items()}
+    for name, verdict in status.items():
+        row = rows.setdefault(_function(name), {"hash": None})
+        row[verdict] = row.get(verdict, 0) + 1
+    return rows
+
+
+def _hashes(folder, module):
+    """mutmut's hash of each function of ``module`` (mangled name -> hash) in the scratch copy ``folder``."""
+    meta = folder / "mutants" / (module + ".meta")
+    return json.loads(meta.read_text())["hash_by_function_name"]
+
+
+def _scored(row):
+    """``row`` with its survivors' arguments, the equivalent count and the score filled in."""
+    for s in row["survivors"]:
+        s["equivalent"] = EQUIVALENT.get((row["module"], s["line"]))
+    row["equivalent"] = sum(s["equivalent"] is not None for s in row["survivors"])
+    left_out = row["equivalent"] + row["no tests"] + row["skipped"] + row.get("not checked", 0)
+    relevant = row["mutants"] - left_out
+    row["score"] = (row["killed"] + row["timeout"]) / relevant if relevant else 1.0
+    return row
+
+
+def merged(before, part, functions):
+    """The row of a full run ``before`` with the verdicts of ``functions`` replaced by those of ``part``.
+
+    ``part`` is :func:`run_module`'s row of a run of those functions only.
+    Functions gone from the module are dropped; one not named must have the
+    hash it had in ``before`` (its verdicts still hold), else SystemExit.
+    The functions run again since the full run accumulate in ``rerun``.
+    """
+    module = before["module"]
+    if "by_function" not in before:
+        raise SystemExit(f"{NAME}: the row of {module} has no verdicts per function: run the module in full first")
+    now = part["by_function"]
+    missing = sorted(set(functions) - set(now))
+    if missing:
+        raise SystemExit(f"{NAME}: {module} has no function {missing[0]!r}")
+    stale = [f for f in now if f not in functions and before["by_function"].get(f, {}).get("hash") != now[f]["hash"]]
+    if stale:
+        raise SystemExit(f"{NAME}: {module}: {', '.join(stale)} changed since its full run: name it in --functions")
+    by_function = {f: now[f] if f in functions else before["by_function"][f] for f in now}
+    counts = {s: sum(row.get(s, 0) for row in by_function.values()) for s in STATUSES}
+    kept = [s for s in before["survivors"] if _function(s["mutant"]) in by_function and _function(s["mutant"]) not in functions]
+    survivors = sorted(kept + part["survivors"], key=lambda s: _natural(s["mutant"]))
+    named = [f for f in dict.fromkeys([*before.get("rerun", {}).get("functions", ()), *functions]) if f in by_function]
+    mutants = sum(count for f in named for s, count in by_function[f].items() if s != "hash")
+    rerun = {"functions": named, "mutants": mutants, "seconds": part["seconds"]}
+    return _scored({**before, "mutants": sum(counts.values()), **counts, "survivors": survivors,
+                    "by_function": by_function, "rerun": rerun})
+
+
+def run_module(module, work_dir, max_children, keep=None, seconds=None, progress=print, functions=None, unexplained=False):
     """Mutate ``module``, run its tests on every mutant; its counts and survivors.
 
     With ``keep="so-far"`` nothing runs: the row counts the mutants that an
@@ -769,21 +845,16 @@ def run_module(module, work_dir, max_children, keep=None, seconds=None, progress
     maps each test to the functions it calls once, when it first sees the
     test: a survivor is run against new tests and the tests that reached its
     function before, so kill it with a new test (or run the module afresh).
-    When the scratch copy is gone, the survivors are those of ``previous``
-    (the module's row in ``results/mutation.json``, same source), run in a
-    fresh copy; every other mutant keeps that row's verdict.  With
-    ``unexplained`` only the survivors not argued in :data:`EQUIVALENT` run
-    again (the others keep their verdict).
+    With ``functions`` only their mutants run, and the row counts those
+    only (:func:`merged` puts it in the module's row).  With ``unexplained``
+    only the survivors not argued in :data:`EQUIVALENT` run again.
     """
     folder = prepare(module, work_dir, keep)
-    fresh = not (folder / "mutants").exists()
-    from_row = keep == "survivors" and fresh and previous is not None
-    full = keep not in ("survivors", "so-far") or (fresh and not from_row)
-    again = ([s["mutant"] for s in previous["survivors"]] if from_row else [] if full
-             else sorted(n for n, s in statuses(folder).items() if s == "survived"))
-    if unexplained and not full:
-        lines = {s["mutant"]: s["line"] for s in previous["survivors"]} if from_row else {}
-        again = [n for n in again if EQUIVALENT.get((module, lines.get(n) or mutated_line(folder, n))) is None]
+    full = keep not in ("survivors", "so-far") or not (folder / "mutants").exists()
+    again = [] if full else sorted(n for n, s in statuses(folder).items()
+                                   if s == "survived" and (not functions or _function(n) in functions))
+    if unexplained:
+        again = [n for n in again if EQUIVALENT.get((module, mutated_line(folder, n))) is None]
     progress(f"{NAME}: {module} against {' '.join(MODULES[module])}" + ("" if full else ", so far" if keep == "so-far" else f", {len(again)} survivors again"))
     start = time.perf_counter()
     if keep == "so-far":
@@ -792,26 +863,23 @@ def run_module(module, work_dir, max_children, keep=None, seconds=None, progress
         meta = [json.loads(f.read_text()) for f in (folder / "mutants").rglob("*.meta")]
         seconds = sum(d or 0.0 for m in meta for d in m["durations_by_key"].values())
     elif full or again:
-        mutmut(folder, "run", "--max-children", str(max_children), *again, environment=ENVIRONMENT.get(module))
+        names = again or [_glob(module, f) for f in functions or ()]
+        mutmut(folder, "run", "--max-children", str(max_children), *names, environment=ENVIRONMENT.get(module))
     if full or seconds is None:
         seconds = time.perf_counter() - start
     status = statuses(folder)
+    by_function = _by_function(status, _hashes(folder, module))
+    if functions:
+        status = {n: s for n, s in status.items() if _function(n) in functions}
     counts = {s: sum(v == s for v in status.values()) for s in STATUSES}
-    if from_row:  # the mutants not run again keep the previous row's verdicts
-        counts = {s: previous.get(s, 0) - len(again) * (s == "survived") + sum(status[n] == s for n in again) for s in STATUSES}
-        status = {s["mutant"]: status[s["mutant"]] if s["mutant"] in again else "survived" for s in previous["survivors"]}
-    survivors = []
-    for name in sorted((n for n, s in status.items() if s == "survived"), key=_natural):
-        line = mutated_line(folder, name)
-        survivors.append({"mutant": name, "line": line, "equivalent": EQUIVALENT.get((module, line))})
-    equivalent = sum(s["equivalent"] is not None for s in survivors)
-    total = previous["mutants"] if from_row else len(status)
-    relevant = total - equivalent - counts["no tests"] - counts["skipped"] - counts["not checked"]
-    score = (counts["killed"] + counts["timeout"]) / relevant if relevant else 1.0
-    progress(f"{NAME}: {module}: {total} mutants, {counts['killed']} killed, "
-             f"{counts['survived']} survived ({equivalent} equivalent), {seconds:.0f} s")
-    return {"module": module, "tests": MODULES[module], "environment": ENVIRONMENT.get(module, {}), "mutants": total, **counts,
-            "equivalent": equivalent, "score": score, "seconds": round(seconds), "survivors": survivors}
+    survivors = [{"mutant": name, "line": mutated_line(folder, name)}
+                 for name in sorted((n for n, s in status.items() if s == "survived"), key=_natural)]
+    row = _scored({"module": module, "tests": MODULES[module], "environment": ENVIRONMENT.get(module, {}),
+                   "mutants": len(status), **counts, "seconds": round(seconds), "survivors": survivors,
+                   "by_function": by_function})
+    progress(f"{NAME}: {module}: {len(status)} mutants, {counts['killed']} killed, "
+             f"{counts['survived']} survived ({row['equivalent']} equivalent), {seconds:.0f} s")
+    return row
 
 
 def _natural(name):
@@ -834,9 +902,13 @@ def report(modules, record):
                     f"| {m['equivalent']} | {m['timeout']} | {m['no tests']} | {100 * m['score']:.1f} % | {m['seconds']} s |")
     for m in modules:
         body += ["", f"## Survivors in `{m['module']}`", ""]
+        if m.get("rerun"):
+            body += [f"Only the mutants of {', '.join(f'`{f}`' for f in m['rerun']['functions'])} "
+                     f"({m['rerun']['mutants']}) were run again (`--functions`, the last run {m['rerun']['seconds']} s); the other "
+                     "functions' verdicts and the time are from the module's last full run.", ""]
         if m.get("not checked"):
-            body += [f"Interrupted: {m['not checked']} of {m['mutants']} mutants not run (not in the score; "
-                     "`--resume` continues the run).", ""]
+            how = "`--functions` with the functions left runs them" if m.get("rerun") else "`--resume` continues the run"
+            body += [f"Interrupted: {m['not checked']} of {m['mutants']} mutants not run (not in the score; {how}).", ""]
         if not m["survivors"]:
             body.append("None.")
         for s in m["survivors"]:
@@ -859,10 +931,15 @@ def main(argv=None):
     args.out_dir.mkdir(parents=True, exist_ok=True)
     for module in wanted:
         keep = "survivors" if args.survivors or args.unexplained else "resume" if args.resume else "so-far" if args.so_far else None
-        previous = _rows(json_path).get(module)
-        row = run_module(module, args.work_dir, args.max_children, keep, (previous or {}).get("seconds"), previous=previous,
+        before = _rows(json_path).get(module, {})
+        seconds = (before.get("rerun", {}) if args.functions else before).get("seconds")
+        row = run_module(module, args.work_dir, args.max_children, keep, seconds, functions=args.functions,
                          unexplained=args.unexplained)
         done = _rows(json_path)  # read again: another process may have run other modules meanwhile
+        if args.functions:
+            if module not in done:
+                raise SystemExit(f"{NAME}: no full run of {module} in {json_path}: run it without --functions first")
+            row = merged(done[module], row, args.functions)
         done[module] = row
         modules = [done[m] for m in MODULES if m in done]
         atomic_write_text(json_path, json.dumps({"modules": modules}, indent=1) + "\n")

@@ -30,12 +30,10 @@ def test_reaches_takes_the_shortest_path_through_the_positions_left():
     """Breadth first: the shortcut 0 -> 2 is taken; without position 2 the chain is cut, with no end nothing."""
     parts, ends = _chain(4, [(0, 2)]), np.array([False, False, False, True])
     left = np.ones(4, dtype=bool)
-    assert _coupled._reaches(parts, left, ends, path=True) == [0, 2, 3]
-    assert _coupled._reaches(parts, left, ends)
+    assert _coupled._reaches(parts, left, ends) == [0, 2, 3]
     left[2] = False
-    assert _coupled._reaches(parts, left, ends, path=True) is None
-    assert not _coupled._reaches(parts, left, ends)
-    assert not _coupled._reaches(parts, np.ones(4, dtype=bool), np.zeros(4, dtype=bool))
+    assert _coupled._reaches(parts, left, ends) is None
+    assert _coupled._reaches(parts, np.ones(4, dtype=bool), np.zeros(4, dtype=bool)) is None
 
 
 def test_clipped_cuts_cells_to_the_range_and_keeps_those_left_even_a_single_point():
@@ -268,3 +266,33 @@ def test_a_side_couples_its_corners_up_to_k1_l_plus_k2_l_plus_4l_in_a_chain_too(
     assert _coupled._coupled(thetas, (1.0, 24.0, 24.0, 1.0), 2.0)
     assert not _coupled._coupled(thetas, (1.0, 24.0, 24.000001, 1.0), 2.0)
     assert not _coupled._coupled(thetas, (1.0, 24.000001, 24.0, 1.0), 2.0)
+
+
+def test_a_long_last_side_stops_past_its_own_corners_k_l():
+    """Corners of 12 and 40 degrees (K = 5 and 2) with T_2 6 l long: longer than 2 l + 3 l, so it stops at a point past
+    its own corner's K l = 2 l (with the first corner's 5 l it would not be long and would end at its far end)."""
+    thetas = (math.radians(12.0), math.radians(40.0))
+    found = _coupled.place_chain(thetas, (3.0, 6.0, 6.0), 1.0)
+    assert _coupled.corner_reach(thetas[1], 1.0) == 2.0
+    assert 2.0 <= found[-1][-1] <= 5.0
+
+
+def test_entering_a_shared_side_removes_the_positions_of_the_next_side_near_its_first_corner():
+    """Corners of 46, 48 and 16.75 degrees with T_2 only 1.1 l long: corner 1, where T_2 starts, is a point of corner 2's
+    side T_2 and is closer than l to T_3's point 2 l from corner 2 (0.998 l).  Entering T_2 at corner 1 removes such
+    positions of T_3: no placement, refuted (from T_2's first grid point instead, the search would place T_3 at 2 l)."""
+    thetas = tuple(math.radians(a) for a in (46.0, 48.0, 16.75))
+    lengths = (1.5, 4.25, 1.1, 3.75)
+    assert math.dist((1.1, 0.0), (2.0 * math.cos(thetas[2]), 2.0 * math.sin(thetas[2]))) < 1.0
+    assert _coupled.place_chain(thetas, lengths, 1.0) is None
+    assert _coupled.chain_unplaceable(thetas, lengths, 1.0, (math.inf,) * 6)
+
+
+def test_a_point_leaving_the_next_side_no_split_reduces_nothing_of_t0(monkeypatch):
+    """Corners of 49.6, 35.3 and 24 degrees (sides 1.19, 2.34, 2.43, 1.16 l): the first cells refute the chain with 7
+    distinct reductions; a point of T_1 that leaves T_2 no split is dropped before T_0's positions are reduced for it
+    (reducing them too would count an 8th and pass the bound)."""
+    thetas, lengths = tuple(math.radians(a) for a in (49.6, 35.3, 24.0)), (1.19, 2.34, 2.43, 1.16)
+    monkeypatch.setattr(_coupled, "PAIR_STEPS", 7)
+    chain = _coupled._Chain(thetas, lengths, 1.0, 0, cells=True, radii=(math.inf,) * 6)
+    assert chain.search() is None and chain.steps == 7

@@ -688,3 +688,134 @@ def test_a_run_of_sharp_corners_goes_on_through_coupling_sides_only():
         assert _run(lengths, angles, 1.0, c) == [3, 0, 1]
     assert _run([8.5, 1.28, 1.28, 3.5], angles, 1.0, 3) == [3, 0] and _run([8.5, 1.28, 1.28, 8.5], angles, 1.0, 0) == [0]
     assert _run([8.0, 1.28, 1.28, 8.0], angles, 1.0, 0) == [3, 0, 1]  # 8 l is the limit, included
+
+
+@pytest.mark.parametrize("threshold", [1.0, 0.7, 0.3, 0.26, 0.1, 2.0**-63, 0.9 * 2.0**-63])
+def test_visible_radii_end_on_the_last_bisection_step_seen(monkeypatch, threshold):
+    """With a stand-in visibility (the sides scaled by t are seen iff t <= threshold): halved to the first 2^-k seen
+    (k < 64, else nothing seen: (0, 0)), then VISIBLE_BISECTIONS bisections between 2^-k and 2^-(k - 1): the largest
+    t = 2^-k (1 + j 2^-VISIBLE_BISECTIONS) seen; the sides as they are when seen whole."""
+    from fractions import Fraction
+
+    from equimesh.planar import polygon
+
+    monkeypatch.setattr(polygon, "_sees_within", lambda grown, ring, i, a, b: a <= 2.0 * threshold and b <= 4.0 * threshold)
+    radii = polygon._visible_radii(None, None, 0, (2.0, 4.0))
+    if threshold >= 1.0:
+        assert radii == (2.0, 4.0)
+        return
+    k = math.ceil(-math.log2(threshold))
+    if k >= 64:
+        assert radii == (0.0, 0.0)
+        return
+    step = Fraction(2) ** -k / 2**polygon.VISIBLE_BISECTIONS
+    t = Fraction(2) ** -k + math.floor((Fraction(threshold) - Fraction(2) ** -k) / step) * step
+    assert radii == (float(2 * t), float(4 * t))
+
+
+#: The triangle of docs/decisions.md with two sharp corners on its base (29.4 and 23.07 degrees), each placeable
+#: alone, not together; scaled by 6 with l = 6 (the local frame scales by 1/4, so local and given lengths differ).
+_PAIR_TRIANGLE = [[0.0, 0.0], [25.5, 0.0], _at(29.4, 12.6)]
+_REFUSED_TOGETHER = (
+    "cannot meet Lemma 3 (1) together for l = 6.0: no split of their sides of {sides} (the middle {middle} shared) into "
+    "parts of [l, 2l] keeps every two points of different sides l apart at {at} (decided on a grid of cells), so no "
+    "Step 2 separates them (a limit of the paper's method, not a proof that no mesh exists; docs/proofs.md, 'Sharp "
+    "corners'); use a smaller l, longer sides or wider corners"
+)
+
+
+def _dart():
+    from equimesh.testing.shapes import sharp_dart
+
+    return as_polygon(6.0 * sharp_dart(30, (30, 30), 3.5), 6.0)
+
+
+@pytest.mark.parametrize("corner", [0, 1])
+def test_a_pair_is_refused_together_from_either_of_its_corners(corner):
+    """The offending pairs may lie at either corner of the pair: both ask for the pair (with the corner before)."""
+    from equimesh.planar.polygon import _unplaceable_chain
+
+    error = _unplaceable_chain(as_polygon(_PAIR_TRIANGLE, 6.0), 6.0, [(0, corner)])
+    assert str(error) == "the corners at vertex 0 at (0, 0) (29.4 degrees) and vertex 1 at (25.5, 0) (23.0697 degrees) " + \
+        _REFUSED_TOGETHER.format(sides="12.6, 25.5, 15.785056381722754", middle="one", at="both corners")
+
+
+@pytest.mark.parametrize("corner", [0, 1, 3])
+def test_a_run_of_three_is_refused_after_its_pairs(corner):
+    """The dart sharp_dart(30, (30, 30), 3.5): each pair is placeable (so decided and passed over; the pair through the
+    notch is not sharp, passed over too), the run of three through any of its corners refused, named in ring order."""
+    from equimesh.planar.polygon import _unplaceable_chain
+
+    names = "vertex 3 at (20.28444235, 5.435199947) (30 degrees), vertex 0 at (0, 0) (30 degrees) and vertex 1 at " \
+            "(20.28444235, -5.435199947) (30 degrees) "
+    assert str(_unplaceable_chain(_dart(), 6.0, [(0, corner)])) == "the corners at " + names + _REFUSED_TOGETHER.format(
+        sides="7.686533479473213, 21.0, 21.0, 7.686533479473213", middle="ones", at="every corner")
+
+
+def test_a_lone_sharp_corner_or_one_at_exactly_the_sharp_threshold_is_not_decided_jointly(monkeypatch):
+    """A sharp corner whose neighbours are not sharp is no run (nothing decided jointly); a pair whose wider corner is
+    exactly SHARP_CORNER is not sharp (strict), with the threshold moved onto the pair triangle's 29.4 degrees."""
+    from equimesh.planar import polygon
+
+    assert polygon._unplaceable_chain(as_polygon([[0.0, 0.0], [5.0, 0.0], [4.0, 3.0]]), 1.0, [(0, 0)]) is None
+    poly = as_polygon(_PAIR_TRIANGLE, 6.0)
+    monkeypatch.setattr(polygon, "SHARP_CORNER", poly.rings[0].inner_angle(0))
+    assert polygon._unplaceable_chain(poly, 6.0, [(0, 0)]) is None
+
+
+def test_the_joint_refusal_reads_each_corners_visible_radii_in_side_order(monkeypatch):
+    """Each corner of the run gets the radii seen in P grown by REL_TOL l for its sides (leaving, arriving), passed to
+    the proof per corner as (T_j, T_(j+1)); stand-ins record them and refute nothing."""
+    from equimesh.planar import _coupled, polygon
+
+    poly, seen, decided = _dart(), [], []
+    lp = poly.local_length(6.0)
+
+    def radii(grown, ring, c, sides):
+        assert grown.equals(poly.region.buffer(REL_TOL * lp))
+        seen.append((c, tuple(sides)))
+        return 10.0 * c + 1.0, 10.0 * c + 2.0
+
+    monkeypatch.setattr(polygon, "_visible_radii", radii)
+    monkeypatch.setattr(_coupled, "chain_unplaceable", lambda *args: decided.append(args) and False)
+    assert polygon._unplaceable_chain(poly, 6.0, [(0, 0)]) is None
+    edges = tuple(poly.rings[0].local_edge_lengths[[2, 3, 0, 1]])  # T_0 .. T_3 of the run 3, 0, 1
+    assert seen[-3:] == [(3, (edges[1], edges[0])), (0, (edges[2], edges[1])), (1, (edges[3], edges[2]))]
+    assert decided[-1][1:] == (edges, lp, (32.0, 31.0, 2.0, 1.0, 12.0, 11.0))
+
+
+def test_a_pair_placed_jointly_takes_the_shared_sides_points_and_completes_the_others():
+    """The triangle of 29.4 and 23.07 degrees on a base of 5.25 l (placeable together): the base takes place_chain's
+    points of T_1, the other two sides are completed; every part in [l, 2l], both corners' sides l apart.  A run with
+    a corner that is not sharp is not placed."""
+    from equimesh.planar import _coupled
+    from equimesh.planar.polygon import _corner_gap, _grid_chain, side_positions
+
+    apex = 5.25 * math.sin(math.radians(23.069711979788835)) / math.sin(math.radians(180.0 - 29.4 - 23.069711979788835))
+    ring = as_polygon([[0.0, 0.0], [5.25, 0.0], _at(29.4, apex)], 1.0).rings[0]
+    lengths, angles = ring.local_edge_lengths, [ring.inner_angle(i) for i in range(3)]
+    found = _coupled.place_chain(tuple(math.radians(a) for a in angles[:2]), tuple(lengths[[2, 0, 1]]), 1.0)
+    sides = side_positions(lengths, angles, 1.0)
+    trial = _grid_chain(sides, lengths, angles, 1.0, 2.0, [0, 1])
+    assert trial[0][1] == lengths[0] and np.array_equal(trial[0][0], np.concatenate([[0.0], found[1][:-1]]))
+    for (num, den), length in zip(trial, lengths):
+        parts = np.diff(np.append(num / den * length, length))
+        assert np.all(parts >= (1.0 - REL_TOL)) and np.all(parts <= 2.0 * (1.0 + REL_TOL))
+    assert min(_corner_gap(trial, lengths, angles, 1.0, c) for c in (0, 1)) >= 1.0 - REL_TOL
+    assert _grid_chain(sides, lengths, angles, 1.0, 2.0, [1, 2]) is None
+
+
+@pytest.mark.parametrize("angles, lengths, run", [([29.4, 23.07, 150.0, 157.53], [5.25, 10.0, 6.0, 2.6], [0, 1]),
+                                                  ([30.0, 30.0, 30.0, 150.0, 120.0], [3.5, 3.5, 10.0, 6.0, 3.5], [0, 1, 2])])
+def test_a_long_last_side_placed_jointly_keeps_its_points_beyond_the_cut(angles, lengths, run):
+    """The side leaving the run's last corner is 10 l long with uneven points (parts 1, 1.5, 2, 2, 2, 1.5 l from that
+    corner): place_chain cuts it past K l, its own points at least l beyond the cut are kept, read from that corner
+    (the middle is split again), for a pair and for a run of three."""
+    from equimesh.planar.polygon import _grid_chain
+
+    far = run[-1]
+    sides = [(np.arange(math.ceil(x / 2.0)) * (x / math.ceil(x / 2.0)), x) for x in lengths]
+    sides[far] = np.array([0.0, 1.0, 2.5, 4.5, 6.5, 8.5]), 10.0
+    num, den = _grid_chain(sides, np.array(lengths), angles, 1.0, 2.0, run)[far]
+    assert den == 10.0 and num[0] == 0.0 and set(num[-3:]) == {4.5, 6.5, 8.5}
+    assert np.all(np.diff(np.append(num, den)) >= 1.0 - REL_TOL) and np.all(np.diff(np.append(num, den)) <= 2.0 + REL_TOL)

@@ -206,22 +206,19 @@ def _cross(theta, mine, theirs, l, tol, radii):
     return (best >= ((1.0 - tol) * l) ** 2) | (mine[1][:, None] > radii[0]) | (theirs[1][None, :] > radii[1])
 
 
-def _reaches(parts, left, ends, path=False):
-    """Whether a path of ``parts`` through the positions ``left`` goes from position 0 to one of ``ends``.
+def _reaches(parts, left, ends):
+    """The positions of a path of ``parts`` through ``left`` from position 0 to one of ``ends``, or None.
 
-    With ``path``, its positions (or None): breadth first, each position
-    after one reached a round earlier.
+    Breadth first: each position after one reached a round earlier.
     """
     when = np.full(len(left), -1)
     when[0] = rounds = 0
     fresh = when == 0
-    while fresh.any() and (path or not (ends & (when >= 0)).any()):
+    while fresh.any():
         rounds += 1
         fresh = parts[fresh].any(axis=0) & left & (when < 0)
         when[fresh] = rounds
     done = np.flatnonzero(ends & (when >= 0))
-    if not path:
-        return bool(len(done))
     if not len(done):
         return None
     found = [int(done[0])]
@@ -290,7 +287,7 @@ class _Chain:
         if found is None:
             return None
         paths, left = found
-        first, last = (_reaches(self.sides[k][3], left[k], self.sides[k][2], path=True) for k in (0, self.m))
+        first, last = (_reaches(self.sides[k][3], left[k], self.sides[k][2]) for k in (0, self.m))
         return tuple(side[0][path[1:]] for side, path in zip(self.sides, [first, *paths, last]))
 
     def _extend(self, k, paths, left):
