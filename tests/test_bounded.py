@@ -46,7 +46,7 @@ EXAMPLES = {"thorough": 60}.get(os.environ.get("EQUIMESH_HYPOTHESIS_PROFILE", "c
 # stage ended at 0.462 against the paper's 0.654 (docs/decisions.md, "The bounded objective").
 @example(rise=8.623446459779622, seed=2893441600, l=4.876515103851089)
 # Dome 3 of experiments/bounded_sweep.py: 0.7444 against the paper's 0.7333 when docs/decisions.md item 74 was
-# merged, 0.7259 after the line search of item 70 (b1569af), 0.7574 with the trust region per node (item 90).
+# merged, 0.7259 after the line search of item 70 (b1569af), 0.7574 with the trust region per node (item 88).
 @example(rise=6.326581062262999, seed=2437408156, l=4.593367092801857)
 def test_bounded_keeps_members_in_bounds_and_reaches_the_papers_share(rise, seed, l):
     """Mildly curved Bezier patches: 100 % of the members in [l, 2l], and a share within 0.5 % of l at least the paper's."""
