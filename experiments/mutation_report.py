@@ -175,6 +175,12 @@ _EQUIVALENT_GROUPS = {
           "while len(run) < n + 1 and _stagger_count(angles[run[0] - 1]) and joined((run[0] - 1) % n):"]),
         ("equivalent: a run of two through corner j is (j - 1, j) or (j, j + 1), both already among the pairs of j",
          ["if len(run) >= 2 and (r, run) not in runs:"]),
+        ("equivalent: a run of two through corner c is [c, c + 1] or [c - 1, c], the two pair trials of c tried just "
+         "before on the same sides (list(sides), unchanged until a trial is taken), so _grid_chain returns the same "
+         "and the trial fails again",
+         ["trial = trial and (keep is PAIR or len(run) >= 2) and _grid_chain(trial, lengths, angles, l, spacing, run)"]),
+        ("equivalent: d runs over (-1, 0, 1), so {k - d} is the same set as {k + d}",
+         ["touched |= {(k - d) % n for k in run for d in (-1, 0, 1)}"]),
         ("equivalent: the turn at the lowest-leftmost vertex is never straight: its neighbours lie in the closed "
          "half-plane right of or above it, so collinear neighbours would be on one ray from it, a fold refused before",
          ["counter_clockwise = orient_sign(local[low - 1], local[low], local[(low + 1) % len(v)]) >= 0"]),

@@ -22,6 +22,7 @@ search in their order (stubbed placements).
 
 import math
 
+import equimesh
 import numpy as np
 import pytest
 import shapely
@@ -29,6 +30,7 @@ import shapely
 from equimesh.errors import InvalidPolygonError
 from equimesh.planar import polygon
 from equimesh.planar.polygon import Boundary, as_polygon, check_boundary_separation, side_positions
+from equimesh.testing.shapes import sharp_dart
 from equimesh.tolerance import REL_TOL, at_least
 
 
@@ -425,3 +427,31 @@ def test_place_corners_on_a_grid_checks_every_corner_a_trial_touched(monkeypatch
     polygon._place_corners_on_a_grid(sides, np.full(5, 4.0), [20.0] * 5, 1.0, 1.5)
     assert [set(checked[k : k + 4]) for k in range(0, 20, 4)] == [{4, 0, 1, 2}, {0, 1, 2, 3}, {1, 2, 3, 4}, {2, 3, 4, 0},
                                                                    {3, 4, 0, 1}]
+
+
+def test_place_corners_on_a_grid_checks_a_lone_corner_and_its_neighbours(monkeypatch):
+    """For a trial of one corner (here the first, its two sides free) the corner itself and its two neighbours are
+    checked, each once."""
+    checked = []
+    sides = side_positions(np.full(5, 4.0), [20.0] * 5, 1.0, 1.5)
+    monkeypatch.setattr(polygon._corner, "corner_unplaceable", lambda *args: False)
+    monkeypatch.setattr(polygon, "_corner_gap", lambda trial, *args: 0.0 if trial is sides else checked.append(args[-1]))
+    monkeypatch.setattr(polygon, "_grid_sides", lambda trial, *args: list(trial))
+    monkeypatch.setattr(polygon, "at_least", lambda value, l: value is None)
+    polygon._place_corners_on_a_grid(sides, np.full(5, 4.0), [20.0] * 5, 1.0, 1.5)
+    assert sorted(checked[:3]) == [0, 1, 4] and [sorted(checked[k : k + 3]) for k in range(3, 15, 3)] == [
+        [0, 1, 2], [1, 2, 3], [2, 3, 4], [0, 3, 4]]
+
+
+def test_a_dart_separated_only_by_its_run_of_three_is_meshed(monkeypatch):
+    """A dart (tip 23.97 degrees, barbs 30.55 and 38.91, sides 4.42 l) whose three sharp corners no single corner or
+    pair trial separates: the trial of the whole run places it (a chain of three returned), and it is meshed with
+    every edge in [l, 2l] (found by a random search over darts; without the run trial it is refused)."""
+    placed, chain = [], polygon._grid_chain
+    monkeypatch.setattr(polygon, "_grid_chain", lambda *args: placed.append((len(args[-1]), chain(*args))) or placed[-1][1])
+    dart = sharp_dart(23.97192472430486, (30.54743423844858, 38.9057900966436), 4.424429730465021)
+    mesh = equimesh.uniform_triangulation(dart, 1.0)
+    assert any(n == 3 and found is not None for n, found in placed)
+    lengths = mesh.edge_lengths()
+    assert at_least(lengths.min(), 1.0) and lengths.max() <= 2.0 * (1.0 + REL_TOL)
+
