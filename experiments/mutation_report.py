@@ -92,7 +92,7 @@ MODULES = {
 
 # --- the fast engine's numba kernels ---
 #: The fast engine's kernels -> their tests.  The kernels are compiled by a
-#: call (``insertion/_jit.py``), not by a decorator, so mutmut mutates them
+#: call (``equimesh/_jit.py``), not by a decorator, so mutmut mutates them
 #: and puts its trampolines in front of them; numba cannot compile a
 #: trampoline, so their tests run the kernels as Python (:data:`ENVIRONMENT`),
 #: on small inputs.

@@ -50,7 +50,7 @@ import numpy as np
 import scipy.sparse
 import scipy.sparse.linalg
 
-from ..planar.insertion._jit import compiled
+from .._jit import compiled
 from ..tolerance import LM_BACKTRACKS, LM_DIAGONAL_FLOOR, LM_INITIAL_DAMPING
 
 try:

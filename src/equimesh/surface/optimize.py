@@ -201,9 +201,9 @@ class Objective:
     by this objective's solve.  ``final(x)`` (optional, on the objective that
     ends a continuation) gives the point returned instead of its solution ``x``
     (an earlier iterate the continuation kept as its best) and the objective
-    whose solve ended there (its costs are reported).  ``step`` (optional)
-    bounds every node's move on the surface per solver step, in units of l
-    (:meth:`UVProblem.step_limit`).
+    whose solve ended there (its costs are reported).  ``limit`` (optional)
+    is applied to every step of this objective's solve (a trust region,
+    :meth:`UVProblem.step_limit`).
     """
 
     residuals: Callable[[np.ndarray], np.ndarray]
@@ -217,7 +217,7 @@ class Objective:
     start: np.ndarray = None
     hold: np.ndarray = None
     final: Callable[[np.ndarray], tuple] = None
-    step: float = None
+    limit: Callable[[np.ndarray], np.ndarray] = None
 
 
 def edge_length_terms(problem, edges):
@@ -342,6 +342,7 @@ def bounded_objective(problem):
     l = problem.length
     lengths, length_jacobian = edge_length_terms(problem, problem.edges)
     target, high = 1.0 + BOUNDED_OFFSET, 2.0 - BOUNDED_OFFSET
+    limit = problem.step_limit(BOUNDED_STEP * l)  # every round's trust region
 
     def inside(ratio):
         return bool(np.all((ratio >= 1.0) & (ratio <= 2.0)))
@@ -412,7 +413,7 @@ def bounded_objective(problem):
 
         objective = Objective(
             residuals, jacobian, f"members into [l, 2l] and to {target:g} l, round {k + 1}", None, None, refine,
-            BOUNDED_FTOL, BOUNDED_ROUND_ITERATIONS, start=start, final=chosen, step=BOUNDED_STEP,
+            BOUNDED_FTOL, BOUNDED_ROUND_ITERATIONS, start=start, final=chosen, limit=limit,
         )
         return objective
 
@@ -570,7 +571,6 @@ def optimize_uv(
     tri = None if triangles is None else np.asarray(triangles, dtype=np.int64).reshape(-1, 3)
     x, nfev, njev, damping = x0, 0, 0, LM_INITIAL_DAMPING
     normal_equations = NormalEquations()  # one pattern for every stage: analysed once
-    limits = {}  # one trust region per step bound
     while True:
         if obj.start is not None:  # a restart is a fresh solve: its own start and the initial damping
             x, damping = obj.start, LM_INITIAL_DAMPING
@@ -578,13 +578,11 @@ def optimize_uv(
         solve = obj if tri is None or area_floor <= 0 else _with_barrier(problem, obj, tri, area_floor, x)
         tol = obj.ftol if ftol is None else ftol
         box = problem.bounds if obj.hold is None else tuple(np.where(obj.hold, x, bound) for bound in problem.bounds)
-        if obj.step is not None and obj.step not in limits:
-            limits[obj.step] = problem.step_limit(obj.step * problem.length)
         while True:
             solution = least_squares(
                 solve.residuals, solve.jacobian, x, *box, accept=guard, gtol=gtol, xtol=xtol, ftol=tol,
                 max_iterations=obj.max_iterations, damping=damping, normal_equations=normal_equations,
-                limit=limits.get(obj.step),
+                limit=obj.limit,
             )
             x, nfev, njev = solution.x, nfev + solution.evaluations, njev + solution.iterations + 1
             damping = solution.damping  # warm start: the next solve begins where this one's damping ended

@@ -24,7 +24,7 @@ counting (``nrt=False``; the reason is in :mod:`.fast`).
 
 import numpy as np
 
-from ._jit import compiled
+from ..._jit import compiled
 from ._predicates import incircle, orient2d
 
 

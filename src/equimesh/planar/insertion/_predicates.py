@@ -22,7 +22,7 @@ expansions) even when called from the engine's helpers compiled without it.
 
 import numpy as np
 
-from ._jit import compiled
+from ..._jit import compiled
 
 #: Half an ulp of 1.0 (Shewchuk's ``epsilon``).
 _EPS = 2.0**-53

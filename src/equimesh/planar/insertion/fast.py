@@ -52,7 +52,7 @@ The engine requires every constraint to bound the region (a triangle on one
 side only), as in Problems 1 and 2.
 
 Compilation.  The helpers that take arrays only index them, never allocate,
-and are compiled without numba's reference counting (``nrt=False``, :mod:`._jit`):
+and are compiled without numba's reference counting (``nrt=False``, :mod:`equimesh._jit`):
 with it, every call increments and decrements the count of each array
 argument atomically, a quarter of the engine's time at 10^5 points (perf,
 docs/performance.md).  numba hands that flag down to the functions they
@@ -74,7 +74,7 @@ import numpy as np
 from ...errors import EquimeshError, InternalError
 from ...tolerance import REL_TOL, SLIVER_GAP
 from ._cdt import adjacency, cavity, cavity_boundary, fill, locate, segments_touch, walk
-from ._jit import compiled
+from ..._jit import compiled
 from ._region import Insertion, constrained_delaunay
 
 #: The distance from a circumcentre to the constraints is searched among the
