@@ -5,31 +5,56 @@ is the paper's parameter square and it gives X^s with its first and second
 partial derivatives, all vectorised.
 """
 
-import math
-
 import numpy as np
 
+from .._jit import compiled
 from ..errors import InvalidSurfaceError
 from .chart import UNIT
 
 
-#: Beyond the paper: the highest degree of a Bezier net in u or in v.  The
-#: Bernstein basis uses the binomial coefficients C(n, i) as floats, and
-#: C(n, n / 2) exceeds the largest float from n = 1030 on (a 3000-row net
-#: ended in an OverflowError).  Test: tests/test_hardening_surface.py.
+#: Beyond the paper: the highest degree of a Bezier net in u or in v.  It
+#: was set when the Bernstein basis used the binomial coefficients C(n, i) as
+#: floats (C(n, n / 2) exceeds the largest float from n = 1030 on); the
+#: recurrence of :func:`_basis` has no such limit, but a point costs
+#: ``(m + 1)(n + 1)`` products, so the bound stays and keeps a mistyped net
+#: from hanging the pipeline.  Test: tests/test_hardening_surface.py.
 MAX_DEGREE = 1000
 
 
 def bernstein(degree, t):
     """Bernstein basis polynomials ``B_i^degree(t)``, shape ``t.shape + (degree + 1,)``.
 
-    ``B_i^n(t) = C(n, i) t^i (1 - t)^(n - i)``; ``0**0 == 1`` so the basis is
-    exact at ``t = 0`` and ``t = 1``.
+    ``B_i^n(t) = C(n, i) t^i (1 - t)^(n - i)``, by :func:`_basis`: exact at
+    ``t = 0`` and ``t = 1``, and no binomial coefficient (which overflows a
+    float from n = 1030 on) is formed.
     """
-    t = np.asarray(t, dtype=float)[..., None]
-    i = np.arange(degree + 1)
-    binom = np.array([math.comb(degree, k) for k in i], dtype=float)
-    return binom * t**i * (1.0 - t) ** (degree - i)
+    t = np.asarray(t, dtype=float)
+    flat = t.ravel()
+    out = np.empty((len(flat), degree + 1))
+    for k in range(len(flat)):
+        _basis(degree, flat[k], out[k])
+    return out.reshape(t.shape + (degree + 1,))
+
+
+def _basis(degree, t, out):
+    """``out[i] = B_i^degree(t)`` for ``i <= degree``, by the triangular recurrence ``B_i^j = (1 - t) B_i^(j-1) + t B_(i-1)^(j-1)``.
+
+    Piegl and Tiller's ``AllBernstein`` (The NURBS Book, A1.3): only products
+    and sums of numbers in [0, 1] (for t in [0, 1]), so no overflow at any
+    degree, and at ``t = 0`` or ``1`` every term but one is an exact zero.
+    """
+    out[0] = 1.0
+    s = 1.0 - t
+    for j in range(1, degree + 1):
+        saved = 0.0
+        for i in range(j):
+            temp = out[i]
+            out[i] = saved + s * temp
+            saved = t * temp
+        out[j] = saved
+
+
+_basis = compiled(_basis)
 
 
 class BezierSurface:
@@ -96,13 +121,29 @@ class BezierSurface:
 
 
 def _tensor_sum(net, u, v):
-    """``sum_ij B_i(u) B_j(v) net_ij`` for a net of shape (a, b, 3), vectorised over ``u, v``."""
+    """``sum_ij B_i(u) B_j(v) net_ij`` for a net of shape (a, b, 3), over ``broadcast(u, v)`` (a compiled loop per point)."""
     u, v = np.broadcast_arrays(np.asarray(u, dtype=float), np.asarray(v, dtype=float))
-    a, b, _ = net.shape
-    bu = bernstein(a - 1, u)  # (..., a)
-    bv = bernstein(b - 1, v)  # (..., b)
-    rows = (bu @ net.reshape(a, b * 3)).reshape(u.shape + (b, 3))  # sum over i first
-    return np.einsum("...j,...jk->...k", bv, rows)
+    out = _tensor_sum_points(np.ascontiguousarray(net, dtype=float), u.ravel(), v.ravel())
+    return out.reshape(u.shape + (3,))
+
+
+def _tensor_sum_points(net, u, v):
+    """``out[k] = sum_ij B_i(u_k) B_j(v_k) net_ij`` for 1-D ``u, v``: the basis of each point (:func:`_basis`), then the double sum."""
+    a, b = net.shape[0], net.shape[1]
+    out = np.zeros((len(u), 3))
+    bu, bv = np.empty(a), np.empty(b)
+    for k in range(len(u)):
+        _basis(a - 1, u[k], bu)
+        _basis(b - 1, v[k], bv)
+        for i in range(a):
+            for j in range(b):
+                w = bu[i] * bv[j]
+                for c in range(3):
+                    out[k, c] += w * net[i, j, c]
+    return out
+
+
+_tensor_sum_points = compiled(_tensor_sum_points)
 
 
 def _validate_net(control_points):

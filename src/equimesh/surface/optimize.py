@@ -47,10 +47,11 @@ import numpy as np
 import scipy.optimize
 import scipy.sparse
 
+from .._jit import compiled
 from ._jacobian import AreaBarrier, ElementJacobian, signed_areas
-from ._solver import NormalEquations, least_squares
+from ._solver import NormalEquations, inner, least_squares
 from ..errors import EquimeshError, InvalidSurfaceError
-from ..mesh import G1
+from ..mesh import G1, edge_lengths
 from .chart import domain_of
 from .regularity import derivatives, evaluate
 from ..tolerance import (
@@ -245,21 +246,38 @@ def edge_length_terms(problem, edges):
         return last["points"]
 
     def lengths(x):
-        p = points(x)
-        return np.linalg.norm(p[e[:, 1]] - p[e[:, 0]], axis=1)
+        return edge_lengths(points(x), e)
 
     def jacobian(x):
-        p = points(x)
-        su, sv = derivatives(surface, problem.uv_of(x))
-        d = p[e[:, 1]] - p[e[:, 0]]
-        length = np.linalg.norm(d, axis=1)
-        unit = d / np.maximum(length, np.finfo(float).tiny)[:, None]
-        a, b = e[:, 0], e[:, 1]
-        grad_b = np.column_stack([np.sum(unit * su[b], axis=1), np.sum(unit * sv[b], axis=1)])
-        grad_a = -np.column_stack([np.sum(unit * su[a], axis=1), np.sum(unit * sv[a], axis=1)])
+        length, grad_a, grad_b = _length_gradients(points(x), *derivatives(surface, problem.uv_of(x)), e)
         return length, problem.chain(assemble(grad_a, grad_b), x)
 
     return lengths, jacobian
+
+
+def _length_gradients(points, su, sv, edges):
+    """Per edge ``(a, b)``: ``L = |d|``, ``d = X^s(u_b) - X^s(u_a)``, and ``dL/d(u, v)`` at ``a`` and at ``b``.
+
+    ``dL/du_b = d . X^s_u(u_b) / L``, ``dL/dv_b = d . X^s_v(u_b) / L``, minus
+    the same at ``a`` (:func:`edge_length_terms`); a compiled loop over the
+    edges (a zero-length edge has ``d = 0``, so zero gradients).
+    """
+    length = np.empty(len(edges))
+    grad_a, grad_b = np.empty((len(edges), 2)), np.empty((len(edges), 2))
+    for k in range(len(edges)):
+        a, b = edges[k, 0], edges[k, 1]
+        d0, d1, d2 = points[b, 0] - points[a, 0], points[b, 1] - points[a, 1], points[b, 2] - points[a, 2]
+        length[k] = np.sqrt(d0 * d0 + d1 * d1 + d2 * d2)
+        scale = max(length[k], np.finfo(np.float64).tiny)
+        u0, u1, u2 = d0 / scale, d1 / scale, d2 / scale
+        grad_b[k, 0] = u0 * su[b, 0] + u1 * su[b, 1] + u2 * su[b, 2]
+        grad_b[k, 1] = u0 * sv[b, 0] + u1 * sv[b, 1] + u2 * sv[b, 2]
+        grad_a[k, 0] = -(u0 * su[a, 0] + u1 * su[a, 1] + u2 * su[a, 2])
+        grad_a[k, 1] = -(u0 * sv[a, 0] + u1 * sv[a, 1] + u2 * sv[a, 2])
+    return length, grad_a, grad_b
+
+
+_length_gradients = compiled(_length_gradients)
 
 
 def paper_objective(problem):
@@ -624,7 +642,7 @@ def _free_parameters(uv, fixed, sliding, lower, upper):
 
 def _cost(obj, x):
     r = obj.residuals(x)
-    return 0.5 * float(r @ r)
+    return 0.5 * inner(r, r)
 
 
 class _Guard:
