@@ -9,16 +9,17 @@ from section4_standin import CircularVault, flat_patch, parabolic_vault, standin
 from equimesh import EquimeshError
 from equimesh.mesh import edge_lengths
 from equimesh.surface import optimize
+from equimesh.surface._jacobian import signed_areas
 from equimesh.surface._slide import between_corners, loop_arc
 from equimesh.surface.remap import _nearest_segment
 from equimesh.surface.optimize import (
     OBJECTIVES,
     Objective,
     UVProblem,
+    _fold_over_barrier,
     _with_barrier,
     bounded_objective,
     edge_length_terms,
-    flipped_triangles,
     optimize_uv,
     paper_objective,
 )
@@ -67,7 +68,7 @@ def test_paper_objective_and_barrier_jacobians_match_finite_differences():
     obj = paper_objective(problem)
     x = problem.x0
     np.testing.assert_allclose(obj.jacobian(x).toarray(), finite_difference(obj.residuals, x), atol=1e-6)
-    barrier = _with_barrier(problem, obj, mesh.triangles, 0.9, x)
+    barrier = _with_barrier(problem, obj, _fold_over_barrier(problem, mesh.triangles, 0.9), x)
     squeezed = x + 0.03 * np.random.default_rng(2).standard_normal(x.shape)  # some triangles below the floor
     assert np.any(barrier.residuals(squeezed)[len(obj.residuals(x)) :] > 0)
     np.testing.assert_allclose(
@@ -98,11 +99,17 @@ def test_sliding_nodes_jacobians_match_finite_differences():
     obj = paper_objective(problem)
     lengths, jacobian = edge_length_terms(problem, mesh.edges)
     np.testing.assert_allclose(jacobian(x)[1].toarray(), finite_difference(lengths, x), atol=1e-5 * lengths(x).max())
-    barrier = _with_barrier(problem, obj, mesh.triangles, 0.9, x)
+    barrier = _with_barrier(problem, obj, _fold_over_barrier(problem, mesh.triangles, 0.9), x)
     squeezed = x + 0.03 * np.random.default_rng(2).standard_normal(x.shape)
     assert np.any(barrier.residuals(squeezed)[len(obj.residuals(x)) :] > 0)
     expected = finite_difference(barrier.residuals, squeezed)
     np.testing.assert_allclose(barrier.jacobian(squeezed).toarray(), expected, atol=1e-5)
+
+
+def flipped_triangles(uv_before, uv_after, triangles):
+    """Triangles counter-clockwise in (u, v) before but not strictly after (fold-over)."""
+    before, after = signed_areas(uv_before, triangles), signed_areas(uv_after, triangles)
+    return np.flatnonzero((before > 0) & (after <= 0))
 
 
 def check_invariants(mesh, r, opt):

@@ -7,10 +7,12 @@ fold-over barrier.  :class:`ElementJacobian` fixes the CSR structure once; each
 call only fills in the values.
 """
 
+import copy
+
 import numpy as np
 import scipy.sparse
 
-from ..mesh import triangle_orient
+from .._jit import compiled
 
 
 class ElementJacobian:
@@ -41,14 +43,42 @@ class ElementJacobian:
         self.shape = (len(e), int(free.sum()))
 
     def __call__(self, *grads):
-        """The Jacobian from ``grads[c] = d r / d x_{corner c}``, each (E, dim)."""
-        data = np.concatenate(grads, axis=1)[self._keep]
+        """The Jacobian from ``grads[c] = d r / d x_{corner c}``, each (E, dim), or from one (E, k dim) array of them side by side."""
+        data = (np.concatenate(grads, axis=1) if len(grads) > 1 else grads[0])[self._keep]
         return scipy.sparse.csr_matrix((data, self._indices, self._indptr), shape=self.shape)
 
 
 def signed_areas(points, triangles):
-    """Signed areas of ``triangles`` over 2D ``points`` (> 0 counter-clockwise)."""
-    return 0.5 * triangle_orient(points, triangles)
+    """Signed areas of ``triangles`` over 2D ``points`` (> 0 counter-clockwise): half of :func:`~equimesh.mesh.triangle_orient`, compiled."""
+    return 0.5 * _orient(np.asarray(points, dtype=float), np.asarray(triangles, dtype=np.int64).reshape(-1, 3))
+
+
+def _orient(points, triangles):
+    """The floats of :func:`~equimesh.mesh.triangle_orient`, in a compiled loop (the solver's guards call it at every step)."""
+    out = np.empty(len(triangles))
+    for t in range(len(triangles)):
+        a, b, c = triangles[t, 0], triangles[t, 1], triangles[t, 2]
+        ax, ay = points[a, 0], points[a, 1]
+        out[t] = (points[b, 0] - ax) * (points[c, 1] - ay) - (points[b, 1] - ay) * (points[c, 0] - ax)
+    return out
+
+
+_orient = compiled(_orient)
+
+
+def _area_gradients(points, triangles, scale):
+    """``scale_t dA_t/dp_k = scale_t / 2 perp(p_{k+2} - p_{k+1})``, ``perp(x, y) = (-y, x)``, per triangle ``t`` and corner ``k`` (a row)."""
+    grads = np.empty((len(triangles), 6))
+    for t in range(len(triangles)):
+        half = 0.5 * scale[t]
+        for k in range(3):
+            p, q = triangles[t, (k + 2) % 3], triangles[t, (k + 1) % 3]
+            grads[t, 2 * k] = half * -(points[p, 1] - points[q, 1])
+            grads[t, 2 * k + 1] = half * (points[p, 0] - points[q, 0])
+    return grads
+
+
+_area_gradients = compiled(_area_gradients)
 
 
 class AreaBarrier:
@@ -81,20 +111,22 @@ class AreaBarrier:
         self._power = power
         self._assemble = ElementJacobian(self.triangles, len(start), 2, free)
 
-    def _depth(self, points):
-        return np.maximum(0.0, 1.0 - signed_areas(points, self.triangles) / self._floor)
+    def weighted(self, weight):
+        """This barrier with the weight ``w``: the triangles, start areas and Jacobian structure are shared."""
+        barrier = copy.copy(self)
+        barrier._weight = float(weight)
+        return barrier
+
+    def _depth(self, area):
+        return np.maximum(0.0, 1.0 - area / self._floor)
 
     def residuals(self, points):
-        return self._weight * self._depth(points) ** self._power
+        return self._weight * self._depth(signed_areas(points, self.triangles)) ** self._power
 
     def jacobian(self, points):
         """``dA/dp_k = 1/2 perp(p_{k+2} - p_{k+1})`` for each corner, scaled where the barrier is active."""
-        p = [points[self.triangles[:, k]] for k in range(3)]
-        slope = self._power * self._depth(points) ** (self._power - 1) if self._power > 1 else 1.0
-        active = signed_areas(points, self.triangles) < self._floor
-        scale = np.where(active, -self._weight * slope / self._floor, 0.0)[:, None]
-        grads = []
-        for k in range(3):
-            d = p[(k + 2) % 3] - p[(k + 1) % 3]
-            grads.append(0.5 * scale * np.column_stack([-d[:, 1], d[:, 0]]))
-        return self._assemble(*grads)
+        points = np.asarray(points, dtype=float)
+        area = signed_areas(points, self.triangles)
+        slope = self._power * self._depth(area) ** (self._power - 1) if self._power > 1 else 1.0
+        scale = np.where(area < self._floor, -self._weight * slope / self._floor, 0.0)
+        return self._assemble(_area_gradients(points, self.triangles, scale))

@@ -45,6 +45,8 @@ factorisations and inner products that do not depend on the BLAS's threads
 whether ``pypardiso`` is installed).
 """
 
+import os
+import weakref
 from dataclasses import dataclass
 
 import numpy as np
@@ -58,6 +60,11 @@ try:
     import pypardiso
 except ImportError:  # the extra 'fast' is not installed, or its MKL library is not found
     pypardiso = None
+else:
+    # Every PyPardisoSolver() looks for MKL's library again, by a recursive glob of the
+    # environment when ctypes does not find it (0.15 s on an idle machine, 0.75 s under load,
+    # per solver): the one its import found is named once for all of them.
+    os.environ.setdefault("PYPARDISO_MKL_RT", pypardiso.ps.libmkl._name)
 
 
 @dataclass(frozen=True)
@@ -177,9 +184,6 @@ class NormalEquations:
     def assemble(self, jac, held):
         """The normal matrix of the CSR Jacobian ``jac`` with the variables ``held`` (bool) kept in place."""
         jac = jac.tocsr()
-        if not jac.has_canonical_format:  # a column twice in a row would miss its cross products
-            jac = jac.copy()
-            jac.sum_duplicates()
         if self._structure is None or not (
             np.array_equal(jac.indptr, self._structure[0]) and np.array_equal(jac.indices, self._structure[1])
         ):
@@ -214,12 +218,19 @@ class NormalEquations:
 
         Rows are grouped by their number ``k`` of entries; a group keeps, per
         row, the positions in ``jac.data`` of the two factors of each of its
-        ``k (k + 1) / 2`` products ``J_ri J_rj`` (``i <= j``), and the slot of
-        the pattern each product is summed into.
+        ``k (k + 1) / 2`` products ``J_rp J_rq`` (positions ``p <= q``), and the
+        slot of the pattern each product is summed into.  The structure is
+        taken as it comes (no sort per iteration: the Jacobians of
+        :class:`~equimesh.surface._jacobian.ElementJacobian` list a row's
+        columns by corner): a row's columns may be in any order, and a column
+        may appear twice (entries to be summed): the product of its two
+        entries then counts twice, ``(J_rp + J_rq)^2 = J_rp^2 + J_rq^2 + 2 J_rp J_rq``,
+        so it forms one more group.
         """
         n = jac.shape[1]
         counts = np.diff(jac.indptr)
         groups, keys = [], [np.arange(n, dtype=np.int64) * (n + 1)]  # the whole diagonal, even where no row reaches
+        twice = ([], [], [])  # the positions and keys of the products of a column's two entries in a row
         for k in np.unique(counts[counts > 0]):
             entries = jac.indptr[:-1][counts == k][:, None] + np.arange(k)
             i, j = np.triu_indices(k)
@@ -227,6 +238,12 @@ class NormalEquations:
             a, b = jac.indices[left].astype(np.int64), jac.indices[right].astype(np.int64)
             keys.append((np.minimum(a, b) * n + np.maximum(a, b)).ravel())
             groups.append((left, right))
+            repeated = (a == b) & (left != right)
+            for part, value in zip(twice, (left, right, a * (n + 1))):
+                part.append(value[repeated])
+        if sum(len(key) for key in twice[2]):
+            keys.append(np.concatenate(twice[2]))
+            groups.append((np.concatenate(twice[0])[:, None], np.concatenate(twice[1])[:, None]))
         unique, slots = np.unique(np.concatenate(keys), return_inverse=True)
         offsets = np.cumsum([n] + [left.size for left, _ in groups])
         self._groups = [
@@ -293,6 +310,8 @@ class _Pardiso:
         self._pattern = scipy.sparse.csr_matrix((np.ones(len(rows)), (rows, cols)), shape=(n, n))
         self._pattern.sort_indices()
         self._call(11, np.zeros(n))
+        # MKL keeps the factorisation in its own memory until phase -1: released with the solver.
+        self.release = weakref.finalize(self, self._solver.free_memory, everything=True)
 
     def _call(self, phase, b):
         """PARDISO's ``phase`` on the pattern's matrix, in one thread (with two its results differ in the last bits)."""
@@ -329,11 +348,16 @@ def _sum_products(data, left, right, slot, values):
     The products ``J_ri J_rj`` of one group of rows summed into the normal
     matrix (:meth:`NormalEquations.assemble`), compiled: one pass without
     the temporary arrays of a vectorised ``np.bincount`` (which summed the
-    same terms in the same order, so the bits are the same).
+    same terms in the same order, so the bits are the same).  A zero product
+    is not added (the rows of inactive barrier terms are stored zeros): the
+    sums start at +0, and adding a zero changes no sum but -0, which they
+    never are.
     """
     for r in range(left.shape[0]):
         for p in range(left.shape[1]):
-            values[slot[r, p]] += data[left[r, p]] * data[right[r, p]]
+            product = data[left[r, p]] * data[right[r, p]]
+            if product != 0.0:
+                values[slot[r, p]] += product
 
 
 _sum_products = compiled(_sum_products)

@@ -240,41 +240,46 @@ def edge_length_terms(problem, edges):
     last = {}
 
     def points(x):
-        """``X^s`` at every node for ``x``; the last is kept: the solver evaluates the Jacobian where it last evaluated the residuals."""
+        """``X^s`` at every node for ``x``; the last is kept: the solver evaluates the Jacobian where it last evaluated
+        the residuals, and an objective's stages measure the lengths where the solve ended."""
         if "x" not in last or not np.array_equal(last["x"], x):
+            last.clear()
             last.update(x=np.array(x), points=evaluate(surface, problem.uv_of(x)))
         return last["points"]
 
     def lengths(x):
-        return edge_lengths(points(x), e)
+        p = points(x)
+        if "lengths" not in last:
+            last["lengths"] = edge_lengths(p, e)
+        return last["lengths"]
 
     def jacobian(x):
-        length, grad_a, grad_b = _length_gradients(points(x), *derivatives(surface, problem.uv_of(x)), e)
-        return length, problem.chain(assemble(grad_a, grad_b), x)
+        length, grads = _length_gradients(points(x), *derivatives(surface, problem.uv_of(x)), e)
+        return length, problem.chain(assemble(grads), x)
 
     return lengths, jacobian
 
 
 def _length_gradients(points, su, sv, edges):
-    """Per edge ``(a, b)``: ``L = |d|``, ``d = X^s(u_b) - X^s(u_a)``, and ``dL/d(u, v)`` at ``a`` and at ``b``.
+    """Per edge ``(a, b)``: ``L = |d|``, ``d = X^s(u_b) - X^s(u_a)``, and ``dL/d(u_a, v_a, u_b, v_b)`` (a row of ``grads``).
 
     ``dL/du_b = d . X^s_u(u_b) / L``, ``dL/dv_b = d . X^s_v(u_b) / L``, minus
     the same at ``a`` (:func:`edge_length_terms`); a compiled loop over the
     edges (a zero-length edge has ``d = 0``, so zero gradients).
     """
     length = np.empty(len(edges))
-    grad_a, grad_b = np.empty((len(edges), 2)), np.empty((len(edges), 2))
+    grads = np.empty((len(edges), 4))
     for k in range(len(edges)):
         a, b = edges[k, 0], edges[k, 1]
         d0, d1, d2 = points[b, 0] - points[a, 0], points[b, 1] - points[a, 1], points[b, 2] - points[a, 2]
         length[k] = np.sqrt(d0 * d0 + d1 * d1 + d2 * d2)
         scale = max(length[k], np.finfo(np.float64).tiny)
         u0, u1, u2 = d0 / scale, d1 / scale, d2 / scale
-        grad_b[k, 0] = u0 * su[b, 0] + u1 * su[b, 1] + u2 * su[b, 2]
-        grad_b[k, 1] = u0 * sv[b, 0] + u1 * sv[b, 1] + u2 * sv[b, 2]
-        grad_a[k, 0] = -(u0 * su[a, 0] + u1 * su[a, 1] + u2 * su[a, 2])
-        grad_a[k, 1] = -(u0 * sv[a, 0] + u1 * sv[a, 1] + u2 * sv[a, 2])
-    return length, grad_a, grad_b
+        grads[k, 0] = -(u0 * su[a, 0] + u1 * su[a, 1] + u2 * su[a, 2])
+        grads[k, 1] = -(u0 * sv[a, 0] + u1 * sv[a, 1] + u2 * sv[a, 2])
+        grads[k, 2] = u0 * su[b, 0] + u1 * su[b, 1] + u2 * su[b, 2]
+        grads[k, 3] = u0 * sv[b, 0] + u1 * sv[b, 1] + u2 * sv[b, 2]
+    return length, grads
 
 
 _length_gradients = compiled(_length_gradients)
@@ -395,9 +400,9 @@ def bounded_objective(problem):
         def jacobian(x):
             length, jac = length_jacobian(x)
             jac = jac / l
-            rows = scipy.sparse.diags(weight) @ jac
+            rows = _scale_rows(weight, jac)
             return rows if extra is None else scipy.sparse.vstack(
-                [rows, scipy.sparse.diags(extra(length / l)[1]) @ jac], format="csr"
+                [rows, _scale_rows(extra(length / l)[1], jac)], format="csr"
             )
 
         return residuals, jacobian
@@ -471,6 +476,13 @@ def bounded_objective(problem):
         return replace(paper_objective(problem), refine=refine, start=problem.x0, hold=held, final=chosen)
 
     return round_(0, problem.x0, paper_stage)
+
+
+def _scale_rows(scale, jac):
+    """``diag(scale) @ jac`` for a CSR ``jac``, on its structure (a product ``diags @ jac`` drops the entries that
+    become zero: a new structure, so a new analysis of the normal equations, whenever a weight or slope is 0)."""
+    data = np.repeat(scale, np.diff(jac.indptr)) * jac.data
+    return scipy.sparse.csr_matrix((data, jac.indices, jac.indptr), shape=jac.shape)
 
 
 #: Objective builders by name, each ``builder(problem: UVProblem) -> Objective``.
@@ -589,11 +601,12 @@ def optimize_uv(
     tri = None if triangles is None else np.asarray(triangles, dtype=np.int64).reshape(-1, 3)
     x, nfev, njev, damping = x0, 0, 0, LM_INITIAL_DAMPING
     normal_equations = NormalEquations()  # one pattern for every stage: analysed once
+    barrier = None if tri is None or area_floor <= 0 else _fold_over_barrier(problem, tri, area_floor)
     while True:
         if obj.start is not None:  # a restart is a fresh solve: its own start and the initial damping
             x, damping = obj.start, LM_INITIAL_DAMPING
         guard = _Guard(problem, tri, obj.feasible, x)
-        solve = obj if tri is None or area_floor <= 0 else _with_barrier(problem, obj, tri, area_floor, x)
+        solve = obj if barrier is None else _with_barrier(problem, obj, barrier, x)
         tol = obj.ftol if ftol is None else ftol
         box = problem.bounds if obj.hold is None else tuple(np.where(obj.hold, x, bound) for bound in problem.bounds)
         while True:
@@ -656,9 +669,11 @@ class _Guard:
     def __init__(self, problem, triangles, feasible, x):
         self.problem, self.triangles, self.feasible = problem, triangles, feasible
         self.inside = feasible is not None and feasible(x)
+        if triangles is not None:  # the triangles counter-clockwise at the start, which must stay so
+            self.triangles = triangles[signed_areas(problem.uv, triangles) > 0]
 
     def __call__(self, x):
-        if self.triangles is not None and len(flipped_triangles(self.problem.uv, self.problem.uv_of(x), self.triangles)):
+        if self.triangles is not None and np.any(signed_areas(self.problem.uv_of(x), self.triangles) <= 0):
             return False
         if self.feasible is None:
             return True
@@ -669,14 +684,18 @@ class _Guard:
         return True
 
 
-def _with_barrier(problem, obj, triangles, fraction, x):
-    """Append the fold-over barrier (:class:`~equimesh.surface._jacobian.AreaBarrier`) on (u, v) areas.
+def _fold_over_barrier(problem, triangles, fraction):
+    """The fold-over barrier (:class:`~equimesh.surface._jacobian.AreaBarrier`) on the (u, v) areas of ``triangles``, weight 1."""
+    return AreaBarrier(triangles, problem.uv, fraction, 1.0, problem.moving, power=2)
+
+
+def _with_barrier(problem, obj, barrier, x):
+    """Append the fold-over ``barrier`` (:func:`_fold_over_barrier`) to ``obj``.
 
     Its weight ``w`` has ``w^2 / 2`` above the objective's cost at ``x``: a
     folded triangle alone costs more than the start of the solve.
     """
-    weight = 1.0 + 2.0 * np.sqrt(_cost(obj, x))
-    barrier = AreaBarrier(triangles, problem.uv, fraction, weight, problem.moving, power=2)
+    barrier = barrier.weighted(1.0 + 2.0 * np.sqrt(_cost(obj, x)))
 
     def residuals(y):
         return np.concatenate([obj.residuals(y), barrier.residuals(problem.uv_of(y))])
@@ -685,10 +704,3 @@ def _with_barrier(problem, obj, triangles, fraction, x):
         return scipy.sparse.vstack([obj.jacobian(y), problem.chain(barrier.jacobian(problem.uv_of(y)), y)], format="csr")
 
     return Objective(residuals, jacobian, obj.description + " + fold-over barrier")
-
-
-def flipped_triangles(uv_before, uv_after, triangles):
-    """Triangles counter-clockwise in (u, v) before but not strictly after (fold-over)."""
-    triangles = np.asarray(triangles, dtype=np.int64).reshape(-1, 3)
-    before, after = signed_areas(uv_before, triangles), signed_areas(uv_after, triangles)
-    return np.flatnonzero((before > 0) & (after <= 0))
