@@ -914,8 +914,8 @@ def test_the_candidate_rules_at_their_thresholds_are_the_reference(points, l):
 def test_a_circumcentre_refused_when_it_surfaces_is_skipped_and_the_insertion_goes_on():
     """A circumcentre accepted when pushed and refused when it surfaces: its triangle is passed over, the rest is
     inserted.  A pentagon a, b, e, x, w, in a frame along ab (6 long, turned by 0.7 rad and moved by (0.1, 0)):
-    the circle of t = (a, x, w) has radius 1 about the point 1 along ab and 7e-10 off it, and l = 0.7 is moved
-    so that REL_TOL l is one float below the centre's gap to ab.  Pushed, the centre is accepted (gap over
+    the circle of t = (a, x, w) has radius 1 about the point 1 along ab and 7e-10 off it, and l (0.7 up to 1e-7)
+    is the float just below the one for which REL_TOL l is the centre's gap to ab.  Pushed, the centre is accepted (gap over
     REL_TOL l, radius over l); ab's midpoint (2 from it, outside the circle: t stays) is inserted before it
     surfaces, and rounded it moves the constraint's half (a, p) 8.5e-17 nearer the centre, now within REL_TOL l:
     refused, and five more points follow (the reference's insertion, 13 points)."""
