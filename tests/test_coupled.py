@@ -296,3 +296,34 @@ def test_a_point_leaving_the_next_side_no_split_reduces_nothing_of_t0(monkeypatc
     monkeypatch.setattr(_coupled, "PAIR_STEPS", 7)
     chain = _coupled._Chain(thetas, lengths, 1.0, 0, cells=True, radii=(math.inf,) * 6)
     assert chain.search() is None and chain.steps == 7
+
+
+class _Forgetful(set):
+    """A memo of dead prefixes that remembers none: the search then tries every prefix in full."""
+
+    def __contains__(self, key):
+        return False
+
+
+@pytest.mark.parametrize(
+    "degrees, lengths, side, point",
+    [((4.5, None), (7.001, 7.9317, 0.0), 1, 3.9942), ((45.0, 45.0, 10.5), (2.91, 1.99, 5.68, 6.05), 2, 2.68)],
+)
+def test_the_dead_prefix_memo_drops_no_prefix_that_has_a_continuation(degrees, lengths, side, point):
+    """Whether a prefix continues depends on the side enumerated, its last point and the positions left on the
+    sides still read: T_0 and T_2 while T_1 is enumerated, T_k and T_(k+1) after it.  A prefix reaching a
+    failed state again is dropped, so the search returns what it returns remembering nothing.
+
+    4.5 degrees alone (A 7.001 l, S 7.9317 l): S's node 3.9942 l is reached first after 1.9942 l, which leaves A
+    no point at 1.001 l, and fails; then after 2 l, with A's split 1.001, 3.001, 5.001, 7.001 l left, and
+    continues.  Corners of 45, 45 and 10.5 degrees (sides 2.91, 1.99, 5.68, 6.05 l): T_2's node 2.68 l is
+    reached after 1 l, which leaves T_3 no position between 1.0625 l and 2.05 l from corner 2, and fails;
+    after 1.1175 l T_3 keeps 1.9875 l and it continues.  A key without T_0's positions (the first) or T_3's
+    (the second) drops the second prefix and returns another placement."""
+    thetas = tuple(None if d is None else math.radians(d) for d in degrees)
+    chains = [_coupled._Chain(thetas, lengths, 1.0, 0, cells=False, radii=(math.inf,) * 6) for _ in range(2)]
+    chains[1].dead = _Forgetful()
+    found, expected = (chain.search() for chain in chains)
+    assert len(found) == len(expected) and all(np.array_equal(a, b) for a, b in zip(found, expected))
+    assert point in np.round(found[side], 4)  # the point on the second prefix
+    assert chains[0].dead

@@ -909,3 +909,30 @@ def test_the_candidate_rules_at_their_thresholds_are_the_reference(points, l):
     region = Region(points, np.array([[0, 1], [1, 2], [2, 0]]), np.empty((0, 2)))
     a, b = fast.run(region, l), reference.run(region, l)
     assert a.points.tobytes() == b.points.tobytes() and a.values.tobytes() == b.values.tobytes()
+
+
+def test_a_circumcentre_refused_when_it_surfaces_is_skipped_and_the_insertion_goes_on():
+    """A circumcentre accepted when pushed and refused when it surfaces: its triangle is passed over, the rest is
+    inserted.  A pentagon a, b, e, x, w, in a frame along ab (6 long, turned by 0.7 rad and moved by (0.1, 0)):
+    the circle of t = (a, x, w) has radius 1 about the point 1 along ab and 7e-10 off it, and l (0.7 up to 1e-7)
+    is the float just below the one for which REL_TOL l is the centre's gap to ab.  Pushed, the centre is accepted (gap over
+    REL_TOL l, radius over l); ab's midpoint (2 from it, outside the circle: t stays) is inserted before it
+    surfaces, and rounded it moves the constraint's half (a, p) 8.5e-17 nearer the centre, now within REL_TOL l:
+    refused, and five more points follow (the reference's insertion, 13 points)."""
+    turn = np.array([[math.cos(0.7), -math.sin(0.7)], [math.sin(0.7), math.cos(0.7)]])
+    centre, radius = np.array([1.0, 7e-10]), math.hypot(1.0, 7e-10)
+    frame = [(0.0, 0.0), (6.0, 0.0), (6.0, 1.5), tuple(centre + radius * np.array([0.8, 0.6])),
+             tuple(centre + radius * np.array([-0.6, 0.8]))]
+    points = np.array([turn @ np.array(p) + (0.1, 0.0) for p in frame])
+    cx, cy, _, _, _ = fast._circumcircle(points, 0, 3, 4)
+    a, b = points[0], points[1]
+    p = 0.5 * (a + b)
+    before = fast._point_segment_distance(cx, cy, *a, *b)
+    after = min(fast._point_segment_distance(cx, cy, *a, *p), fast._point_segment_distance(cx, cy, *p, *b))
+    l = np.nextafter(_l_at(before, REL_TOL), 0.0)
+    assert after <= REL_TOL * l < before and abs(l - 0.7) < 1e-6
+    region = Region(points, np.array([[i, (i + 1) % 5] for i in range(5)]), np.empty((0, 2)))
+    assert [0, 3, 4] in map(sorted, constrained_delaunay(points, region.segments, region.holes).tolist())
+    got, expected = fast.run(region, l), reference.run(region, l)
+    assert got.points.tobytes() == expected.points.tobytes() and got.values.tobytes() == expected.values.tobytes()
+    assert len(got.points) == 13 and [cx, cy] not in got.points.tolist()
