@@ -254,32 +254,30 @@ def edge_length_terms(problem, edges):
         return last["lengths"]
 
     def jacobian(x):
-        length, grads = _length_gradients(points(x), *derivatives(surface, problem.uv_of(x)), e)
-        return length, problem.chain(assemble(grads), x)
+        grads = _length_gradients(points(x), *derivatives(surface, problem.uv_of(x)), e)
+        return lengths(x), problem.chain(assemble(grads), x)
 
     return lengths, jacobian
 
 
 def _length_gradients(points, su, sv, edges):
-    """Per edge ``(a, b)``: ``L = |d|``, ``d = X^s(u_b) - X^s(u_a)``, and ``dL/d(u_a, v_a, u_b, v_b)`` (a row of ``grads``).
+    """Per edge ``(a, b)``, ``L = |d|`` with ``d = X^s(u_b) - X^s(u_a)``: ``dL/d(u_a, v_a, u_b, v_b)`` (a row).
 
     ``dL/du_b = d . X^s_u(u_b) / L``, ``dL/dv_b = d . X^s_v(u_b) / L``, minus
     the same at ``a`` (:func:`edge_length_terms`); a compiled loop over the
     edges (a zero-length edge has ``d = 0``, so zero gradients).
     """
-    length = np.empty(len(edges))
     grads = np.empty((len(edges), 4))
     for k in range(len(edges)):
         a, b = edges[k, 0], edges[k, 1]
         d0, d1, d2 = points[b, 0] - points[a, 0], points[b, 1] - points[a, 1], points[b, 2] - points[a, 2]
-        length[k] = np.sqrt(d0 * d0 + d1 * d1 + d2 * d2)
-        scale = max(length[k], np.finfo(np.float64).tiny)
+        scale = max(np.sqrt(d0 * d0 + d1 * d1 + d2 * d2), np.finfo(np.float64).tiny)
         u0, u1, u2 = d0 / scale, d1 / scale, d2 / scale
         grads[k, 0] = -(u0 * su[a, 0] + u1 * su[a, 1] + u2 * su[a, 2])
         grads[k, 1] = -(u0 * sv[a, 0] + u1 * sv[a, 1] + u2 * sv[a, 2])
         grads[k, 2] = u0 * su[b, 0] + u1 * su[b, 1] + u2 * su[b, 2]
         grads[k, 3] = u0 * sv[b, 0] + u1 * sv[b, 1] + u2 * sv[b, 2]
-    return length, grads
+    return grads
 
 
 _length_gradients = compiled(_length_gradients)
