@@ -31,7 +31,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))  # _common.py, also whe
 import _common  # noqa: E402
 
 from equimesh.io import load_surface  # noqa: E402
-from equimesh.surface.bezier import BezierSurface  # noqa: E402
+from equimesh.surface.charts.bezier import BezierSurface  # noqa: E402
 from equimesh.surface.pipeline import mesh_surface  # noqa: E402
 
 NAME = "bounded"
@@ -50,7 +50,9 @@ CURVED_TARGET, DEVELOPABLE_TARGET = 0.5, 0.75
 def _net(height):
     """A bicubic net over SPAN x SPAN with heights ``height(i, j)`` at control point (i, j), i, j in 0..3."""
     i, j = np.meshgrid(np.arange(4) / 3, np.arange(4) / 3, indexing="ij")
-    z = np.vectorize(height)(np.arange(4)[:, None] + 0 * np.arange(4), np.arange(4)[None, :] + 0 * np.arange(4)[:, None])
+    z = np.vectorize(height)(
+        np.arange(4)[:, None] + 0 * np.arange(4), np.arange(4)[None, :] + 0 * np.arange(4)[:, None]
+    )
     return BezierSurface(np.stack([SPAN * i, SPAN * j, z.astype(float)], axis=-1))
 
 
@@ -103,8 +105,10 @@ def summarize(df, record):
     ]
     for _, r in df.iterrows():
         target = DEVELOPABLE_TARGET if r["developable"] else CURVED_TARGET
-        met = "" if r["objective"] != "bounded" else (
-            "yes" if r["share_within_0.5pct"] >= target and r["share_in_l_2l"] == 1.0 else "no"
+        met = (
+            ""
+            if r["objective"] != "bounded"
+            else ("yes" if r["share_within_0.5pct"] >= target and r["share_in_l_2l"] == 1.0 else "no")
         )
         body.append(
             f"| {r['surface']} | span/{r['divisor']} = {r['l']:.4g} | {r['objective']} | {r['members']} | "
@@ -112,7 +116,9 @@ def summarize(df, record):
             f"{r['share_in_l_2l']:.3f} | {r['min_over_l']:.4f} | {r['max_over_l']:.4f} | "
             f"{r['optimisation_seconds']:.1f} | {met} |"
         )
-    return _common.markdown_report("The bounded objective on five surfaces", "`python experiments/bounded.py`", body, record)
+    return _common.markdown_report(
+        "The bounded objective on five surfaces", "`python experiments/bounded.py`", body, record
+    )
 
 
 def parse_args(argv=None):
@@ -127,12 +133,21 @@ def main(argv=None):
     tasks = [(n, d, k, o) for n, d, _ in surfaces() for k in divisors for o in OBJECTIVES]
     args.out_dir.mkdir(parents=True, exist_ok=True)
     df = pd.DataFrame(list(_common.parallel_map(_measure, tasks, args.jobs, scheduler=args.scheduler)))
-    parameters = {"span": SPAN, "divisors": list(divisors), "objectives": list(OBJECTIVES), "band": BAND,
-                  "quick": args.quick, "jobs": args.jobs, "out_dir": str(args.out_dir)}
+    parameters = {
+        "span": SPAN,
+        "divisors": list(divisors),
+        "objectives": list(OBJECTIVES),
+        "band": BAND,
+        "quick": args.quick,
+        "jobs": args.jobs,
+        "out_dir": str(args.out_dir),
+    }
     _common.write_results(args.out_dir / f"{NAME}.csv", df, parameters, lambda record: summarize(df, record))
     b = df[df["objective"] == "bounded"]
-    print(f"{NAME}: {len(df)} meshes; bounded within 0.5 %: {b['share_within_0.5pct'].min():.3f} .. "
-          f"{b['share_within_0.5pct'].max():.3f}; in [l, 2l]: {b['share_in_l_2l'].min():.3f}")
+    print(
+        f"{NAME}: {len(df)} meshes; bounded within 0.5 %: {b['share_within_0.5pct'].min():.3f} .. "
+        f"{b['share_within_0.5pct'].max():.3f}; in [l, 2l]: {b['share_in_l_2l'].min():.3f}"
+    )
     return df
 
 

@@ -45,7 +45,7 @@ import _common  # noqa: E402
 from bounded import BAND, OBJECTIVES  # noqa: E402
 
 from equimesh.errors import EquimeshError  # noqa: E402
-from equimesh.surface._solver import DEFAULT_FACTORISATION  # noqa: E402
+from equimesh.surface.optimize.solver import DEFAULT_FACTORISATION  # noqa: E402
 from equimesh.surface.pipeline import mesh_surface  # noqa: E402
 from equimesh.testing.surfaces import dome  # noqa: E402
 
@@ -65,7 +65,10 @@ MEASURES = ("share_within_0.5pct", "share_in_l_2l", "min_over_l", "max_over_l", 
 def cases(count):
     """The first ``count`` domes ``(index, rise, seed, l)``: :data:`EXPLICIT`, then the draws of the module docstring."""
     rng = np.random.default_rng(SEED)
-    drawn = [(float(rng.uniform(*RISE)), int(rng.integers(0, 2**32 - 1)), float(rng.uniform(*LENGTH))) for _ in range(count - 1)]
+    drawn = [
+        (float(rng.uniform(*RISE)), int(rng.integers(0, 2**32 - 1)), float(rng.uniform(*LENGTH)))
+        for _ in range(count - 1)
+    ]
     return [(k, *case) for k, case in enumerate([EXPLICIT, *drawn][:count])]
 
 
@@ -111,19 +114,21 @@ def summary(df, times):
     rows = []
     for name, chosen in [*groups, ("all", df["set"].notna())]:
         d, t = df[chosen], times[chosen.to_numpy()]
-        rows.append({
-            "set": name,
-            "domes": len(d),
-            "bounded refused": int((d["bounded_error"] != "").sum()),
-            "bounded outside [l, 2l]": int((d["bounded_share_in_l_2l"] < 1.0).sum()),
-            "bounded below paper": int((d["margin"] < 0).sum()),
-            "smallest margin": d["margin"].min(),
-            "mean share paper": d["paper_share_within_0.5pct"].mean(),
-            "mean share bounded": d["bounded_share_within_0.5pct"].mean(),
-            "Jacobians paper (mean, max)": (d["paper_njev"].mean(), d["paper_njev"].max()),
-            "Jacobians bounded (mean, max)": (d["bounded_njev"].mean(), d["bounded_njev"].max()),
-            "seconds paper + bounded": t["paper_seconds"].sum() + t["bounded_seconds"].sum(),
-        })
+        rows.append(
+            {
+                "set": name,
+                "domes": len(d),
+                "bounded refused": int((d["bounded_error"] != "").sum()),
+                "bounded outside [l, 2l]": int((d["bounded_share_in_l_2l"] < 1.0).sum()),
+                "bounded below paper": int((d["margin"] < 0).sum()),
+                "smallest margin": d["margin"].min(),
+                "mean share paper": d["paper_share_within_0.5pct"].mean(),
+                "mean share bounded": d["bounded_share_within_0.5pct"].mean(),
+                "Jacobians paper (mean, max)": (d["paper_njev"].mean(), d["paper_njev"].max()),
+                "Jacobians bounded (mean, max)": (d["bounded_njev"].mean(), d["bounded_njev"].max()),
+                "seconds paper + bounded": t["paper_seconds"].sum() + t["bounded_seconds"].sum(),
+            }
+        )
     return rows
 
 
@@ -132,8 +137,8 @@ def report(df, times, record, count):
     body = [
         f"{count} generated mild domes (`dome(rise, seed, jitter=1.0)` of `equimesh.testing.surfaces`, 60 x 60; "
         f"the first the property test's explicit example, then rise in [{RISE[0]:g}, {RISE[1]:g}), l in "
-        f"[{LENGTH[0]:g}, {LENGTH[1]:g}) from `default_rng({SEED})`), each meshed with `optimize=\"paper\"` and "
-        f"`\"bounded\"` (`placement=\"default\"`). Share = members within {BAND:.1%} of l; margin = bounded's share "
+        f'[{LENGTH[0]:g}, {LENGTH[1]:g}) from `default_rng({SEED})`), each meshed with `optimize="paper"` and '
+        f'`"bounded"` (`placement="default"`). Share = members within {BAND:.1%} of l; margin = bounded\'s share '
         "minus the paper's; Jacobians = the solver's `njev`; seconds = the optimisation stage, on this machine and "
         "load (not reproducible bit for bit, unlike the rest).",
         "",
@@ -168,7 +173,9 @@ def report(df, times, record, count):
         )
     return _common.markdown_report(
         "The bounded objective against the paper's on generated mild domes",
-        f"`python experiments/bounded_sweep.py --count {count}`", body, record,
+        f"`python experiments/bounded_sweep.py --count {count}`",
+        body,
+        record,
     )
 
 
@@ -179,8 +186,9 @@ def _pair(values):
 
 def parse_args(argv=None):
     p = _common.add_output_options(_common.parser(__doc__), fig_dir=False, jobs=True)
-    p.add_argument("--count", type=_count, default=101,
-                   help="domes (default 101: the 61 of the design set and the 40 held out)")
+    p.add_argument(
+        "--count", type=_count, default=101, help="domes (default 101: the 61 of the design set and the 40 held out)"
+    )
     return p.parse_args(argv)
 
 
@@ -202,14 +210,28 @@ def main(argv=None):
     df, times = pd.DataFrame(rows), pd.DataFrame(seconds)
     with _common.atomic_path(args.out_dir / f"{NAME}_times.csv") as tmp:
         times.to_csv(tmp, index=False, float_format="%.3f")
-    parameters = {"count": args.count, "seed": SEED, "explicit": list(EXPLICIT), "rise": list(RISE), "l": list(LENGTH),
-                  "band": BAND, "objectives": list(OBJECTIVES), "placement": "default",
-                  "factorisation": DEFAULT_FACTORISATION, "jobs": args.jobs,
-                  "scheduler": args.scheduler, "out_dir": str(args.out_dir)}
-    _common.write_results(args.out_dir / f"{NAME}.csv", df, parameters, lambda record: report(df, times, record, args.count))
+    parameters = {
+        "count": args.count,
+        "seed": SEED,
+        "explicit": list(EXPLICIT),
+        "rise": list(RISE),
+        "l": list(LENGTH),
+        "band": BAND,
+        "objectives": list(OBJECTIVES),
+        "placement": "default",
+        "factorisation": DEFAULT_FACTORISATION,
+        "jobs": args.jobs,
+        "scheduler": args.scheduler,
+        "out_dir": str(args.out_dir),
+    }
+    _common.write_results(
+        args.out_dir / f"{NAME}.csv", df, parameters, lambda record: report(df, times, record, args.count)
+    )
     below = int((df["margin"] < 0).sum())
-    print(f"{NAME}: {len(df)} domes; bounded below the paper on {below}, smallest margin {df['margin'].min():+.4f}, "
-          f"mean share paper {df['paper_share_within_0.5pct'].mean():.4f}, bounded {df['bounded_share_within_0.5pct'].mean():.4f}")
+    print(
+        f"{NAME}: {len(df)} domes; bounded below the paper on {below}, smallest margin {df['margin'].min():+.4f}, "
+        f"mean share paper {df['paper_share_within_0.5pct'].mean():.4f}, bounded {df['bounded_share_within_0.5pct'].mean():.4f}"
+    )
     return 0
 
 

@@ -113,9 +113,16 @@ def _gmsh(algorithm):
 
         gmsh.initialize(readConfigFiles=False)
         try:
-            for option, value in (("General.Terminal", 0), ("General.NumThreads", 1), ("Mesh.Algorithm", algorithm),
-                                  ("Mesh.MeshSizeMin", l), ("Mesh.MeshSizeMax", l), ("Mesh.MeshSizeFromCurvature", 0),
-                                  ("Mesh.MeshSizeFromPoints", 0), ("Mesh.MeshSizeExtendFromBoundary", 0)):
+            for option, value in (
+                ("General.Terminal", 0),
+                ("General.NumThreads", 1),
+                ("Mesh.Algorithm", algorithm),
+                ("Mesh.MeshSizeMin", l),
+                ("Mesh.MeshSizeMax", l),
+                ("Mesh.MeshSizeFromCurvature", 0),
+                ("Mesh.MeshSizeFromPoints", 0),
+                ("Mesh.MeshSizeExtendFromBoundary", 0),
+            ):
                 gmsh.option.setNumber(option, value)
             net = surface.control_points
             rows, cols, _ = net.shape
@@ -155,8 +162,10 @@ def methods():
             run[f"equimesh {objective}"] = _equimesh(objective)
         else:
             skipped[f"equimesh {objective}"] = f"this equimesh has no objective {objective!r}"
-    for module, entries in (("gmsh", {f"gmsh {k}": _gmsh(v) for k, v in GMSH_ALGORITHMS.items()}),
-                            ("pymeshlab", {"pymeshlab isotropic": _pymeshlab})):
+    for module, entries in (
+        ("gmsh", {f"gmsh {k}": _gmsh(v) for k, v in GMSH_ALGORITHMS.items()}),
+        ("pymeshlab", {"pymeshlab isotropic": _pymeshlab}),
+    ):
         try:
             __import__(module)
         except ImportError as exc:
@@ -177,8 +186,13 @@ def measure(task):
     try:
         (points, triangles), seconds = _common.timed(run, _surfaces()[surface_name], l)
     except Exception as exc:  # a peer failing on a surface is a result of the comparison, not a crash
-        return {**row, **dict.fromkeys(COMPARISON_COLUMNS, np.nan), "nodes": 0, "seconds": np.nan,
-                "status": f"failed: {type(exc).__name__}: {' '.join(str(exc).split())[:120]}"}, None
+        return {
+            **row,
+            **dict.fromkeys(COMPARISON_COLUMNS, np.nan),
+            "nodes": 0,
+            "seconds": np.nan,
+            "status": f"failed: {type(exc).__name__}: {' '.join(str(exc).split())[:120]}",
+        }, None
     figures = comparison_figures(points, triangles, l)
     ratios = edge_lengths(points, unique_edges(triangles)) / l
     return {**row, **figures, "nodes": int(len(points)), "seconds": seconds, "status": "ok"}, _histogram(ratios)
@@ -196,7 +210,7 @@ def _histogram(ratios):
 def histogram_frame(runs):
     """Long table of the non-empty bins: surface, method, bin centre (L / l), count."""
     records = []
-    for (row, hist) in runs:
+    for row, hist in runs:
         if hist is None:
             continue
         edges, counts = hist
@@ -258,8 +272,13 @@ def plot(hist, fig_dir, parameters):
 
 #: Column names of compare_peers.csv (the metric keys, renamed where a dot or a % would not be an identifier).
 COLUMNS = ["surface", "method", "nodes", *COMPARISON_COLUMNS, "seconds", "status"]
-_IDENTIFIERS = {"within_0.5pct": "within_05", "within_1pct": "within_1", "within_5pct": "within_5",
-                "classes_0.5pct": "classes_05", "classes_1pct": "classes_1"}
+_IDENTIFIERS = {
+    "within_0.5pct": "within_05",
+    "within_1pct": "within_1",
+    "within_5pct": "within_5",
+    "classes_0.5pct": "classes_05",
+    "classes_1pct": "classes_1",
+}
 
 
 def _peer_versions():
@@ -275,11 +294,24 @@ def _peer_versions():
 
 def parse_args(argv=None):
     p = _common.parser(__doc__)
-    p.add_argument("--length", type=float, default=DEFAULT_LENGTH, help=f"target member length l (default {DEFAULT_LENGTH:g})")
-    p.add_argument("--surfaces", nargs="+", choices=SURFACES, default=list(SURFACES), metavar="NAME",
-                   help=f"surfaces to mesh (default all: {', '.join(SURFACES)})")
-    p.add_argument("--methods", nargs="+", default=None, metavar="METHOD",
-                   help="only these methods (names as in the table, e.g. 'gmsh Delaunay'; default all available)")
+    p.add_argument(
+        "--length", type=float, default=DEFAULT_LENGTH, help=f"target member length l (default {DEFAULT_LENGTH:g})"
+    )
+    p.add_argument(
+        "--surfaces",
+        nargs="+",
+        choices=SURFACES,
+        default=list(SURFACES),
+        metavar="NAME",
+        help=f"surfaces to mesh (default all: {', '.join(SURFACES)})",
+    )
+    p.add_argument(
+        "--methods",
+        nargs="+",
+        default=None,
+        metavar="METHOD",
+        help="only these methods (names as in the table, e.g. 'gmsh Delaunay'; default all available)",
+    )
     return _common.add_output_options(p, jobs=True, plot_only=True).parse_args(argv)
 
 
@@ -298,16 +330,24 @@ def main(argv=None):
     tasks = [(s, m, args.length) for s in args.surfaces for m in chosen]
     runs = []
     for row, hist in _common.parallel_map(measure, tasks, args.jobs, scheduler=args.scheduler):
-        print(f"{NAME}: {row['surface']}, {row['method']}: {row['status']}, "
-              f"{100 * row['within_0.5pct']:.1f} % within 0.5 % of l, {row['seconds']:.2f} s", flush=True)
+        print(
+            f"{NAME}: {row['surface']}, {row['method']}: {row['status']}, "
+            f"{100 * row['within_0.5pct']:.1f} % within 0.5 % of l, {row['seconds']:.2f} s",
+            flush=True,
+        )
         runs.append((row, hist))
     df = pd.DataFrame([r for r, _ in runs], columns=COLUMNS).rename(columns=_IDENTIFIERS)
     hist = histogram_frame(runs)
     out_dir.mkdir(parents=True, exist_ok=True)
     with _common.atomic_path(hist_path) as tmp:
         hist.to_csv(tmp, index=False)
-    _common.write_results(out_dir / f"{NAME}.csv", df, parameters,
-                          lambda record: markdown(df, skipped, args.length, record), float_format="%.10g")
+    _common.write_results(
+        out_dir / f"{NAME}.csv",
+        df,
+        parameters,
+        lambda record: markdown(df, skipped, args.length, record),
+        float_format="%.10g",
+    )
     plot(hist, fig_dir, parameters)
     for name, why in skipped.items():
         print(f"{NAME}: skipped {name}: {why}")

@@ -52,8 +52,12 @@ VIEW = {"elev": 28.0, "azim": -58.0}
 
 def parse_args(argv=None):
     p = _common.parser(__doc__)
-    p.add_argument("--data", type=Path, default=DEFAULT_DATA,
-                   help="stage arrays written by experiments/table1.py (default results/table1_mesh.npz)")
+    p.add_argument(
+        "--data",
+        type=Path,
+        default=DEFAULT_DATA,
+        help="stage arrays written by experiments/table1.py (default results/table1_mesh.npz)",
+    )
     return _common.add_output_options(p, out_dir=False).parse_args(argv)
 
 
@@ -124,13 +128,13 @@ def _hidden(points, triangles, edges, chunk=256):
     eps = 1e-6 * float(np.ptp(p, axis=0).max())
     hidden = np.zeros(len(mid), dtype=bool)
     for start in range(0, len(mid), chunk):
-        o = mid[start:start + chunk, None, :] - v0[None]
+        o = mid[start : start + chunk, None, :] - v0[None]
         u = np.einsum("kij,ij->ki", o, pvec) * inv
         q = np.cross(o, e1[None])
         v = np.einsum("kij,j->ki", q, d) * inv
         t = np.einsum("kij,ij->ki", q, e2) * inv
         hit = ok & (u >= 0) & (v >= 0) & (u + v <= 1) & (t > eps)
-        hidden[start:start + chunk] = hit.any(axis=1)
+        hidden[start : start + chunk] = hit.any(axis=1)
     return hidden
 
 
@@ -154,8 +158,18 @@ def _members(ax, points, triangles, edges, width, colors=None, values=None, cmap
 
 def _shade(ax, points, triangles, color=SURFACE_COLOUR):
     """A pale surface between the hidden and the visible members."""
-    ax.plot_trisurf(points[:, 0], points[:, 1], points[:, 2], triangles=triangles, color=color,
-                    alpha=0.55, linewidth=0.0, antialiased=True, shade=True, zorder=1)
+    ax.plot_trisurf(
+        points[:, 0],
+        points[:, 1],
+        points[:, 2],
+        triangles=triangles,
+        color=color,
+        alpha=0.55,
+        linewidth=0.0,
+        antialiased=True,
+        shade=True,
+        zorder=1,
+    )
 
 
 def _setup_2d(fig, points, position=111):
@@ -185,10 +199,15 @@ def _save(fig, fig_dir, name, data_path):
     source_record = provenance_path(Path(data_path).with_name("table1.csv"))
     if source_record.is_file():
         record = json.loads(source_record.read_text(encoding="utf-8"))
-        parameters["source_provenance"] = {"file": str(source_record), "git": record.get("git"),
-                                           "date": record.get("date"), "parameters": record.get("parameters")}
-    return _common.save_figure(fig, Path(fig_dir) / f"{name}.png", parameters, dpi=200, bbox_inches="tight",
-                               pad_inches=0.08)
+        parameters["source_provenance"] = {
+            "file": str(source_record),
+            "git": record.get("git"),
+            "date": record.get("date"),
+            "parameters": record.get("parameters"),
+        }
+    return _common.save_figure(
+        fig, Path(fig_dir) / f"{name}.png", parameters, dpi=200, bbox_inches="tight", pad_inches=0.08
+    )
 
 
 def _grid_text(d):
@@ -214,9 +233,15 @@ def fig1_auxiliary_surface(d):
         f"(l = {float(d['length']):g})",
         fontsize=10,
     )
-    ax.legend(handles=[Line2D([], [], color="navy", lw=1.0, label="auxiliary members"),
-                       Line2D([], [], color=BOUNDARY_COLOUR, lw=1.6, label="surface boundary")],
-              loc="upper left", fontsize=8, frameon=False)
+    ax.legend(
+        handles=[
+            Line2D([], [], color="navy", lw=1.0, label="auxiliary members"),
+            Line2D([], [], color=BOUNDARY_COLOUR, lw=1.6, label="surface boundary"),
+        ],
+        loc="upper left",
+        fontsize=8,
+        frameon=False,
+    )
     return fig
 
 
@@ -252,8 +277,10 @@ def _max_gap_to_hull(loop, hull):
 def _group_collections(points, edges, groups, g1_width=0.9, other_width=1.1):
     seg = _segments(points, edges)
     g1 = groups == G1
-    return (LineCollection(seg[~g1], colors=OTHER_COLOUR, linewidths=other_width),
-            LineCollection(seg[g1], colors=G1_COLOUR, linewidths=g1_width))
+    return (
+        LineCollection(seg[~g1], colors=OTHER_COLOUR, linewidths=other_width),
+        LineCollection(seg[g1], colors=G1_COLOUR, linewidths=g1_width),
+    )
 
 
 def _group_legend(d, extra=()):
@@ -275,10 +302,19 @@ def fig3_plane_triangulation(d):
         ax.add_collection(c)
     ax.plot(*_closed(outline).T, color="black", lw=1.6)
     ax.plot(*outline.T, "o", color="black", ms=2.5)
-    extra = [Line2D([], [], color="black", lw=1.6, marker="o", ms=3,
-                    label=f"boundary polygon (step 3): {len(outline)} vertices")]
-    ax.legend(handles=_group_legend(d, extra), loc="upper center", bbox_to_anchor=(0.5, -0.08), ncol=1,
-              fontsize=8, frameon=False)
+    extra = [
+        Line2D(
+            [], [], color="black", lw=1.6, marker="o", ms=3, label=f"boundary polygon (step 3): {len(outline)} vertices"
+        )
+    ]
+    ax.legend(
+        handles=_group_legend(d, extra),
+        loc="upper center",
+        bbox_to_anchor=(0.5, -0.08),
+        ncol=1,
+        fontsize=8,
+        frameon=False,
+    )
     ax.set_title(
         f"Fig. 3  Triangulation on the plane (Problem 2)\n{len(x)} nodes, {len(d['triangles'])} triangles, "
         f"{len(d['edges'])} members; lattice rotated {float(d['placement_angle']):.1f} deg",
@@ -328,20 +364,34 @@ def fig5_optimised_deviation(d):
     members = _members(ax, p, tri, d["edges"][g1], 1.4, values=dev[g1], cmap=cmap, norm=norm)
     bar = fig.colorbar(members, ax=ax, location="bottom", shrink=0.6, pad=0.02, aspect=40, extend="both")
     bar.set_label("member length deviation (L - l) / l  [%]")
-    ax.legend(handles=[Line2D([], [], color="0.3", lw=1.4, label=f"G1 members ({int(g1.sum())})"),
-                       Line2D([], [], color="0.3", lw=1.0, ls=(0, (2.0, 1.2)),
-                              label=f"other members ({int((~g1).sum())}); colour saturates beyond the bar")],
-              loc="upper left", fontsize=8, frameon=False)
+    ax.legend(
+        handles=[
+            Line2D([], [], color="0.3", lw=1.4, label=f"G1 members ({int(g1.sum())})"),
+            Line2D(
+                [],
+                [],
+                color="0.3",
+                lw=1.0,
+                ls=(0, (2.0, 1.2)),
+                label=f"other members ({int((~g1).sum())}); colour saturates beyond the bar",
+            ),
+        ],
+        loc="upper left",
+        fontsize=8,
+        frameon=False,
+    )
 
     top, bottom = fig.add_subplot(gs[0, 1]), fig.add_subplot(gs[1, 1])
     top.hist(dev[g1], bins=np.linspace(-lim, lim, 41), color=G1_COLOUR)
     top.axvline(0.0, color="black", lw=0.8)
-    top.set_title(f"G1 members: std. dev. {lengths[g1].std():.3f} (= {100 * lengths[g1].std() / l:.1f} % of l)",
-                  fontsize=9)
+    top.set_title(
+        f"G1 members: std. dev. {lengths[g1].std():.3f} (= {100 * lengths[g1].std() / l:.1f} % of l)", fontsize=9
+    )
     top.set_ylabel("members")
     other_dev = dev[~g1] if (~g1).any() else np.zeros(1)
-    bottom.hist(other_dev, bins=np.arange(np.floor(other_dev.min() / 5) * 5, other_dev.max() + 5.0, 5.0),
-                color=OTHER_COLOUR)
+    bottom.hist(
+        other_dev, bins=np.arange(np.floor(other_dev.min() / 5) * 5, other_dev.max() + 5.0, 5.0), color=OTHER_COLOUR
+    )
     bottom.axvline(0.0, color="black", lw=0.8)
     bottom.axvspan(-lim, lim, color="0.88", zorder=0, label="range of the colour bar")
     bottom.set_title("other members (not in the objective)", fontsize=9)

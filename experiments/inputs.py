@@ -128,12 +128,20 @@ def main(argv=None):
     args.out_dir.mkdir(parents=True, exist_ok=True)
     rows = _common.parallel_map(_measure, [(item, setup) for item in INPUTS], args.jobs, scheduler=args.scheduler)
     df = pd.DataFrame(list(rows))
-    parameters = {"inputs": [item.__dict__ for item in INPUTS], **setup, "band": BAND, "quick": args.quick,
-                  "jobs": args.jobs, "out_dir": str(args.out_dir)}
+    parameters = {
+        "inputs": [item.__dict__ for item in INPUTS],
+        **setup,
+        "band": BAND,
+        "quick": args.quick,
+        "jobs": args.jobs,
+        "out_dir": str(args.out_dir),
+    }
     _common.write_results(args.out_dir / f"{NAME}.csv", df, parameters, lambda record: summarize(df, setup, record))
     done = df[df["note"] == ""]
-    print(f"{NAME}: {len(done)} of {len(df)} inputs meshed; members in [{done['min_over_l'].min():.4f} l, "
-          f"{done['max_over_l'].max():.4f} l]")
+    print(
+        f"{NAME}: {len(done)} of {len(df)} inputs meshed; members in [{done['min_over_l'].min():.4f} l, "
+        f"{done['max_over_l'].max():.4f} l]"
+    )
     return 0
 
 

@@ -31,9 +31,8 @@ from pathlib import Path
 import numpy as np
 
 import equimesh
-from equimesh.surface import _solver
-from equimesh.surface import optimize
-from equimesh.surface.optimize import OBJECTIVES
+from equimesh.surface.optimize import OBJECTIVES, driver, objectives
+from equimesh.surface.optimize import solver as _solver
 
 DOME = Path(__file__).resolve().parent / "surfaces" / "reference_dome.json"
 #: Members within this relative deviation of l count as exact (the issue's 0.5 %).
@@ -63,7 +62,7 @@ def measure(length, objective):
 def traced(length):
     """Print a JSON line after every solve of :func:`equimesh.surface.optimize.optimize_uv` while inside."""
     every = {}
-    terms, solver = optimize.edge_length_terms, optimize.least_squares
+    terms, solver = objectives.edge_length_terms, driver.least_squares
 
     def edge_length_terms(problem, edges):
         lengths, jacobian = terms(problem, edges)
@@ -74,20 +73,26 @@ def traced(length):
     def least_squares(*args, **kwargs):
         solution = solver(*args, **kwargs)
         every["solves"] = every.get("solves", 0) + 1
-        record = {"solve": every["solves"], "iterations": solution.iterations,
-                  "evaluations": solution.evaluations, "damping": solution.damping}
+        record = {
+            "solve": every["solves"],
+            "iterations": solution.iterations,
+            "evaluations": solution.evaluations,
+            "damping": solution.damping,
+        }
         if "lengths" in every:
             ratio = every["lengths"](solution.x) / length
-            record.update(within_band=float(np.mean(np.abs(ratio - 1.0) <= BAND)),
-                          inside=bool(np.all((ratio >= 1.0) & (ratio <= 2.0))))
+            record.update(
+                within_band=float(np.mean(np.abs(ratio - 1.0) <= BAND)),
+                inside=bool(np.all((ratio >= 1.0) & (ratio <= 2.0))),
+            )
         print(json.dumps(record), flush=True)
         return solution
 
-    optimize.edge_length_terms, optimize.least_squares = edge_length_terms, least_squares
+    objectives.edge_length_terms, driver.least_squares = edge_length_terms, least_squares
     try:
         yield
     finally:
-        optimize.edge_length_terms, optimize.least_squares = terms, solver
+        objectives.edge_length_terms, driver.least_squares = terms, solver
 
 
 def main(argv=None):

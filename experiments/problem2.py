@@ -199,7 +199,11 @@ def measure_spacing(task):
     for angle, frac in SPACING_PLACEMENTS:
         offset = np.asarray(frac) @ lattice_basis(L, angle)
         mesh, sec = timed(equimesh.uniform_triangulation, v, L, angle=angle, offset=offset, boundary_spacing=spacing)
-        label = "default" if angle == 0.0 and frac == (0.0, 0.0) else f"angle {angle:g}, offset {frac[0]:g} a1 + {frac[1]:g} a2"
+        label = (
+            "default"
+            if angle == 0.0 and frac == (0.0, 0.0)
+            else f"angle {angle:g}, offset {frac[0]:g} a1 + {frac[1]:g} a2"
+        )
         rows.append(row("spacing", shape, area, v, mesh, label, spacing, sec))
     return rows
 
@@ -265,7 +269,9 @@ def summarize(df, record):
         per = spacing.groupby(["shape", "boundary_spacing"], sort=False)
         share = per["g1_share"].mean().unstack()
         angle = per["min_angle_deg"].min().unstack()
-        default = spacing[spacing["placement"] == "default"].pivot(index="shape", columns="boundary_spacing", values="g1_share")
+        default = spacing[spacing["placement"] == "default"].pivot(
+            index="shape", columns="boundary_spacing", values="g1_share"
+        )
         cols = list(share.columns)
         mean, mean_default = share.mean(axis=0), default.mean(axis=0)
         n_place = spacing.groupby(["shape", "boundary_spacing"]).size().max()
@@ -286,7 +292,8 @@ def summarize(df, record):
         lines.append("| mean, default placement only | " + " | ".join(f"{mean_default[c]:.3f}" for c in cols) + " |")
         top = share.max(axis=1)
         winners = {
-            shape: "=".join(f"{c:g}" for c in cols if share.loc[shape, c] >= top[shape] - 1e-12) for shape in share.index
+            shape: "=".join(f"{c:g}" for c in cols if share.loc[shape, c] >= top[shape] - 1e-12)
+            for shape in share.index
         }
         lines += [
             "",
@@ -357,7 +364,9 @@ def plot_mesh(fig_path, shape=FIGURE_POLYGON[0], area=FIGURE_POLYGON[1]):
         frameon=False,
         fontsize=9,
     )
-    return _common.save_figure(fig, fig_path, {"shape": shape, "target_area": area, "l": L, "placement": "default"}, dpi=160)
+    return _common.save_figure(
+        fig, fig_path, {"shape": shape, "target_area": area, "l": L, "placement": "default"}, dpi=160
+    )
 
 
 def plot_share(csv_path, fig_path):
@@ -377,7 +386,15 @@ def plot_share(csv_path, fig_path):
             x = p["perimeter"] * L / p["area"]
             right.plot(x, 1.0 - p["g1_share"], style, marker="o", ms=3.5, color=colors.get(shape))
     left.axhline(0.75, color="grey", linewidth=0.8, linestyle=":")
-    left.text(size["area"].max(), 0.73, "75%: acceptance threshold of the tests (convex, 400 l$^2$)", fontsize=8, color="grey", ha="right", va="top")
+    left.text(
+        size["area"].max(),
+        0.73,
+        "75%: acceptance threshold of the tests (convex, 400 l$^2$)",
+        fontsize=8,
+        color="grey",
+        ha="right",
+        va="top",
+    )
     left.set_xscale("log")
     left.set_xlabel("polygon area (l$^2$)")
     left.set_ylabel("G1 share (edges of length exactly l)")
@@ -388,7 +405,9 @@ def plot_share(csv_path, fig_path):
     right.set_xlim(left=0.0)
     right.set_ylim(bottom=0.0)
     right.set_title("non-G1 share ~ perimeter / area", fontsize=10)
-    handles = [Line2D([], [], color=c, marker="o", ms=3.5, label=s) for s, c in colors.items() if s in set(size["shape"])]
+    handles = [
+        Line2D([], [], color=c, marker="o", ms=3.5, label=s) for s, c in colors.items() if s in set(size["shape"])
+    ]
     handles += [
         Line2D([], [], color="black", linestyle="-", label="default placement"),
         Line2D([], [], color="black", linestyle="--", label="best_lattice_placement"),
@@ -402,7 +421,9 @@ def plot_share(csv_path, fig_path):
 
 def parse_args(argv=None):
     p = _common.add_output_options(_common.parser(__doc__), jobs=True, plot_only=True)
-    p.add_argument("--quick", action="store_true", help="tiny configuration (3 shapes, areas 25 and 100) for smoke tests")
+    p.add_argument(
+        "--quick", action="store_true", help="tiny configuration (3 shapes, areas 25 and 100) for smoke tests"
+    )
     return p.parse_args(argv)
 
 

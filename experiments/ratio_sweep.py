@@ -75,7 +75,9 @@ def parse_args(argv=None):
     p.add_argument("--max-area", type=float, default=1e4, help="upper end of the main area range, in l^2")
     p.add_argument("--tail-fraction", type=float, default=0.02, help="fraction of polygons in the large-area tail")
     p.add_argument("--tail-max-area", type=float, default=3e4, help="upper end of the tail's area range, in l^2")
-    p.add_argument("--engine", choices=sorted(ENGINES), default=DEFAULT_ENGINE, help=f"insertion engine (default {DEFAULT_ENGINE})")
+    p.add_argument(
+        "--engine", choices=sorted(ENGINES), default=DEFAULT_ENGINE, help=f"insertion engine (default {DEFAULT_ENGINE})"
+    )
     return p.parse_args(argv)
 
 
@@ -180,10 +182,15 @@ def summarize(df, record):
 def by_area(df):
     """Markdown table of n'/LB per decade of area (in l^2)."""
     decade = np.floor(np.log10(df["area"])).astype(int)
-    lines = ["| area (l^2) | polygons | n' range | min n'/LB | median n'/LB | max n'/LB |", "|---|---:|---:|---:|---:|---:|"]
+    lines = [
+        "| area (l^2) | polygons | n' range | min n'/LB | median n'/LB | max n'/LB |",
+        "|---|---:|---:|---:|---:|---:|",
+    ]
     for d, g in df.groupby(decade):
-        lines.append(f"| 10^{d} .. 10^{d + 1} | {len(g)} | {g['n_nodes'].min()} .. {g['n_nodes'].max()} | "
-                     f"{g['ratio'].min():.4f} | {g['ratio'].median():.4f} | {g['ratio'].max():.4f} |")
+        lines.append(
+            f"| 10^{d} .. 10^{d + 1} | {len(g)} | {g['n_nodes'].min()} .. {g['n_nodes'].max()} | "
+            f"{g['ratio'].min():.4f} | {g['ratio'].median():.4f} | {g['ratio'].max():.4f} |"
+        )
     return lines
 
 

@@ -109,8 +109,13 @@ def measure(method, n, like=None):
         _, seconds, cpu = _clocked(Delaunay, xy)
         points = n
     return {
-        "method": method, "n_target": n, "n_points": int(points), "seconds": seconds, "cpu_seconds": cpu,
-        "us_per_point": 1e6 * seconds / points, "peak_mb": _peak_mb() - base,
+        "method": method,
+        "n_target": n,
+        "n_points": int(points),
+        "seconds": seconds,
+        "cpu_seconds": cpu,
+        "us_per_point": 1e6 * seconds / points,
+        "peak_mb": _peak_mb() - base,
         "first_call_s": first_s,
     }
 
@@ -149,20 +154,36 @@ def exponents(frame, floor):
 
 def report(frame, floor, record):
     fits = exponents(frame, floor)
-    body = ["## Fitted exponents (time ~ n^k, least squares on the logs)", "", "| method | k | sizes fitted |", "|---|---|---|"]
+    body = [
+        "## Fitted exponents (time ~ n^k, least squares on the logs)",
+        "",
+        "| method | k | sizes fitted |",
+        "|---|---|---|",
+    ]
     body += [f"| {m} | {k:.3f} | {c} |" for m, (k, c) in fits.items()]
-    body += ["", "## Fast engine against Triangle's quality refinement (time per output point)", "",
-             "| n (fast) | fast us/point | n (Triangle) | Triangle us/point | ratio | ratio of CPU time per point | fast peak MB |",
-             "|---|---|---|---|---|---|---|"]
+    body += [
+        "",
+        "## Fast engine against Triangle's quality refinement (time per output point)",
+        "",
+        "| n (fast) | fast us/point | n (Triangle) | Triangle us/point | ratio | ratio of CPU time per point | fast peak MB |",
+        "|---|---|---|---|---|---|---|",
+    ]
     for n, group in frame.groupby("n_target"):
         f = group[group["method"] == "fast"].iloc[0]
         t = group[group["method"] == "triangle"].iloc[0]
-        body.append(f"| {f.n_points} | {f.us_per_point:.3g} | {t.n_points} | {t.us_per_point:.3g} | "
-                    f"{f.us_per_point / t.us_per_point:.2f} | "
-                    f"{(f.cpu_seconds / f.n_points) / (t.cpu_seconds / t.n_points):.2f} | {f.peak_mb:.0f} |")
+        body.append(
+            f"| {f.n_points} | {f.us_per_point:.3g} | {t.n_points} | {t.us_per_point:.3g} | "
+            f"{f.us_per_point / t.us_per_point:.2f} | "
+            f"{(f.cpu_seconds / f.n_points) / (t.cpu_seconds / t.n_points):.2f} | {f.peak_mb:.0f} |"
+        )
     body += ["", "## All runs", "", "| " + " | ".join(COLUMNS) + " |", "|" + "---|" * len(COLUMNS)]
-    body += ["| " + " | ".join(f"{v:.4g}" if isinstance(v, float) else str(v) for v in row) + " |" for row in frame.itertuples(index=False)]
-    return _common.markdown_report("Scaling of Problem 1 (unit square)", "`python experiments/scaling.py`", body, record)
+    body += [
+        "| " + " | ".join(f"{v:.4g}" if isinstance(v, float) else str(v) for v in row) + " |"
+        for row in frame.itertuples(index=False)
+    ]
+    return _common.markdown_report(
+        "Scaling of Problem 1 (unit square)", "`python experiments/scaling.py`", body, record
+    )
 
 
 def plot(frame, fig_dir, parameters):
@@ -191,7 +212,11 @@ def main(argv=None):
     p = _common.add_output_options(_common.parser(__doc__), plot_only=True)
     p.add_argument("--full", action="store_true", help="sizes 10^2 .. 10^6 (default: 10^2 .. 3 10^4)")
     p.add_argument("--sizes", type=int, nargs="+", help="explicit target sizes (overrides --full)")
-    p.add_argument("--reference-limit", type=float, help="skip a reference run predicted above this (default 60 s with --full, else 5 s)")
+    p.add_argument(
+        "--reference-limit",
+        type=float,
+        help="skip a reference run predicted above this (default 60 s with --full, else 5 s)",
+    )
     p.add_argument("--fit-floor", type=float, default=0.01, help="fit exponents on times above this (s)")
     args = p.parse_args(argv)
     csv = args.out_dir / f"{NAME}.csv"

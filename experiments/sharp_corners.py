@@ -27,7 +27,7 @@ import _common  # noqa: E402
 import equimesh  # noqa: E402
 from equimesh import G1  # noqa: E402
 from equimesh.metrics import triangle_angles  # noqa: E402
-from equimesh.planar.polygon import stagger_reach  # noqa: E402
+from equimesh.planar.boundary.sides import stagger_reach  # noqa: E402
 from equimesh.testing.shapes import sharp_corner_shape  # noqa: E402
 
 NAME = "sharp_corners"
@@ -44,7 +44,16 @@ REFUSALS = {
     "neck": "is too narrow for l",
 }
 COLUMNS = [
-    "kind", "angle", "size", "outcome", "reference", "n_nodes", "min_angle", "min_angle_near", "g1_share", "g1_share_near",
+    "kind",
+    "angle",
+    "size",
+    "outcome",
+    "reference",
+    "n_nodes",
+    "min_angle",
+    "min_angle_near",
+    "g1_share",
+    "g1_share_near",
 ]
 
 
@@ -101,10 +110,14 @@ def summarize(df, record):
     for (kind, angle), group in df.groupby(["kind", "angle"], sort=False):
         meshed = group[group["outcome"] == "meshed"]
         counts = [int((group["outcome"] == name).sum()) for name in ("meshed", *REFUSALS)]
-        stats = [meshed[c].min() for c in ("min_angle", "min_angle_near")] + [meshed[c].mean() for c in ("g1_share", "g1_share_near")]
+        stats = [meshed[c].min() for c in ("min_angle", "min_angle_near")] + [
+            meshed[c].mean() for c in ("g1_share", "g1_share_near")
+        ]
         shown = " | ".join("-" if np.isnan(x) else f"{x:.3g}" for x in stats)
         agree = "yes" if (group["outcome"] == group["reference"]).all() else "no"
-        body.append(f"| {kind} | {angle:g} | {len(group)} | " + " | ".join(map(str, counts)) + f" | {shown} | {agree} |")
+        body.append(
+            f"| {kind} | {angle:g} | {len(group)} | " + " | ".join(map(str, counts)) + f" | {shown} | {agree} |"
+        )
     return _common.markdown_report(
         "Sharp corners with short sides (Problem 2)", "`python experiments/sharp_corners.py`", body, record
     )
@@ -121,8 +134,16 @@ def main(argv=None):
     angles, sizes = (QUICK_ANGLES, QUICK_SIZES) if args.quick else (ANGLES, SIZES)
     args.out_dir.mkdir(parents=True, exist_ok=True)
     df = run(angles, sizes, args.jobs, args.scheduler)
-    parameters = {"angles": list(angles), "sizes": [float(s) for s in sizes], "kinds": list(KINDS), "l": 1.0,
-                  "quick": args.quick, "jobs": args.jobs, "scheduler": args.scheduler, "out_dir": str(args.out_dir)}
+    parameters = {
+        "angles": list(angles),
+        "sizes": [float(s) for s in sizes],
+        "kinds": list(KINDS),
+        "l": 1.0,
+        "quick": args.quick,
+        "jobs": args.jobs,
+        "scheduler": args.scheduler,
+        "out_dir": str(args.out_dir),
+    }
     _common.write_results(args.out_dir / f"{NAME}.csv", df, parameters, lambda record: summarize(df, record))
     print(f"{NAME}: {len(df)} cases, {int((df['outcome'] == 'meshed').sum())} meshed")
     return 0

@@ -26,9 +26,10 @@ import pandas as pd
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))  # _common.py, sharp_corners.py
 import _common  # noqa: E402
-from sharp_corners import KINDS as SHAPES, REFUSALS, triangulate  # noqa: E402
+from sharp_corners import KINDS as SHAPES  # noqa: E402
+from sharp_corners import REFUSALS, triangulate
 
-from equimesh.planar.polygon import stagger_reach  # noqa: E402
+from equimesh.planar.boundary.sides import stagger_reach  # noqa: E402
 from equimesh.testing.shapes import sharp_corner_shape, sharp_dart  # noqa: E402
 
 NAME = "sharp_sweep"
@@ -60,14 +61,21 @@ def _pair_triangle(angle, u, v, w):
 def _dart(angle, u, v, w):
     """The dart of the module docstring: a tip of ``angle`` degrees, barbs of ``10 + 50 u`` and ``10 + 50 v`` degrees."""
     barbs = (10.0 + 50.0 * u, 10.0 + 50.0 * v)
-    return sharp_dart(angle, barbs, 1.0 + w * (stagger_reach(angle, 1.0) + max(stagger_reach(b, 1.0) for b in barbs) + 3.0))
+    return sharp_dart(
+        angle, barbs, 1.0 + w * (stagger_reach(angle, 1.0) + max(stagger_reach(b, 1.0) for b in barbs) + 3.0)
+    )
 
 
 def cases(count, seed, kinds=KINDS):
     """``count`` draws per family of ``kinds``: ``(kind, angle, u, v, w)``, each family's the same whatever ``kinds`` are."""
     rng = np.random.default_rng(seed)
     draws = rng.uniform(size=(len(KINDS), count, 4))
-    return [(kind, 10.0 + 50.0 * a, u, v, w) for kind, rows in zip(KINDS, draws) if kind in kinds for a, u, v, w in rows.tolist()]
+    return [
+        (kind, 10.0 + 50.0 * a, u, v, w)
+        for kind, rows in zip(KINDS, draws)
+        if kind in kinds
+        for a, u, v, w in rows.tolist()
+    ]
 
 
 def summarize(df, record, count, seed):
@@ -80,7 +88,9 @@ def summarize(df, record, count, seed):
     for kind, group in df.groupby("kind", sort=False):
         counts = [int((group["outcome"] == name).sum()) for name in ("meshed", *REFUSALS)]
         body.append(f"| {kind} | {len(group)} | " + " | ".join(map(str, counts)) + " |")
-    return _common.markdown_report("Sharp corners drawn at random (Problem 2)", "`python experiments/sharp_sweep.py`", body, record)
+    return _common.markdown_report(
+        "Sharp corners drawn at random (Problem 2)", "`python experiments/sharp_sweep.py`", body, record
+    )
 
 
 def parse_args(argv=None):
@@ -94,11 +104,26 @@ def parse_args(argv=None):
 def main(argv=None):
     args = parse_args(argv)
     args.out_dir.mkdir(parents=True, exist_ok=True)
-    df = pd.DataFrame(_common.parallel_map(measure, cases(args.count, args.seed, args.kinds), args.jobs, scheduler=args.scheduler), columns=COLUMNS)
-    parameters = {"count": args.count, "seed": args.seed, "kinds": list(args.kinds), "l": 1.0, "jobs": args.jobs,
-                  "scheduler": args.scheduler, "out_dir": str(args.out_dir)}
-    _common.write_results(args.out_dir / f"{NAME}.csv", df, parameters, lambda record: summarize(df, record, args.count, args.seed))
-    print(f"{NAME}: {len(df)} cases, " + ", ".join(f"{name} {int((df['outcome'] == name).sum())}" for name in ("meshed", *REFUSALS)))
+    df = pd.DataFrame(
+        _common.parallel_map(measure, cases(args.count, args.seed, args.kinds), args.jobs, scheduler=args.scheduler),
+        columns=COLUMNS,
+    )
+    parameters = {
+        "count": args.count,
+        "seed": args.seed,
+        "kinds": list(args.kinds),
+        "l": 1.0,
+        "jobs": args.jobs,
+        "scheduler": args.scheduler,
+        "out_dir": str(args.out_dir),
+    }
+    _common.write_results(
+        args.out_dir / f"{NAME}.csv", df, parameters, lambda record: summarize(df, record, args.count, args.seed)
+    )
+    print(
+        f"{NAME}: {len(df)} cases, "
+        + ", ".join(f"{name} {int((df['outcome'] == name).sum())}" for name in ("meshed", *REFUSALS))
+    )
     return 0
 
 

@@ -96,11 +96,21 @@ QUALITY_COLUMNS = ["row", *FABRICATION_COLUMNS]
 
 def parse_args(argv=None):
     p = _common.parser(__doc__)
-    p.add_argument("--surface", type=Path, default=DEFAULT_SURFACE,
-                   help="surface JSON (default experiments/surfaces/reference_dome.json)")
+    p.add_argument(
+        "--surface",
+        type=Path,
+        default=DEFAULT_SURFACE,
+        help="surface JSON (default experiments/surfaces/reference_dome.json)",
+    )
     p.add_argument("--length", type=float, default=PAPER_LENGTH, help="target member length l (default 5)")
-    p.add_argument("--grid", type=int, nargs=2, default=list(PAPER_GRID), metavar=("NU", "NV"),
-                   help="auxiliary grid cells along u and v (default 15 15)")
+    p.add_argument(
+        "--grid",
+        type=int,
+        nargs=2,
+        default=list(PAPER_GRID),
+        metavar=("NU", "NV"),
+        help="auxiliary grid cells along u and v (default 15 15)",
+    )
     return _common.add_output_options(p, fig_dir=False).parse_args(argv)
 
 
@@ -175,7 +185,9 @@ def run_summary(mesh, surface, surface_path, grid):
         "triangles": int(len(mesh.triangles)),
         "members": int(len(mesh.edges)),
         "g1_members": int(mesh.g1_mask.sum()),
-        "placement": None if place is None else {
+        "placement": None
+        if place is None
+        else {
             "angle_deg": float(place.angle),
             "offset": [float(x) for x in place.offset],
             "lattice_edges": int(place.lattice_edges),
@@ -185,7 +197,9 @@ def run_summary(mesh, surface, surface_path, grid):
         },
         "flattening_energy": float(st.flattening.energy),
         "flattening_nfev": int(st.flattening.nfev),
-        "optimisation": None if opt is None else {
+        "optimisation": None
+        if opt is None
+        else {
             "objective": opt.objective,
             "cost_before": float(opt.cost_before),
             "cost_after": float(opt.cost_after),
@@ -304,8 +318,7 @@ def comparison(df, run):
         f"{3 * 15 * 15 + 30}"
     )
     sentence += (
-        f"; the only grids with {P['initial surf.'][0]} edges are "
-        + ", ".join(f"{a} x {b}" for a, b in grids)
+        f"; the only grids with {P['initial surf.'][0]} edges are " + ", ".join(f"{a} x {b}" for a, b in grids)
         if grids
         else f"; no grid has exactly {P['initial surf.'][0]} edges"
     )
@@ -394,7 +407,7 @@ def comparison(df, run):
     if opt is not None and not opt["converged"]:
         out.append(
             f"- **Optimiser stopped early.** The solver ended at its iteration guard "
-            f"({opt['nfev']} evaluations: \"{opt['message']}\"), not at a convergence tolerance; the final opt. rows "
+            f'({opt["nfev"]} evaluations: "{opt["message"]}"), not at a convergence tolerance; the final opt. rows '
             f"are where it stopped."
         )
     # final opt (total).
@@ -500,8 +513,9 @@ def markdown(df, quality, run, record, command):
         "",
         "Timings are wall-clock seconds of this run and vary from machine to machine.",
     ]
-    return _common.markdown_report("Table 1: member lengths of the surface mesh, stage by stage", f"`{command}`",
-                                   lines, record)
+    return _common.markdown_report(
+        "Table 1: member lengths of the surface mesh, stage by stage", f"`{command}`", lines, record
+    )
 
 
 # --------------------------------------------------------------------------- main
@@ -542,8 +556,9 @@ def main(argv=None):
         f"python experiments/{NAME}.py --surface {parameters['surface']} --length {args.length:g} "
         f"--grid {grid[0]} {grid[1]}"
     )
-    _common.write_results(csv_path, df, parameters, lambda record: markdown(df, quality, run, record, command),
-                          float_format="%.10g")
+    _common.write_results(
+        csv_path, df, parameters, lambda record: markdown(df, quality, run, record, command), float_format="%.10g"
+    )
     g1 = rows["final opt. (G1)"][0]
     print(
         f"{NAME}: wrote {csv_path}, {NAME}_quality.csv, {NAME}.md, {NAME}_mesh.npz in "

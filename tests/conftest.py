@@ -93,7 +93,9 @@ def replay_line(config):
     if settings.default.derandomize or seed is None:
         return None
     profile = settings.get_current_profile_name()
-    return f"hypothesis seed: {seed} (replay: EQUIMESH_HYPOTHESIS_PROFILE={profile} pytest --hypothesis-seed={seed} ...)"
+    return (
+        f"hypothesis seed: {seed} (replay: EQUIMESH_HYPOTHESIS_PROFILE={profile} pytest --hypothesis-seed={seed} ...)"
+    )
 
 
 def pytest_report_header(config):
@@ -137,7 +139,11 @@ def exercised(name, held):
 
 def never_exercised(conditions):
     """Lines naming each condition of ``{name: (reached, held)}`` that was reached but never held."""
-    return [f"{name}: never held in {reached} evaluation(s)" for name, (reached, held) in sorted(conditions.items()) if not held]
+    return [
+        f"{name}: never held in {reached} evaluation(s)"
+        for name, (reached, held) in sorted(conditions.items())
+        if not held
+    ]
 
 
 def pytest_sessionfinish(session):

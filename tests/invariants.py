@@ -30,9 +30,7 @@ def check_edge_lengths(mesh, l):
     """Theorem 1: every edge is between l and 2l long, i.e. in [(1 - REL_TOL) l, 2l (1 + REL_TOL)]."""
     lengths = mesh.edge_lengths()
     lo, hi = int(np.argmin(lengths)), int(np.argmax(lengths))
-    assert lengths[lo] >= (1.0 - REL_TOL) * l, (
-        f"edge {tuple(mesh.edges[lo])} has length {lengths[lo]!r} < l = {l!r}"
-    )
+    assert lengths[lo] >= (1.0 - REL_TOL) * l, f"edge {tuple(mesh.edges[lo])} has length {lengths[lo]!r} < l = {l!r}"
     assert lengths[hi] <= 2.0 * l * (1.0 + REL_TOL), (
         f"edge {tuple(mesh.edges[hi])} has length {lengths[hi]!r} > 2l = {2 * l!r}"
     )
@@ -64,7 +62,9 @@ def covering_candidates(points, vertices):
     a, b = vertices, np.roll(vertices, -1, axis=0)
     scale = np.ptp(vertices, axis=0).max()
     vor = Voronoi(points)
-    inside = np.all(cross(b - a, vor.vertices[:, None, :] - a) >= -1e-12 * scale * np.linalg.norm(b - a, axis=1), axis=1)
+    inside = np.all(
+        cross(b - a, vor.vertices[:, None, :] - a) >= -1e-12 * scale * np.linalg.norm(b - a, axis=1), axis=1
+    )
     p, q = points[vor.ridge_points[:, 0]], points[vor.ridge_points[:, 1]]
     mid, normal = 0.5 * (p + q), q - p
     # Bisector {x : (x - mid) . normal = 0} against edge a + t (b - a), t in [0, 1].

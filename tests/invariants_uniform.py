@@ -15,13 +15,13 @@ documented tolerance :data:`equimesh.REL_TOL`, relative.
 
 import numpy as np
 import shapely
+from invariants import check_edge_lengths
 from scipy.spatial import cKDTree
 
 from equimesh import G1, REL_TOL
 from equimesh._geometry import circumcenters, point_segment_distance
 from equimesh.mesh import unique_edges
 from equimesh.planar.polygon import as_polygon
-from invariants import check_edge_lengths
 
 #: G1 edges are lattice edges: length l up to this relative error.
 G1_REL = 1e-12

@@ -13,7 +13,7 @@ import shapely
 import triangle
 
 from equimesh.mesh import PlanarMesh
-from equimesh.surface.bezier import BezierSurface
+from equimesh.surface.charts.bezier import BezierSurface
 
 
 def parabolic_vault(width=60.0, depth=50.0, rise=15.0):

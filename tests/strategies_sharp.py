@@ -26,11 +26,11 @@ shift, rolled start vertex, scale by a drawn ``l``), holes alike.
 
 import numpy as np
 from hypothesis import strategies as st
+from strategies import angles, lengths, shifts
 
-from equimesh.planar.polygon import SHARP_CORNER, stagger_reach
+from equimesh.planar.boundary.sides import SHARP_CORNER, stagger_reach
 from equimesh.testing.generators import rotate
 from equimesh.testing.shapes import sharp_corner_shape, sharp_dart
-from strategies import angles, lengths, shifts
 
 #: Smallest corner angle drawn, in degrees.
 MIN_SHARP = 10.0

@@ -12,7 +12,7 @@ by a drawn ``l``).  Why each family is valid:
   regular k-gons, equilateral triangles): every inner angle is at least 60 degrees and
   every edge at least 1, so Step 2 points on adjacent edges are at least one
   part (>= 1) apart, and a convex polygon with inner angles >= 90 degrees
-  needs nothing more (:func:`equimesh.planar.polygon.resample_boundary`).
+  needs nothing more (:func:`equimesh.planar.boundary.resample.resample_boundary`).
 * **orthogonal** (columns on a grid, L, U, T, plus, dumbbells): all edges are
   axis-parallel and every two distinct x coordinates (and every two distinct
   y coordinates) of the vertices differ by at least ``u >= 1.2``.  Then two
@@ -46,7 +46,9 @@ import math
 
 import numpy as np
 from hypothesis import strategies as st
+from strategies import angles, lengths, placed, random_polygons, shifts
 
+from equimesh.planar.boundary.sides import SHARP_CORNER, stagger_reach
 from equimesh.testing.generators import regular_polygon, rotate
 from equimesh.testing.shapes import (
     column_polygon,
@@ -58,8 +60,6 @@ from equimesh.testing.shapes import (
     sharp_wedge,
     star_polygon,
 )
-from equimesh.planar.polygon import SHARP_CORNER, stagger_reach
-from strategies import angles, lengths, placed, random_polygons, shifts
 
 #: Smallest grid unit, corridor and arm width, in units of l.
 MIN_FEATURE = 1.2

@@ -54,15 +54,23 @@ def test_asv_builds_and_benchmarks_the_head_commit(tmp_path):
     if head is None or not ASV.exists():
         pytest.skip("needs a git checkout and the asv command beside this Python")
     conf = asv_util.load_json(str(CONFIG), js_comments=True)
-    conf.update(repo=str(ROOT), benchmark_dir=str(ROOT / "benchmarks" / "benchmarks"),
-                env_dir=str(ROOT / ".asv" / "env"), results_dir=str(tmp_path / "results"), html_dir=str(tmp_path / "html"))
+    conf.update(
+        repo=str(ROOT),
+        benchmark_dir=str(ROOT / "benchmarks" / "benchmarks"),
+        env_dir=str(ROOT / ".asv" / "env"),
+        results_dir=str(tmp_path / "results"),
+        html_dir=str(tmp_path / "html"),
+    )
     path = tmp_path / "asv.conf.json"
     path.write_text(json.dumps(conf))
     env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}  # the benchmark must import the built wheel
     subprocess.run([str(ASV), "machine", "--yes"], cwd=tmp_path, env=env, check=True, capture_output=True)
     done = subprocess.run(
         [str(ASV), "run", "--config", str(path), "--quick", "--show-stderr", "--bench", f"^{BENCHMARK}", f"{head}^!"],
-        cwd=tmp_path, env=env, capture_output=True, text=True,
+        cwd=tmp_path,
+        env=env,
+        capture_output=True,
+        text=True,
     )
     assert done.returncode == 0, done.stdout[-2000:] + done.stderr[-2000:]
     (result,) = [p for p in (tmp_path / "results").glob("*/*.json") if p.name != "machine.json"]
@@ -76,8 +84,12 @@ def test_bench_compare_refuses_an_unknown_base_in_one_line():
     """``make bench-compare BASE=<unknown>``: one line naming the base, exit status 2, before any venv or asv work."""
     if shutil.which("make") is None or _head() is None:
         pytest.skip("needs make and a git checkout")
-    done = subprocess.run(["make", "--no-print-directory", "bench-compare", "BASE=no-such-commit"],
-                          cwd=ROOT, capture_output=True, text=True)
+    done = subprocess.run(
+        ["make", "--no-print-directory", "bench-compare", "BASE=no-such-commit"],
+        cwd=ROOT,
+        capture_output=True,
+        text=True,
+    )
     assert done.returncode == 2
     assert done.stderr.splitlines()[0] == "make bench-compare: unknown base commit 'no-such-commit'"
     assert done.stdout == ""

@@ -8,7 +8,7 @@ from hypothesis import strategies as st
 from equimesh import EquimeshError
 from equimesh._geometry import orient, signed_area
 from equimesh.surface.auxiliary import auxiliary_grid
-from equimesh.surface.chart import SIDES
+from equimesh.surface.charts.chart import SIDES
 
 sizes = st.integers(min_value=1, max_value=12)
 

@@ -105,11 +105,7 @@ def test_module_uses_only_the_public_api(module):
                 assert alias.name == "equimesh" or not alias.name.startswith("equimesh"), (
                     f"{module}: 'import {alias.name}'; use 'import equimesh'"
                 )
-        if (
-            isinstance(node, ast.Attribute)
-            and isinstance(node.value, ast.Name)
-            and node.value.id == "equimesh"
-        ):
+        if isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name) and node.value.id == "equimesh":
             assert node.attr in equimesh.__all__, f"{module}: equimesh.{node.attr} is not public"
 
 
@@ -186,4 +182,3 @@ def test_frozen_inputs_are_valid_problem1_inputs():
         assert np.isclose(common.polygon_area(v), area), (shape, area)
         # Raises unless convex, every inner angle >= 90 degrees and every edge >= l.
         equimesh.node_lower_bound(v, common.L)
-

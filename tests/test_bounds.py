@@ -11,12 +11,12 @@ import math
 import numpy as np
 import pytest
 from hypothesis import event, given, target
+from invariants import check_edge_lengths, check_node_bounds
+from strategies import problems
 
 import equimesh
 from equimesh import REL_TOL
 from equimesh.testing.generators import rectangle, regular_polygon
-from invariants import check_edge_lengths, check_node_bounds
-from strategies import problems
 
 
 @given(problems)

@@ -7,8 +7,8 @@ from test_pipeline import assert_valid_surface_mesh
 import equimesh
 from equimesh import InvalidSurfaceError
 from equimesh.surface.auxiliary import auxiliary_grid
-from equimesh.surface.bezier import BezierSurface
-from equimesh.surface.chart import SIDES, UNIT, Chart, Domain, domain_of
+from equimesh.surface.charts.bezier import BezierSurface
+from equimesh.surface.charts.chart import SIDES, UNIT, Chart, Domain, domain_of
 
 SHIFTED = Domain((2.0, 5.0), (-1.0, 3.0))
 

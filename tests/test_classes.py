@@ -62,17 +62,33 @@ def test_grouping_is_deterministic_and_ignores_member_order(x):
     np.testing.assert_array_equal(a.nominal, b.nominal)
 
 
-@pytest.mark.parametrize("given, value", [("0.5%", 0.005), (" 1 % ", 0.01), ("0.005", 0.005), (0.02, 0.02),
-                                          ("49.9%", 0.499), (np.float64(0.1), 0.1)])
+@pytest.mark.parametrize(
+    "given, value",
+    [("0.5%", 0.005), (" 1 % ", 0.01), ("0.005", 0.005), (0.02, 0.02), ("49.9%", 0.499), (np.float64(0.1), 0.1)],
+)
 def test_tolerance_forms(given, value):
     assert check_tolerance(given) == pytest.approx(value, rel=1e-15)
 
 
-@pytest.mark.parametrize("bad, match", [
-    ("0", "above 0"), ("0%", "above 0"), ("-1%", "above 0"), ("50%", "below 50%"), ("0.5", "below 50%"),
-    ("75%", "below 50%"), ("nan", "above 0"), ("inf%", "above 0"), ("abc", "a number"), ("%", "a number"),
-    ("", "a number"), (None, "a number"), (-0.001, "got -0.001"), ("1e400", "above 0"),
-])
+@pytest.mark.parametrize(
+    "bad, match",
+    [
+        ("0", "above 0"),
+        ("0%", "above 0"),
+        ("-1%", "above 0"),
+        ("50%", "below 50%"),
+        ("0.5", "below 50%"),
+        ("75%", "below 50%"),
+        ("nan", "above 0"),
+        ("inf%", "above 0"),
+        ("abc", "a number"),
+        ("%", "a number"),
+        ("", "a number"),
+        (None, "a number"),
+        (-0.001, "got -0.001"),
+        ("1e400", "above 0"),
+    ],
+)
 def test_bad_tolerances_are_refused_in_one_line(bad, match):
     with pytest.raises(InvalidToleranceError, match=match) as info:
         length_classes([1.0], 1.0, bad)
@@ -92,14 +108,18 @@ def test_schedule_and_classes_round_trip(tmp_path):
     assert classes_path(path) == tmp_path / "s.classes.csv"
 
     read = pd.read_csv(path)
-    expected = member_schedule(points, edges, groups, 1.5, length_classes(np.linalg.norm(
-        points[edges[:, 1]] - points[edges[:, 0]], axis=1), 1.5, 0.01))
+    expected = member_schedule(
+        points,
+        edges,
+        groups,
+        1.5,
+        length_classes(np.linalg.norm(points[edges[:, 1]] - points[edges[:, 0]], axis=1), 1.5, 0.01),
+    )
     pd.testing.assert_frame_equal(read, expected, check_exact=True)
 
     again = length_classes(read["length"].to_numpy(), 1.5, 0.01)
     np.testing.assert_array_equal(again.member_class, read["class"].to_numpy())
-    pd.testing.assert_frame_equal(pd.read_csv(classes_path(path)), again.table(),
-                                  check_exact=True)
+    pd.testing.assert_frame_equal(pd.read_csv(classes_path(path)), again.table(), check_exact=True)
 
 
 def test_default_tolerance_is_valid():

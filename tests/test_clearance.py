@@ -19,7 +19,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from equimesh.planar import lattice
-from equimesh.planar._clearance import DOUBT, _expand, clear_of_boundary
+from equimesh.planar.clearance import DOUBT, _expand, clear_of_boundary
 from equimesh.planar.polygon import as_polygon
 from equimesh.tolerance import REL_TOL, at_least
 
@@ -28,9 +28,15 @@ pytestmark = pytest.mark.filterwarnings("error")
 SQUARE = np.array([[0.0, 0.0], [6.0, 0.0], [6.0, 6.0], [0.0, 6.0]])
 HOLE = np.array([[2.5, 2.5], [3.5, 2.5], [3.5, 3.5], [2.5, 3.5]])
 #: Two rooms joined by a corridor 1.5 wide; a slanted triangle (no side along a lattice row at angle 0).
-DUMBBELL = np.array([[0, 0], [6, 0], [6, 2], [9, 2], [9, 0], [15, 0], [15, 6], [9, 6], [9, 3.5], [6, 3.5], [6, 6], [0, 6]], float)
+DUMBBELL = np.array(
+    [[0, 0], [6, 0], [6, 2], [9, 2], [9, 0], [15, 0], [15, 6], [9, 6], [9, 3.5], [6, 3.5], [6, 6], [0, 6]], float
+)
 TRIANGLE = np.array([[0.0, 0.3], [9.0, 1.7], [2.2, 8.1]])
-POLYGONS = {"square with a hole": (SQUARE * 2.0, [HOLE * 2.0]), "dumbbell": (DUMBBELL, None), "triangle": (TRIANGLE, None)}
+POLYGONS = {
+    "square with a hole": (SQUARE * 2.0, [HOLE * 2.0]),
+    "dumbbell": (DUMBBELL, None),
+    "triangle": (TRIANGLE, None),
+}
 
 
 def per_vertex(shape, points, distance):
@@ -61,8 +67,12 @@ def test_expand_by_hand():
 
 
 @pytest.mark.parametrize("name", sorted(POLYGONS))
-@given(angle=st.floats(0.0, 60.0), frac=st.tuples(st.floats(0.0, 1.0), st.floats(0.0, 1.0)),
-       clearance=st.sampled_from([0.3, 1.0, 2.0]), cut=st.tuples(*[st.floats(0.0, 1.0)] * 4))
+@given(
+    angle=st.floats(0.0, 60.0),
+    frac=st.tuples(st.floats(0.0, 1.0), st.floats(0.0, 1.0)),
+    clearance=st.sampled_from([0.3, 1.0, 2.0]),
+    cut=st.tuples(*[st.floats(0.0, 1.0)] * 4),
+)
 def test_any_window_keeps_the_vertices_inside_at_clearance(name, angle, frac, clearance, cut):
     """A window of the grid over P (cut by fractions of its size; P's boundary crosses it on every side) is decided
     vertex by vertex as shapely decides, whatever lies outside the window; clearance 0.3 keeps vertices one lattice
@@ -81,8 +91,14 @@ def test_windows_cut_through_the_middle():
     """Fixed windows of the square with a hole at angle 0 (whose sides lie on lattice rows): the middle rows,
     the middle columns, one vertex inside, a window above and one right of P, and the grid over P."""
     poly = as_polygon(SQUARE * 2.0, 1.0, [HOLE * 2.0])
-    for first, size in [((-4, 3), (20, 4)), ((4, -2), (3, 18)), ((3, 2), (1, 1)), ((-3, 16), (12, 3)),
-                        ((14, 0), (5, 10)), ((-8, -2), (24, 18))]:
+    for first, size in [
+        ((-4, 3), (20, 4)),
+        ((4, -2), (3, 18)),
+        ((3, 2), (1, 1)),
+        ((-3, 16), (12, 3)),
+        ((14, 0), (5, 10)),
+        ((-8, -2), (24, 18)),
+    ]:
         for clearance in (0.3, 1.0, 2.0):
             check_window(poly.region, first, size, 1.0, 0.0, (0.0, 0.0), clearance)
 

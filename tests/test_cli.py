@@ -17,13 +17,12 @@ import meshio
 import numpy as np
 import pandas as pd
 import pytest
+from hostile_paths import fifo, name_max, unwritable_folder
 
 from equimesh import InternalError, InvalidLengthError
 from equimesh._cli import main
 from equimesh.io import _meshes as io_meshes
 from equimesh.surface import pipeline
-
-from hostile_paths import fifo, name_max, unwritable_folder
 
 SURFACES = Path(__file__).resolve().parents[1] / "experiments" / "surfaces"
 SADDLE = SURFACES / "saddle.json"
@@ -60,12 +59,38 @@ def test_every_format_reads_back(meshed, ext):
 def test_members_schedule_classes_and_summary(tmp_path, capsys):
     """--members writes one row per member with its class and deviation from L, the classes CSV beside it,
     and the summary on standard output agrees with both files."""
-    code, captured = run(["mesh", SADDLE, "--length", 6, "--grid", 8, 8, "-o", tmp_path / "m.obj",
-                          "--members", tmp_path / "m.csv", "--optimize", "none", "--tolerance", "1%"], capsys)
+    code, captured = run(
+        [
+            "mesh",
+            SADDLE,
+            "--length",
+            6,
+            "--grid",
+            8,
+            8,
+            "-o",
+            tmp_path / "m.obj",
+            "--members",
+            tmp_path / "m.csv",
+            "--optimize",
+            "none",
+            "--tolerance",
+            "1%",
+        ],
+        capsys,
+    )
     assert code == 0
     table = pd.read_csv(tmp_path / "m.csv")
-    assert list(table.columns) == ["member", "node_i", "node_j", "length", "group", "class", "deviation",
-                                   "relative_deviation"]
+    assert list(table.columns) == [
+        "member",
+        "node_i",
+        "node_j",
+        "length",
+        "group",
+        "class",
+        "deviation",
+        "relative_deviation",
+    ]
     np.testing.assert_allclose(table["deviation"], table["length"] - 6.0, rtol=0, atol=1e-8)
     assert set(table["group"]) <= {"G1", "other"} and (table["group"] == "G1").any()
     classes = pd.read_csv(tmp_path / "m.classes.csv")
@@ -99,14 +124,43 @@ def _write(path, text):
 BAD = {
     "missing file": lambda d: (["mesh", d / "nope.json", "--length", 5], "not found"),
     "malformed JSON": lambda d: (["mesh", _write(d / "s.json", "{"), "--length", 5], "malformed JSON"),
-    "wrong type": lambda d: (["mesh", _write(d / "s.json", json.dumps({"type": "mesh", "control_points": []})),
-                              "--length", 5], "bezier"),
-    "wrong net shape": lambda d: (["mesh", _write(d / "s.json", json.dumps(
-        {"type": "bezier", "control_points": [[[0, 0, 0], [1, 0, 0]], [[0, 1, 0]]]})), "--length", 5], "points"),
-    "point of 2 numbers": lambda d: (["mesh", _write(d / "s.json", json.dumps(
-        {"type": "bezier", "control_points": [[[0, 0], [1, 0]], [[0, 1], [1, 1]]]})), "--length", 5], "3 numbers"),
-    "non-finite": lambda d: (["mesh", _write(d / "s.json", '{"type": "bezier", "control_points": '
-                              '[[[0, 0, NaN], [1, 0, 0]], [[0, 1, 0], [1, 1, 0]]]}'), "--length", 5], "finite"),
+    "wrong type": lambda d: (
+        ["mesh", _write(d / "s.json", json.dumps({"type": "mesh", "control_points": []})), "--length", 5],
+        "bezier",
+    ),
+    "wrong net shape": lambda d: (
+        [
+            "mesh",
+            _write(
+                d / "s.json", json.dumps({"type": "bezier", "control_points": [[[0, 0, 0], [1, 0, 0]], [[0, 1, 0]]]})
+            ),
+            "--length",
+            5,
+        ],
+        "points",
+    ),
+    "point of 2 numbers": lambda d: (
+        [
+            "mesh",
+            _write(
+                d / "s.json", json.dumps({"type": "bezier", "control_points": [[[0, 0], [1, 0]], [[0, 1], [1, 1]]]})
+            ),
+            "--length",
+            5,
+        ],
+        "3 numbers",
+    ),
+    "non-finite": lambda d: (
+        [
+            "mesh",
+            _write(
+                d / "s.json", '{"type": "bezier", "control_points": [[[0, 0, NaN], [1, 0, 0]], [[0, 1, 0], [1, 1, 0]]]}'
+            ),
+            "--length",
+            5,
+        ],
+        "finite",
+    ),
     "L = 0": lambda d: (["mesh", SADDLE, "--length", 0], "positive"),
     "L < 0": lambda d: (["mesh", SADDLE, "--length", -5], "positive"),
     "L nan": lambda d: (["mesh", SADDLE, "--length", "nan"], "finite"),
@@ -120,8 +174,10 @@ BAD = {
     "nested 100000 deep": lambda d: (["mesh", _write(d / "s.json", "[" * 100_000), "--length", 5], "nested too deeply"),
     "not UTF-8": lambda d: (["mesh", _write(d / "s.json", b'{"type": "b\xe9zier"}'), "--length", 5], "UTF-8"),
     "input is a folder": lambda d: (["mesh", d, "--length", 5], "extension"),
-    "input folder named .json": lambda d: (["mesh", (d / "x.json").mkdir() or d / "x.json", "--length", 5],
-                                           "not a regular file"),
+    "input folder named .json": lambda d: (
+        ["mesh", (d / "x.json").mkdir() or d / "x.json", "--length", 5],
+        "not a regular file",
+    ),
     "input path too long": lambda d: (["mesh", d / ("a" * 5000 + ".json"), "--length", 5], "path too long"),
     "max-nodes not a number": lambda d: (["mesh", SADDLE, "--length", 5, "--max-nodes", "2.5"], "whole number"),
     "bad grid": lambda d: (["mesh", SADDLE, "--length", 5, "--grid", 0, 4], "n_u"),
@@ -181,8 +237,7 @@ BAD_OUTPUTS = {
     "output folder unwritable": lambda d: ["-o", unwritable_folder(d) / "m.obj"],
     "members folder unwritable": lambda d: ["-o", d / "m.obj", "--members", unwritable_folder(d) / "m.csv"],
     "members extension": lambda d: ["-o", d / "m.obj", "--members", d / "m.txt"],
-    "classes CSV is a folder": lambda d: ["-o", d / "m.obj", "--members",
-                                          (d / "m.classes.csv").mkdir() or d / "m.csv"],
+    "classes CSV is a folder": lambda d: ["-o", d / "m.obj", "--members", (d / "m.classes.csv").mkdir() or d / "m.csv"],
 }
 
 
@@ -207,12 +262,30 @@ def test_longest_name_is_written(tmp_path, capsys):
 
 def test_members_write_failure_leaves_no_mesh(tmp_path, capsys, monkeypatch):
     """The mesh and the member schedule are renamed together: a failing second write leaves neither."""
+
     def disk_full(*args, **kwargs):
         raise OSError(28, "No space left on device")
 
     monkeypatch.setattr(pd.DataFrame, "to_csv", disk_full)
-    code, captured = run(["mesh", SADDLE, "--length", 6, "--grid", 6, 6, "--optimize", "none", "-q",
-                          "-o", tmp_path / "m.obj", "--members", tmp_path / "m.csv"], capsys)
+    code, captured = run(
+        [
+            "mesh",
+            SADDLE,
+            "--length",
+            6,
+            "--grid",
+            6,
+            6,
+            "--optimize",
+            "none",
+            "-q",
+            "-o",
+            tmp_path / "m.obj",
+            "--members",
+            tmp_path / "m.csv",
+        ],
+        capsys,
+    )
     assert code == 3 and "No space left on device" in captured.err and captured.err.count("\n") == 1
     assert list(tmp_path.iterdir()) == []
 
@@ -221,8 +294,25 @@ def test_each_output_is_probed_once(tmp_path, capsys, monkeypatch):
     """The outputs are checked before meshing and not again: one probe per file (mesh, schedule, classes)."""
     probed = []
     monkeypatch.setattr(io_meshes, "probe_folder", lambda folder, suffix="": probed.append(suffix))
-    code, captured = run(["mesh", SADDLE, "--length", 6, "--grid", 6, 6, "--optimize", "none", "-q",
-                          "-o", tmp_path / "m.obj", "--members", tmp_path / "m.csv"], capsys)
+    code, captured = run(
+        [
+            "mesh",
+            SADDLE,
+            "--length",
+            6,
+            "--grid",
+            6,
+            6,
+            "--optimize",
+            "none",
+            "-q",
+            "-o",
+            tmp_path / "m.obj",
+            "--members",
+            tmp_path / "m.csv",
+        ],
+        capsys,
+    )
     assert code == 0, captured.err
     assert probed == [".obj", ".csv", ".csv"]
 
@@ -241,12 +331,26 @@ def _raising(exc):
 @pytest.mark.parametrize(
     "exc, code, message",
     [
-        (InvalidLengthError("target length l must be positive"), 2, "equimesh: error: target length l must be positive"),
-        (InternalError("edge 3 is 2.5 long, more than 2l = 2.0"), 3,
-         "equimesh: internal error: InternalError: edge 3 is 2.5 long, more than 2l = 2.0 (please report this"),
-        (ZeroDivisionError("float division by zero"), 3, "equimesh: internal error: ZeroDivisionError: float division by zero"),
-        (RuntimeError("Triangle failed\nInternal error in finddirection()"), 3,
-         "equimesh: internal error: RuntimeError: Triangle failed Internal error in finddirection()"),
+        (
+            InvalidLengthError("target length l must be positive"),
+            2,
+            "equimesh: error: target length l must be positive",
+        ),
+        (
+            InternalError("edge 3 is 2.5 long, more than 2l = 2.0"),
+            3,
+            "equimesh: internal error: InternalError: edge 3 is 2.5 long, more than 2l = 2.0 (please report this",
+        ),
+        (
+            ZeroDivisionError("float division by zero"),
+            3,
+            "equimesh: internal error: ZeroDivisionError: float division by zero",
+        ),
+        (
+            RuntimeError("Triangle failed\nInternal error in finddirection()"),
+            3,
+            "equimesh: internal error: RuntimeError: Triangle failed Internal error in finddirection()",
+        ),
         (MemoryError(), 2, "equimesh: error: out of memory"),
         (KeyboardInterrupt(), 130, "equimesh: interrupted"),
     ],
@@ -261,6 +365,7 @@ def test_every_failure_is_one_line_with_its_exit_code(exc, code, message, tmp_pa
 
 def test_library_noise_does_not_reach_the_terminal(tmp_path, capfd, monkeypatch):
     """Triangle's C-level stdout and numpy's RuntimeWarnings are not printed: the one error line is."""
+
     def noisy(*args, **kwargs):
         os.write(1, b"Internal error in finddirection():\n")
         np.array([1e300]) * 1e300  # overflow warning
@@ -281,8 +386,10 @@ def test_traceback_option_reraises_internal_errors(tmp_path, monkeypatch):
         main(["--traceback", "mesh", str(SADDLE), "--length", "5", "-o", str(tmp_path / "m.obj")])
 
 
-@pytest.mark.parametrize("given, passed", [([], {}), (["--max-nodes", "none"], {"max_nodes": None}),
-                                           (["--max-nodes", "1000"], {"max_nodes": 1000})])
+@pytest.mark.parametrize(
+    "given, passed",
+    [([], {}), (["--max-nodes", "none"], {"max_nodes": None}), (["--max-nodes", "1000"], {"max_nodes": 1000})],
+)
 def test_max_nodes_reaches_the_library(given, passed, tmp_path, capsys, monkeypatch):
     """Not given: the library's default applies; 'none': no limit (None); a number: that limit."""
     seen = {}
@@ -300,9 +407,26 @@ def test_sigint_prints_one_line_exits_130_and_writes_nothing(tmp_path):
     """Ctrl-C in a long run: 'equimesh: interrupted', exit code 130, no output nor temporary file."""
     env = {**os.environ, "PYTHONPATH": os.pathsep.join(sys.path)}
     proc = subprocess.Popen(
-        [sys.executable, "-m", "equimesh._cli", "mesh", str(SADDLE), "--length", "1", "--optimize", "none",
-         "--max-nodes", "100000", "-o", str(tmp_path / "m.obj"), "--members", str(tmp_path / "m.csv")],
-        stderr=subprocess.PIPE, text=True, env=env,
+        [
+            sys.executable,
+            "-m",
+            "equimesh._cli",
+            "mesh",
+            str(SADDLE),
+            "--length",
+            "1",
+            "--optimize",
+            "none",
+            "--max-nodes",
+            "100000",
+            "-o",
+            str(tmp_path / "m.obj"),
+            "--members",
+            str(tmp_path / "m.csv"),
+        ],
+        stderr=subprocess.PIPE,
+        text=True,
+        env=env,
     )
     try:
         first = proc.stderr.readline()  # the first progress line: the run is under way
@@ -332,8 +456,25 @@ def test_rhino_object_must_be_named_when_ambiguous_or_unknown(tmp_path, capsys, 
 
 def test_rhino_trimmed_face_warns_in_one_line_and_meshes(tmp_path, capsys):
     pytest.importorskip("rhino3dm", reason="rhino3dm (the optional extra [rhino]) is not installed")
-    code, captured = run(["mesh", ROOF_3DM, "--object", "skylight plate", "--length", 1, "--optimize", "none",
-                          "--grid", 6, 6, "-o", tmp_path / "m.obj", "-q"], capsys)
+    code, captured = run(
+        [
+            "mesh",
+            ROOF_3DM,
+            "--object",
+            "skylight plate",
+            "--length",
+            1,
+            "--optimize",
+            "none",
+            "--grid",
+            6,
+            6,
+            "-o",
+            tmp_path / "m.obj",
+            "-q",
+        ],
+        capsys,
+    )
     assert code == 0 and (tmp_path / "m.obj").is_file()
     assert captured.err.strip() == (
         f"equimesh: warning: object 1 'skylight plate' of {ROOF_3DM} is a trimmed face: "

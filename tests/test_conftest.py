@@ -1,9 +1,8 @@
 """The note on conditional properties (tests/conftest.py): a condition reached but never held is listed."""
 
+from conftest import _CONDITIONS, exercised, never_exercised
 from hypothesis import assume, given
 from hypothesis import strategies as st
-
-from conftest import _CONDITIONS, exercised, never_exercised
 
 
 def test_never_exercised_lists_only_conditions_that_never_held():

@@ -8,10 +8,10 @@ import math
 
 import numpy as np
 import pytest
-
-from equimesh.planar import _coupled
-from equimesh.tolerance import REL_TOL
 from test_polygon_corner import PAIR_LENGTHS, PAIR_THETAS, _assert_placement
+
+from equimesh.planar.boundary import chain as _coupled
+from equimesh.tolerance import REL_TOL
 
 #: The pair of tests/test_polygon_corner.py with the shared side 5.25 l: placeable.
 PLACEABLE = (PAIR_LENGTHS[0], 5.25, PAIR_LENGTHS[2])
@@ -67,10 +67,15 @@ def test_cross_takes_the_largest_distance_over_the_corners_of_two_cells():
     """theta = 0 (the two sides on one ray, d = |u - v|), l = 2: each corner of the cells in turn decides."""
     l, far = 2.0, (np.inf, np.inf)
     cell = lambda lo, hi: (np.array([lo]) * l, np.array([hi]) * l)  # noqa: E731
-    cases = [(cell(0.0, 0.2), cell(1.1, 1.1), True), (cell(2.0, 2.2), cell(1.1, 1.1), True),
-             (cell(1.1, 1.1), cell(0.0, 0.2), True), (cell(1.1, 1.1), cell(2.0, 2.2), True),
-             (cell(0.5, 0.7), cell(1.1, 1.3), False), (cell(1.0, 1.0), cell(0.0, 0.0), True),
-             (cell(0.5, 0.5), cell(0.0, 0.0), False)]
+    cases = [
+        (cell(0.0, 0.2), cell(1.1, 1.1), True),
+        (cell(2.0, 2.2), cell(1.1, 1.1), True),
+        (cell(1.1, 1.1), cell(0.0, 0.2), True),
+        (cell(1.1, 1.1), cell(2.0, 2.2), True),
+        (cell(0.5, 0.7), cell(1.1, 1.3), False),
+        (cell(1.0, 1.0), cell(0.0, 0.0), True),
+        (cell(0.5, 0.5), cell(0.0, 0.0), False),
+    ]
     for mine, theirs, apart in cases:
         assert _coupled._cross(0.0, mine, theirs, l, 0.0, far)[0, 0] == apart
     cell = lambda lo, hi: (np.array([lo]), np.array([hi]))  # noqa: E731

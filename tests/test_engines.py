@@ -17,25 +17,24 @@ The predicates and the heap are tested in ``tests/test_fast_kernels.py``.
 
 from contextlib import contextmanager
 
+import invariants_uniform as inv
 import numpy as np
 import pytest
+import strategies
+import strategies_simple as ss
 from hypothesis import given
 from hypothesis import strategies as st
+from invariants import assert_problem1_invariants, assert_values_non_increasing
+from strategies import problems
 
 import equimesh
 import equimesh.planar.increment
 import equimesh.planar.strip
 from equimesh import EquimeshError
 from equimesh.planar.insertion import ENGINES, insert
-from equimesh.planar.insertion._cdt import adjacency, cavity_boundary, locate
-from equimesh.planar.insertion._region import constrained_delaunay
+from equimesh.planar.insertion.cdt import adjacency, cavity_boundary, locate
+from equimesh.planar.insertion.region import constrained_delaunay
 from equimesh.testing.generators import rectangle, regular_polygon, rotate
-
-import invariants_uniform as inv
-import strategies
-import strategies_simple as ss
-from invariants import assert_problem1_invariants, assert_values_non_increasing
-from strategies import problems
 
 ENGINE_NAMES = sorted(ENGINES)
 
@@ -93,7 +92,9 @@ def tie_free_convex(draw):
     """Random convex polygons (inner angles >= 90) at a generic rotation and l: no four cocircular points."""
     v = draw(strategies.random_polygons(max_area=150.0))
     l = draw(st.floats(0.3, 3.0))
-    return rotate(v, draw(st.floats(0.01, 1.5))) * l + np.array([draw(strategies.frame_coordinates), draw(strategies.frame_coordinates)]), l
+    return rotate(v, draw(st.floats(0.01, 1.5))) * l + np.array(
+        [draw(strategies.frame_coordinates), draw(strategies.frame_coordinates)]
+    ), l
 
 
 @given(tie_free_convex())

@@ -14,7 +14,18 @@ def ratio_sweep(load_experiment):
 def test_ratio_sweep_writes_data_summary_figure_and_provenance(ratio_sweep, tmp_path):
     """experiments/ratio_sweep.py: CSV with the documented columns, Markdown, PNG/PDF, provenance."""
     out, figs = tmp_path / "results", tmp_path / "figs"
-    small = ["--n-polygons", "12", "--max-area", "40", "--tail-fraction", "0", "--out-dir", str(out), "--fig-dir", str(figs)]
+    small = [
+        "--n-polygons",
+        "12",
+        "--max-area",
+        "40",
+        "--tail-fraction",
+        "0",
+        "--out-dir",
+        str(out),
+        "--fig-dir",
+        str(figs),
+    ]
     assert ratio_sweep.main(small + ["--jobs", "1"]) == 0
 
     df = pd.read_csv(out / "ratio_sweep.csv")
@@ -37,8 +48,22 @@ def test_ratio_sweep_writes_data_summary_figure_and_provenance(ratio_sweep, tmp_
 def test_ratio_sweep_plot_reads_only_the_csv(ratio_sweep, tmp_path):
     """The figure is redrawn from an existing CSV without recomputing anything."""
     out, figs = tmp_path / "results", tmp_path / "figs"
-    ratio_sweep.main(["--n-polygons", "5", "--max-area", "20", "--tail-fraction", "0", "--jobs", "1",
-                      "--out-dir", str(out), "--fig-dir", str(figs)])
+    ratio_sweep.main(
+        [
+            "--n-polygons",
+            "5",
+            "--max-area",
+            "20",
+            "--tail-fraction",
+            "0",
+            "--jobs",
+            "1",
+            "--out-dir",
+            str(out),
+            "--fig-dir",
+            str(figs),
+        ]
+    )
     (figs / "ratio_sweep.png").unlink()
     assert ratio_sweep.main(["--plot-only", "--out-dir", str(out), "--fig-dir", str(figs)]) == 0
     assert (figs / "ratio_sweep.png").stat().st_size > 0

@@ -46,4 +46,3 @@ def test_a_missing_peer_is_skipped_with_the_reason(compare_peers, monkeypatch):
     available, skipped = compare_peers.methods()
     assert not any(m.startswith("gmsh") for m in available) and "equimesh paper" in available
     assert all("pip install 'equimesh[peers]'" in skipped[f"gmsh {a}"] for a in compare_peers.GMSH_ALGORITHMS)
-

@@ -6,6 +6,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
+
 @pytest.fixture
 def problem2(load_experiment):
     return load_experiment("problem2")

@@ -88,8 +88,14 @@ def test_optimisation_does_not_spread_g1(table1_run):
 
 def test_table1_markdown_has_both_tables_comparison_and_provenance(table1_run):
     md = (table1_run / "table1.md").read_text()
-    for text in ("| no. of members | mean | min. | max. | std. dev. |", "## Comparison with the paper",
-                 "## Beyond Table 1", "## Run", "## Provenance", *PAPER_ROWS):
+    for text in (
+        "| no. of members | mean | min. | max. | std. dev. |",
+        "## Comparison with the paper",
+        "## Beyond Table 1",
+        "## Run",
+        "## Provenance",
+        *PAPER_ROWS,
+    ):
         assert text in md, text
     quality = pd.read_csv(table1_run / "table1_quality.csv")
     assert list(quality["row"]) == PAPER_ROWS
@@ -156,6 +162,9 @@ def test_optimisation_timing_traces_every_solve(load_experiment, capsys):
 
 def optimize_is_restored(timing):
     """After a traced run the optimisation's functions are the library's again."""
-    from equimesh.surface import _solver, optimize
+    from equimesh.surface.optimize import driver, objectives, solver
 
-    return optimize.least_squares is _solver.least_squares and timing.optimize.edge_length_terms.__module__ == optimize.__name__
+    return (
+        driver.least_squares is solver.least_squares
+        and timing.objectives.edge_length_terms.__module__ == objectives.__name__
+    )

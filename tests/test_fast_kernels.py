@@ -30,25 +30,24 @@ from fractions import Fraction
 
 import numpy as np
 import pytest
+import strategies
 from hypothesis import given
 from hypothesis import strategies as st
-
-import equimesh
-from equimesh import EquimeshError
-from equimesh.errors import InternalError
-from equimesh._geometry import circumcenters, point_segment_distance, segments_intersect
-from equimesh.planar.insertion import Region, fast, insert, reference
-from equimesh.planar.insertion import _predicates as pr
-from equimesh.planar.insertion._cdt import adjacency, cavity, cavity_boundary, fill, locate, segments_touch, walk
-from equimesh.planar.insertion._region import constrained_delaunay
-from equimesh.planar.insertion._predicates import incircle, orient2d
-from equimesh.testing.generators import rectangle, regular_polygon
-from equimesh.tolerance import REL_TOL, SLIVER_GAP
-
-import strategies
 from invariants import assert_problem1_invariants
 from test_engines import assert_same_insertion, problem1_runs, problem2_runs
 from test_reference_engine import NEAR_CONSTRAINT, at_exactly, circle_triangle
+
+import equimesh
+from equimesh import EquimeshError
+from equimesh._geometry import circumcenters, point_segment_distance, segments_intersect
+from equimesh.errors import InternalError
+from equimesh.planar.insertion import Region, fast, insert, reference
+from equimesh.planar.insertion import predicates as pr
+from equimesh.planar.insertion.cdt import adjacency, cavity, cavity_boundary, fill, locate, segments_touch, walk
+from equimesh.planar.insertion.predicates import incircle, orient2d
+from equimesh.planar.insertion.region import constrained_delaunay
+from equimesh.testing.generators import rectangle, regular_polygon
+from equimesh.tolerance import REL_TOL, SLIVER_GAP
 
 EPS = 2.0**-53
 
@@ -70,7 +69,9 @@ def exact_incircle(a, b, c, d):
     (ax, ay), (bx, by), (cx, cy) = rows = [(Fraction(p[0]) - dx, Fraction(p[1]) - dy) for p in (a, b, c)]
     la, lb, lc = (x * x + y * y for x, y in rows)
     det = la * (bx * cy - by * cx) + lb * (cx * ay - cy * ax) + lc * (ax * by - ay * bx)
-    permanent = la * (abs(bx * cy) + abs(by * cx)) + lb * (abs(cx * ay) + abs(cy * ax)) + lc * (abs(ax * by) + abs(ay * bx))
+    permanent = (
+        la * (abs(bx * cy) + abs(by * cx)) + lb * (abs(cx * ay) + abs(cy * ax)) + lc * (abs(ax * by) + abs(ay * bx))
+    )
     return det, permanent
 
 
@@ -173,7 +174,9 @@ def test_grow_eliminates_zeros_by_hand():
     assert (n, list(h[:n])) == (1, [0.0])
 
 
-@given(st.lists(doubles, min_size=1, max_size=3), st.lists(doubles, min_size=1, max_size=3), st.sampled_from([1.0, -1.0]))
+@given(
+    st.lists(doubles, min_size=1, max_size=3), st.lists(doubles, min_size=1, max_size=3), st.sampled_from([1.0, -1.0])
+)
 def test_add_product_is_exact(e_terms, f_terms, sign):
     def expansion(terms):
         h = np.empty(len(terms) + 1)
@@ -239,19 +242,38 @@ def test_predicates_on_exact_degeneracies():
 #: Points whose determinant rounds to a few ulps of the wrong sign (found by a search over lattice points
 #: and regular polygons shifted by a float): the floating-point filter must send them to the exact path.
 #: Orientation: three collinear lattice points moved off the line by the rounding of their shift.
-ROUNDED_COLLINEAR = [(17.411734702368754, 63.40775260450107), (-8.988265297631244, 30.40775260450107),
-                     (-74.98826529763124, -52.09224739549893)]
+ROUNDED_COLLINEAR = [
+    (17.411734702368754, 63.40775260450107),
+    (-8.988265297631244, 30.40775260450107),
+    (-74.98826529763124, -52.09224739549893),
+]
 #: In-circle: near-cocircular quadruples where each one of the three terms of the permanent decides.
 ROUNDED_COCIRCULAR = [
-    [(15.92126927774595, 32.613187074599026), (19.321269277745948, 30.913187074599026),
-     (19.321269277745948, 32.613187074599026), (15.92126927774595, 30.913187074599026)],
-    [(20.926165246765393, 3.685615981610309), (20.926165246765393, 1.9856159816103087),
-     (24.32616524676539, 1.9856159816103087), (24.32616524676539, 3.685615981610309)],
-    [(-27.64288931395287, 21.926510684504446), (-29.12288931395287, 21.926510684504446),
-     (-28.012889313952872, 21.556510684504445), (-28.75288931395287, 21.556510684504445)],
+    [
+        (15.92126927774595, 32.613187074599026),
+        (19.321269277745948, 30.913187074599026),
+        (19.321269277745948, 32.613187074599026),
+        (15.92126927774595, 30.913187074599026),
+    ],
+    [
+        (20.926165246765393, 3.685615981610309),
+        (20.926165246765393, 1.9856159816103087),
+        (24.32616524676539, 1.9856159816103087),
+        (24.32616524676539, 3.685615981610309),
+    ],
+    [
+        (-27.64288931395287, 21.926510684504446),
+        (-29.12288931395287, 21.926510684504446),
+        (-28.012889313952872, 21.556510684504445),
+        (-28.75288931395287, 21.556510684504445),
+    ],
     # a far from d, b and c near it: the first term's lift is large.
-    [(-69.39856049678312, -45.80618297899076), (-22.62861706679063, -9.09126415966715),
-     (-23.847830536049322, -7.241910777572148), (-23.22111730167882, -8.155309756583527)],
+    [
+        (-69.39856049678312, -45.80618297899076),
+        (-22.62861706679063, -9.09126415966715),
+        (-23.847830536049322, -7.241910777572148),
+        (-23.22111730167882, -8.155309756583527),
+    ],
 ]
 
 
@@ -343,6 +365,7 @@ def test_segments_touch_is_the_reference(quad):
 @pytest.mark.parametrize("end", range(4))
 def test_segments_touch_where_one_end_lies_on_the_other_segment(end):
     """A T: one end inside the other segment, the other three ends off both lines; each of the four ends in turn."""
+
     def ends(stem, bar):
         return [stem + bar, stem[::-1] + bar, bar + stem, bar + stem[::-1]][end]
 
@@ -354,8 +377,11 @@ def test_segments_touch_where_one_end_lies_on_the_other_segment(end):
 # --------------------------------------------------------------------------- the heap
 
 #: Keys with many ties in value, then in x.
-heap_keys = st.lists(st.tuples(st.sampled_from([1.0, 1.5, 2.0]), st.sampled_from([0.0, 1.0]), st.sampled_from([0.0, 1.0])),
-                     min_size=1, max_size=12)
+heap_keys = st.lists(
+    st.tuples(st.sampled_from([1.0, 1.5, 2.0]), st.sampled_from([0.0, 1.0]), st.sampled_from([0.0, 1.0])),
+    min_size=1,
+    max_size=12,
+)
 
 
 def _heap(keys):
@@ -497,7 +523,12 @@ def test_adjacency_links_twin_edges_and_constraints(ring):
     assert count.tolist() == [1] * len(SA)  # each constraint bounds the region
     # A pair that is no edge is counted 0 times; an edge inside the region, twice.
     t = next(t for t in range(len(V)) if all(N[t] >= 0))
-    _, _, inner = adjacency(V, np.array([V[t, 0], 0]), np.array([V[t, 1], len(P) - 1 if (0, len(P) - 1) not in half and (len(P) - 1, 0) not in half else 0]), len(P))
+    _, _, inner = adjacency(
+        V,
+        np.array([V[t, 0], 0]),
+        np.array([V[t, 1], len(P) - 1 if (0, len(P) - 1) not in half and (len(P) - 1, 0) not in half else 0]),
+        len(P),
+    )
     assert inner[0] == 2
 
 
@@ -517,8 +548,12 @@ def test_walk_decides_visibility_like_the_brute_force_test(ring, data):
     N, S, _ = adjacency(V, SA, SB, len(P))
     t = data.draw(st.integers(0, len(V) - 1))
     g = tuple(P[V[t]].sum(axis=0) / 3.0)
-    c = data.draw(st.one_of(st.tuples(st.floats(-1.0, 7.0), st.floats(-1.0, 7.0)),
-                            st.tuples(st.integers(-2, 14), st.integers(-2, 14)).map(lambda p: (p[0] / 2.0, p[1] / 2.0))))
+    c = data.draw(
+        st.one_of(
+            st.tuples(st.floats(-1.0, 7.0), st.floats(-1.0, 7.0)),
+            st.tuples(st.integers(-2, 14), st.integers(-2, 14)).map(lambda p: (p[0] / 2.0, p[1] / 2.0)),
+        )
+    )
     status, where = walk(P, V, N, S, t, *g, *c, len(V) + 1)
     degenerate = any(orient2d(*g, *c, *p) == 0.0 for p in P)
     assert status >= 0 or degenerate
@@ -567,8 +602,9 @@ def test_locate_gives_the_lowest_live_slot_containing_the_point(ring, data):
     P, V, SA, SB = ring
     N, _, _ = adjacency(V, SA, SB, len(P))
     alive = np.ones(len(V), dtype=np.bool_)
-    x, y = data.draw(st.one_of(st.sampled_from([tuple(p) for p in P]),
-                               st.tuples(st.floats(0.0, 6.0), st.floats(0.0, 6.0))))
+    x, y = data.draw(
+        st.one_of(st.sampled_from([tuple(p) for p in P]), st.tuples(st.floats(0.0, 6.0), st.floats(0.0, 6.0)))
+    )
     containing = [t for t in range(len(V)) if _contains(P, V, t, x, y)]
     start = data.draw(st.integers(0, len(V) - 1))
     for steps in (0, len(V) + 1):
@@ -702,11 +738,14 @@ def _assert_candidates(P, V, SA, SB, l):
         if r >= 0.0:
             assert r == listed[(cx, cy)] and _contains(P, V, where, cx, cy)
         assert fast._visible_circumcentre(P, V, N, S, SA, SB, salive, len(SA), alive, len(V), t, lim, seen[:1])[0] == r
-        nh = fast._push_candidates(P, V, N, S, SA, SB, salive, len(SA), alive, np.arange(len(V)), len(V), t, lim, seen,
-                                   HK, HI, nh)
+        nh = fast._push_candidates(
+            P, V, N, S, SA, SB, salive, len(SA), alive, np.arange(len(V)), len(V), t, lim, seen, HK, HI, nh
+        )
     mids, values, split = reference.midpoint_candidates(P, V, segments, l)
-    expected = sorted([(-r, x, y, -1) for (x, y), r in zip(centres.tolist(), radii.tolist())] +
-                      [(-v, x, y, s) for (x, y), v, s in zip(mids.tolist(), values.tolist(), split.tolist()) if v >= lim[0]])
+    expected = sorted(
+        [(-r, x, y, -1) for (x, y), r in zip(centres.tolist(), radii.tolist())]
+        + [(-v, x, y, s) for (x, y), v, s in zip(mids.tolist(), values.tolist(), split.tolist()) if v >= lim[0]]
+    )
     pushed = sorted((*HK[i], HI[i, 2]) for i in range(nh))
     assert pushed == expected
     assert all(HI[i, 1] == HI[i, 0] for i in range(nh))  # each entry carries its triangle's version
@@ -720,7 +759,11 @@ def test_candidates_are_the_reference_candidates(ring, l, data):
     P, V, SA, SB = ring
     _assert_candidates(P, V, SA, SB, l)
     N, S, _ = adjacency(V, SA, SB, len(P))
-    salive, lim, seen = np.ones(len(SA), dtype=np.bool_), fast._limits(l), np.empty(fast._NEAR_TRIANGLES, dtype=np.int64)
+    salive, lim, seen = (
+        np.ones(len(SA), dtype=np.bool_),
+        fast._limits(l),
+        np.empty(fast._NEAR_TRIANGLES, dtype=np.int64),
+    )
     x, y = data.draw(st.tuples(st.floats(0.0, 6.0), st.floats(0.0, 6.0)))
     t = locate(P, V, N, np.ones(len(V), dtype=np.bool_), len(V), 0, x, y, len(V) + 1)
     if t >= 0:
@@ -794,8 +837,10 @@ def test_a_cavity_larger_than_its_buffer():
 
 @pytest.mark.parametrize(
     "runs, args",
-    [(problem1_runs, ([(0.0, 0.0), (10.6, 0.8), (12.2, 7.4), (4.4, 11.8), (-1.6, 6.2)], 0.7)),
-     (problem2_runs, ([(0.0, 0.0), (14.2, 0.6), (14.8, 6.4), (6.6, 7.2), (6.2, 14.6), (-0.4, 14.0)], 0.7, 17.0))],
+    [
+        (problem1_runs, ([(0.0, 0.0), (10.6, 0.8), (12.2, 7.4), (4.4, 11.8), (-1.6, 6.2)], 0.7)),
+        (problem2_runs, ([(0.0, 0.0), (14.2, 0.6), (14.8, 6.4), (6.6, 7.2), (6.2, 14.6), (-0.4, 14.0)], 0.7, 17.0)),
+    ],
     ids=["problem1", "problem2"],
 )
 def test_the_engine_is_the_reference_on_two_fixed_polygons(runs, args):
@@ -821,14 +866,18 @@ _QUADRILATERAL = [(0.0, 0.0), (20.3, 0.7), (19.6, 4.1), (0.4, 3.3)]
 _THROUGH_A_VERTEX = [(0.0, 1.0), (-3.0, 0.0), (-5.2, -4.2), (-4.5, -11.3), (-0.3, -3.8), (3.2, -3.8), (3.0, 0.0)]
 
 
-@pytest.mark.parametrize("corners, l", [(_QUADRILATERAL, 0.6), (_QUADRILATERAL, 30.0), (_THROUGH_A_VERTEX, 2.0)],
-                         ids=["quadrilateral", "quadrilateral-nothing", "walk-through-a-vertex"])
+@pytest.mark.parametrize(
+    "corners, l",
+    [(_QUADRILATERAL, 0.6), (_QUADRILATERAL, 30.0), (_THROUGH_A_VERTEX, 2.0)],
+    ids=["quadrilateral", "quadrilateral-nothing", "walk-through-a-vertex"],
+)
 def test_the_corners_alone_give_the_reference_insertion(corners, l):
     """Only the corners: every point comes from splitting the long constraints or from circumcentres, and the heap
     is compacted while midpoints are in it; with l = 30 nothing is inserted in the quadrilateral (two triangles).
     The reference's insertion bit for bit."""
-    region = Region(np.array(corners), np.array([[i, (i + 1) % len(corners)] for i in range(len(corners))]),
-                    np.empty((0, 2)))
+    region = Region(
+        np.array(corners), np.array([[i, (i + 1) % len(corners)] for i in range(len(corners))]), np.empty((0, 2))
+    )
     a, b = fast.run(region, l), reference.run(region, l)
     assert a.points.tobytes() == b.points.tobytes() and a.values.tobytes() == b.values.tobytes()
     assert a.segments.dtype == b.segments.dtype == np.int64 and a.segments.tolist() == b.segments.tolist()
@@ -921,8 +970,13 @@ def test_a_circumcentre_refused_when_it_surfaces_is_skipped_and_the_insertion_go
     refused, and five more points follow (the reference's insertion, 13 points)."""
     turn = np.array([[math.cos(0.7), -math.sin(0.7)], [math.sin(0.7), math.cos(0.7)]])
     centre, radius = np.array([1.0, 7e-10]), math.hypot(1.0, 7e-10)
-    frame = [(0.0, 0.0), (6.0, 0.0), (6.0, 1.5), tuple(centre + radius * np.array([0.8, 0.6])),
-             tuple(centre + radius * np.array([-0.6, 0.8]))]
+    frame = [
+        (0.0, 0.0),
+        (6.0, 0.0),
+        (6.0, 1.5),
+        tuple(centre + radius * np.array([0.8, 0.6])),
+        tuple(centre + radius * np.array([-0.6, 0.8])),
+    ]
     points = np.array([turn @ np.array(p) + (0.1, 0.0) for p in frame])
     cx, cy, _, _, _ = fast._circumcircle(points, 0, 3, 4)
     a, b = points[0], points[1]

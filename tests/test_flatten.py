@@ -10,11 +10,11 @@ from section4_standin import CircularVault, flat_patch, parabolic_vault
 
 from equimesh import InvalidSurfaceError
 from equimesh._geometry import orient
-from equimesh.surface.auxiliary import auxiliary_grid
-from equimesh.surface._jacobian import AreaBarrier
-from equimesh.surface.flatten import _Preconditioner, energy_terms, flatten
 from equimesh.mesh import edge_lengths
-from equimesh.surface.bezier import BezierSurface
+from equimesh.surface.auxiliary import auxiliary_grid
+from equimesh.surface.charts.bezier import BezierSurface
+from equimesh.surface.flatten import _Preconditioner, energy_terms, flatten
+from equimesh.surface.optimize.jacobian import AreaBarrier
 from equimesh.testing.surfaces import dome
 
 
@@ -185,7 +185,9 @@ def test_degenerate_surface_is_rejected():
     net[1, :, 0] = 1.0  # the v = 0 and v = 1 edges coincide: every v-edge has zero length
     g = auxiliary_grid(4, 4)
     x = BezierSurface(net).evaluate(g.uv[:, 0], g.uv[:, 1])
-    with pytest.raises(InvalidSurfaceError, match=r"points at \(u, v\) = \(0, 0\) and \(u, v\) = \(0, 0\.25\) coincide"):
+    with pytest.raises(
+        InvalidSurfaceError, match=r"points at \(u, v\) = \(0, 0\) and \(u, v\) = \(0, 0\.25\) coincide"
+    ):
         flatten(x, g.triangles, uv=g.uv)
     with pytest.raises(InvalidSurfaceError, match="points of auxiliary nodes 0 and 1 coincide"):
         flatten(x, g.triangles)

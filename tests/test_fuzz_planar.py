@@ -23,23 +23,23 @@ translation, start vertex, scale by l) is the suite's one convention,
 import math
 import os
 
+import invariants as inv1
+import invariants_uniform as inv2
 import numpy as np
 import pytest
 from conftest import exercised
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from strategies import placed
 
 import equimesh
 from equimesh import EquimeshError
-
-import invariants as inv1
-import invariants_uniform as inv2
-from strategies import placed
 
 #: Examples per family: quick in CI, thousands in the thorough profile.
 EXAMPLES = {"thorough": 2000}.get(os.environ.get("EQUIMESH_HYPOTHESIS_PROFILE", "ci"), 30)
 
 fuzz = settings(max_examples=EXAMPLES)
+
 
 @st.composite
 def stars(draw):
@@ -66,8 +66,18 @@ def necks(draw):
     y0 = draw(st.floats(0.0, 1.0)) * room * 0.9 + 0.05 * room
     skew = draw(st.floats(-0.5, 0.5))
     ring = [
-        (0.0, 0.0), (a, 0.0), (a, y0), (a + c, y0 + skew * c), (a + c, 0.0), (a + c + d, 0.0),
-        (a + c + d, e), (a + c, e), (a + c, y0 + width + skew * c), (a, y0 + width), (a, b), (0.0, b),
+        (0.0, 0.0),
+        (a, 0.0),
+        (a, y0),
+        (a + c, y0 + skew * c),
+        (a + c, 0.0),
+        (a + c + d, 0.0),
+        (a + c + d, e),
+        (a + c, e),
+        (a + c, y0 + width + skew * c),
+        (a, y0 + width),
+        (a, b),
+        (0.0, b),
     ]
     return np.array(ring)
 
@@ -132,7 +142,13 @@ ISSUE_EXAMPLES = {
     "sliver triangle [[0, 0], [10, 0], [10, 2]]": [[0, 0], [10, 0], [10, 2]],
     "sliver triangle [[0, 0], [10, 0], [9, 1]]": [[0, 0], [10, 0], [9, 1]],
     "20-degree tip": (
-        lambda h, r: [[0, 0], [r * math.cos(h), -r * math.sin(h)], [r + 6, -6], [r + 6, 6], [r * math.cos(h), r * math.sin(h)]]
+        lambda h, r: [
+            [0, 0],
+            [r * math.cos(h), -r * math.sin(h)],
+            [r + 6, -6],
+            [r + 6, 6],
+            [r * math.cos(h), r * math.sin(h)],
+        ]
     )(math.radians(20) / 2, 12.0),
 }
 

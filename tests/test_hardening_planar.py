@@ -19,9 +19,11 @@ import equimesh
 from equimesh import REL_TOL, EquimeshError, InternalError, InvalidLengthError, InvalidPolygonError, MeshTooLargeError
 from equimesh.mesh import PlanarMesh
 from equimesh.planar import insertion
+from equimesh.planar.boundary.resample import resample_boundary
+from equimesh.planar.boundary.separation import check_boundary_separation
 from equimesh.planar.guarantees import verify_planar
-from equimesh.planar.insertion import _region
-from equimesh.planar.polygon import as_polygon, check_boundary_separation, resample_boundary
+from equimesh.planar.insertion import region as _region
+from equimesh.planar.polygon import as_polygon
 from equimesh.planar.strip import BOUNDARY_SPACING
 
 SQUARE10 = np.array([[0.0, 0.0], [10.0, 0.0], [10.0, 10.0], [0.0, 10.0]])
@@ -38,9 +40,7 @@ def assert_theorem(mesh, l):
 # --------------------------------------------------------------------------- 1: Lemma 3 (1), separation
 
 
-@pytest.mark.parametrize(
-    "vertices", [[[0, 0], [10, 0], [10, 2]], TIP20], ids=["11 degrees", "20 degree tip"]
-)
+@pytest.mark.parametrize("vertices", [[[0, 0], [10, 0], [10, 2]], TIP20], ids=["11 degrees", "20 degree tip"])
 def test_reported_sharp_corners_are_meshed_validly(vertices):
     """The issue's accepted-but-invalid inputs (edges of 0.29 l to 0.52 l, then refused): the staggered
     Step 2 now meshes them within every guarantee of Problem 2."""
@@ -87,8 +87,23 @@ def test_two_corners_separable_alone_but_not_together_are_refused_naming_both():
 
 def test_a_neck_narrower_than_l_is_refused_naming_both_edges():
     """Two edges facing each other 0.8 l apart across the polygon (a dumbbell's neck)."""
-    dumbbell = [[0, 0], [6, 0], [6, 2.6], [8, 2.6], [8, 0], [14, 0], [14, 6], [8, 6], [8, 3.4], [6, 3.4], [6, 6], [0, 6]]
-    with pytest.raises(InvalidPolygonError, match=r"too narrow for l = 1.0: .*edge \(2, 3\) and edge \(9, 10\) are 0.7999") as info:
+    dumbbell = [
+        [0, 0],
+        [6, 0],
+        [6, 2.6],
+        [8, 2.6],
+        [8, 0],
+        [14, 0],
+        [14, 6],
+        [8, 6],
+        [8, 3.4],
+        [6, 3.4],
+        [6, 6],
+        [0, 6],
+    ]
+    with pytest.raises(
+        InvalidPolygonError, match=r"too narrow for l = 1.0: .*edge \(2, 3\) and edge \(9, 10\) are 0.7999"
+    ) as info:
         equimesh.uniform_triangulation(dumbbell, 1.0)
     assert len(info.value.points) == 2
 
@@ -150,7 +165,10 @@ def test_verify_planar_accepts_a_returned_mesh():
 @pytest.mark.parametrize(
     "corrupt, message",
     [
-        (lambda m: {"local_points": m.local_points * np.array([1.0, 0.9])}, r"edge \(\d+, \d+\) has length .* outside \[l, 2l\]"),
+        (
+            lambda m: {"local_points": m.local_points * np.array([1.0, 0.9])},
+            r"edge \(\d+, \d+\) has length .* outside \[l, 2l\]",
+        ),
         (lambda m: {"triangles": m.triangles[:, ::-1]}, r"not counter-clockwise"),
         (lambda m: {"triangles": m.triangles[1:]}, r"Euler"),
         (lambda m: {"triangles": np.where(m.triangles == 0, m.n_nodes, m.triangles)}, r"outside 0\.\.\d+"),
@@ -244,7 +262,12 @@ def test_polygon_wider_than_the_precision_range_is_refused():
 @pytest.mark.parametrize("l", [5e-324, 1e-200, 1e200, 1.7e308])
 def test_lengths_outside_the_range_are_refused(l):
     """Subnormal, tiny and huge l: InvalidLengthError from every verb, never a ZeroDivision/Overflow."""
-    for verb in (equimesh.increment, equimesh.uniform_triangulation, equimesh.node_lower_bound, equimesh.best_lattice_placement):
+    for verb in (
+        equimesh.increment,
+        equimesh.uniform_triangulation,
+        equimesh.node_lower_bound,
+        equimesh.best_lattice_placement,
+    ):
         with pytest.raises(InvalidLengthError, match=r"outside the supported range"):
             verb(SQUARE10, l)
 
@@ -263,7 +286,8 @@ def test_angle_is_reduced_modulo_60_degrees(angle):
 
 
 @pytest.mark.parametrize(
-    "kwargs", [{"n_angles": 0}, {"n_offsets": -1}, {"refine": -1}, {"n_angles": 2.5}, {"n_offsets": True}, {"refine": np.nan}]
+    "kwargs",
+    [{"n_angles": 0}, {"n_offsets": -1}, {"refine": -1}, {"n_angles": 2.5}, {"n_offsets": True}, {"refine": np.nan}],
 )
 def test_placement_counts_must_be_integers(kwargs):
     name = next(iter(kwargs))
@@ -294,15 +318,19 @@ REFERENCE = {"engine": "reference"}
 
 @pytest.mark.parametrize(
     "verb, l, kwargs, what, limit",
-    [(equimesh.increment, 0.1, REFERENCE, "the polygon", 2500),
-     (equimesh.uniform_triangulation, 1e-3, REFERENCE, "the boundary strip", 2500),
-     (equimesh.increment, 1e-2, {}, "the polygon", 1000000),
-     (equimesh.uniform_triangulation, 1e-2, {}, "the polygon", 1000000),
-     (equimesh.best_lattice_placement, 1e-2, {}, "the polygon", 1000000)],
+    [
+        (equimesh.increment, 0.1, REFERENCE, "the polygon", 2500),
+        (equimesh.uniform_triangulation, 1e-3, REFERENCE, "the boundary strip", 2500),
+        (equimesh.increment, 1e-2, {}, "the polygon", 1000000),
+        (equimesh.uniform_triangulation, 1e-2, {}, "the polygon", 1000000),
+        (equimesh.best_lattice_placement, 1e-2, {}, "the polygon", 1000000),
+    ],
 )
 def test_size_guard_refuses_before_any_work(verb, l, kwargs, what, limit):
     """The issue's unbounded runs are refused with the estimate, the engine's limit and what to change."""
-    with pytest.raises(MeshTooLargeError, match=rf"would need about .* nodes in {what}, more than max_nodes = {limit}; use a larger l"):
+    with pytest.raises(
+        MeshTooLargeError, match=rf"would need about .* nodes in {what}, more than max_nodes = {limit}; use a larger l"
+    ):
         verb(SQUARE10, l, **kwargs)
 
 
@@ -335,7 +363,12 @@ def test_validation_of_a_10000_gon():
 @pytest.mark.parametrize(
     "vertices, l, error, message",
     [
-        ([[0, 0], [10, 10], [10, 0], [0, 10]], 1.0, InvalidPolygonError, r"self-intersecting.*edge \(0, 1\) intersects edge \(2, 3\)"),
+        (
+            [[0, 0], [10, 10], [10, 0], [0, 10]],
+            1.0,
+            InvalidPolygonError,
+            r"self-intersecting.*edge \(0, 1\) intersects edge \(2, 3\)",
+        ),
         (SQUARE10, 10.0000001, InvalidPolygonError, r"has length 10.0, shorter than l = 10.0000001$"),
         (SQUARE10 + 1j, 1.0, InvalidPolygonError, r"must be real numbers, got complex"),
         ([[0, 0], [1 + 2j, 0], [0, 1]], 1.0, InvalidPolygonError, r"must be real numbers, got complex"),
@@ -345,7 +378,17 @@ def test_validation_of_a_10000_gon():
         (np.array([[0, 0], [10, np.nan], [0, 10]]), 1.0, InvalidPolygonError, r"vertex 1 .* \(10.0, nan\)$"),
         ([[0, 0], [1, 1], [np.float64(2), 2]], 1.0, InvalidPolygonError, r"zero area \(all vertices collinear\)"),
     ],
-    ids=["bow-tie", "digits", "complex array", "complex entry", "complex l", "numpy complex l", "numpy l", "nan", "collinear"],
+    ids=[
+        "bow-tie",
+        "digits",
+        "complex array",
+        "complex entry",
+        "complex l",
+        "numpy complex l",
+        "numpy l",
+        "nan",
+        "collinear",
+    ],
 )
 def test_messages_name_the_problem_in_plain_numbers(vertices, l, error, message):
     for verb in (equimesh.increment, equimesh.uniform_triangulation):
@@ -354,7 +397,9 @@ def test_messages_name_the_problem_in_plain_numbers(vertices, l, error, message)
         assert "np." not in str(info.value) and "\n" not in str(info.value)
 
 
-@pytest.mark.parametrize("kwargs", [{"angle": 1j}, {"offset": (1j, 0)}, {"clearance": np.complex128(2)}, {"angle": "1"}])
+@pytest.mark.parametrize(
+    "kwargs", [{"angle": 1j}, {"offset": (1j, 0)}, {"clearance": np.complex128(2)}, {"angle": "1"}]
+)
 def test_complex_or_text_parameters_are_refused(kwargs):
     with pytest.raises(EquimeshError, match=r"real number|real numbers|array of numbers"):
         equimesh.uniform_triangulation(SQUARE10, 1.0, **kwargs)
@@ -368,7 +413,9 @@ def test_unknown_engine_is_refused_before_any_work(engine):
             verb(SQUARE10, 1e-3, engine=engine)  # checked before the size guard would refuse l = 1e-3
 
 
-@pytest.mark.parametrize("value, kind", [(True, "boolean True"), (np.bool_(False), "boolean False"), (1j, "complex value 1j")])
+@pytest.mark.parametrize(
+    "value, kind", [(True, "boolean True"), (np.bool_(False), "boolean False"), (1j, "complex value 1j")]
+)
 def test_non_real_lengths_are_named_by_their_kind(value, kind):
     """A boolean is a number to Python's numbers module; the message still says what it is."""
     with pytest.raises(equimesh.InvalidLengthError, match=f"must be a real number, got {kind}$"):

@@ -21,7 +21,7 @@ from equimesh._geometry import orient
 from equimesh.errors import InternalError, InvalidPolygonError, InvalidSurfaceError, MeshTooLargeError
 from equimesh.surface import pipeline
 from equimesh.surface.auxiliary import auxiliary_grid
-from equimesh.surface.bezier import BezierSurface
+from equimesh.surface.charts.bezier import BezierSurface
 from equimesh.surface.regularity import check_regular
 
 SURFACES = Path(__file__).resolve().parent.parent / "experiments" / "surfaces"
@@ -315,7 +315,7 @@ def test_surface_in_huge_or_tiny_units_is_meshed_like_in_units_of_one(scale):
 
 def test_bezier_degree_above_the_limit_is_refused():
     """A 1002-row net (degree 1001) is refused by name; before, C(n, i) overflowed from degree 1030 on."""
-    from equimesh.surface.bezier import MAX_DEGREE
+    from equimesh.surface.charts.bezier import MAX_DEGREE
 
     net = np.zeros((MAX_DEGREE + 2, 2, 3))
     net[..., 0] = np.linspace(0.0, 80.0, MAX_DEGREE + 2)[:, None]

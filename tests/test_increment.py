@@ -10,10 +10,6 @@ import numpy as np
 import pytest
 from hypothesis import assume, given
 from hypothesis import strategies as st
-
-import equimesh
-from equimesh.planar.insertion import ENGINES
-from equimesh.testing.generators import rectangle, regular_polygon
 from invariants import (
     assert_problem1_invariants,
     check_covering,
@@ -22,6 +18,10 @@ from invariants import (
     check_triangulation,
 )
 from strategies import problems
+
+import equimesh
+from equimesh.planar.insertion import ENGINES
+from equimesh.testing.generators import rectangle, regular_polygon
 
 #: Every property runs against both engines; the reference engine is the oracle.
 ENGINE_NAMES = sorted(ENGINES)
@@ -69,7 +69,10 @@ def test_output_is_a_delaunay_triangulation_of_the_polygon(engine, problem):
 def test_same_input_gives_bit_identical_output(engine, problem):
     """Determinism: two runs on the same input give bit-identical points and triangles."""
     vertices, l = problem
-    first, second = equimesh.increment(vertices, l, engine=engine), equimesh.increment(vertices.copy(), l, engine=engine)
+    first, second = (
+        equimesh.increment(vertices, l, engine=engine),
+        equimesh.increment(vertices.copy(), l, engine=engine),
+    )
     assert first.points.tobytes() == second.points.tobytes()
     assert np.array_equal(first.triangles, second.triangles)
 

@@ -14,15 +14,15 @@ cannot afford.  Each case runs in well under a second, so that the mutants of
 import numpy as np
 import pytest
 import shapely
+from invariants import assert_problem1_invariants
 
 import equimesh
 from equimesh import EquimeshError, InvalidLengthError, InvalidPolygonError, MeshTooLargeError
+from equimesh.planar.boundary.resample import resample_boundary
 from equimesh.planar.increment import validate_problem1
 from equimesh.planar.insertion import ENGINES
 from equimesh.planar.limits import MAX_NODES
-from equimesh.planar.polygon import resample_boundary
 from equimesh.testing.generators import rectangle
-from invariants import assert_problem1_invariants
 
 #: Small polygons in units of l: a square whose sides split into parts of 2l, a rectangle, a convex pentagon.
 CASES = {
@@ -39,7 +39,7 @@ def test_every_invariant_and_the_point_order(name, engine):
     vertices = CASES[name] * 3.0
     mesh = equimesh.increment(vertices, 3.0, engine=engine)
     assert_problem1_invariants(mesh, vertices, 3.0)
-    ring = mesh.points[:mesh.n_boundary]
+    ring = mesh.points[: mesh.n_boundary]
     np.testing.assert_array_equal(ring[0], vertices[0])
     assert shapely.LinearRing(ring).is_ccw
     poly, l = validate_problem1(vertices, 3.0)
@@ -53,7 +53,7 @@ def test_clockwise_input_is_reversed():
     vertices = CASES["pentagon"][::-1]
     mesh = equimesh.increment(vertices, 1.0)
     np.testing.assert_array_equal(mesh.points[0], vertices[-1])
-    assert shapely.LinearRing(mesh.points[:mesh.n_boundary]).is_ccw
+    assert shapely.LinearRing(mesh.points[: mesh.n_boundary]).is_ccw
 
 
 def test_far_from_the_origin_the_vertices_are_the_callers_bits():
@@ -66,15 +66,33 @@ def test_far_from_the_origin_the_vertices_are_the_callers_bits():
     assert all(tuple(v) in found for v in vertices)
 
 
-@pytest.mark.parametrize("vertices, l, error, message", [
-    (np.array([[0, 0], [4, 0], [2, 1], [4, 4], [0, 4]], float), 1.0, InvalidPolygonError, "polygon is not convex: reflex angle at vertex 2 at (2, 1)"),
-    (np.array([[0, 0], [4, 0], [0, 4]], float), 1.0, InvalidPolygonError, "inner angle 45 degrees at vertex 1 at (4, 0) is below 90 degrees"),
-    (rectangle(4.0, 0.5), 1.0, InvalidPolygonError, (
-        "no mesh with every edge in [l, 2l] exists (both ends of a side are nodes, so some mesh edge on it is no "
-        "longer than the side): edge (1, 2) has length 0.5, shorter than l = 1.0"
-    )),
-    (rectangle(4.0, 4.0), -1.0, InvalidLengthError, "target length l must be positive and finite, got -1.0"),
-])
+@pytest.mark.parametrize(
+    "vertices, l, error, message",
+    [
+        (
+            np.array([[0, 0], [4, 0], [2, 1], [4, 4], [0, 4]], float),
+            1.0,
+            InvalidPolygonError,
+            "polygon is not convex: reflex angle at vertex 2 at (2, 1)",
+        ),
+        (
+            np.array([[0, 0], [4, 0], [0, 4]], float),
+            1.0,
+            InvalidPolygonError,
+            "inner angle 45 degrees at vertex 1 at (4, 0) is below 90 degrees",
+        ),
+        (
+            rectangle(4.0, 0.5),
+            1.0,
+            InvalidPolygonError,
+            (
+                "no mesh with every edge in [l, 2l] exists (both ends of a side are nodes, so some mesh edge on it is no "
+                "longer than the side): edge (1, 2) has length 0.5, shorter than l = 1.0"
+            ),
+        ),
+        (rectangle(4.0, 4.0), -1.0, InvalidLengthError, "target length l must be positive and finite, got -1.0"),
+    ],
+)
 def test_input_outside_problem1_is_refused(vertices, l, error, message):
     """Problem 1 needs a convex polygon, inner angles >= 90 degrees, edges >= l, and a positive l."""
     with pytest.raises(error) as err:
@@ -92,7 +110,9 @@ def test_default_size_guard_is_the_engines(engine, monkeypatch):
     if engine == "reference":
         with pytest.raises(MeshTooLargeError) as err:
             equimesh.increment(vertices, 1.0, engine=engine)
-        assert str(err.value).startswith("l = 1.0 would need about 54.6 nodes in the polygon, more than max_nodes = 50;")
+        assert str(err.value).startswith(
+            "l = 1.0 would need about 54.6 nodes in the polygon, more than max_nodes = 50;"
+        )
     else:
         assert equimesh.increment(vertices, 1.0, engine=engine).n_nodes > 0
         with pytest.raises(MeshTooLargeError, match="more than max_nodes = 10;"):

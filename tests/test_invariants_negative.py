@@ -10,10 +10,6 @@ import dataclasses
 
 import numpy as np
 import pytest
-
-import equimesh
-from equimesh import REL_TOL, PlanarMesh
-from equimesh.testing.generators import rectangle
 from invariants import (
     assert_problem1_invariants,
     check_covering,
@@ -22,6 +18,10 @@ from invariants import (
     check_separation,
     check_triangulation,
 )
+
+import equimesh
+from equimesh import REL_TOL, PlanarMesh
+from equimesh.testing.generators import rectangle
 
 SQUARE = rectangle(2.0, 2.0)
 #: The four triangles around the interior point 4, counter-clockwise.

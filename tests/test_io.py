@@ -6,7 +6,6 @@ leaves neither the target nor a temporary file behind.
 """
 
 import json
-import signal
 import subprocess
 import sys
 import textwrap
@@ -14,6 +13,7 @@ import textwrap
 import numpy as np
 import pandas as pd
 import pytest
+from hostile_paths import fifo, name_max, unwritable_folder
 from hypothesis import given
 from hypothesis import strategies as st
 
@@ -30,10 +30,8 @@ from equimesh.io import (
     surface_to_dict,
     write_surface_mesh,
 )
-from equimesh.io._atomic import _interrupts_held, atomic_paths
+from equimesh.io._atomic import atomic_paths
 from equimesh.mesh import G1, OTHER
-
-from hostile_paths import fifo, name_max, unwritable_folder
 
 
 def good_dict():
@@ -52,8 +50,11 @@ finite = st.floats(min_value=-1e6, max_value=1e6, allow_nan=False)
 @given(
     st.integers(2, 4).flatmap(
         lambda rows: st.integers(2, 4).flatmap(
-            lambda cols: st.lists(st.lists(st.lists(finite, min_size=3, max_size=3), min_size=cols, max_size=cols),
-                                  min_size=rows, max_size=rows)
+            lambda cols: st.lists(
+                st.lists(st.lists(finite, min_size=3, max_size=3), min_size=cols, max_size=cols),
+                min_size=rows,
+                max_size=rows,
+            )
         )
     )
 )
@@ -88,7 +89,7 @@ def _cp(rows):
     [
         (lambda d: [d], "must be a JSON object, got list"),
         (lambda d: {"control_points": d["control_points"]}, 'missing the field "type" (one of "bezier", "nurbs")'),
-        (lambda d: {**d, "type": "mesh"}, "must be one of \"bezier\", \"nurbs\", got 'mesh'"),
+        (lambda d: {**d, "type": "mesh"}, 'must be one of "bezier", "nurbs", got \'mesh\''),
         (lambda d: {**d, "type": 3}, 'must be one of "bezier", "nurbs", got number'),
         (lambda d: {"type": "bezier"}, 'missing the field "control_points"'),
         (lambda d: {**d, "colour": 1}, "unknown field 'colour'"),
@@ -97,16 +98,29 @@ def _cp(rows):
         (_cp([[[0, 0, 0], [1, 0, 0]]]), "at least 2 rows, got 1"),
         (_cp([[[0, 0, 0]], [[1, 0, 0]]]), "control_points[0] needs at least 2 points, got 1"),
         (_cp([[[0, 0, 0], [0, 1, 0]], {"x": 1}]), "control_points[1] must be a list of points, got object"),
-        (_cp([[[0, 0, 0], [0, 1, 0]], [[1, 0, 0], [1, 1, 1], [2, 2, 2]]]),
-         "control_points[1] has 3 points, but control_points[0] has 2"),
+        (
+            _cp([[[0, 0, 0], [0, 1, 0]], [[1, 0, 0], [1, 1, 1], [2, 2, 2]]]),
+            "control_points[1] has 3 points, but control_points[0] has 2",
+        ),
         (_cp([[[0, 0], [0, 1, 0]], [[1, 0, 0], [1, 1, 1]]]), "control_points[0][0] must be a list [x, y, z] of 3"),
-        (_cp([[[0, 0, 0], [0, 1, "z"]], [[1, 0, 0], [1, 1, 1]]]), "control_points[0][1][2] must be a real number, got string"),
+        (
+            _cp([[[0, 0, 0], [0, 1, "z"]], [[1, 0, 0], [1, 1, 1]]]),
+            "control_points[0][1][2] must be a real number, got string",
+        ),
         (_cp([[[0, 0, 0], [0, 1, True]], [[1, 0, 0], [1, 1, 1]]]), "[0][1][2] must be a real number, got boolean"),
         (_cp([[[0, 0, 0], [0, 1, 2j]], [[1, 0, 0], [1, 1, 1]]]), "[0][1][2] must be a real number, got complex 2j"),
-        (_cp([[[0, 0, 0], [0, 1, 0]], [[1, 0, np.nan], [1, 1, 1]]]), "control_points[1][0][2] is not a finite number: nan"),
-        (_cp([[[0, 0, 0], [0, 1, 0]], [[1, 0, np.float64(np.inf)], [1, 1, 1]]]), "[1][0][2] is not a finite number: inf"),
-        (_cp([[[0, 0, 0], [0, 1, 0]], [[1, 0, 0], [1, 10**400, 1]]]),
-         "control_points[1][1][1] is not a finite number: an integer beyond 1e40"),
+        (
+            _cp([[[0, 0, 0], [0, 1, 0]], [[1, 0, np.nan], [1, 1, 1]]]),
+            "control_points[1][0][2] is not a finite number: nan",
+        ),
+        (
+            _cp([[[0, 0, 0], [0, 1, 0]], [[1, 0, np.float64(np.inf)], [1, 1, 1]]]),
+            "[1][0][2] is not a finite number: inf",
+        ),
+        (
+            _cp([[[0, 0, 0], [0, 1, 0]], [[1, 0, 0], [1, 10**400, 1]]]),
+            "control_points[1][1][1] is not a finite number: an integer beyond 1e40",
+        ),
     ],
 )
 def test_json_validation_messages(mutate, fragment):
@@ -127,15 +141,23 @@ def _file(tmp_path, text, name="s.json"):
 
 
 HOSTILE_FILES = {
-    "5000-digit integer": ('{"type": "bezier", "control_points": [[[' + "9" * 5000 + ", 0, 0]]]}",
-                           f"more than {sys.get_int_max_str_digits()} digits"),
+    "5000-digit integer": (
+        '{"type": "bezier", "control_points": [[[' + "9" * 5000 + ", 0, 0]]]}",
+        f"more than {sys.get_int_max_str_digits()} digits",
+    ),
     "nested 100000 deep": ("[" * 100_000 + "]" * 100_000, "nested too deeply"),
-    "NaN literal": (json.dumps(good_dict()).replace("[1, 1, 1]", "[1, NaN, 1]"),
-                    "control_points[1][1][1] is not a finite number: nan"),
-    "Infinity literal": (json.dumps(good_dict()).replace("[1, 1, 1]", "[1, 1, -Infinity]"),
-                         "control_points[1][1][2] is not a finite number: -inf"),
-    "beyond the float range": (json.dumps(good_dict()).replace("[1, 1, 1]", "[1e400, 1, 1]"),
-                               "control_points[1][1][0] is not a finite number: inf"),
+    "NaN literal": (
+        json.dumps(good_dict()).replace("[1, 1, 1]", "[1, NaN, 1]"),
+        "control_points[1][1][1] is not a finite number: nan",
+    ),
+    "Infinity literal": (
+        json.dumps(good_dict()).replace("[1, 1, 1]", "[1, 1, -Infinity]"),
+        "control_points[1][1][2] is not a finite number: -inf",
+    ),
+    "beyond the float range": (
+        json.dumps(good_dict()).replace("[1, 1, 1]", "[1e400, 1, 1]"),
+        "control_points[1][1][0] is not a finite number: inf",
+    ),
     "duplicate field": ('{"type": "bezier", "type": "bezier"}', "field 'type' twice"),
     "malformed": ("{", "malformed JSON at line 1 column 2"),
     "not UTF-8": (b'{"type": "b\xe9zier"}', "is not UTF-8 text (byte 11"),
@@ -179,7 +201,9 @@ def test_unreadable_surface_paths(make, fragment, tmp_path):
 
 
 def test_unknown_extension_lists_the_known_ones(tmp_path):
-    with pytest.raises(InvalidSurfaceError, match=r"use one of \['\.3dm', '\.json', '\.obj', '\.ply', '\.stl', '\.vtk', '\.vtu'\]"):
+    with pytest.raises(
+        InvalidSurfaceError, match=r"use one of \['\.3dm', '\.json', '\.obj', '\.ply', '\.stl', '\.vtk', '\.vtu'\]"
+    ):
         load_surface(tmp_path / "s.igs")
 
 

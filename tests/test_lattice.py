@@ -25,7 +25,9 @@ from equimesh.tolerance import at_least
 S3 = math.sqrt(3.0)
 SQUARE = np.array([[0.0, 0.0], [6.0, 0.0], [6.0, 6.0], [0.0, 6.0]])
 #: Two 6 x 6 rooms joined by a corridor 1.5 wide: no lattice vertex is 1 from both walls of the corridor.
-DUMBBELL = np.array([[0, 0], [6, 0], [6, 2], [9, 2], [9, 0], [15, 0], [15, 6], [9, 6], [9, 3.5], [6, 3.5], [6, 6], [0, 6]], float)
+DUMBBELL = np.array(
+    [[0, 0], [6, 0], [6, 2], [9, 2], [9, 0], [15, 0], [15, 6], [9, 6], [9, 3.5], [6, 3.5], [6, 6], [0, 6]], float
+)
 HOLE = np.array([[2.5, 2.5], [3.5, 2.5], [3.5, 3.5], [2.5, 3.5]])
 
 
@@ -67,12 +69,15 @@ def test_lattice_points_by_hand():
     np.testing.assert_allclose(pts, [[10, 20], [12, 20], [11, 20 + S3], [10, 20 + 2 * S3]], atol=1e-13)
 
 
-@pytest.mark.parametrize("offset, expected", [
-    ((3.0, 4.0), (3.0, 4.0)),  # near the polygon: kept as is
-    ((13.0, 0.0), (13.0, 0.0)),  # exactly 2 * 6 + 1 from the local origin: still kept
-    ((13.25, 0.0), (0.25, 0.0)),  # farther: moved by 13 lattice vectors a1
-    ((0.0, -13.5), (0.0, -13.5 + 8 * S3)),  # moved by 8 (2 a2 - a1), i.e. 8 rows up
-])
+@pytest.mark.parametrize(
+    "offset, expected",
+    [
+        ((3.0, 4.0), (3.0, 4.0)),  # near the polygon: kept as is
+        ((13.0, 0.0), (13.0, 0.0)),  # exactly 2 * 6 + 1 from the local origin: still kept
+        ((13.25, 0.0), (0.25, 0.0)),  # farther: moved by 13 lattice vectors a1
+        ((0.0, -13.5), (0.0, -13.5 + 8 * S3)),  # moved by 8 (2 a2 - a1), i.e. 8 rows up
+    ],
+)
 def test_local_offset_keeps_a_near_offset_and_moves_a_far_one_by_whole_lattice_vectors(offset, expected):
     """The frame of SQUARE at l = 1 is the identity; the threshold is 2 * extent + l = 13."""
     poly = as_polygon(SQUARE, 1.0)
@@ -89,12 +94,21 @@ def test_local_offset_in_a_scaled_and_translated_frame():
     np.testing.assert_allclose(steps, np.round(steps), atol=1e-6)
 
 
-POLYGONS = {"square from its top-right corner": (np.roll(SQUARE, 2, axis=0), None), "dumbbell": (DUMBBELL, None), "square with a hole": (SQUARE * 2.0, [HOLE * 2.0])}
+POLYGONS = {
+    "square from its top-right corner": (np.roll(SQUARE, 2, axis=0), None),
+    "dumbbell": (DUMBBELL, None),
+    "square with a hole": (SQUARE * 2.0, [HOLE * 2.0]),
+}
 
 
 @pytest.mark.parametrize("name", sorted(POLYGONS))
-@given(angle=st.floats(0.0, 60.0), ox=st.floats(-2.0, 2.0), oy=st.floats(-2.0, 2.0),
-       clearance=st.sampled_from([1.0, 1.3, 2.0]), l=st.sampled_from([0.75, 1.0]))
+@given(
+    angle=st.floats(0.0, 60.0),
+    ox=st.floats(-2.0, 2.0),
+    oy=st.floats(-2.0, 2.0),
+    clearance=st.sampled_from([1.0, 1.3, 2.0]),
+    l=st.sampled_from([0.75, 1.0]),
+)
 def test_kept_vertices_are_those_inside_at_clearance(name, angle, ox, oy, clearance, l):
     """Lemma 3 (1): kept <=> inside P and at least clearance l from its boundary; the grid covers P."""
     vertices, holes = POLYGONS[name]
@@ -102,18 +116,27 @@ def test_kept_vertices_are_those_inside_at_clearance(name, angle, ox, oy, cleara
     ii, jj, pts, kept = lattice.kept_vertices(poly, l, angle, (ox, oy), clearance)
     ij = np.column_stack([ii.ravel(), jj.ravel()])
     assert np.array_equal(kept.ravel(), brute_force_kept(poly, l, angle, (ox, oy), clearance, ij))
-    np.testing.assert_allclose(pts, lattice.lattice_points(ij, poly.local_length(l), angle,
-                                                           lattice.local_offset(poly, l, angle, (ox, oy))), atol=1e-12)
+    np.testing.assert_allclose(
+        pts,
+        lattice.lattice_points(ij, poly.local_length(l), angle, lattice.local_offset(poly, l, angle, (ox, oy))),
+        atol=1e-12,
+    )
     # No vertex of P's bounding box is missing from the grid: a wider grid keeps no more vertices.
     pad = 3
-    wide = np.stack(np.meshgrid(np.arange(ii.min() - pad, ii.max() + pad + 1),
-                                np.arange(jj.min() - pad, jj.max() + pad + 1), indexing="ij"), axis=-1).reshape(-1, 2)
+    wide = np.stack(
+        np.meshgrid(
+            np.arange(ii.min() - pad, ii.max() + pad + 1), np.arange(jj.min() - pad, jj.max() + pad + 1), indexing="ij"
+        ),
+        axis=-1,
+    ).reshape(-1, 2)
     assert brute_force_kept(poly, l, angle, (ox, oy), clearance, wide).sum() == kept.sum()
     # The bounding box of P lies inside the grid, one lattice step away from its border.
     lo, hi = poly.local.min(axis=0), poly.local.max(axis=0)
     inside_box = np.all((pts >= lo) & (pts <= hi), axis=1)
-    assert not np.any(inside_box & ((ii.ravel() == ii.min()) | (ii.ravel() == ii.max()) |
-                                    (jj.ravel() == jj.min()) | (jj.ravel() == jj.max())))
+    assert not np.any(
+        inside_box
+        & ((ii.ravel() == ii.min()) | (ii.ravel() == ii.max()) | (jj.ravel() == jj.min()) | (jj.ravel() == jj.max()))
+    )
 
 
 def test_kept_vertices_grid_by_hand():
@@ -137,8 +160,11 @@ def test_triangle_masks_by_hand():
 def lattice_part_checks(part, poly, l, angle, offset, clearance):
     """The properties of :class:`LatticePart` that follow from its definition."""
     lp = poly.local_length(l)
-    np.testing.assert_allclose(part.points, lattice.lattice_points(part.ij, lp, angle,
-                                                                   lattice.local_offset(poly, l, angle, offset)), atol=1e-12)
+    np.testing.assert_allclose(
+        part.points,
+        lattice.lattice_points(part.ij, lp, angle, lattice.local_offset(poly, l, angle, offset)),
+        atol=1e-12,
+    )
     assert len(np.unique(part.ij, axis=0)) == len(part.ij)
     assert np.array_equal(np.unique(part.triangles), np.arange(len(part.points)))  # no dangling vertex
     assert brute_force_kept(poly, l, angle, offset, clearance, part.ij).all()
@@ -162,11 +188,15 @@ def lattice_part_checks(part, poly, l, angle, offset, clearance):
     assert len(part.holes) == len(components)
     for seed in part.holes:
         assert sum(shapely.contains_xy(comp, *seed) for comp in components) == 1
-    assert len({next(k for k, comp in enumerate(components) if shapely.contains_xy(comp, *s)) for s in part.holes}) == len(components)
+    assert len(
+        {next(k for k, comp in enumerate(components) if shapely.contains_xy(comp, *s)) for s in part.holes}
+    ) == len(components)
 
 
 @pytest.mark.parametrize("name", sorted(POLYGONS))
-@given(angle=st.floats(0.0, 60.0), ox=st.floats(-2.0, 2.0), oy=st.floats(-2.0, 2.0), clearance=st.sampled_from([1.0, 1.5]))
+@given(
+    angle=st.floats(0.0, 60.0), ox=st.floats(-2.0, 2.0), oy=st.floats(-2.0, 2.0), clearance=st.sampled_from([1.0, 1.5])
+)
 def test_lattice_part_is_the_union_of_fully_kept_lattice_triangles(name, angle, ox, oy, clearance):
     """K: kept vertices only, edges exactly l, counter-clockwise, boundary with K on its left, one seed per component."""
     vertices, holes = POLYGONS[name]

@@ -66,8 +66,14 @@ def test_share_in_bounds_counts_l_and_2l_themselves():
 def test_fabrication_summary():
     s = fabrication_summary([5.0, 5.0, 5.02, 5.3, 9.0], 5.0, 0.005)
     assert tuple(s) == SUMMARY_KEYS
-    assert s == {"members": 5, "classes": 3, "largest_class_share": 0.6, "min_length": 5.0, "max_length": 9.0,
-                 "within_tolerance": 0.6}
+    assert s == {
+        "members": 5,
+        "classes": 3,
+        "largest_class_share": 0.6,
+        "min_length": 5.0,
+        "max_length": 9.0,
+        "within_tolerance": 0.6,
+    }
 
 
 def test_comparison_figures_of_two_triangles():

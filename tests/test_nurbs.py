@@ -54,13 +54,19 @@ def test_matches_geomdl_with_first_and_second_derivatives(s, fractions):
     """X^s, (X_u, X_v) and (X_uu, X_uv, X_vv) equal geomdl's rational derivatives, domain ends and knots included."""
     g = geomdl_surface(s)
     uv = s.domain.at_fractions(*np.array(fractions).T)
-    mine = [s.evaluate(uv[:, 0], uv[:, 1]), *s.derivatives(uv[:, 0], uv[:, 1]), *s.second_derivatives(uv[:, 0], uv[:, 1])]
+    mine = [
+        s.evaluate(uv[:, 0], uv[:, 1]),
+        *s.derivatives(uv[:, 0], uv[:, 1]),
+        *s.second_derivatives(uv[:, 0], uv[:, 1]),
+    ]
     for k, (u, v) in enumerate(uv):
         d = np.array(g.derivatives(float(u), float(v), order=2))
         want = [d[0, 0], d[1, 0], d[0, 1], d[2, 0], d[1, 1], d[0, 2]]
         scale = np.abs(want).max() + np.abs(s.control_points).max()
         for order, (got, ref) in enumerate(zip(mine, want)):
-            np.testing.assert_allclose(got[k], ref, rtol=0, atol=1e-11 * scale, err_msg=f"derivative {order} at {u}, {v}")
+            np.testing.assert_allclose(
+                got[k], ref, rtol=0, atol=1e-11 * scale, err_msg=f"derivative {order} at {u}, {v}"
+            )
 
 
 @settings(max_examples=20, deadline=None)
@@ -176,18 +182,27 @@ def _with(**fields):
         (_with(degree=[2, 1.5]), "degree[1] must be an integer, got number 1.5"),
         (_with(degree=[2]), '"degree" needs at least 2 integers [p, q], got 1'),
         (_with(degree=[2, 1, 1]), '"degree" must be a list of 2 integers [p, q], got 3 entries'),
-        (_with(knots_u=[0, 0, 0, 0.5, 0.4, 1, 1]), "knots_u must be non-decreasing, but knots_u[4] = 0.4 < knots_u[3] = 0.5"),
+        (
+            _with(knots_u=[0, 0, 0, 0.5, 0.4, 1, 1]),
+            "knots_u must be non-decreasing, but knots_u[4] = 0.4 < knots_u[3] = 0.5",
+        ),
         (_with(knots_u=[0, 0, 0, 1, 1, 1]), "knots_u must hold 7 knots (4 control points + degree 2 + 1), got 6"),
         (_with(knots_v=[0, 0, 1, "x"]), "knots_v[3] must be a real number, got string"),
         (_with(knots_v=[0, 0, 0, 0]), "knots_v spans no domain: knots_v[1] = knots_v[2] = 0.0"),
-        (_with(knots_u=[0, 0, 0.5, 0.5, 1, 1], degree=[1, 1]), "knots_u repeats 0.5 2 times inside the domain, more than the degree 1"),
+        (
+            _with(knots_u=[0, 0, 0.5, 0.5, 1, 1], degree=[1, 1]),
+            "knots_u repeats 0.5 2 times inside the domain, more than the degree 1",
+        ),
         (_with(weights=[[1, 1], [0.5, 0], [1, 1], [3, 1]]), "weights[1][1] must be positive, got 0.0"),
         (_with(weights=[[1, 1], [0.5, -2], [1, 1], [3, 1]]), "weights[1][1] must be positive, got -2.0"),
         (_with(weights=[[1, 1], [0.5, 2], [1, 1]]), "weights must have shape (4, 2) like the control net, got (3, 2)"),
         (_with(weights=[[1, 1], [0.5], [1, 1], [3, 1]]), "weights[1] has 1 weights, but weights[0] has 2"),
         (_with(weights=[[1, 1], [0.5, float("nan")], [1, 1], [3, 1]]), "weights[1][1] is not a finite number: nan"),
         (_with(degree=[4, 1]), "control_points must have shape (n_u, n_v, 3) with n_u >= p + 1 = 5"),
-        (_with(control_points=[[[0, 0, 0], [0, 1, 0]], [[1, 0, 0], [1, 1]]]), "control_points[1][1] must be a list [x, y, z]"),
+        (
+            _with(control_points=[[[0, 0, 0], [0, 1, 0]], [[1, 0, 0], [1, 1]]]),
+            "control_points[1][1] must be a list [x, y, z]",
+        ),
         (lambda d: {k: v for k, v in d.items() if k != "weights"}, 'missing the field "weights"'),
     ],
 )

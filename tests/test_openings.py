@@ -19,21 +19,27 @@ from invariants import check_edge_lengths
 
 import equimesh
 from equimesh._cli import main
+from equimesh._geometry import inner_angle
 from equimesh.errors import InvalidSurfaceError, SurfaceTooSmallError
 from equimesh.io import load_surface, surface_from_dict, surface_to_dict
+from equimesh.planar.boundary.sides import SHARP_CORNER
 from equimesh.surface.auxiliary import auxiliary_grid
+from equimesh.surface.charts.openings import Perforated
 from equimesh.surface.flatten import flatten
-from equimesh.surface.openings import Perforated
-from equimesh.planar.polygon import SHARP_CORNER
 from equimesh.surface.outline import densify
-from equimesh._geometry import inner_angle
 from equimesh.surface.remap import to_plane
 
 SURFACES = Path(__file__).resolve().parent.parent / "experiments" / "surfaces"
 
 SQUARE = [[0.3, 0.3], [0.45, 0.3], [0.45, 0.5], [0.3, 0.5]]
 TRIANGLE = [[0.6, 0.4], [0.8, 0.45], [0.7, 0.7]]
-NOTCHED = [[0.3, 0.3], [0.7, 0.3], [0.7, 0.7], [0.3, 0.7], [0.62, 0.5]]  # the surface pokes into it, 49 degrees on the plane
+NOTCHED = [
+    [0.3, 0.3],
+    [0.7, 0.3],
+    [0.7, 0.7],
+    [0.3, 0.7],
+    [0.62, 0.5],
+]  # the surface pokes into it, 49 degrees on the plane
 CASES = {  # surface file, l, holes
     "nurbs one": ("nurbs_roof.json", 2.0, [SQUARE]),
     "nurbs two": ("nurbs_roof.json", 2.0, [SQUARE, TRIANGLE]),
@@ -116,7 +122,10 @@ def test_holes_argument_and_carried_holes_are_one_path():
         ([[[0.3, 0.3], [0.4, 0.3]]], r"holes\[0\] needs at least 3 \[u, v\] points, got 2"),
         ([[[0.3, 0.3], [0.4, 0.3], [0.4, "a"]]], r"holes\[0\]\[2\]\[1\] must be a real number, got string a"),
         ([[[0.3, 0.3], [0.4, 0.3], [0.4, float("nan")]]], r"holes\[0\]\[2\]\[1\] is not a finite number"),
-        ([[[0.3, 0.3], [1.4, 0.3], [0.4, 0.5]]], r"hole 0 is not inside the parameter domain \[0, 1\] x \[0, 1\]: its vertex 1"),
+        (
+            [[[0.3, 0.3], [1.4, 0.3], [0.4, 0.5]]],
+            r"hole 0 is not inside the parameter domain \[0, 1\] x \[0, 1\]: its vertex 1",
+        ),
         ([[[0.0, 0.3], [0.4, 0.3], [0.4, 0.5]]], r"hole 0 overlaps the boundary of the parameter domain"),
         ([SQUARE, [[0.35, 0.32], [0.5, 0.3], [0.5, 0.5]]], r"hole 0 and hole 1 overlap"),
         ([[[0.3, 0.3], [0.4, 0.4], [0.4, 0.3], [0.3, 0.4]]], r"hole 0 is not simple"),
@@ -133,12 +142,24 @@ def test_bad_holes_are_refused_in_one_line(holes, match):
 @pytest.mark.parametrize(
     "holes, l, error, match",
     [
-        ([[[0.02, 0.3], [0.2, 0.3], [0.2, 0.5], [0.02, 0.5]]], 2.0, InvalidSurfaceError,
-         r"hole 0 comes within 1\.9\d* of the boundary of the surface on the flattened surface, at \(u, v\) = \(0\.02, "),
-        ([SQUARE, [[0.47, 0.3], [0.6, 0.3], [0.6, 0.5], [0.47, 0.5]]], 2.0, InvalidSurfaceError,
-         r"hole 0 comes within 0\.79\d* of hole 1 on the flattened surface"),
-        ([[[0.3, 0.3], [0.45, 0.3], [0.451, 0.31], [0.45, 0.5], [0.3, 0.5]]], 1.0, SurfaceTooSmallError,
-         r"edge \(2, 1\) of hole 0, from \(u, v\) = \(0\.451, 0\.31\) to \(0\.45, 0\.3\), is 0\.36\d* long"),
+        (
+            [[[0.02, 0.3], [0.2, 0.3], [0.2, 0.5], [0.02, 0.5]]],
+            2.0,
+            InvalidSurfaceError,
+            r"hole 0 comes within 1\.9\d* of the boundary of the surface on the flattened surface, at \(u, v\) = \(0\.02, ",
+        ),
+        (
+            [SQUARE, [[0.47, 0.3], [0.6, 0.3], [0.6, 0.5], [0.47, 0.5]]],
+            2.0,
+            InvalidSurfaceError,
+            r"hole 0 comes within 0\.79\d* of hole 1 on the flattened surface",
+        ),
+        (
+            [[[0.3, 0.3], [0.45, 0.3], [0.451, 0.31], [0.45, 0.5], [0.3, 0.5]]],
+            1.0,
+            SurfaceTooSmallError,
+            r"edge \(2, 1\) of hole 0, from \(u, v\) = \(0\.451, 0\.31\) to \(0\.45, 0\.3\), is 0\.36\d* long",
+        ),
     ],
 )
 def test_holes_too_close_for_l_are_refused_in_surface_terms(holes, l, error, match):
@@ -149,7 +170,9 @@ def test_holes_too_close_for_l_are_refused_in_surface_terms(holes, l, error, mat
     assert "\n" not in message and "polygon" not in message
     if error is SurfaceTooSmallError:  # a hole's edge as long as its ends' distance: that l is safe
         suggested = float(message.rsplit("use l <= ", 1)[1].split()[0])
-        check_openings(equimesh.mesh_surface(surface, suggested, holes=holes, optimize="none"), surface, holes, suggested)
+        check_openings(
+            equimesh.mesh_surface(surface, suggested, holes=holes, optimize="none"), surface, holes, suggested
+        )
 
 
 def test_command_line_refuses_a_bad_hole_with_exit_2_and_writes_nothing(tmp_path, capsys):

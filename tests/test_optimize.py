@@ -7,22 +7,13 @@ from hypothesis import strategies as st
 from section4_standin import CircularVault, flat_patch, parabolic_vault, standin_pipeline
 
 from equimesh import EquimeshError
+from equimesh._geometry import nearest_segment as nearest_segment
 from equimesh.mesh import edge_lengths, triangle_orient
-from equimesh.surface import optimize
-from equimesh.surface._jacobian import signed_areas
-from equimesh.surface._slide import between_corners, loop_arc
-from equimesh.surface.remap import _nearest_segment
-from equimesh.surface.optimize import (
-    OBJECTIVES,
-    Objective,
-    UVProblem,
-    _fold_over_barrier,
-    _with_barrier,
-    bounded_objective,
-    edge_length_terms,
-    optimize_uv,
-    paper_objective,
-)
+from equimesh.surface.optimize import OBJECTIVES, Objective, UVProblem, objectives, optimize_uv
+from equimesh.surface.optimize.driver import _fold_over_barrier, _with_barrier
+from equimesh.surface.optimize.jacobian import signed_areas
+from equimesh.surface.optimize.objectives import bounded_objective, edge_length_terms, paper_objective
+from equimesh.surface.optimize.slide import between_corners, loop_arc
 from equimesh.testing.surfaces import dome
 
 
@@ -82,7 +73,7 @@ def sliding_problem():
     square = np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]])
     arc = loop_arc(square)
     nodes = np.arange(mesh.n_boundary)
-    seg, t, _ = _nearest_segment(plain.uv[nodes], square, np.roll(square, -1, axis=0))
+    seg, t, _ = nearest_segment(plain.uv[nodes], square, np.roll(square, -1, axis=0))
     slide, corners = between_corners(nodes, square, arc, (1.0 - t) * arc[seg] + t * arc[seg + 1], arc[:-1])
     assert len(corners) == 4 and len(slide.nodes) == mesh.n_boundary - 4
     problem = UVProblem(plain.surface, plain.uv, mesh.edges, mesh.edge_groups, 12.0, plain.free, (slide,))
@@ -183,18 +174,18 @@ def test_acceptance_guard_without_barrier():
 
 def test_bounded_objective_jacobian_matches_finite_differences(monkeypatch):
     """The stages in order; a round (members pulled in from outside the band, Cauchy-weighted inside) and the penalised last stage."""
-    monkeypatch.setattr(optimize, "BOUNDED_ROUNDS", 1)  # each series of rounds is one round
+    monkeypatch.setattr(objectives, "BOUNDED_ROUNDS", 1)  # each series of rounds is one round
     mesh, problem = problem_for(dome(rise=15.0), 12.0, 3, spread=0.03)
     x = problem.x0
     first = bounded_objective(problem)  # round 1 from the remapped mesh
     ratio = edge_lengths(problem.surface.evaluate(*problem.uv.T), mesh.edges) / 12.0
-    assert np.any(ratio < 1.0) and first.max_iterations == optimize.BOUNDED_ROUND_ITERATIONS  # some pulled in
+    assert np.any(ratio < 1.0) and first.max_iterations == objectives.BOUNDED_ROUND_ITERATIONS  # some pulled in
     paper = first.refine(x)  # the paper's objective from the remapped mesh, boundary nodes held
     assert np.array_equal(paper.start, x) and paper.hold.shape == x.shape
     released = paper.refine(x)  # its share beats no kept point: the boundary nodes are released
     assert released.hold is None and released.start is None
     second = released.refine(x)  # round 1 from the paper's optimum
-    assert second.max_iterations == optimize.BOUNDED_ROUND_ITERATIONS
+    assert second.max_iterations == objectives.BOUNDED_ROUND_ITERATIONS
     last = second.refine(x)  # no round ended in [l, 2l]
     assert last.refine is None and np.any(last.residuals(x)[len(mesh.edges) :] > 0)  # the penalty acts
     for obj in (first, last):
@@ -236,7 +227,7 @@ def test_step_limit_is_a_trust_region_per_node(seed, radius):
     _, _, problem, slide = sliding_problem()
     direction = np.random.default_rng(seed).standard_normal(len(problem.x0)) * 0.05
     step = problem.step_limit(radius)(direction)
-    su, sv = optimize.derivatives(problem.surface, problem.uv)
+    su, sv = objectives.derivatives(problem.surface, problem.uv)
     tangent = np.column_stack([np.linalg.norm(su, axis=1), np.linalg.norm(sv, axis=1)])
 
     def moves(d):

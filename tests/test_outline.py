@@ -17,10 +17,10 @@ from invariants import check_edge_lengths
 from test_pipeline import assert_valid_surface_mesh
 
 import equimesh
-from equimesh.errors import SurfaceTooSmallError
-from equimesh.surface.bezier import BezierSurface
-from equimesh.planar.polygon import stagger_reach
 from equimesh._geometry import inner_angle
+from equimesh.errors import SurfaceTooSmallError
+from equimesh.planar.boundary.sides import stagger_reach
+from equimesh.surface.charts.bezier import BezierSurface
 from equimesh.surface.ring import resample_ring
 from equimesh.tolerance import REL_TOL
 
@@ -59,7 +59,11 @@ def test_ring_is_a_step2_boundary_that_problem2_meshes_in_l_2l(angle, side, per_
     # Edges at least l; longer than 2l only as a straight edge from a sharp corner.
     edges = np.linalg.norm(np.roll(ring.points, -1, axis=0) - ring.points, axis=1)
     assert edges.min() >= 1.0 - REL_TOL
-    sharp = [np.flatnonzero(np.all(ring.points == xy[c], axis=1))[0] for c in corners if stagger_reach(inner_angle(xy, c), 1.0)]
+    sharp = [
+        np.flatnonzero(np.all(ring.points == xy[c], axis=1))[0]
+        for c in corners
+        if stagger_reach(inner_angle(xy, c), 1.0)
+    ]
     for j in np.flatnonzero(edges > 2.0 * (1.0 + REL_TOL)):
         assert j in sharp or (j + 1) % len(edges) in sharp
     # Problem 2 staggers the corner on those straight edges: Theorem 3 holds.
@@ -99,7 +103,9 @@ def test_sharp_corner_on_a_curved_nurbs_is_meshed_in_l_2l():
     """A bicubic NURBS on a skewed net (25-degree corners), domed and with uneven weights: every plane member in [l, 2l]."""
     a = np.radians(25.0)
     s, t = np.meshgrid(np.linspace(0.0, 1.0, 4), np.linspace(0.0, 1.0, 4), indexing="ij")
-    net = np.stack([30.0 * s + 30.0 * np.cos(a) * t, 30.0 * np.sin(a) * t, 6.0 * np.sin(np.pi * s) * np.sin(np.pi * t)], axis=-1)
+    net = np.stack(
+        [30.0 * s + 30.0 * np.cos(a) * t, 30.0 * np.sin(a) * t, 6.0 * np.sin(np.pi * s) * np.sin(np.pi * t)], axis=-1
+    )
     weights = np.ones((4, 4))
     weights[1:3, 1:3] = 1.5
     surface = equimesh.NurbsSurface((3, 3), [0.0] * 4 + [1.0] * 4, [0.0] * 4 + [1.0] * 4, net, weights)

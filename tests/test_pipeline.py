@@ -8,8 +8,8 @@ from hypothesis import strategies as st
 import equimesh
 from equimesh._geometry import orient
 from equimesh.metrics import length_stats
-from equimesh.surface.bezier import BezierSurface
-from equimesh.surface.chart import domain_of
+from equimesh.surface.charts.bezier import BezierSurface
+from equimesh.surface.charts.chart import domain_of
 
 
 def _vault(span=40.0, rise=8.0, width=30.0):

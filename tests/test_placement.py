@@ -10,22 +10,21 @@ with the returned placement, and it is fast enough for the surface pipeline
 
 import time
 
+import invariants_uniform as inv
 import numpy as np
 import pytest
 import shapely
+import strategies_simple as ss
 from hypothesis import given
 from hypothesis import strategies as st
 
 import equimesh
 from equimesh import G1
-from equimesh.testing.generators import rectangle, regular_polygon
 from equimesh.planar.lattice import kept_vertices
 from equimesh.planar.placement import lattice_edge_count
 from equimesh.planar.polygon import as_polygon
+from equimesh.testing.generators import rectangle, regular_polygon
 from equimesh.tolerance import at_least
-
-import invariants_uniform as inv
-import strategies_simple as ss
 
 #: Polygons of the property tests: the search costs ~250 lattice evaluations.
 MAX_AREA = 400.0
@@ -37,16 +36,23 @@ def kept_by_every_vertex(poly, l, angle, offset, clearance):
     shape = poly.region
     inside = shapely.contains_xy(shape, pts[:, 0], pts[:, 1])
     far = np.zeros(len(pts), dtype=bool)
-    far[inside] = at_least(shapely.distance(shapely.points(pts[inside]), shape.exterior), clearance * poly.local_length(l))
+    far[inside] = at_least(
+        shapely.distance(shapely.points(pts[inside]), shape.exterior), clearance * poly.local_length(l)
+    )
     return far.reshape(ii.shape), kept
 
 
 fractions = st.tuples(st.floats(0.0, 1.0), st.floats(0.0, 1.0))
 
 
-@given(ss.cases(MAX_AREA), st.one_of(st.sampled_from([0.0, 30.0]), st.floats(0.0, 60.0)), fractions, st.sampled_from([1.0, 1.5, 2.0]))
+@given(
+    ss.cases(MAX_AREA),
+    st.one_of(st.sampled_from([0.0, 30.0]), st.floats(0.0, 60.0)),
+    fractions,
+    st.sampled_from([1.0, 1.5, 2.0]),
+)
 def test_band_scan_keeps_the_same_vertices_as_testing_every_vertex(case, angle, frac, clearance):
-    """The placement's scorer (:mod:`equimesh.planar._clearance`) keeps exactly the vertices the per-vertex test keeps."""
+    """The placement's scorer (:mod:`equimesh.planar.clearance`) keeps exactly the vertices the per-vertex test keeps."""
     vertices, l = case
     poly = as_polygon(vertices, l)
     offset = np.asarray(frac) @ equimesh.planar.lattice.lattice_basis(l, angle)
@@ -56,7 +62,8 @@ def test_band_scan_keeps_the_same_vertices_as_testing_every_vertex(case, angle, 
 
 @pytest.mark.parametrize("clearance", [1.0, 2.0, 3.0])
 @pytest.mark.parametrize(
-    "vertices", [rectangle(10.0, 8.0 * np.sqrt(3.0) / 2.0), rectangle(12.0, 12.0), regular_polygon(6, 6.0)],
+    "vertices",
+    [rectangle(10.0, 8.0 * np.sqrt(3.0) / 2.0), rectangle(12.0, 12.0), regular_polygon(6, 6.0)],
     ids=["lattice rectangle", "square", "hexagon"],
 )
 def test_band_scan_on_vertices_exactly_at_clearance(vertices, clearance):

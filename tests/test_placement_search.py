@@ -39,8 +39,16 @@ def test_objective_by_hand():
     assert lattice_edge_count(as_polygon(SQUARE6, 1.0), 1.0, 0.0, (0.5, 1.0)) == 49
 
 
-@pytest.mark.parametrize("angle, offset, clearance", [(0.0, (0.0, 0.0), 1.0), (17.0, (0.3, 0.8), 1.0), (45.0, (1.1, -0.4), 1.5),
-                                                      (30.0, (0.0, 0.0), 1.0), (59.0, (0.5, 0.5), 2.0)])
+@pytest.mark.parametrize(
+    "angle, offset, clearance",
+    [
+        (0.0, (0.0, 0.0), 1.0),
+        (17.0, (0.3, 0.8), 1.0),
+        (45.0, (1.1, -0.4), 1.5),
+        (30.0, (0.0, 0.0), 1.0),
+        (59.0, (0.5, 0.5), 2.0),
+    ],
+)
 @pytest.mark.parametrize("vertices, holes", [(L_SHAPE, None), (HEXAGON, [HOLE])], ids=["L", "hexagon with a hole"])
 def test_objective_counts_each_edge_of_the_lattice_part_once(vertices, holes, angle, offset, clearance):
     """Every edge of a kept up or down triangle, whichever triangles it borders, counted once."""
@@ -61,8 +69,12 @@ def documented_search(score, n_angles, n_offsets, refine):
 
     default = scored(0.0, (0.0, 0.0))
     best = (default, 0.0, (0.0, 0.0))
-    coarse = [(60.0 * a / n_angles, (i / n_offsets, j / n_offsets))
-              for a in range(n_angles) for i in range(n_offsets) for j in range(n_offsets)]
+    coarse = [
+        (60.0 * a / n_angles, (i / n_offsets, j / n_offsets))
+        for a in range(n_angles)
+        for i in range(n_offsets)
+        for j in range(n_offsets)
+    ]
     for angle, frac in coarse:
         s = scored(angle, frac)
         best = (s, angle, frac) if s > best[0] else best
@@ -84,18 +96,23 @@ def offset_of(angle, frac, l=1.0):
     return np.asarray(frac) @ lattice.lattice_basis(l, angle)
 
 
-@pytest.mark.parametrize("vertices, holes, clearance, counts", [
-    (L_SHAPE, None, 1.0, (3, 2, 2)),
-    (L_SHAPE, None, 1.0, (12, 4, 2)),  # the defaults
-    (HEXAGON, [HOLE], 1.5, (5, 3, 1)),
-    (SQUARE6, None, 1.0, (2, 2, 3)),
-], ids=["L small", "L default", "hexagon with a hole", "square"])
+@pytest.mark.parametrize(
+    "vertices, holes, clearance, counts",
+    [
+        (L_SHAPE, None, 1.0, (3, 2, 2)),
+        (L_SHAPE, None, 1.0, (12, 4, 2)),  # the defaults
+        (HEXAGON, [HOLE], 1.5, (5, 3, 1)),
+        (SQUARE6, None, 1.0, (2, 2, 3)),
+    ],
+    ids=["L small", "L default", "hexagon with a hole", "square"],
+)
 def test_search_is_the_documented_one(vertices, holes, clearance, counts):
     """Same best placement, objective, default objective and number of placements as the search written out."""
     n_angles, n_offsets, refine = counts
     poly = as_polygon(vertices, 1.0, holes)
     (s, angle, frac), default, tried = documented_search(
-        lambda a, f: lattice_edge_count(poly, 1.0, a, offset_of(a, f), clearance), *counts)
+        lambda a, f: lattice_edge_count(poly, 1.0, a, offset_of(a, f), clearance), *counts
+    )
     kwargs = {} if counts == (12, 4, 2) else {"n_angles": n_angles, "n_offsets": n_offsets, "refine": refine}
     p = best_lattice_placement(vertices, 1.0, holes=holes, clearance=clearance, **kwargs)
     assert (p.angle, p.lattice_edges, p.default_lattice_edges, p.evaluations) == (angle, s, default, len(tried))
@@ -115,8 +132,11 @@ def test_search_visits_the_documented_placements_and_wraps(monkeypatch):
     """An objective peaked at angle 55, fractions (0.8, 0.8) (a stand-in for the lattice count, recorded): the coarse
     grid keeps the default (0, (0, 0)); the first refinement wraps below 0 to (52.5, (0.75, 0.75)), the second
     goes on from there to 56.25.  Every placement is the documented one, in the documented order."""
+
     def peaked(angle, frac):
-        return -round(1e6 * (near(angle, 55.0, 60.0) ** 2 + near(frac[0], 0.8, 1.0) ** 2 + near(frac[1], 0.8, 1.0) ** 2))
+        return -round(
+            1e6 * (near(angle, 55.0, 60.0) ** 2 + near(frac[0], 0.8, 1.0) ** 2 + near(frac[1], 0.8, 1.0) ** 2)
+        )
 
     seen = []
 
@@ -148,7 +168,9 @@ def test_ties_keep_the_default():
     assert p == Placement(0.0, (0.0, 0.0), 0, 0, 1 + 8 + 27)
 
 
-@pytest.mark.parametrize("edges, default, gain", [(0, 0, 0.0), (5, 0, float("inf")), (6, 4, 0.5), (4, 4, 0.0), (3, 4, -0.25)])
+@pytest.mark.parametrize(
+    "edges, default, gain", [(0, 0, 0.0), (5, 0, float("inf")), (6, 4, 0.5), (4, 4, 0.0), (3, 4, -0.25)]
+)
 def test_gain_by_hand(edges, default, gain):
     assert Placement(0.0, (0.0, 0.0), edges, default, 1).gain == gain
 
@@ -158,8 +180,10 @@ def test_too_many_placements_are_refused_in_full(monkeypatch):
     work (4097 placements would take seconds); with the limit lowered to 10, exactly 10 run."""
     with pytest.raises(EquimeshError) as err:
         best_lattice_placement(SQUARE6, 1.0, n_angles=4096, n_offsets=1, refine=0)
-    assert str(err.value) == ("n_angles = 4096, n_offsets = 1 and refine = 0 ask for 4097 placements "
-                              "(1 + n_angles n_offsets^2 + 27 refine), more than 4096; use smaller counts")
+    assert str(err.value) == (
+        "n_angles = 4096, n_offsets = 1 and refine = 0 ask for 4097 placements "
+        "(1 + n_angles n_offsets^2 + 27 refine), more than 4096; use smaller counts"
+    )
     monkeypatch.setattr(placement, "MAX_EVALUATIONS", 10)
     assert best_lattice_placement(SQUARE6, 1.0, n_angles=9, n_offsets=1, refine=0).evaluations == 10
     with pytest.raises(EquimeshError, match=r"^n_angles = 3, n_offsets = 2 and refine = 0 ask for 13 placements"):
@@ -176,10 +200,15 @@ def test_a_lattice_too_large_is_refused_before_any_work(monkeypatch):
     monkeypatch.setattr(placement, "lattice_edge_count", lambda *a: calls.append(a) or 0)
     with pytest.raises(MeshTooLargeError) as err:
         best_lattice_placement(SQUARE6, 1.0, max_nodes=10)
-    assert str(err.value) == ("l = 1.0 would need about 54.6 nodes in the polygon, more than max_nodes = 10; use a larger "
-                              "l or raise max_nodes (--max-nodes on the command line; None for no limit)")
-    with pytest.raises(MeshTooLargeError, match=r"^l = 0\.005 would need about 1\.67e\+06 nodes in the polygon, more than "
-                                                r"max_nodes = 1000000;"):
+    assert str(err.value) == (
+        "l = 1.0 would need about 54.6 nodes in the polygon, more than max_nodes = 10; use a larger "
+        "l or raise max_nodes (--max-nodes on the command line; None for no limit)"
+    )
+    with pytest.raises(
+        MeshTooLargeError,
+        match=r"^l = 0\.005 would need about 1\.67e\+06 nodes in the polygon, more than "
+        r"max_nodes = 1000000;",
+    ):
         best_lattice_placement(SQUARE6, 0.005)
     with pytest.raises(InvalidPolygonError, match="^polygon spans 196608.0 = 196608.0 l, more than the 65536 l"):
         best_lattice_placement(SQUARE6 * 2.0**15, 1.0, max_nodes=None)
@@ -188,16 +217,22 @@ def test_a_lattice_too_large_is_refused_before_any_work(monkeypatch):
     assert [c[4] for c in calls] == [1.0, 1.0]
 
 
-@pytest.mark.parametrize("name, kwargs, message", [
-    ("clearance", {"clearance": 0.5}, "clearance must be at least 1"),
-    ("n_angles", {"n_angles": 0}, "n_angles must be an integer of at least 1, got 0"),
-    ("n_offsets", {"n_offsets": 0}, "n_offsets must be an integer of at least 1, got 0"),
-    ("refine", {"refine": -1}, "refine must be an integer of at least 0, got -1"),
-])
+@pytest.mark.parametrize(
+    "name, kwargs, message",
+    [
+        ("clearance", {"clearance": 0.5}, "clearance must be at least 1"),
+        ("n_angles", {"n_angles": 0}, "n_angles must be an integer of at least 1, got 0"),
+        ("n_offsets", {"n_offsets": 0}, "n_offsets must be an integer of at least 1, got 0"),
+        ("refine", {"refine": -1}, "refine must be an integer of at least 0, got -1"),
+    ],
+)
 def test_bad_arguments_are_refused(name, kwargs, message):
     with pytest.raises(EquimeshError, match="^" + message):
         best_lattice_placement(SQUARE6, 1.0, **kwargs)
     if name in ("n_angles", "n_offsets"):  # 1 is allowed
-        assert best_lattice_placement(SQUARE6, 1.0, **{"n_angles": 1, "n_offsets": 1, "refine": 0, name: 1}).evaluations == 2
+        assert (
+            best_lattice_placement(SQUARE6, 1.0, **{"n_angles": 1, "n_offsets": 1, "refine": 0, name: 1}).evaluations
+            == 2
+        )
     if name == "refine":
         assert best_lattice_placement(SQUARE6, 1.0, n_angles=1, n_offsets=1, refine=0).evaluations == 2

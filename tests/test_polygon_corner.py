@@ -11,12 +11,13 @@ import math
 
 import numpy as np
 import pytest
+from conftest import exercised
+from corner_sampling import sampled_chain, sampled_placement
 from hypothesis import given
 from hypothesis import strategies as st
 
-from equimesh.planar import _corner, _coupled
-from conftest import exercised
-from corner_sampling import sampled_chain, sampled_placement
+from equimesh.planar.boundary import chain as _coupled
+from equimesh.planar.boundary import corner as _corner
 from equimesh.tolerance import REL_TOL
 
 
@@ -76,11 +77,16 @@ def test_a_placement_off_every_grid_is_found_by_tightening():
     reach = _corner.corner_reach(theta, 1.0)
     for grid in (16, 32, 64):
         nodes = _corner._nodes(lengths, reach, 1.0, 1.0 / grid, (None, None))
-        assert _corner._Graph(theta, lengths, reach, 1.0, nodes, nodes, REL_TOL / 4.0, (math.inf, math.inf)).search() is None
+        assert (
+            _corner._Graph(theta, lengths, reach, 1.0, nodes, nodes, REL_TOL / 4.0, (math.inf, math.inf)).search()
+            is None
+        )
     found = _corner.place_corner(theta, lengths, 1.0)
     _assert_placement(theta, lengths, 1.0, found)
-    assert [points.tolist() for points in found] == [[1.0, 2.6398839449125027, 4.132016938510646],
-                                                     [1.9078479878943455, 3.12864928468156, 4.132016938510646]]
+    assert [points.tolist() for points in found] == [
+        [1.0, 2.6398839449125027, 4.132016938510646],
+        [1.9078479878943455, 3.12864928468156, 4.132016938510646],
+    ]
 
 
 def test_a_long_side_is_cut_past_k_l_and_kept_sides_are_kept():
@@ -215,8 +221,14 @@ def test_visibility_radii_belong_to_their_sides():
 def _corners(seed, count, angles, sides):
     """``count`` corners ``(degrees, A / l, B / l, l)`` drawn from ``seed``: angles and side lengths uniform in the given ranges, rounded."""
     rng = np.random.default_rng(seed)
-    return [(round(float(rng.uniform(*angles)), 2), *np.round(rng.uniform(*sides, 2), 3).tolist(), float(rng.choice([1.0, 1.5])))
-            for _ in range(count)]
+    return [
+        (
+            round(float(rng.uniform(*angles)), 2),
+            *np.round(rng.uniform(*sides, 2), 3).tolist(),
+            float(rng.choice([1.0, 1.5])),
+        )
+        for _ in range(count)
+    ]
 
 
 def _corner_fingerprint(corners):
@@ -261,22 +273,39 @@ FAR_L = 1.862645149230957
 EXACT = 3.464101614560404  # at 30 degrees and l = 2, its squared distance from 2 is ((1 - TOL) l)^2 to the last bit
 
 
-@pytest.mark.parametrize("angle, l, lengths, xs, ys, placed", [
-    (90.0, 2.0, (6.0, 4.0), [2.0, 6.0], [2.0, 4.0], True),
-    (90.0, 2.0, (6.0, 4.0), [2.0, 6.0], [2.0, 4.5], False),  # the arriving side does not end at its far end
-    (90.0, 2.0, (4.0 + (1.0 - TOL) * 2.0,) * 2, [(1.0 - TOL) * 2.0, 4.0 + (1.0 - TOL) * 2.0], [2.0, 4.0 + (1.0 - TOL) * 2.0], True),
-    (90.0, 2.0, (6.0, 4.0), [(1.0 - 0.9 * TOL) * 2.0, 6.0], [2.0, 4.0], True),
-    (90.0, 2.0, (6.0, 4.0), [(1.0 - 2.0 * TOL) * 2.0, 6.0], [2.0, 4.0], False),
-    (90.0, 2.0, (2.0 * (1.0 + TOL) * 2.0, 4.0), [2.0 * (1.0 + TOL) * 2.0], [2.0, 4.0], True),
-    (90.0, 2.0, (2.0 * (1.0 + 2.0 * TOL) * 2.0, 4.0), [2.0 * (1.0 + 2.0 * TOL) * 2.0], [2.0, 4.0], False),
-    (90.0, 2.0, (12.0, 4.0), [2.0, 4.0, 6.0, 8.0, 10.0], [2.0, 4.0], True),  # a long side: its last point l before the end
-    (90.0, 2.0, (12.0, 4.0), [2.0, 4.0, 6.0, 8.0, 10.5], [2.0, 4.0], False),
-    (90.0, FAR_L, (3.5, 3.5), [3.5 + FAR], [3.5], True),  # a far end missed by exactly TOL l is moved onto it
-    (90.0, FAR_L, (3.5, 3.5), [3.5 + 2.0 * FAR], [3.5], False),
-    (30.0, 2.0, (4.0, 4.0), [2.0, 4.0], [4.0], True),
-    (30.0, 2.0, (4.0, 4.0), [2.0, 4.0], [2.0, 4.0], False),  # the first points 1.04 apart
-    (30.0, 2.0, (4.0, EXACT), [2.0, 4.0], [EXACT], True),  # a cross pair at (1 - TOL) l exactly
-])
+@pytest.mark.parametrize(
+    "angle, l, lengths, xs, ys, placed",
+    [
+        (90.0, 2.0, (6.0, 4.0), [2.0, 6.0], [2.0, 4.0], True),
+        (90.0, 2.0, (6.0, 4.0), [2.0, 6.0], [2.0, 4.5], False),  # the arriving side does not end at its far end
+        (
+            90.0,
+            2.0,
+            (4.0 + (1.0 - TOL) * 2.0,) * 2,
+            [(1.0 - TOL) * 2.0, 4.0 + (1.0 - TOL) * 2.0],
+            [2.0, 4.0 + (1.0 - TOL) * 2.0],
+            True,
+        ),
+        (90.0, 2.0, (6.0, 4.0), [(1.0 - 0.9 * TOL) * 2.0, 6.0], [2.0, 4.0], True),
+        (90.0, 2.0, (6.0, 4.0), [(1.0 - 2.0 * TOL) * 2.0, 6.0], [2.0, 4.0], False),
+        (90.0, 2.0, (2.0 * (1.0 + TOL) * 2.0, 4.0), [2.0 * (1.0 + TOL) * 2.0], [2.0, 4.0], True),
+        (90.0, 2.0, (2.0 * (1.0 + 2.0 * TOL) * 2.0, 4.0), [2.0 * (1.0 + 2.0 * TOL) * 2.0], [2.0, 4.0], False),
+        (
+            90.0,
+            2.0,
+            (12.0, 4.0),
+            [2.0, 4.0, 6.0, 8.0, 10.0],
+            [2.0, 4.0],
+            True,
+        ),  # a long side: its last point l before the end
+        (90.0, 2.0, (12.0, 4.0), [2.0, 4.0, 6.0, 8.0, 10.5], [2.0, 4.0], False),
+        (90.0, FAR_L, (3.5, 3.5), [3.5 + FAR], [3.5], True),  # a far end missed by exactly TOL l is moved onto it
+        (90.0, FAR_L, (3.5, 3.5), [3.5 + 2.0 * FAR], [3.5], False),
+        (30.0, 2.0, (4.0, 4.0), [2.0, 4.0], [4.0], True),
+        (30.0, 2.0, (4.0, 4.0), [2.0, 4.0], [2.0, 4.0], False),  # the first points 1.04 apart
+        (30.0, 2.0, (4.0, EXACT), [2.0, 4.0], [EXACT], True),  # a cross pair at (1 - TOL) l exactly
+    ],
+)
 def test_placed_checks_parts_ends_and_cross_pairs_at_their_tolerance(angle, l, lengths, xs, ys, placed):
     """_placed accepts parts from (1 - TOL) l to 2 (1 + TOL) l, far ends within TOL l (moved onto them), a long
     side's last point up to l before its end, cross pairs from (1 - TOL) l; each threshold exactly and just past."""
@@ -303,7 +332,9 @@ def test_cells_and_nodes_by_hand():
     proof's cells cover [0, 8.25] in steps (one more than 8 needs), with the corner and the short side's far end as points."""
     lengths, step = (3.125, 20.0), 0.25
     nodes = _corner._nodes(lengths, 6.0, 1.0, step, (np.array([1.1, 3.125]), None))
-    assert nodes.tolist() == sorted({0.0, 1.1} | {step * k for k in range(1, 33)} | {3.125 - step * k for k in range(12)})
+    assert nodes.tolist() == sorted(
+        {0.0, 1.1} | {step * k for k in range(1, 33)} | {3.125 - step * k for k in range(12)}
+    )
     lo, hi = _corner._cells(lengths, 6.0, 1.0, step)
     assert lo.tolist() == [0.0, *(step * k for k in range(33)), 3.125]
     assert hi.tolist() == [0.0, *(step * k for k in range(1, 34)), 3.125]
@@ -336,10 +367,17 @@ def test_far_enough_cells_against_sampled_points():
                 assert far[p, w] == (best >= short * short), (angle, p, w)
 
 
-@pytest.mark.parametrize("angle, sides, placed", [
-    (8.0, [1, 0, 1, 0, 0, 0], [[2.0, 4.0, 6.0, 8.0], [1.0, 3.0]]),  # the last point pushed to K l = 8, the rest 2 l back
-    (15.0, [1, 0, 1, 0, 0], [[1.9318516525781366, 3.5279475487927563, 4.527947548792756], [1.0, 3.0]]),
-])
+@pytest.mark.parametrize(
+    "angle, sides, placed",
+    [
+        (
+            8.0,
+            [1, 0, 1, 0, 0, 0],
+            [[2.0, 4.0, 6.0, 8.0], [1.0, 3.0]],
+        ),  # the last point pushed to K l = 8, the rest 2 l back
+        (15.0, [1, 0, 1, 0, 0], [[1.9318516525781366, 3.5279475487927563, 4.527947548792756], [1.0, 3.0]]),
+    ],
+)
 def test_tighten_by_hand(angle, sides, placed):
     """A long leaving side (12 l) and an arriving one of 3 l in a given merged order: each point at the largest of its
     lower bounds (l past the point before it on its side, G of the other side's point before it, K l for the long
@@ -420,10 +458,13 @@ def test_the_search_accepts_a_cross_pair_within_rel_tol_over_4(first, placed):
         assert [points.tolist() for points in found] == [kept.tolist(), [1.5]]
 
 
-@pytest.mark.parametrize("first, second, arriving", [
-    (1.1263, 2.3221, [61 / 32, 3.3]),  # the window holds a node of the grid of l / 32, none of l / 16
-    (1.1207, 2.3181, None),  # the window holds a node of l / 128 only, past CORNER_REFINEMENTS
-])
+@pytest.mark.parametrize(
+    "first, second, arriving",
+    [
+        (1.1263, 2.3221, [61 / 32, 3.3]),  # the window holds a node of the grid of l / 32, none of l / 16
+        (1.1207, 2.3181, None),  # the window holds a node of l / 128 only, past CORNER_REFINEMENTS
+    ],
+)
 def test_a_kept_side_is_searched_on_each_finer_grid(first, second, arriving, monkeypatch):
     """A 25-degree corner whose leaving side is kept at ``first``, ``second`` and ``second + 1.5`` and whose arriving
     side is 3.3 l: its first point must lie at least l beyond ``first`` and l before ``second`` (on the other side),
@@ -434,7 +475,9 @@ def test_a_kept_side_is_searched_on_each_finer_grid(first, second, arriving, mon
     found = _corner.place_corner(theta, (second + 1.5, 3.3), 1.0, (kept, None))
     assert (found if found is None else found[1].tolist()) == arriving
     monkeypatch.setattr(_corner, "CORNER_REFINEMENTS", 3)
-    assert _corner.place_corner(theta, (second + 1.5, 3.3), 1.0, (kept, None))[1].tolist() == (arriving or [243 / 128, 3.3])
+    assert _corner.place_corner(theta, (second + 1.5, 3.3), 1.0, (kept, None))[1].tolist() == (
+        arriving or [243 / 128, 3.3]
+    )
 
 
 # --------------------------------------------------------------------------- sharp corners in a row (_coupled.py, chains)
@@ -468,9 +511,15 @@ def test_three_corners_each_pair_placeable_are_proven_unplaceable_together():
     assert not _coupled.chain_unplaceable(DART_THETAS, DART_LENGTHS, 1.0, (math.inf,) * 4 + (0.0,) * 2)
 
 
-@given(st.lists(st.floats(10.0, 59.0), min_size=3, max_size=4), st.floats(1.0, 3.0), st.lists(st.floats(1.0, 5.0),
-       min_size=3, max_size=3), st.floats(1.0, 3.0))
-def test_a_chain_placement_found_meets_lemma_3_at_every_corner_and_a_proven_chain_has_no_sampled_placement(angles, a, shared, b):
+@given(
+    st.lists(st.floats(10.0, 59.0), min_size=3, max_size=4),
+    st.floats(1.0, 3.0),
+    st.lists(st.floats(1.0, 5.0), min_size=3, max_size=3),
+    st.floats(1.0, 3.0),
+)
+def test_a_chain_placement_found_meets_lemma_3_at_every_corner_and_a_proven_chain_has_no_sampled_placement(
+    angles, a, shared, b
+):
     """Three or four sharp corners in a row: whatever the search returns is a placement at every corner (checked
     pair by pair), the proof's cells never refute a chain it places (two coarsest grids), and a chain the proof
     refuses has no placement in the enumeration either."""
@@ -482,7 +531,10 @@ def test_a_chain_placement_found_meets_lemma_3_at_every_corner_and_a_proven_chai
     if exercised("a chain of three is placed", found is not None):
         _assert_chain(thetas, lengths, 1.0, found)
         for level in (0, 1):
-            assert _coupled._Chain(thetas, lengths, 1.0, level, cells=True, radii=(math.inf,) * (2 * len(thetas))).search() is not None
+            assert (
+                _coupled._Chain(thetas, lengths, 1.0, level, cells=True, radii=(math.inf,) * (2 * len(thetas))).search()
+                is not None
+            )
 
 
 def test_a_pair_left_open_by_the_old_step_bound_is_proven_on_cells_of_l_over_128():

@@ -13,16 +13,16 @@ values along a run.
 import numpy as np
 import pytest
 from hypothesis import given
+from invariants import assert_values_non_increasing
+from strategies import problems
 
 from equimesh import REL_TOL
 from equimesh._geometry import circumcenters, point_segment_distance
+from equimesh.planar.boundary.resample import resample_boundary
 from equimesh.planar.increment import validate_problem1
 from equimesh.planar.insertion import reference
-from equimesh.planar.insertion._region import Region
-from equimesh.planar.polygon import resample_boundary
+from equimesh.planar.insertion.region import Region
 from equimesh.tolerance import SLIVER_GAP
-from invariants import assert_values_non_increasing
-from strategies import problems
 
 ONE = np.array([[0, 1, 2]])
 #: Points 2 to 4 of the midpoint tests: a triangle away from the constraint [0, 1].
@@ -135,7 +135,14 @@ def test_each_midpoint_is_capped_by_its_own_apex():
 def test_apex_is_the_third_vertex_of_the_triangle_on_each_pair():
     """Either direction of the pair; -1 for a pair on no triangle, and for every pair when there is no triangle."""
     tri = np.array([[0, 1, 2], [2, 1, 3]])
-    assert reference._apex(tri, np.array([[1, 0], [0, 2], [3, 1], [3, 2], [0, 3], [4, 5]])).tolist() == [2, 1, 2, 1, -1, -1]
+    assert reference._apex(tri, np.array([[1, 0], [0, 2], [3, 1], [3, 2], [0, 3], [4, 5]])).tolist() == [
+        2,
+        1,
+        2,
+        1,
+        -1,
+        -1,
+    ]
     assert reference._apex(np.empty((0, 3), dtype=np.int64), np.array([[0, 1]])).tolist() == [-1]
     assert reference._apex(tri, np.empty((0, 2), dtype=np.int64)).tolist() == []
 

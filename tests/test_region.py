@@ -17,8 +17,8 @@ import numpy as np
 import pytest
 
 from equimesh.errors import InternalError
-from equimesh.planar.insertion import _region
-from equimesh.planar.insertion._region import constrained_delaunay
+from equimesh.planar.insertion import region as _region
+from equimesh.planar.insertion.region import constrained_delaunay
 
 SQUARE = np.array([[0.0, 0.0], [2.0, 0.0], [2.0, 2.0], [0.0, 2.0]])
 RING = np.array([[0, 1], [1, 2], [2, 3], [3, 0]])
@@ -71,14 +71,18 @@ def test_crossing_constraints_are_a_bug():
     """Both diagonals as constraints: Triangle adds their crossing point, which the region never has."""
     with pytest.raises(InternalError) as err:
         constrained_delaunay(SQUARE, np.vstack([RING, [[0, 2], [1, 3]]]), NO_HOLES)
-    assert str(err.value) == ("constrained Delaunay triangulation added Steiner points (constraints intersect): "
-                              "a bug in equimesh")
+    assert str(err.value) == (
+        "constrained Delaunay triangulation added Steiner points (constraints intersect): a bug in equimesh"
+    )
 
 
-@pytest.mark.parametrize("said, shown", [(b"Error:  the input is bad.\nA second line.\n", " (Error:  the input is bad.)"),
-                                         (b"", ""), (b"\n\n", "")])
+@pytest.mark.parametrize(
+    "said, shown",
+    [(b"Error:  the input is bad.\nA second line.\n", " (Error:  the input is bad.)"), (b"", ""), (b"\n\n", "")],
+)
 def test_a_failure_of_triangle_is_a_bug_with_what_it_printed(monkeypatch, capfd, said, shown):
     """Triangle prints its errors on file descriptor 1 and fails: the first line it printed, in our message only."""
+
     def failing(data, switches):
         assert switches == "pQ" and data["vertices"].dtype == float and data["segments"].dtype == np.int32
         os.write(1, said)

@@ -155,7 +155,9 @@ def test_mesh_surface_remaps_through_the_public_remap():
     mesh = equimesh.mesh_surface(surface, 6.0, grid=(8, 8), optimize="none")
     st_ = mesh.stages
     nb = st_.plane.n_boundary
-    r = remap(surface, st_.plane.points, st_.flattening.points, st_.grid, on_boundary=np.arange(nb), outline=st_.outline)
+    r = remap(
+        surface, st_.plane.points, st_.flattening.points, st_.grid, on_boundary=np.arange(nb), outline=st_.outline
+    )
     assert np.array_equal(r.uv, st_.remapped_uv) and np.array_equal(r.points, st_.remapped_points)
     ring = st_.plane.points[:nb]
     for vertex, uv in zip(st_.outline.vertices, st_.outline.uv):

@@ -42,7 +42,9 @@ def write(path, *objects):
 def same_surface(a, b):
     assert a.degree == b.degree and a.domain == b.domain
     uv = a.domain.at_fractions(*np.random.default_rng(0).uniform(0, 1, (2, 20)))
-    np.testing.assert_allclose(b.evaluate(*uv.T), a.evaluate(*uv.T), rtol=0, atol=1e-12 * (1 + np.abs(a.control_points).max()))
+    np.testing.assert_allclose(
+        b.evaluate(*uv.T), a.evaluate(*uv.T), rtol=0, atol=1e-12 * (1 + np.abs(a.control_points).max())
+    )
 
 
 @settings(max_examples=10, deadline=None)
@@ -109,7 +111,9 @@ def test_object_by_index_or_name(several, rhino3dm, tmp_path):
 
 
 def test_trimmed_face_is_read_untrimmed_with_a_warning(several):
-    with pytest.warns(SurfaceWarning, match=r"object 2 'plate' of .* is a trimmed face: it is meshed on its untrimmed surface"):
+    with pytest.warns(
+        SurfaceWarning, match=r"object 2 'plate' of .* is a trimmed face: it is meshed on its untrimmed surface"
+    ):
         s = load_surface(several, object="plate")
     assert s.degree == (1, 1)
     assert np.all(s.domain.upper - s.domain.lower >= 10.0)  # the plane around the whole circle
@@ -119,7 +123,10 @@ def test_not_a_rhino_file_and_no_surface(rhino3dm, tmp_path):
     fake = tmp_path / "fake.3dm"
     fake.write_text('{"type": "bezier"}')
     points = write(tmp_path / "points.3dm", ("a", rhino3dm.Point3d(0, 0, 0)))
-    for path, fragment in ((fake, "is not a Rhino .3dm file"), (points, "holds no surface and no single-face Brep (1 objects: Point)")):
+    for path, fragment in (
+        (fake, "is not a Rhino .3dm file"),
+        (points, "holds no surface and no single-face Brep (1 objects: Point)"),
+    ):
         with pytest.raises(InvalidSurfaceError) as err:
             load_surface(path)
         assert fragment in str(err.value)
@@ -138,7 +145,9 @@ def test_missing_rhino3dm_says_how_to_install(monkeypatch, tmp_path):
 def test_object_is_refused_for_json(tmp_path):
     path = tmp_path / "s.json"
     path.write_text('{"type": "bezier", "control_points": [[[0, 0, 0], [0, 1, 0]], [[1, 0, 0], [1, 1, 1]]]}')
-    with pytest.raises(InvalidSurfaceError, match=r"choosing an object applies to files with several surfaces \(\.3dm\)"):
+    with pytest.raises(
+        InvalidSurfaceError, match=r"choosing an object applies to files with several surfaces \(\.3dm\)"
+    ):
         load_surface(path, object="roof")
 
 
@@ -150,9 +159,26 @@ def test_example_roof_file_meshes_through_the_command_line(rhino3dm, tmp_path):
     path = write(tmp_path / "roof.3dm", ("roof", roof))
     out = tmp_path / "roof.obj"
     run = subprocess.run(
-        [sys.executable, "-m", "equimesh._cli", "mesh", str(path), "--length", "6", "--grid", "8", "8",
-         "--optimize", "none", "-o", str(out), "--quiet"],
-        capture_output=True, text=True, timeout=300,
+        [
+            sys.executable,
+            "-m",
+            "equimesh._cli",
+            "mesh",
+            str(path),
+            "--length",
+            "6",
+            "--grid",
+            "8",
+            "8",
+            "--optimize",
+            "none",
+            "-o",
+            str(out),
+            "--quiet",
+        ],
+        capture_output=True,
+        text=True,
+        timeout=300,
     )
     assert run.returncode == 0, run.stderr
     mesh = equimesh.mesh_surface(roof, 6.0, grid=(8, 8), optimize="none")

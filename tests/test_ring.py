@@ -20,7 +20,7 @@ import pytest
 
 from equimesh._geometry import inner_angle
 from equimesh.errors import SurfaceTooSmallError
-from equimesh.planar.polygon import stagger_reach
+from equimesh.planar.boundary.sides import stagger_reach
 from equimesh.surface import ring
 from equimesh.surface.ring import resample_ring
 
@@ -105,19 +105,27 @@ def test_a_sharp_corner_keeps_a_straight_edge_of_reach_plus_l(l):
     assert stagger_reach(inner_angle(xy, 0), l) == 2.0 * l
     r = resampled(xy, corners, l, 2.0)
     assert r.side.tolist() == [0] * 10 + [1] * 6 + [2] * 10
-    np.testing.assert_allclose(r.points[:10], along(wedge[0], wedge[1], np.r_[0.0, (3.0 + 17.0 * np.arange(9) / 9) / 20.0]),
-                               atol=1e-12 * l)
+    np.testing.assert_allclose(
+        r.points[:10], along(wedge[0], wedge[1], np.r_[0.0, (3.0 + 17.0 * np.arange(9) / 9) / 20.0]), atol=1e-12 * l
+    )
     np.testing.assert_allclose(r.points[10:16], along(wedge[1], wedge[2], np.arange(6) / 6), atol=1e-12 * l)
-    np.testing.assert_allclose(r.points[16:], along(wedge[2], wedge[0], np.r_[17.0 * np.arange(9) / 9, 17.0] / 20.0),
-                               atol=1e-12 * l)
+    np.testing.assert_allclose(
+        r.points[16:], along(wedge[2], wedge[0], np.r_[17.0 * np.arange(9) / 9, 17.0] / 20.0), atol=1e-12 * l
+    )
 
 
 def bent_wedge(bend):
     """A 40-degree corner at the origin whose leaving side bends toward the other after 1.5 (by ``bend`` degrees),
     closed by a far base: the straight edges from the corner meet at a sharper angle than the polyline's sides."""
     a, b = math.radians(40.0), math.radians(bend)
-    return np.array([(0.0, 0.0), (1.5, 0.0), (1.5 + 30.0 * math.cos(b), 30.0 * math.sin(b)),
-                     (30.0 * math.cos(a), 30.0 * math.sin(a))])
+    return np.array(
+        [
+            (0.0, 0.0),
+            (1.5, 0.0),
+            (1.5 + 30.0 * math.cos(b), 30.0 * math.sin(b)),
+            (30.0 * math.cos(a), 30.0 * math.sin(a)),
+        ]
+    )
 
 
 @pytest.mark.parametrize("mirrored", [False, True])
@@ -150,11 +158,16 @@ def test_arc_at_distance_by_hand():
     # Anywhere in the plane; and the first time, also when the polyline reaches the distance at a vertex, turns back
     # inside and crosses it again: (0, 0), (4, 0), (2, 0), (6, 0) is 4 from (0, 0) at arc 4 and 8.
     assert ring._arc_at_distance(pts + [5.0, -3.0], arc, 5.0) == 7.0
-    assert ring._arc_at_distance(np.array([[0.0, 0.0], [4.0, 0.0], [2.0, 0.0], [6.0, 0.0]]), np.array([0.0, 4.0, 6.0, 10.0]),
-                                 4.0) == 4.0
+    assert (
+        ring._arc_at_distance(
+            np.array([[0.0, 0.0], [4.0, 0.0], [2.0, 0.0], [6.0, 0.0]]), np.array([0.0, 4.0, 6.0, 10.0]), 4.0
+        )
+        == 4.0
+    )
     # A segment that starts off the start point: (1, 0) to (1, 5) reaches 2 at (1, sqrt(3)).
-    assert ring._arc_at_distance(np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 5.0]]), np.array([0.0, 1.0, 6.0]), 2.0) == \
-        pytest.approx(1.0 + math.sqrt(3.0), rel=1e-15)
+    assert ring._arc_at_distance(
+        np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 5.0]]), np.array([0.0, 1.0, 6.0]), 2.0
+    ) == pytest.approx(1.0 + math.sqrt(3.0), rel=1e-15)
 
 
 def test_at_arc_interpolates_and_keeps_the_ends_bit_for_bit():
@@ -194,15 +207,18 @@ def test_a_side_with_no_split_is_refused_with_its_numbers():
     xy, corners = densified([(0.0, 0.0), (30.0, 0.0), (30.0, 0.5), (0.0, 0.5)], 2)
     with pytest.raises(SurfaceTooSmallError) as err:
         resample_ring(xy, xy, corners, 1.0, 2.0)
-    assert str(err.value) == ("side 1 of the boundary polyline is 0.5 long (its ends 0.5 apart), too short to split into "
-                              "parts of at least l")
+    assert str(err.value) == (
+        "side 1 of the boundary polyline is 0.5 long (its ends 0.5 apart), too short to split into parts of at least l"
+    )
     seen = []
     with pytest.raises(KeyError):
         resample_ring(xy, xy, corners, 1.0, 2.0, too_short=lambda *args: seen.append(args) or KeyError(args[0]))
     assert seen == [(1, 0.5, 0.5)]
     # A hairpin side: arc 1.7, ends 0.5 apart.
     xy = np.array([[0.0, 0.0], [0.0, 0.6], [0.5, 0.6], [0.5, 0.0], [0.5, -5.0], [0.0, -5.0]])
-    with pytest.raises(SurfaceTooSmallError, match=r"^side 0 of the boundary polyline is 1\.7 long \(its ends 0\.5 apart\)"):
+    with pytest.raises(
+        SurfaceTooSmallError, match=r"^side 0 of the boundary polyline is 1\.7 long \(its ends 0\.5 apart\)"
+    ):
         resample_ring(xy, xy, [0, 3], 1.0, 2.0)
 
 

@@ -18,7 +18,18 @@ def ratio_sweep(load_experiment):
 
 
 def small_sweep(out):
-    return ["--n-polygons", "6", "--max-area", "30", "--tail-fraction", "0", "--out-dir", str(out), "--fig-dir", str(out)]
+    return [
+        "--n-polygons",
+        "6",
+        "--max-area",
+        "30",
+        "--tail-fraction",
+        "0",
+        "--out-dir",
+        str(out),
+        "--fig-dir",
+        str(out),
+    ]
 
 
 @pytest.mark.parametrize("value", ["local", "dask", "tcp://127.0.0.1:8786", "tcp://scheduler.example:1"])

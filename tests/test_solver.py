@@ -12,8 +12,8 @@ import scipy.sparse
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from equimesh.surface import _solver
-from equimesh.surface._solver import FACTORISATIONS, NormalEquations, least_squares
+from equimesh.surface.optimize import solver as _solver
+from equimesh.surface.optimize.solver import FACTORISATIONS, NormalEquations, least_squares
 
 
 def _available(name):
@@ -36,7 +36,12 @@ def test_linear_box_problem_matches_lsq_linear(factorisation, seed, n, box):
     b = 3.0 * rng.standard_normal(2 * n)
     lower, upper = np.full(n, -box), np.full(n, box)
     solution = least_squares(
-        lambda x: a @ x - b, lambda x: a, np.zeros(n), lower, upper, ftol=1e-15,
+        lambda x: a @ x - b,
+        lambda x: a,
+        np.zeros(n),
+        lower,
+        upper,
+        ftol=1e-15,
         normal_equations=NormalEquations(factorisation),
     )
     assert solution.converged, solution.message
@@ -102,8 +107,14 @@ def test_a_rejected_step_is_halved_with_the_same_factor(monkeypatch):
     def run(accept=None):
         factorised.clear()
         solution = least_squares(
-            np.arctan, lambda x: scipy.sparse.csr_matrix(1.0 / (1.0 + x**2)), np.array([1.5]), np.array([-5.0]),
-            np.array([5.0]), accept=accept, damping=1e-12, normal_equations=NormalEquations("counting"),
+            np.arctan,
+            lambda x: scipy.sparse.csr_matrix(1.0 / (1.0 + x**2)),
+            np.array([1.5]),
+            np.array([-5.0]),
+            np.array([5.0]),
+            accept=accept,
+            damping=1e-12,
+            normal_equations=NormalEquations("counting"),
         )
         assert solution.converged and abs(solution.x[0]) < 1e-6, solution.message
         return solution
@@ -133,7 +144,12 @@ def test_a_failed_factorisation_is_damped_more(monkeypatch, failure):
     monkeypatch.setitem(FACTORISATIONS, "failing", FailingOnce)
     a, b = scipy.sparse.csr_matrix(np.array([[2.0, 0.0], [1.0, 1.0], [0.0, 3.0]])), np.array([1.0, 2.0, 3.0])
     solution = least_squares(
-        lambda x: a @ x - b, lambda x: a, np.zeros(2), np.full(2, -10.0), np.full(2, 10.0), ftol=1e-15,
+        lambda x: a @ x - b,
+        lambda x: a,
+        np.zeros(2),
+        np.full(2, -10.0),
+        np.full(2, 10.0),
+        ftol=1e-15,
         normal_equations=NormalEquations("failing"),
     )
     assert solution.converged and len(calls) > solution.iterations, solution.message
@@ -146,8 +162,14 @@ def test_a_limit_bounds_every_step_and_the_solve_still_converges():
     a, b = scipy.sparse.csr_matrix(np.array([[2.0, 0.0], [1.0, 1.0], [0.0, 3.0]])), np.array([10.0, 20.0, 30.0])
     tried = [np.zeros(2)]
     solution = least_squares(
-        lambda x: a @ x - b, lambda x: a, np.zeros(2), np.full(2, -100.0), np.full(2, 100.0), ftol=1e-15,
-        accept=lambda x: tried.append(np.array(x)) or True, limit=lambda d: np.clip(d, -0.5, 0.5),
+        lambda x: a @ x - b,
+        lambda x: a,
+        np.zeros(2),
+        np.full(2, -100.0),
+        np.full(2, 100.0),
+        ftol=1e-15,
+        accept=lambda x: tried.append(np.array(x)) or True,
+        limit=lambda d: np.clip(d, -0.5, 0.5),
     )
     assert solution.converged, solution.message
     np.testing.assert_allclose(solution.x, np.linalg.lstsq(a.toarray(), b, rcond=None)[0], atol=1e-8)
@@ -164,7 +186,9 @@ def test_rejected_steps_and_bounds_on_rosenbrock():
     def jacobian(x):
         return scipy.sparse.csr_matrix(np.array([[-20.0 * x[0], 10.0], [-1.0, 0.0]]))
 
-    runs = [least_squares(residuals, jacobian, np.array([-1.2, 1.0]), np.full(2, -2.0), np.full(2, 2.0)) for _ in range(2)]
+    runs = [
+        least_squares(residuals, jacobian, np.array([-1.2, 1.0]), np.full(2, -2.0), np.full(2, 2.0)) for _ in range(2)
+    ]
     assert runs[0].converged and runs[0].evaluations > runs[0].iterations + 1  # some steps were rejected
     np.testing.assert_allclose(runs[0].x, [1.0, 1.0], atol=1e-6)
     assert np.array_equal(runs[0].x, runs[1].x)
@@ -173,7 +197,7 @@ def test_rejected_steps_and_bounds_on_rosenbrock():
 #: A solve of 60,000 residuals (long enough for OpenBLAS to split a dot product between threads) printing its x's hash.
 _CHAIN_SOLVE = textwrap.dedent("""
     import hashlib, numpy as np, scipy.sparse
-    from equimesh.surface._solver import least_squares
+    from equimesh.surface.optimize.solver import least_squares
     n = 30000
     c, i = np.random.default_rng(0).uniform(0.5, 2.0, n), np.arange(n)
     def residuals(x):
@@ -194,8 +218,11 @@ def test_the_same_bits_whatever_the_blas_thread_count():
     one-core machine OpenBLAS runs one thread either way and this cannot fail.)"""
     outputs = [
         subprocess.run(
-            [sys.executable, "-c", _CHAIN_SOLVE], env={**os.environ, "OPENBLAS_NUM_THREADS": threads, "OMP_NUM_THREADS": threads},
-            capture_output=True, text=True, check=True,
+            [sys.executable, "-c", _CHAIN_SOLVE],
+            env={**os.environ, "OPENBLAS_NUM_THREADS": threads, "OMP_NUM_THREADS": threads},
+            capture_output=True,
+            text=True,
+            check=True,
         ).stdout
         for threads in ("1", "2")
     ]

@@ -14,6 +14,7 @@ mutation``) are cheap to kill.
 
 import math
 
+import invariants_uniform as inv
 import numpy as np
 import pytest
 import shapely
@@ -22,11 +23,8 @@ import equimesh
 from equimesh import G1, EquimeshError
 from equimesh.planar import lattice, strip
 from equimesh.planar.insertion import ENGINES
-from equimesh.planar.limits import MAX_NODES
-from equimesh.planar.limits import node_estimate
+from equimesh.planar.limits import MAX_NODES, node_estimate
 from equimesh.planar.polygon import as_polygon
-
-import invariants_uniform as inv
 
 SQUARE = np.array([[0.0, 0.0], [6.0, 0.0], [6.0, 6.0], [0.0, 6.0]])
 #: The offset of tests/test_lattice.py::test_square_lattice_part_by_hand: 22 vertices, 28 triangles, 49 edges.
@@ -65,7 +63,9 @@ def test_square_g1_edges_are_exactly_the_lattice_edges(square_mesh):
     part = lattice.lattice_part(as_polygon(SQUARE, 1.0), 1.0, 0.0, OFFSET)
     assert np.array_equal(g1, lattice_edges(square_mesh, part))
     p = square_mesh.points
-    np.testing.assert_allclose(np.linalg.norm(p[square_mesh.edges[g1, 1]] - p[square_mesh.edges[g1, 0]], axis=1), 1.0, rtol=1e-12)
+    np.testing.assert_allclose(
+        np.linalg.norm(p[square_mesh.edges[g1, 1]] - p[square_mesh.edges[g1, 0]], axis=1), 1.0, rtol=1e-12
+    )
 
 
 def test_square_info_and_point_order(square_mesh):
@@ -84,7 +84,7 @@ def test_square_info_and_point_order(square_mesh):
     np.testing.assert_allclose(np.linalg.norm(np.roll(ring, -1, axis=0) - ring, axis=1), 1.5, rtol=1e-15)
     part = lattice.lattice_part(as_polygon(SQUARE, 1.0), 1.0, 0.0, OFFSET)
     interior = np.setdiff1d(np.arange(len(part.points)), part.boundary_vertices)
-    np.testing.assert_array_equal(m.local_points[len(m.points) - len(interior):], part.points[interior])
+    np.testing.assert_array_equal(m.local_points[len(m.points) - len(interior) :], part.points[interior])
     assert len(m.triangles) >= 28
 
 
@@ -104,7 +104,7 @@ def test_square_with_a_hole():
     inv.assert_problem2_invariants(mesh, BIG, 1.0, clearance=1.25, holes=[HOLE])
     outer, hole = mesh.info["boundary_rings"]
     assert (outer, hole) == (32, 8) and mesh.n_boundary == 40  # sides of 12 and 2 in parts of 1.5 and 1
-    ring = mesh.points[outer:outer + hole]
+    ring = mesh.points[outer : outer + hole]
     assert not shapely.LinearRing(ring).is_ccw
     assert {tuple(p) for p in HOLE} <= {tuple(p) for p in ring}
     part = lattice.lattice_part(as_polygon(BIG, 1.0, [HOLE]), 1.0, 0.0, OFFSET, 1.25)
@@ -129,8 +129,10 @@ def test_hole_seed_lies_inside_a_non_convex_hole():
     assert shapely.Polygon(poly.holes[0].local).contains(shapely.Point(seed[0]))
 
 
-@pytest.mark.parametrize("side, clearance, l, area", [
-    (6.0, 1.0, 1.0, 36.0), (100.0, 1.0, 1.5, 2 * 1.5 * 400.0), (100.0, 2.0, 1.0, 3 * 400.0)])
+@pytest.mark.parametrize(
+    "side, clearance, l, area",
+    [(6.0, 1.0, 1.0, 36.0), (100.0, 1.0, 1.5, 2 * 1.5 * 400.0), (100.0, 2.0, 1.0, 3 * 400.0)],
+)
 def test_strip_estimate_by_hand(side, clearance, l, area):
     """min(A, (clearance + 1) l perimeter) under Oler's bound, plus perimeter / l boundary vertices of K."""
     poly = as_polygon(SQUARE / 6.0 * side, l)
@@ -138,18 +140,24 @@ def test_strip_estimate_by_hand(side, clearance, l, area):
     assert strip.strip_estimate(poly, l, clearance) == pytest.approx(expected, rel=1e-14)
 
 
-@pytest.mark.parametrize("kwargs, message", [
-    ({"clearance": 0.999}, "clearance must be at least 1 (Lemma 3 needs lattice vertices l from the boundary), got 0.999"),
-    ({"clearance": math.inf}, "clearance must be finite, got inf"),
-    ({"boundary_spacing": 0.999}, "boundary_spacing must be between 1 and 2 (units of l, Step 2), got 0.999"),
-    ({"boundary_spacing": 2.001}, "boundary_spacing must be between 1 and 2 (units of l, Step 2), got 2.001"),
-    ({"angle": math.nan}, "angle must be finite, got nan"),
-    ({"offset": (1.0, 2.0, 3.0)}, "offset must be a pair of finite numbers, got (1.0, 2.0, 3.0)"),
-    ({"offset": (1.0, math.inf)}, "offset must be a pair of finite numbers, got (1.0, inf)"),
-    ({"offset": "ab"}, "offset must be an array of numbers"),
-    ({"boundary_spacing": math.nan}, "boundary_spacing must be finite, got nan"),
-    ({"clearance": "a"}, "clearance must be a real number, got 'a'"),
-])
+@pytest.mark.parametrize(
+    "kwargs, message",
+    [
+        (
+            {"clearance": 0.999},
+            "clearance must be at least 1 (Lemma 3 needs lattice vertices l from the boundary), got 0.999",
+        ),
+        ({"clearance": math.inf}, "clearance must be finite, got inf"),
+        ({"boundary_spacing": 0.999}, "boundary_spacing must be between 1 and 2 (units of l, Step 2), got 0.999"),
+        ({"boundary_spacing": 2.001}, "boundary_spacing must be between 1 and 2 (units of l, Step 2), got 2.001"),
+        ({"angle": math.nan}, "angle must be finite, got nan"),
+        ({"offset": (1.0, 2.0, 3.0)}, "offset must be a pair of finite numbers, got (1.0, 2.0, 3.0)"),
+        ({"offset": (1.0, math.inf)}, "offset must be a pair of finite numbers, got (1.0, inf)"),
+        ({"offset": "ab"}, "offset must be an array of numbers"),
+        ({"boundary_spacing": math.nan}, "boundary_spacing must be finite, got nan"),
+        ({"clearance": "a"}, "clearance must be a real number, got 'a'"),
+    ],
+)
 def test_parameters_outside_the_paper_are_refused(kwargs, message):
     """One line, naming the parameter and the value."""
     with pytest.raises(EquimeshError) as err:
@@ -157,7 +165,9 @@ def test_parameters_outside_the_paper_are_refused(kwargs, message):
     assert str(err.value) == message
 
 
-@pytest.mark.parametrize("check, value", [(strip.check_clearance, 1.0), (strip.check_spacing, 1.0), (strip.check_spacing, 2.0)])
+@pytest.mark.parametrize(
+    "check, value", [(strip.check_clearance, 1.0), (strip.check_spacing, 1.0), (strip.check_spacing, 2.0)]
+)
 def test_parameters_at_their_limits_are_accepted(check, value):
     """Clearance exactly 1, spacing exactly 1 or 2: allowed, returned as plain floats."""
     out = check(value)
@@ -186,11 +196,15 @@ def test_size_guard_counts_what_the_engine_pays_for(monkeypatch):
     monkeypatch.setitem(MAX_NODES, "fast", 100)
     with pytest.raises(equimesh.MeshTooLargeError) as err:
         equimesh.uniform_triangulation(SQUARE, 1.0, engine="reference")
-    assert str(err.value).startswith("l = 1.0 would need about 78.6 nodes in the boundary strip, more than max_nodes = 50;")
+    assert str(err.value).startswith(
+        "l = 1.0 would need about 78.6 nodes in the boundary strip, more than max_nodes = 50;"
+    )
     assert equimesh.uniform_triangulation(SQUARE, 1.0, offset=OFFSET).info["n_lattice_vertices"] == 22
     with pytest.raises(equimesh.MeshTooLargeError, match=r"nodes in the polygon, more than max_nodes = 10;"):
         equimesh.uniform_triangulation(SQUARE, 1.0, max_nodes=10)
-    assert equimesh.uniform_triangulation(SQUARE, 1.0, max_nodes=None, engine="reference").info["n_lattice_vertices"] > 0
+    assert (
+        equimesh.uniform_triangulation(SQUARE, 1.0, max_nodes=None, engine="reference").info["n_lattice_vertices"] > 0
+    )
 
 
 def test_an_offset_given_as_a_row_is_a_pair():

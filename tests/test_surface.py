@@ -2,13 +2,13 @@
 
 import numpy as np
 import pytest
+from chart_checks import assert_derivatives_consistent
 from hypothesis import given, settings
 from hypothesis import strategies as st
-from chart_checks import assert_derivatives_consistent
 
 from equimesh import InvalidSurfaceError
-from equimesh.surface.bezier import BezierSurface, bernstein, de_casteljau
-from equimesh.surface.chart import UNIT, Chart
+from equimesh.surface.charts.bezier import BezierSurface, bernstein, de_casteljau
+from equimesh.surface.charts.chart import UNIT, Chart
 
 degrees = st.integers(min_value=1, max_value=5)
 seeds = st.integers(min_value=0, max_value=2**32 - 1)

@@ -18,15 +18,13 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from test_io import assert_one_line
 
-from equimesh import EquimeshError, InvalidSurfaceError, REL_TOL, TriangulatedSurface, mesh_surface
+from equimesh import REL_TOL, EquimeshError, InvalidSurfaceError, TriangulatedSurface, mesh_surface
 from equimesh._cli import main
+from equimesh._geometry import inner_angle
 from equimesh.io import load_surface
 from equimesh.mesh import half_edges
 from equimesh.surface import pipeline
-from equimesh.surface.flatten import flatten
-from equimesh.surface.optimize import optimize_uv
-from equimesh.surface.flatten import _plane_start
-from equimesh.surface.mesh_chart import (
+from equimesh.surface.charts.mesh_chart import (
     MeshChart,
     _unfolded,
     conformal_start,
@@ -34,9 +32,10 @@ from equimesh.surface.mesh_chart import (
     flattening_start,
     harmonic_start,
 )
+from equimesh.surface.flatten import _plane_start, flatten
 from equimesh.surface.mesh_outline import CORNER_TURN, FIRM_TURN, loop_corners
-from equimesh._geometry import inner_angle
-from equimesh.surface._slide import on_loop
+from equimesh.surface.optimize import optimize_uv
+from equimesh.surface.optimize.slide import on_loop
 from equimesh.testing.meshes import roof_mesh, wedge_mesh
 
 L = 1.5
@@ -111,10 +110,14 @@ def test_roof_with_opening(roof_meshes, optimize):
     outer, hole = plane.info["boundary_rings"]
     rim = mesh.points[outer : outer + hole, :2]
     x0, x1, y0, y1 = OPENING
-    on_rim = np.isclose(rim[:, 0], x0) | np.isclose(rim[:, 0], x1) | np.isclose(rim[:, 1], y0) | np.isclose(rim[:, 1], y1)
+    on_rim = (
+        np.isclose(rim[:, 0], x0) | np.isclose(rim[:, 0], x1) | np.isclose(rim[:, 1], y0) | np.isclose(rim[:, 1], y1)
+    )
     assert on_rim.all()
     edge = mesh.points[:outer, :2]
-    assert np.all(np.isclose(edge[:, 0], 0) | np.isclose(edge[:, 0], 20) | np.isclose(edge[:, 1], 0) | np.isclose(edge[:, 1], 14))
+    assert np.all(
+        np.isclose(edge[:, 0], 0) | np.isclose(edge[:, 0], 20) | np.isclose(edge[:, 1], 0) | np.isclose(edge[:, 1], 14)
+    )
     if optimize == "bounded":
         members = mesh.edge_lengths() / L
         assert members.min() >= 1 - REL_TOL and members.max() <= 2 * (1 + REL_TOL)
@@ -124,7 +127,9 @@ def assert_boundary_slid_along_the_loops(mesh):
     """Boundary nodes on their flattened loops (to 1e-12 of its length), corners where they were, some moved."""
     outline, plane = mesh.stages.outline, mesh.stages.plane
     start, moved = 0, 0
-    for loop, arc, corners, count in zip(outline.loops, outline.loop_arcs, outline.corners, plane.info["boundary_rings"]):
+    for loop, arc, corners, count in zip(
+        outline.loops, outline.loop_arcs, outline.corners, plane.info["boundary_rings"]
+    ):
         nodes = np.arange(start, start + count)
         start += count
         assert np.all(shapely.distance(shapely.LinearRing(loop), shapely.points(mesh.uv[nodes])) <= 1e-12 * arc[-1])
@@ -166,7 +171,9 @@ def test_infeasible_mesh_refusal_suggests_what_refines_a_mesh():
     with pytest.raises(InvalidSurfaceError) as info:
         optimize_uv(chart, uv, edges, np.zeros(3), 1.0, fixed=[0, 1], objective="bounded")
     assert_one_line(str(info.value))
-    assert re.search(r"members outside \[l, 2l\].*use a smaller l, a finer input mesh, or optimize='paper'", str(info.value))
+    assert re.search(
+        r"members outside \[l, 2l\].*use a smaller l, a finer input mesh, or optimize='paper'", str(info.value)
+    )
 
 
 @settings(max_examples=8, deadline=None)
@@ -193,7 +200,9 @@ def test_generated_vaults_with_an_opening(rise, corner, size, l):
 def test_meshing_is_deterministic(roof_meshes):
     surface, meshes = roof_meshes
     again = mesh_surface(TriangulatedSurface(*roof()), L, optimize="none")
-    assert np.array_equal(again.points, meshes["none"].points) and np.array_equal(again.triangles, meshes["none"].triangles)
+    assert np.array_equal(again.points, meshes["none"].points) and np.array_equal(
+        again.triangles, meshes["none"].triangles
+    )
 
 
 def test_corners_of_the_outline_are_kept(roof_meshes):
@@ -255,7 +264,9 @@ def test_folding_projection_starts_from_the_conformal_map():
     mesh = mesh_surface(surface, 2.0, optimize="none")
     assert_on_input_surface(mesh, surface, 2.0)
     roof_surface = TriangulatedSurface(*roof())  # a vault projects without folding
-    np.testing.assert_array_equal(flattening_start(roof_surface), _plane_start(roof_surface.vertices, roof_surface.triangles))
+    np.testing.assert_array_equal(
+        flattening_start(roof_surface), _plane_start(roof_surface.vertices, roof_surface.triangles)
+    )
 
 
 def test_tutte_embedding_never_folds_a_disc():
@@ -301,12 +312,28 @@ def test_example_roof_with_a_skylight():
 @pytest.mark.parametrize(
     "opening, l, match",
     [
-        ((1, 3, 3, 5), 2.5, r"hole 0 is 2\.118.* from the boundary .*\(hole 0 \(the opening through \(2, 6, 0\.903808\)\)\)"),
-        ((4, 6, 3, 5), 9.0, r"hole 0 \(the opening through \(8, 6, 2\.78163\)\) of the mesh has corners at \(12, 6, 2\.78163\) "
-                            r"and \(8, 6, 2\.78163\) only 3\.8768 apart on the flattened surface, closer than l = 9; use l <= 3\.876$"),
-        ((4, 5, 3, 4), 2.5, r"hole 0 .* has corners at \(8, 8, 2\.78163\) and \(10, 8, 2\.92478\) only 1\.95073 apart .* use l <= 1\.95$"),
+        (
+            (1, 3, 3, 5),
+            2.5,
+            r"hole 0 is 2\.118.* from the boundary .*\(hole 0 \(the opening through \(2, 6, 0\.903808\)\)\)",
+        ),
+        (
+            (4, 6, 3, 5),
+            9.0,
+            r"hole 0 \(the opening through \(8, 6, 2\.78163\)\) of the mesh has corners at \(12, 6, 2\.78163\) "
+            r"and \(8, 6, 2\.78163\) only 3\.8768 apart on the flattened surface, closer than l = 9; use l <= 3\.876$",
+        ),
+        (
+            (4, 5, 3, 4),
+            2.5,
+            r"hole 0 .* has corners at \(8, 8, 2\.78163\) and \(10, 8, 2\.92478\) only 1\.95073 apart .* use l <= 1\.95$",
+        ),
         ((3, 4, 4, 5), 2.0, r"hole 0 .* has corners at .* only 1\.99.* apart .* closer than l = 2; use l <= 1\.99"),
-        ((4, 6, 3, 5), 30.0, r"the outer boundary of the mesh has corners at \(0, 14, 0\) and \(0, 0, 0\) only 14\.1196 apart"),
+        (
+            (4, 6, 3, 5),
+            30.0,
+            r"the outer boundary of the mesh has corners at \(0, 14, 0\) and \(0, 0, 0\) only 14\.1196 apart",
+        ),
     ],
 )
 def test_openings_and_boundaries_too_small_for_l(opening, l, match):
@@ -322,11 +349,16 @@ def test_openings_and_boundaries_too_small_for_l(opening, l, match):
 
 @pytest.mark.parametrize(
     "l, match",
-    [(5.5, r"too small for l = 5\.5: its rim, 18\.389.* gives fewer than 3 parts"), (7.0, r"too small for l = 7: its rim is 18\.389")],
+    [
+        (5.5, r"too small for l = 5\.5: its rim, 18\.389.* gives fewer than 3 parts"),
+        (7.0, r"too small for l = 7: its rim is 18\.389"),
+    ],
 )
 def test_round_opening_too_small_for_l(l, match):
     """The example's 32-gon skylight (no corner: one chain) is refused when no ring of 3 parts of at least l fits."""
-    with pytest.raises(InvalidSurfaceError, match=r"hole 0 \(the opening through \(15, 10, 4\)\) of the mesh is " + match):
+    with pytest.raises(
+        InvalidSurfaceError, match=r"hole 0 \(the opening through \(15, 10, 4\)\) of the mesh is " + match
+    ):
         mesh_surface(load_surface(EXAMPLE), l, optimize="none")
 
 
@@ -367,7 +399,9 @@ def tetrahedron():
 
 def torus_with_hole(n=8, m=6):
     a, b = np.meshgrid(2 * np.pi * np.arange(n) / n, 2 * np.pi * np.arange(m) / m, indexing="ij")
-    v = np.column_stack([(3 + np.cos(b.ravel())) * np.cos(a.ravel()), (3 + np.cos(b.ravel())) * np.sin(a.ravel()), np.sin(b.ravel())])
+    v = np.column_stack(
+        [(3 + np.cos(b.ravel())) * np.cos(a.ravel()), (3 + np.cos(b.ravel())) * np.sin(a.ravel()), np.sin(b.ravel())]
+    )
     node = np.arange(n * m).reshape(n, m)
     nxt = np.roll(node, -1, axis=0)
     a0, b0, c0, d0 = node.ravel(), nxt.ravel(), np.roll(nxt, -1, axis=1).ravel(), np.roll(node, -1, axis=1).ravel()
@@ -379,10 +413,16 @@ def moebius(n=12):
     s = np.arange(n + 1) / n * 2 * np.pi
     v = []
     for w in (-1.0, 1.0):
-        v.append(np.column_stack([(4 + w * np.cos(s / 2)) * np.cos(s), (4 + w * np.cos(s / 2)) * np.sin(s), w * np.sin(s / 2)]))
+        v.append(
+            np.column_stack(
+                [(4 + w * np.cos(s / 2)) * np.cos(s), (4 + w * np.cos(s / 2)) * np.sin(s), w * np.sin(s / 2)]
+            )
+        )
     v = np.vstack([v[0][:-1], v[1][:-1]])
     lo, hi = np.arange(n), n + np.arange(n)
-    t = [[lo[i], lo[(i + 1) % n], hi[(i + 1) % n]] for i in range(n - 1)] + [[lo[i], hi[(i + 1) % n], hi[i]] for i in range(n - 1)]
+    t = [[lo[i], lo[(i + 1) % n], hi[(i + 1) % n]] for i in range(n - 1)] + [
+        [lo[i], hi[(i + 1) % n], hi[i]] for i in range(n - 1)
+    ]
     t += [[lo[n - 1], hi[0], lo[0]], [lo[n - 1], lo[0], hi[n - 1]]]  # the twist: the last cell glues lo to hi
     return v, np.array(t)
 
@@ -404,8 +444,14 @@ def bad_meshes():
         "repeated corner": ((square, [[0, 1, 1], [0, 2, 3]]), "two of its corners are the same point"),
         "zero area": ((np.vstack([square, [[2.0, 0, 0]]]), [[0, 1, 4], [0, 2, 3]]), r"degenerate \(zero area\)"),
         "triangle twice": ((square, [[0, 1, 2], [0, 2, 3], [2, 1, 0]]), "have the same corners"),
-        "edge in three triangles": ((np.vstack([fin, [[0.5, 2.0, 0.0]]]), [[0, 2, 4], [0, 2, 5], [0, 2, 6]]), "belongs to 3 triangles"),
-        "bow tie": ((np.vstack([square, [[2.0, 1, 0], [2, 2, 0]]]), [[0, 1, 2], [2, 4, 5]]), "not manifold at the vertex"),
+        "edge in three triangles": (
+            (np.vstack([fin, [[0.5, 2.0, 0.0]]]), [[0, 2, 4], [0, 2, 5], [0, 2, 6]]),
+            "belongs to 3 triangles",
+        ),
+        "bow tie": (
+            (np.vstack([square, [[2.0, 1, 0], [2, 2, 0]]]), [[0, 1, 2], [2, 4, 5]]),
+            "not manifold at the vertex",
+        ),
         "two pieces": ((np.vstack([square, square + [5.0, 0, 0]]), np.vstack([two, two + 4])), "2 separate pieces"),
         "closed": (tetrahedron(), "cut it open first"),
         "Moebius": (moebius(), "not orientable"),

@@ -7,8 +7,13 @@ Inputs are simple polygons, convex or not, built valid by construction in
 
 import math
 
+import invariants_uniform as inv
 import numpy as np
 import pytest
+import strategies_sharp as sss
+import strategies_simple as ss
+from conftest import exercised
+from corner_sampling import corners, sampled_chain, sampled_placement
 from hypothesis import assume, example, given
 from hypothesis import strategies as st
 from scipy.sparse import coo_matrix
@@ -17,20 +22,14 @@ from scipy.spatial import cKDTree
 
 import equimesh
 import equimesh.planar.polygon
-from equimesh.planar.insertion import ENGINES
 from equimesh import G1, REL_TOL, EquimeshError
-from equimesh.testing.generators import random_convex_polygon, rectangle, regular_polygon
 from equimesh._geometry import orient
-from equimesh.planar.insertion._region import constrained_delaunay
 from equimesh.mesh import PlanarMesh
-from equimesh.planar.polygon import stagger_reach
+from equimesh.planar.boundary.sides import stagger_reach
+from equimesh.planar.insertion import ENGINES
+from equimesh.planar.insertion.region import constrained_delaunay
+from equimesh.testing.generators import random_convex_polygon, rectangle, regular_polygon
 from equimesh.testing.shapes import flattened_square, letter_polygon, place, sharp_corner_shape, sharp_dart
-
-import invariants_uniform as inv
-from conftest import exercised
-import strategies_sharp as sss
-from corner_sampling import corners, sampled_chain, sampled_placement
-import strategies_simple as ss
 
 #: Largest polygon area drawn by the property tests, in units of l^2.
 MAX_AREA = 1500.0
@@ -248,7 +247,9 @@ def test_scaling_by_powers_of_two(engine, case, k, angle, offset):
 
 
 SQUARE = rectangle(6.0, 6.0)
-NECK = np.array([[0, 0], [4, 0], [4, 1.6], [6, 1.6], [6, 0], [10, 0], [10, 4], [6, 4], [6, 2.4], [4, 2.4], [4, 4], [0, 4]])
+NECK = np.array(
+    [[0, 0], [4, 0], [4, 1.6], [6, 1.6], [6, 0], [10, 0], [10, 4], [6, 4], [6, 2.4], [4, 2.4], [4, 4], [0, 4]]
+)
 BAD_INPUTS = [
     ("self-intersecting", [[0, 0], [8, 0], [8, 6], [4, -3], [0, 6]], {}, "not simple"),
     ("repeated vertex", [[0, 0], [5, 0], [5, 0], [5, 5], [0, 5]], {}, "coincide"),
@@ -357,7 +358,13 @@ def _lattice_components(mesh):
 
 @pytest.mark.parametrize(
     "vertices",
-    [regular_polygon(3, 1.0), regular_polygon(3, 1.9), rectangle(1.2, 1.5), regular_polygon(6, 1.0), rectangle(2.5, 1.0)],
+    [
+        regular_polygon(3, 1.0),
+        regular_polygon(3, 1.9),
+        rectangle(1.2, 1.5),
+        regular_polygon(6, 1.0),
+        rectangle(2.5, 1.0),
+    ],
     ids=["unit triangle", "triangle 1.9", "rectangle 1.2x1.5", "unit hexagon", "rectangle 2.5x1"],
 )
 def test_polygon_without_lattice_part(vertices):
@@ -408,7 +415,20 @@ def test_dumbbell_lattice_part_has_two_components(width):
     """Two blobs joined by a corridor too narrow for lattice triangles: K has two components, R one."""
     h = width / 2
     vertices = np.array(
-        [(0, 0), (8, 0), (8, 4 - h), (11, 4 - h), (11, 0), (19, 0), (19, 8), (11, 8), (11, 4 + h), (8, 4 + h), (8, 8), (0, 8)],
+        [
+            (0, 0),
+            (8, 0),
+            (8, 4 - h),
+            (11, 4 - h),
+            (11, 0),
+            (19, 0),
+            (19, 8),
+            (11, 8),
+            (11, 4 + h),
+            (8, 4 + h),
+            (8, 8),
+            (0, 8),
+        ],
         dtype=float,
     )
     mesh = equimesh.uniform_triangulation(vertices, 1.0)
@@ -552,9 +572,17 @@ BAD_HOLES = [
     ("touching the boundary", [[[3, 0], [6, 3], [3, 6]]], r"hole 0 overlaps the boundary of the polygon"),
     ("overlapping", [WINDOW, [[5, 5], [8, 5], [8, 8]]], r"hole 0 and hole 1 overlap"),
     ("nested", [WINDOW, [[4, 4], [5, 4], [5, 5]]], r"hole 0 and hole 1 overlap"),
-    ("closer than l to the boundary", [[[0.5, 3], [4, 3], [4, 6]]], r"hole 0 is 0\.5 from the boundary .* closer than l = 1\.0"),
+    (
+        "closer than l to the boundary",
+        [[[0.5, 3], [4, 3], [4, 6]]],
+        r"hole 0 is 0\.5 from the boundary .* closer than l = 1\.0",
+    ),
     ("closer than l to another hole", [WINDOW, [[3, 6.5], [6, 6.5], [6, 9]]], r"hole 0 and hole 1 are 0\.5 apart"),
-    ("short edge", [[[3, 3], [3.5, 3], [3.5, 6], [3, 6]]], r"edge \(\d, \d\) of hole 0 has length 0\.5, shorter than l"),
+    (
+        "short edge",
+        [[[3, 3], [3.5, 3], [3.5, 6], [3, 6]]],
+        r"edge \(\d, \d\) of hole 0 has length 0\.5, shorter than l",
+    ),
     ("self-intersecting", [[[3, 3], [6, 6], [6, 3], [3, 6]]], r"hole 0 is not simple"),
     ("collinear", [[[3, 3], [4, 3], [5, 3]]], r"hole 0 has zero area"),
     ("two vertices", [[[3, 3], [4, 3]]], r"hole 0 needs at least 3 distinct vertices"),
@@ -664,7 +692,12 @@ def _refusal_kind(error):
     """The kind of a refusal at a sharp corner, named by its one-line message."""
     text = str(error)
     assert "\n" not in text and isinstance(error, equimesh.InvalidPolygonError), text
-    kinds = {"impossible": "no mesh with every edge in [l, 2l] exists", "no separation": "cannot meet Lemma 3 (1)", "not handled": "is not handled for l", "narrow": "is too narrow for l"}
+    kinds = {
+        "impossible": "no mesh with every edge in [l, 2l] exists",
+        "no separation": "cannot meet Lemma 3 (1)",
+        "not handled": "is not handled for l",
+        "narrow": "is too narrow for l",
+    }
     found = [kind for kind, marker in kinds.items() if marker in text]
     assert found, f"unexpected refusal: {text}"
     return found[0]

@@ -11,12 +11,12 @@ import equimesh
 
 from .common import (
     ENGINES,
-    L,
     NODE_COUNTS,
     PROBLEM2_AREAS,
     REFERENCE_MAX_AREA,
     REFERENCE_MAX_NODES,
     SHAPES,
+    L,
     polygon,
     square_for_nodes,
 )

@@ -6,7 +6,7 @@ Uses only equimesh's public API (``equimesh.increment``,
 
 import equimesh
 
-from .common import L, POLYGON_AREAS, SHAPES, polygon
+from .common import POLYGON_AREAS, SHAPES, L, polygon
 
 
 class Increment:

@@ -23,7 +23,7 @@ import pandas as pd
 
 import equimesh
 
-from .common import REPO, REFERENCE_SURFACE_JSON, SURFACE_GRID, SURFACE_LENGTH, reference_surface_json
+from .common import REFERENCE_SURFACE_JSON, REPO, SURFACE_GRID, SURFACE_LENGTH, reference_surface_json
 
 
 def _surface():
@@ -108,19 +108,33 @@ class Optimisation:
 
     def setup_cache(self):
         surface = _surface()
-        return surface, {l: equimesh.mesh_surface(surface, l, grid=SURFACE_GRID, optimize="none",
-                                                   placement="default", max_nodes=None) for l in self.params[1]}
+        return surface, {
+            l: equimesh.mesh_surface(
+                surface, l, grid=SURFACE_GRID, optimize="none", placement="default", max_nodes=None
+            )
+            for l in self.params[1]
+        }
 
     def _run(self, cache, objective, l):
         surface, meshes = cache
         mesh = meshes[l]
         boundary = np.arange(mesh.n_boundary)
         slides = objective == "bounded"
-        return equimesh.optimize_uv(
-            surface, mesh.uv, mesh.edges, mesh.edge_groups, l,
-            fixed=boundary[:0] if slides else boundary, sliding=boundary if slides else (),
-            triangles=mesh.triangles, objective=objective,
-        ), surface, mesh
+        return (
+            equimesh.optimize_uv(
+                surface,
+                mesh.uv,
+                mesh.edges,
+                mesh.edge_groups,
+                l,
+                fixed=boundary[:0] if slides else boundary,
+                sliding=boundary if slides else (),
+                triangles=mesh.triangles,
+                objective=objective,
+            ),
+            surface,
+            mesh,
+        )
 
     def time_optimisation(self, cache, objective, l):
         """One optimisation of the remapped reference dome."""

@@ -35,6 +35,7 @@ EXIT_INTERNAL = 3
 EXIT_INTERRUPTED = 130
 EXPERIMENTS = Path(__file__).resolve().parents[2] / "experiments"
 
+
 class _Parser(argparse.ArgumentParser):
     """argparse with one-line errors (no usage dump) and exit code 2."""
 
@@ -47,9 +48,10 @@ def build_parser():
     # _run_mesh, inside main's handlers, so that a Ctrl-C during the import is one line too.
     from .classes import DEFAULT_TOLERANCE, MAX_TOLERANCE
     from .io import INPUT_FORMATS, MESH_FORMATS
-    from .surface.optimize import OBJECTIVES
     from .planar.insertion import DEFAULT_ENGINE, ENGINES
+    from .surface.optimize import OBJECTIVES
     from .surface.pipeline import DEFAULT_OPTIMIZE, MAX_GRID_CELLS, MAX_NODES, MAX_OPTIMIZE_NODES, PLACEMENTS
+
     parser = _Parser(
         prog="equimesh",
         description=(
@@ -57,8 +59,11 @@ def build_parser():
             "'A uniform triangle mesh generation of curved surfaces'."
         ),
     )
-    parser.add_argument("--traceback", action="store_true",
-                        help="on an internal error (exit code 3), show the full traceback for a bug report")
+    parser.add_argument(
+        "--traceback",
+        action="store_true",
+        help="on an internal error (exit code 3), show the full traceback for a bug report",
+    )
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser, metavar="COMMAND")
 
     mesh = sub.add_parser(
@@ -77,46 +82,91 @@ def build_parser():
             "slide along their boundary loops under --optimize bounded (corners stay put) and are fixed under paper."
         ),
     )
-    mesh.add_argument("surface", metavar="SURFACE",
-                      help=f"surface description; format from the extension: {', '.join(sorted(INPUT_FORMATS))}")
-    mesh.add_argument("--object", metavar="NAME|INDEX",
-                      help="which object of a Rhino file to mesh, by name or index (needed when it holds several)")
+    mesh.add_argument(
+        "surface",
+        metavar="SURFACE",
+        help=f"surface description; format from the extension: {', '.join(sorted(INPUT_FORMATS))}",
+    )
+    mesh.add_argument(
+        "--object",
+        metavar="NAME|INDEX",
+        help="which object of a Rhino file to mesh, by name or index (needed when it holds several)",
+    )
     mesh.add_argument("--length", "-l", type=float, required=True, metavar="L", help="target member length")
-    mesh.add_argument("--grid", type=int, nargs=2, default=(15, 15), metavar=("NU", "NV"),
-                      help="auxiliary grid cells along u and v (default: 15 15; not used for triangle meshes); at most "
-                           f"{MAX_GRID_CELLS} cells, because flattening time and memory grow with NU x NV "
-                           "(about 40 s and 0.6 GB at 200 x 200 on a 2-core machine)")
-    mesh.add_argument("--optimize", choices=["none", *OBJECTIVES], default=DEFAULT_OPTIMIZE,
-                      help=f"final optimisation of the inner nodes (default: {DEFAULT_OPTIMIZE})")
-    mesh.add_argument("--placement", choices=PLACEMENTS, default="best",
-                      help="lattice placement: searched for the most equal members, or angle 0 at the origin "
-                           "(default: best)")
-    mesh.add_argument("--engine", choices=sorted(ENGINES), default=DEFAULT_ENGINE,
-                      help="farthest-point insertion engine of Problem 2: the compiled one, or the reference that "
-                           f"reads like the paper (default: {DEFAULT_ENGINE})")
-    mesh.add_argument("--max-nodes", type=_max_nodes, default=argparse.SUPPRESS, metavar="N",
-                      help="refuse, before any heavy work, a mesh estimated to need more than N nodes; 'none' for "
-                           f"no limit. The defaults, {MAX_NODES} nodes with --optimize none and "
-                           f"{MAX_OPTIMIZE_NODES['bounded']} with --optimize bounded and {MAX_OPTIMIZE_NODES['paper']} with "
-                           "--optimize paper, keep a run to about two minutes on a "
-                           "2-core machine (docs/performance.md); beyond them time grows faster than the node count")
-    mesh.add_argument("-o", "--output", required=True, metavar="OUT",
-                      help=f"mesh file; format from the extension: {', '.join(sorted(MESH_FORMATS))}")
-    mesh.add_argument("--members", metavar="CSV",
-                      help="also write a member schedule (member id, node ids, length, group, length class, "
-                           "deviation from L) and its length classes to CSV's stem + '.classes.csv' (class id, count, "
-                           "nominal, min and max length); all files written together or none")
-    mesh.add_argument("--tolerance", type=_tolerance, default=DEFAULT_TOLERANCE, metavar="TOL",
-                      help=("fabrication tolerance of a length class, relative to L: every member of a class is "
-                            "within +-TOL L of its nominal length, with the fewest classes; '0.5%' or '0.005', "
-                            f"above 0 and below {MAX_TOLERANCE:.0%} (default: {DEFAULT_TOLERANCE:.1%})"
-                            ).replace("%", "%%"))
-    mesh.add_argument("--quiet", "-q", action="store_true",
-                      help="print nothing but errors (no progress lines, no summary)")
+    mesh.add_argument(
+        "--grid",
+        type=int,
+        nargs=2,
+        default=(15, 15),
+        metavar=("NU", "NV"),
+        help="auxiliary grid cells along u and v (default: 15 15; not used for triangle meshes); at most "
+        f"{MAX_GRID_CELLS} cells, because flattening time and memory grow with NU x NV "
+        "(about 40 s and 0.6 GB at 200 x 200 on a 2-core machine)",
+    )
+    mesh.add_argument(
+        "--optimize",
+        choices=["none", *OBJECTIVES],
+        default=DEFAULT_OPTIMIZE,
+        help=f"final optimisation of the inner nodes (default: {DEFAULT_OPTIMIZE})",
+    )
+    mesh.add_argument(
+        "--placement",
+        choices=PLACEMENTS,
+        default="best",
+        help="lattice placement: searched for the most equal members, or angle 0 at the origin (default: best)",
+    )
+    mesh.add_argument(
+        "--engine",
+        choices=sorted(ENGINES),
+        default=DEFAULT_ENGINE,
+        help="farthest-point insertion engine of Problem 2: the compiled one, or the reference that "
+        f"reads like the paper (default: {DEFAULT_ENGINE})",
+    )
+    mesh.add_argument(
+        "--max-nodes",
+        type=_max_nodes,
+        default=argparse.SUPPRESS,
+        metavar="N",
+        help="refuse, before any heavy work, a mesh estimated to need more than N nodes; 'none' for "
+        f"no limit. The defaults, {MAX_NODES} nodes with --optimize none and "
+        f"{MAX_OPTIMIZE_NODES['bounded']} with --optimize bounded and {MAX_OPTIMIZE_NODES['paper']} with "
+        "--optimize paper, keep a run to about two minutes on a "
+        "2-core machine (docs/performance.md); beyond them time grows faster than the node count",
+    )
+    mesh.add_argument(
+        "-o",
+        "--output",
+        required=True,
+        metavar="OUT",
+        help=f"mesh file; format from the extension: {', '.join(sorted(MESH_FORMATS))}",
+    )
+    mesh.add_argument(
+        "--members",
+        metavar="CSV",
+        help="also write a member schedule (member id, node ids, length, group, length class, "
+        "deviation from L) and its length classes to CSV's stem + '.classes.csv' (class id, count, "
+        "nominal, min and max length); all files written together or none",
+    )
+    mesh.add_argument(
+        "--tolerance",
+        type=_tolerance,
+        default=DEFAULT_TOLERANCE,
+        metavar="TOL",
+        help=(
+            "fabrication tolerance of a length class, relative to L: every member of a class is "
+            "within +-TOL L of its nominal length, with the fewest classes; '0.5%' or '0.005', "
+            f"above 0 and below {MAX_TOLERANCE:.0%} (default: {DEFAULT_TOLERANCE:.1%})"
+        ).replace("%", "%%"),
+    )
+    mesh.add_argument(
+        "--quiet", "-q", action="store_true", help="print nothing but errors (no progress lines, no summary)"
+    )
     mesh.set_defaults(run=_run_mesh)
 
-    for name, text in (("table1", "regenerate Table 1 (results/table1.*)"),
-                       ("figures", "regenerate Figs 1-5 (paper_figs/) from results/table1_mesh.npz")):
+    for name, text in (
+        ("table1", "regenerate Table 1 (results/table1.*)"),
+        ("figures", "regenerate Figs 1-5 (paper_figs/) from results/table1_mesh.npz"),
+    ):
         # No options of its own: everything, --help included, goes to experiments/<name>.py.
         exp = sub.add_parser(name, help=text, add_help=False)
         exp.set_defaults(run=_run_experiment, experiment=name)
@@ -144,8 +194,10 @@ def main(argv=None):
     except Exception as exc:  # InternalError, or any other bug: one line, not a traceback
         if show_traceback:
             raise
-        return _fail(EXIT_INTERNAL, f"internal error: {type(exc).__name__}: {exc} (please report this; "
-                                    "--traceback shows the details)")
+        return _fail(
+            EXIT_INTERNAL,
+            f"internal error: {type(exc).__name__}: {exc} (please report this; --traceback shows the details)",
+        )
 
 
 def _fail(code, message):
@@ -158,7 +210,7 @@ def _max_nodes(text):
     """``--max-nodes``: a positive whole number, or 'none' for no limit."""
     if text.strip().lower() == "none":
         return None
-    from .planar.polygon import check_count
+    from ._checks import check_count
 
     try:
         return check_count(int(text), "--max-nodes")
@@ -193,14 +245,25 @@ def _run_mesh(args):
 
     limit = {"max_nodes": args.max_nodes} if "max_nodes" in args else {}
     with _library_quiet():
-        mesh = mesh_surface(surface, args.length, grid=tuple(args.grid), optimize=args.optimize,
-                            placement=args.placement, engine=args.engine, progress=progress, **limit)
+        mesh = mesh_surface(
+            surface,
+            args.length,
+            grid=tuple(args.grid),
+            optimize=args.optimize,
+            placement=args.placement,
+            engine=args.engine,
+            progress=progress,
+            **limit,
+        )
     write(mesh, args.tolerance)
     if not args.quiet:
         n_g1 = int(mesh.g1_mask.sum())
         also = f" and {args.members} (+ {classes_path(args.members)})" if args.members else ""
-        print(f"wrote {args.output}{also}: {len(mesh.points)} nodes, {len(mesh.edges)} members "
-              f"({n_g1} in the equal-length group G1), {len(mesh.triangles)} triangles", file=sys.stderr)
+        print(
+            f"wrote {args.output}{also}: {len(mesh.points)} nodes, {len(mesh.edges)} members "
+            f"({n_g1} in the equal-length group G1), {len(mesh.triangles)} triangles",
+            file=sys.stderr,
+        )
         print(_summary(mesh.edge_lengths(), mesh.length, args.tolerance))
     return 0
 

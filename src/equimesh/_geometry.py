@@ -81,12 +81,7 @@ def segments_intersect(p, q, a, b):
         inside = np.all((r >= lo) & (r <= hi), axis=-1)
         return (d == 0) & inside
 
-    touching = (
-        on_segment(a, b, p, d1)
-        | on_segment(a, b, q, d2)
-        | on_segment(p, q, a, d3)
-        | on_segment(p, q, b, d4)
-    )
+    touching = on_segment(a, b, p, d1) | on_segment(a, b, q, d2) | on_segment(p, q, a, d3) | on_segment(p, q, b, d4)
     return proper | touching
 
 
@@ -143,3 +138,22 @@ class Frame:
 
     def to_caller(self, x):
         return np.asarray(x, dtype=float) / self.scale + self.origin
+
+
+def nearest_segment(x, a, b, chunk=4096):
+    """Nearest segment index, parameter t in [0, 1] and distance for each point (vectorised, chunked)."""
+    ab = b - a
+    denom = np.maximum(np.sum(ab * ab, axis=1), np.finfo(float).tiny)
+    index = np.empty(len(x), dtype=np.int64)
+    tt = np.empty(len(x))
+    dist = np.empty(len(x))
+    for start in range(0, len(x), chunk):
+        p = x[start : start + chunk, None, :]
+        t = np.clip(np.sum((p - a) * ab, axis=2) / denom, 0.0, 1.0)
+        d = np.linalg.norm(a + t[..., None] * ab - p, axis=2)
+        j = np.argmin(d, axis=1)
+        rows = np.arange(len(j))
+        index[start : start + chunk] = j
+        tt[start : start + chunk] = t[rows, j]
+        dist[start : start + chunk] = d[rows, j]
+    return index, tt, dist

@@ -1,8 +1,8 @@
 """How equimesh's compiled kernels are compiled (numba), in one place.
 
-The kernels of the fast engine (:mod:`equimesh.planar.insertion._predicates`,
+The kernels of the fast engine (:mod:`equimesh.planar.insertion.predicates`,
 ``._cdt`` and ``.fast``) and the solver's sum of the normal matrix
-(:func:`equimesh.surface._solver._sum_products`) are plain functions, each compiled right after its definition by
+(:func:`equimesh.surface.optimize.solver._sum_products`) are plain functions, each compiled right after its definition by
 ``name = compiled(name)``: the same as the decorator ``@njit(cache=True)``,
 but mutation testing reaches them (mutmut leaves decorated functions alone),
 and under ``NUMBA_DISABLE_JIT=1`` they run as the Python they are written in

@@ -19,8 +19,8 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
+from ._checks import check_length
 from .errors import InvalidToleranceError
-from .planar.polygon import check_length
 
 #: Upper limit (exclusive) of the relative tolerance: at 50 % of l a class of
 #: width ``2 tol l = l`` would hold every member of [l, 2l] (Theorems 1 and 3)
@@ -58,9 +58,7 @@ def check_tolerance(tolerance):
         ) from None
     if not (math.isfinite(value) and 0.0 < value < MAX_TOLERANCE):
         shown = tolerance if isinstance(tolerance, str) else repr(value)
-        raise InvalidToleranceError(
-            f"tolerance must be above 0 and below {MAX_TOLERANCE:.0%} of l, got {shown}"
-        )
+        raise InvalidToleranceError(f"tolerance must be above 0 and below {MAX_TOLERANCE:.0%} of l, got {shown}")
     return value
 
 
@@ -99,7 +97,9 @@ class LengthClasses:
 
     def table(self):
         """The classes as a DataFrame with :data:`CLASS_COLUMNS`, one row per class."""
-        return pd.DataFrame(dict(zip(CLASS_COLUMNS, (np.arange(len(self)), self.count, self.nominal, self.min, self.max))))
+        return pd.DataFrame(
+            dict(zip(CLASS_COLUMNS, (np.arange(len(self)), self.count, self.nominal, self.min, self.max)))
+        )
 
 
 def length_classes(lengths, l, tolerance=DEFAULT_TOLERANCE):

@@ -11,7 +11,29 @@ Two families, never mixed:
   to return.  It means a bug in equimesh, never a wrong input; the result is
   withheld rather than returned.  The command line prints one line asking for a
   report and exits with code 3.
+
+Numbers in messages are written by :func:`number`, the one formatter.
 """
+
+
+def number(x, exact=False):
+    """A number for a message: six significant digits (``0.42``, ``1e-200``, ``13.37``), or with ``exact`` the
+    shortest text that reads back as the same float, so that two different values never print alike (a length
+    compared with l, a suggested bound)."""
+    return repr(float(x)) if exact else f"{float(x):.6g}"
+
+
+def coordinates(x):
+    """``(1, 2, 3)``: a point in space (or any tuple of numbers)."""
+    return f"({', '.join(number(c) for c in x)})"
+
+
+def at(uv, point=None):
+    """``(u, v) = (0.42, 0.5), point (x, y, z) = (1, 2, 3)``."""
+    text = f"(u, v) = ({number(uv[0])}, {number(uv[1])})"
+    if point is not None:
+        text += f", point {coordinates(point)}"
+    return text
 
 
 class EquimeshError(ValueError):

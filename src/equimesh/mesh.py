@@ -168,8 +168,15 @@ class PlanarMesh:
                 if k is not None:
                     caller[i] = pinned[1][k]
         return cls(
-            caller, triangles, edges, groups, float(length), int(n_boundary), info or {},
-            frame, None if frame is None else local,
+            caller,
+            triangles,
+            edges,
+            groups,
+            float(length),
+            int(n_boundary),
+            info or {},
+            frame,
+            None if frame is None else local,
         )
 
     @property

@@ -120,8 +120,16 @@ def fabrication_summary(lengths, l, tolerance=DEFAULT_TOLERANCE):
 #: Keys of :func:`comparison_figures`: the one set of figures every mesher is measured by
 #: (``experiments/compare_peers.py``).
 COMPARISON_COLUMNS = (
-    "members", "within_0.5pct", "within_1pct", "within_5pct", "in_l_2l", "classes_0.5pct", "classes_1pct",
-    "length_std", "angle_min", "angle_max",
+    "members",
+    "within_0.5pct",
+    "within_1pct",
+    "within_5pct",
+    "in_l_2l",
+    "classes_0.5pct",
+    "classes_1pct",
+    "length_std",
+    "angle_min",
+    "angle_max",
 )
 
 

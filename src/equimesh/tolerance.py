@@ -65,7 +65,7 @@ SINGULAR_SIN = 1e-6
 MAX_NORMAL_TURN = 90.0
 
 #: Beyond the paper (docs/decisions.md, "A solver that scales"): the
-#: Levenberg-Marquardt damping of :mod:`equimesh.surface._solver` starts at
+#: Levenberg-Marquardt damping of :mod:`equimesh.surface.optimize.solver` starts at
 #: ``LM_INITIAL_DAMPING`` times Marquardt's diagonal ``diag(J^T J)`` (the usual
 #: ``tau = 1e-3``), whose entries are floored at ``LM_DIAGONAL_FLOOR`` times the
 #: largest one, so that a variable no active residual sees keeps a regular
@@ -78,7 +78,7 @@ LM_DIAGONAL_FLOOR = 1e-12
 LM_BACKTRACKS = 4
 
 #: Beyond the paper (docs/decisions.md, "The bounded objective"): the
-#: ``"bounded"`` optimisation (:func:`equimesh.surface.optimize.bounded_objective`)
+#: ``"bounded"`` optimisation (:func:`equimesh.surface.optimize.objectives.bounded_objective`)
 #: aims every member at ``l (1 + BOUNDED_OFFSET)``, inside the 0.5 % band and
 #: away from the hard bound l.  Its rounds of reweighted least squares pull a
 #: member below that target or above ``l (2 - BOUNDED_OFFSET)`` with the weight

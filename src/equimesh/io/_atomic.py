@@ -63,7 +63,6 @@ def atomic_write_text(path, text, encoding="utf-8"):
         tmp.write_text(text, encoding=encoding)
 
 
-
 def probe_folder(folder, suffix=""):
     """Create and remove a temporary file in ``folder``, exactly as a write would; raise its ``OSError``."""
     os.unlink(_temporary(Path(folder), suffix))

@@ -6,7 +6,7 @@ Rows of ``control_points`` run over ``u``, the entries of a row over ``v``; an
 (m+1) x (n+1) net gives a surface of degree (m, n).
 """
 
-from ..surface.bezier import BezierSurface
+from ..surface.charts.bezier import BezierSurface
 from ._schema import control_net
 
 #: The fields of the "bezier" type besides "type" and "description".

@@ -12,7 +12,7 @@ over ``v``; ``knots_u`` holds ``n_u + p + 1`` knots for ``n_u`` rows, ``knots_v`
 from numbers import Integral
 
 from ..errors import InvalidSurfaceError
-from ..surface.nurbs import NurbsSurface
+from ..surface.charts.nurbs import NurbsSurface
 from ._schema import a_list, control_net, finite_number, json_type, number_rows, shown
 
 #: The fields of the "nurbs" type besides "type" and "description".

@@ -19,7 +19,7 @@ import warnings
 import numpy as np
 
 from ..errors import InvalidSurfaceError, MissingDependencyError, SurfaceWarning
-from ..surface.nurbs import NurbsSurface
+from ..surface.charts.nurbs import NurbsSurface
 from ._schema import shown, shown_path
 
 
@@ -121,7 +121,9 @@ def _to_nurbs(geometry, name, path, rhino3dm):
     weights = net[..., 3]
     if not np.all(weights > 0):
         i, j = (int(k) for k in np.argwhere(~(weights > 0))[0])
-        raise InvalidSurfaceError(f"object {name} of {shown_path(path)}: control point [{i}][{j}] has weight {float(weights[i, j])!r}, not positive")
+        raise InvalidSurfaceError(
+            f"object {name} of {shown_path(path)}: control point [{i}][{j}] has weight {float(weights[i, j])!r}, not positive"
+        )
     knots = [_full_knots(nurbs.KnotsU.ToList()), _full_knots(nurbs.KnotsV.ToList())]
     return NurbsSurface((nurbs.Degree(0), nurbs.Degree(1)), *knots, net[..., :3] / weights[..., None], weights)
 

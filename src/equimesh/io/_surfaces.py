@@ -5,7 +5,7 @@ a JSON description names its surface type in ``"type"``
 (:data:`SURFACE_TYPES`), whose schema turns the object into a surface (step 1
 of Section 4: the map X^s(u, v)).  Every type may have openings,
 ``"holes": [[[u, v], ...], ...]`` (closed polylines in parameter space, see
-:class:`~equimesh.surface.openings.Perforated`), and a ``"description"``.  A new type or format is one new row in a
+:class:`~equimesh.surface.charts.openings.Perforated`), and a ``"description"``.  A new type or format is one new row in a
 table, nothing else.  Every problem, from an unreadable path to a coordinate
 that is not a finite number, is one :class:`InvalidSurfaceError` line.
 """
@@ -18,9 +18,9 @@ from pathlib import Path
 from typing import Callable
 
 from ..errors import InvalidSurfaceError
-from ..surface.bezier import BezierSurface
-from ..surface.nurbs import NurbsSurface
-from ..surface.openings import Perforated
+from ..surface.charts.bezier import BezierSurface
+from ..surface.charts.nurbs import NurbsSurface
+from ..surface.charts.openings import Perforated
 from . import _bezier, _nurbs
 from ._rhino import read_rhino_surface
 from ._schema import json_type, shown, shown_path, uv_polylines
@@ -151,12 +151,14 @@ def read_json_surface(path):
     try:
         d = json.loads(text, object_pairs_hook=_unique_keys)
     except json.JSONDecodeError as exc:
-        raise InvalidSurfaceError(f"{where}: malformed JSON at line {exc.lineno} column {exc.colno}: {exc.msg}") from None
+        raise InvalidSurfaceError(
+            f"{where}: malformed JSON at line {exc.lineno} column {exc.colno}: {exc.msg}"
+        ) from None
     except InvalidSurfaceError:  # from _unique_keys
         raise
     except RecursionError:
         raise InvalidSurfaceError(f"{where}: JSON nested too deeply to read (a surface needs a few levels)") from None
-    except ValueError as exc:  # only an integer too long for int(), Python >= 3.11
+    except ValueError:  # only an integer too long for int(), Python >= 3.11
         raise InvalidSurfaceError(
             f"{where}: an integer has more than {sys.get_int_max_str_digits()} digits; "
             "write coordinates as ordinary numbers"
@@ -168,7 +170,10 @@ def read_json_surface(path):
 INPUT_FORMATS = {
     ".json": InputFormat("equimesh surface JSON", read_json_surface),
     ".3dm": InputFormat("Rhino file", read_rhino_surface, ("object",)),
-    **{ext: InputFormat(f"{name} triangle mesh", read_triangle_mesh) for ext, (name, _) in TRIANGLE_MESH_FORMATS.items()},
+    **{
+        ext: InputFormat(f"{name} triangle mesh", read_triangle_mesh)
+        for ext, (name, _) in TRIANGLE_MESH_FORMATS.items()
+    },
 }
 
 

@@ -1,6 +1,6 @@
 """Triangle meshes in (``.obj``, ``.stl``, ``.ply``, ``.vtk``, ``.vtu``), read with meshio.
 
-The mesh becomes a :class:`~equimesh.surface.triangulated.TriangulatedSurface`,
+The mesh becomes a :class:`~equimesh.surface.charts.triangulated.TriangulatedSurface`,
 the auxiliary triangulation of Section 4 given by the user (its checks:
 connected, manifold, orientable, with a boundary).  Cells: triangles are
 taken as they are; a quadrilateral is cut into two triangles along its
@@ -18,7 +18,7 @@ import warnings
 import numpy as np
 
 from ..errors import InvalidSurfaceError
-from ..surface.triangulated import TriangulatedSurface
+from ..surface.charts.triangulated import TriangulatedSurface
 from ._schema import shown_path
 
 #: Triangle-mesh formats by extension: a name for messages and the meshio module that reads it.
@@ -35,7 +35,7 @@ IGNORED_CELLS = ("vertex", "line", "line3", "polyline")
 
 
 def read_triangle_mesh(path):
-    """The :class:`~equimesh.surface.triangulated.TriangulatedSurface` in the mesh file ``path`` (format by extension).
+    """The :class:`~equimesh.surface.charts.triangulated.TriangulatedSurface` in the mesh file ``path`` (format by extension).
 
     Raises
     ------
@@ -48,7 +48,11 @@ def read_triangle_mesh(path):
     # The format's own reader, not meshio.read, which prints and calls sys.exit on a file it cannot read.
     reader = importlib.import_module(f"meshio.{TRIANGLE_MESH_FORMATS[path.suffix.lower()][1]}")
     try:
-        with warnings.catch_warnings(), contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(io.StringIO()):
+        with (
+            warnings.catch_warnings(),
+            contextlib.redirect_stdout(io.StringIO()),
+            contextlib.redirect_stderr(io.StringIO()),
+        ):
             warnings.simplefilter("ignore")  # meshio's own overflow and format warnings on malformed files
             mesh = reader.read(str(path))
     except MemoryError:
@@ -67,7 +71,9 @@ def read_triangle_mesh(path):
     triangles = [t for t in triangles if t is not None]
     if not triangles or not sum(len(t) for t in triangles):
         kinds = sorted({block.type for block in mesh.cells}) or ["no cells"]
-        raise InvalidSurfaceError(f"{where} has no triangles (it holds {', '.join(kinds)}); export the surface as triangles")
+        raise InvalidSurfaceError(
+            f"{where} has no triangles (it holds {', '.join(kinds)}); export the surface as triangles"
+        )
     try:
         return TriangulatedSurface(points, np.concatenate(triangles))
     except InvalidSurfaceError as exc:

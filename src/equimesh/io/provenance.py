@@ -25,9 +25,7 @@ LIBRARIES = ("equimesh", "numpy", "scipy", "shapely", "triangle", "pandas", "mat
 
 def _git(*args, cwd):
     try:
-        out = subprocess.run(
-            ["git", *args], cwd=cwd, capture_output=True, text=True, timeout=10, check=True
-        )
+        out = subprocess.run(["git", *args], cwd=cwd, capture_output=True, text=True, timeout=10, check=True)
     except (OSError, subprocess.SubprocessError):
         return None
     return out.stdout.strip()

@@ -2,7 +2,7 @@
 
 Step 1  S := {}.
 Step 2  resample the boundary so consecutive points are between l and 2l apart
-        (:func:`equimesh.planar.polygon.resample_boundary`).
+        (:func:`equimesh.planar.boundary.resample.resample_boundary`).
 Step 3  find the point p* of P farthest from the current points
         (:mod:`equimesh.planar.insertion`).
 Step 4  insert p* while d(p*, S u V u V') >= l, up to REL_TOL.
@@ -15,19 +15,14 @@ Theorem 2: the node count is at most 16/3 of the optimum (checked against
 
 import numpy as np
 
+from .._checks import check_length
 from ..mesh import PlanarMesh, boundary_first
+from .boundary.resample import resample_boundary
+from .boundary.separation import check_boundary_separation
 from .guarantees import verify_planar
 from .insertion import DEFAULT_ENGINE, Region, check_engine, insert
 from .limits import MAX_NODES, check_max_nodes, check_size, planar_estimate
-from .polygon import (
-    as_polygon,
-    check_boundary_separation,
-    check_convex_right_angles,
-    check_edges_at_least,
-    check_length,
-    pinned_vertices,
-    resample_boundary,
-)
+from .polygon import as_polygon, check_convex_right_angles, check_edges_at_least, pinned_vertices
 
 
 def validate_problem1(vertices, l):

@@ -36,7 +36,7 @@ from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 
 from ..mesh import edge_keys, half_edges
-from ._clearance import clear_of_boundary
+from .clearance import clear_of_boundary
 
 #: Lattice steps (di, dj) between neighbouring vertices, in the basis
 #: a1 = l (cos t, sin t), a2 = l (cos(t + 60), sin(t + 60)).

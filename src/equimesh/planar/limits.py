@@ -21,9 +21,9 @@ run has to place; its default depends on the insertion engine
 
 import math
 
+from .._checks import check_count
 from ..errors import MeshTooLargeError
-from .insertion import DEFAULT_ENGINE, check_engine
-from .polygon import check_count
+from .insertion import check_engine
 
 #: Default of ``max_nodes`` (``max_nodes="default"``) for each insertion engine,
 #: in the nodes it counts (module docstring).  Reference: a run at 2500 takes

@@ -22,7 +22,7 @@ returns a worse placement than the default.
 Cost: ``1 + n_angles n_offsets^2 + 27 refine`` evaluations (247 by default),
 each O(A / l^2) elementwise array operations on the lattice's bounding-box
 grid plus O((clearance + 1) P / l) point-segment distances for the vertices
-near the boundary (:mod:`equimesh.planar._clearance`; A the area, P the
+near the boundary (:mod:`equimesh.planar.clearance`; A the area, P the
 perimeter).  Before the row-by-row clearance every grid vertex was measured against every
 boundary edge, O(A P / l^3): on the reference dome at l = 0.5 the search
 now takes about 2 s, where the whole planar stage took 149 s before
@@ -33,13 +33,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .._checks import check_count, check_length
 from ..errors import EquimeshError
 from .insertion import DEFAULT_ENGINE
 from .lattice import kept_vertices, lattice_basis, lattice_triangle_masks
 from .limits import MAX_NODES, check_max_nodes, check_size, planar_estimate
-from .polygon import as_polygon, check_count, check_length
+from .polygon import as_polygon
 from .strip import check_clearance, strip_estimate
-
 
 #: Beyond the paper: the most placements one search may evaluate,
 #: ``1 + n_angles n_offsets^2 + 27 refine`` (16 times the default 247).  Each
@@ -162,4 +162,3 @@ def best_lattice_placement(
     s, angle, frac = best
     offset = tuple(float(x) for x in np.asarray(frac) @ lattice_basis(l, angle))
     return Placement(angle, offset, s, default, evaluations)
-

@@ -27,22 +27,16 @@ are at most ``|e| <= 2l`` (Lemma 5, the counterpart of Lemma 2).
 import numpy as np
 import shapely
 
+from .._checks import check_length, real_array, real_number
 from ..errors import EquimeshError
 from ..mesh import PlanarMesh, boundary_first, boundary_ring, unique_edges
+from .boundary.resample import resample_boundary
+from .boundary.separation import check_boundary_separation
 from .guarantees import verify_planar
 from .insertion import DEFAULT_ENGINE, Region, check_engine, insert
 from .lattice import lattice_adjacent, lattice_part
 from .limits import MAX_NODES, check_max_nodes, check_size, node_estimate, planar_estimate
-from .polygon import (
-    as_polygon,
-    check_boundary_separation,
-    check_edges_at_least,
-    check_length,
-    pinned_vertices,
-    real_array,
-    real_number,
-    resample_boundary,
-)
+from .polygon import as_polygon, check_edges_at_least, pinned_vertices
 
 #: Default Step 2 spacing for Problem 2, in units of l.  Below 2 so that no
 #: boundary part is 2l long: a part of exactly 2l leaves its midpoint at
@@ -212,7 +206,9 @@ def check_clearance(value):
     """``clearance`` as a float, at least 1 (Lemma 3)."""
     c = _check_scalar(value, "clearance")
     if c < 1.0:
-        raise EquimeshError(f"clearance must be at least 1 (Lemma 3 needs lattice vertices l from the boundary), got {c}")
+        raise EquimeshError(
+            f"clearance must be at least 1 (Lemma 3 needs lattice vertices l from the boundary), got {c}"
+        )
     return c
 
 

@@ -2,7 +2,7 @@
 
 "Divide the parameter plane (u, v) into a n_u x n_v grid, and further divide
 each rectangular unit to two right triangles."  The paper's parameter plane is
-[0, 1]^2; here it is the chart's :class:`~equimesh.surface.chart.Domain`
+[0, 1]^2; here it is the chart's :class:`~equimesh.surface.charts.chart.Domain`
 ``[u0, u1] x [v0, v1]`` (default [0, 1]^2).  The nodes are u_i^0, the
 triangles and edges are reused unchanged on the surface (step 2) and on the
 plane (steps 2-4).
@@ -12,9 +12,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .._checks import check_count
 from ..mesh import unique_edges
-from ..planar.polygon import check_count
-from .chart import UNIT, Domain
+from .charts.chart import UNIT, Domain
 
 
 @dataclass(frozen=True)
@@ -50,7 +50,7 @@ class AuxiliaryGrid:
         to the start.
     boundary_sides : (2 (n_u + n_v), 4) bool array
         For each node of :attr:`boundary`, the sides it lies on, columns in
-        the order of :data:`~equimesh.surface.chart.SIDES` (``u=u0, u=u1, v=v0, v=v1``).
+        the order of :data:`~equimesh.surface.charts.chart.SIDES` (``u=u0, u=u1, v=v0, v=v1``).
     domain : Domain
         The parameter rectangle.
     """
@@ -80,7 +80,7 @@ class AuxiliaryGrid:
 
     @property
     def boundary_segment_side(self):
-        """(B,) int: index into :data:`~equimesh.surface.chart.SIDES` of the side carrying each boundary segment."""
+        """(B,) int: index into :data:`~equimesh.surface.charts.chart.SIDES` of the side carrying each boundary segment."""
         both = self.boundary_sides & np.roll(self.boundary_sides, -1, axis=0)
         return np.argmax(both, axis=1)
 
@@ -97,7 +97,7 @@ def auxiliary_grid(n_u, n_v, domain=UNIT):
     n_u, n_v : int
         Number of grid cells along ``u`` and ``v``, each at least 1.
     domain : Domain
-        The chart's parameter rectangle (:func:`~equimesh.surface.chart.domain_of`).
+        The chart's parameter rectangle (:func:`~equimesh.surface.charts.chart.domain_of`).
     """
     n_u, n_v = check_grid_size(n_u, n_v)
     i, j = np.meshgrid(np.arange(n_u + 1), np.arange(n_v + 1), indexing="ij")

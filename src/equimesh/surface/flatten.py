@@ -29,7 +29,7 @@ Fold-over.  E depends only on lengths, so its minimiser can flip triangles:
 a strongly doubly curved patch (say a near-hemisphere) has more surface near
 its rim than a plane disk, and eq. (1) alone then wrinkles it.  Two guards:
 
-* a barrier (:class:`~equimesh.surface._jacobian.AreaBarrier`), zero while every
+* a barrier (:class:`~equimesh.surface.optimize.jacobian.AreaBarrier`), zero while every
   triangle keeps at least ``area_floor`` (default 0.1) of its plane area at
   the start and heavy enough that ``trf`` can never accept a folded state;
   for the mild surfaces of the paper it never acts and E is minimised as
@@ -49,10 +49,9 @@ import scipy.optimize
 import scipy.sparse
 import scipy.sparse.linalg
 
-from ._jacobian import AreaBarrier, ElementJacobian
-from ..errors import InvalidSurfaceError
+from ..errors import InvalidSurfaceError, at
 from ..mesh import edge_lengths, triangle_orient, unique_edges
-from ._places import at
+from .optimize.jacobian import AreaBarrier, ElementJacobian
 
 
 @dataclass(frozen=True)

@@ -13,7 +13,7 @@ the outer ring with the openings as holes
 (:func:`equimesh.uniform_triangulation`, ``holes=``).
 
 Step 4.  The parameter plane is the flattening itself
-(:class:`~equimesh.surface.mesh_chart.MeshChart`), so eq. (3) leaves every
+(:class:`~equimesh.surface.charts.mesh_chart.MeshChart`), so eq. (3) leaves every
 inner node where it is.  A boundary node of the plane mesh lies on an edge of
 its ring, a chord of the loop between two ring vertices at arc positions
 ``s_a`` and ``s_b``; at the fraction ``t`` of that chord it goes to the point of
@@ -25,14 +25,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import InvalidSurfaceError
-from ._places import coordinates, number
-from .outline import round_down
 from .._geometry import inner_angle
-from .ring import resample_ring
-from .remap import _nearest_segment
-from ._slide import between_corners, loop_arc, on_loop
+from .._geometry import nearest_segment as nearest_segment
+from ..errors import InvalidSurfaceError, coordinates, number
 from ..tolerance import REL_TOL
+from .optimize.slide import between_corners, loop_arc, on_loop
+from .outline import round_down
+from .ring import resample_ring
 
 #: A flattened boundary loop keeps a polygon vertex where it turns by at least
 #: this many degrees (inner angle at most 150 or at least 210 degrees): the
@@ -92,7 +91,7 @@ class MeshOutline:
 
 
 def mesh_outline(chart, l, spacing):
-    """Step 3: the flattened loops of ``chart`` (a :class:`~equimesh.surface.mesh_chart.MeshChart`) as rings.
+    """Step 3: the flattened loops of ``chart`` (a :class:`~equimesh.surface.charts.mesh_chart.MeshChart`) as rings.
 
     Raises
     ------
@@ -112,7 +111,7 @@ def mesh_outline(chart, l, spacing):
                 f"{name} of the mesh is too small for l = {number(l)}: its rim, {number(arc[-1])} long on the flattened "
                 "surface, gives fewer than 3 parts of at least l; use a smaller l"
             )
-        seg, t, _ = _nearest_segment(ring, xy, np.roll(xy, -1, axis=0))
+        seg, t, _ = nearest_segment(ring, xy, np.roll(xy, -1, axis=0))
         at = (1.0 - t) * arc[seg] + t * arc[seg + 1]
         at[1:] += arc[-1] * np.cumsum(np.diff(at) < 0)  # the ring starts at a corner: unwrap past the loop's start
         rings.append(ring)
@@ -202,7 +201,7 @@ def boundary_slides(outline, plane):
     """The boundary nodes of ``plane`` sliding along their loops in the final optimisation (item 52).
 
     Each node not at a corner of its loop slides between the corners before
-    and after it (:func:`~equimesh.surface._slide.between_corners`).
+    and after it (:func:`~equimesh.surface.optimize.slide.between_corners`).
 
     Returns
     -------
@@ -228,7 +227,7 @@ def _ring_arcs(outline, plane):
     ):
         nodes = np.arange(start, start + count)
         start += count
-        seg, t, _ = _nearest_segment(plane.points[nodes], ring, np.roll(ring, -1, axis=0))
+        seg, t, _ = nearest_segment(plane.points[nodes], ring, np.roll(ring, -1, axis=0))
         s = (1.0 - t) * arcs[seg] + t * arcs[seg + 1]
         first = arcs[0] - REL_TOL * loop_arc[-1]  # the ring's first vertex, a corner, up to rounding
         yield nodes, loop, loop_arc, s, np.sort(np.where(corner < first, corner + loop_arc[-1], corner))
@@ -244,7 +243,8 @@ def restate_mesh_error(exc, chart, outline, l):
     if not exc.points or len(exc.points) != 2:
         holes = "; ".join(ring_name(chart, outline.order, k) for k in range(1, len(outline.rings)))
         return InvalidSurfaceError(
-            f"the triangle mesh cannot be meshed with l = {number(l)}: {exc}" + (f" ({holes})" if "hole" in str(exc) else "")
+            f"the triangle mesh cannot be meshed with l = {number(l)}: {exc}"
+            + (f" ({holes})" if "hole" in str(exc) else "")
         )
     xy = np.asarray(exc.points, dtype=float)
     where = " and ".join(coordinates(p) for p in chart.evaluate(xy[:, 0], xy[:, 1]))

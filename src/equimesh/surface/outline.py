@@ -7,7 +7,7 @@ Problem 2 (:func:`equimesh.uniform_triangulation`) by
 :func:`~equimesh.surface.ring.resample_ring`, the corners being the images of
 the four corners of the grid's domain; every polygon vertex carries its
 (u, v), on the boundary of the parameter rectangle (paper, eq. (3) on a
-boundary edge).  The openings of a chart (:mod:`equimesh.surface.openings`)
+boundary edge).  The openings of a chart (:mod:`equimesh.surface.charts.openings`)
 are mapped to the plane exactly and resampled alike, their vertices as
 corners (:func:`resample_holes`).
 """
@@ -17,10 +17,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from .._geometry import cross
-from ..errors import SurfaceTooSmallError
+from ..errors import SurfaceTooSmallError, number
 from ..tolerance import REL_TOL
-from ._places import corner_name, number, side_name
-from .chart import Domain
+from .charts.chart import Domain, corner_name, side_name
 from .remap import Loop, to_plane
 from .ring import resample_ring
 
@@ -34,7 +33,7 @@ class Outline:
     vertices : (n, 2) plane coordinates, counter-clockwise.
     uv : (n, 2) parameter coordinates, on the boundary of the domain.
     side : (n,) the side of the domain each polygon edge (i, i+1) runs along
-        (index into :data:`~equimesh.surface.chart.SIDES`).
+        (index into :data:`~equimesh.surface.charts.chart.SIDES`).
     domain : Domain, the parameter rectangle.
     holes : tuple of :class:`~equimesh.surface.ring.Ring`, the openings (:func:`resample_holes`):
         clockwise on the plane, ``params`` their exact (u, v) on the hole's
@@ -105,7 +104,7 @@ def resample_holes(rings, plane, grid, l, spacing):
     """The openings on the plane: each hole's (u, v) polyline mapped and resampled (:func:`resample_ring`).
 
     ``rings`` are the holes clockwise in (u, v) with the caller's vertex
-    indices (:attr:`~equimesh.surface.openings.Perforated.rings`).  A hole's
+    indices (:attr:`~equimesh.surface.charts.openings.Perforated.rings`).  A hole's
     polyline is first split wherever it crosses an auxiliary edge
     (:func:`densify`), so each piece lies in one auxiliary triangle, where
     eqs. (2)-(3) are linear: the image (:func:`~equimesh.surface.remap.to_plane`)
@@ -171,7 +170,7 @@ def densify(polyline, grid):
 
 
 def side_index(uv_a, uv_b, domain):
-    """Index into :data:`~equimesh.surface.chart.SIDES` of the side of ``domain`` through two of its points."""
+    """Index into :data:`~equimesh.surface.charts.chart.SIDES` of the side of ``domain`` through two of its points."""
     axis = 0 if uv_a[0] == uv_b[0] else 1
     return 2 * axis + int(uv_a[axis] == domain.upper[axis])
 

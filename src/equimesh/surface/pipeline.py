@@ -1,22 +1,22 @@
 """Section 4 end to end: a uniform triangle mesh of a parametric surface or of a triangle mesh.
 
-A triangle mesh (:class:`~equimesh.surface.triangulated.TriangulatedSurface`)
+A triangle mesh (:class:`~equimesh.surface.charts.triangulated.TriangulatedSurface`)
 is its own auxiliary triangulation: step 1 is skipped, its flattening is the
-chart (:mod:`equimesh.surface.mesh_chart`) and its boundary loops the outline
+chart (:mod:`equimesh.surface.charts.mesh_chart`) and its boundary loops the outline
 (:mod:`equimesh.surface.mesh_outline`); steps 3-5 are shared.
 
 1. auxiliary triangulation of the chart's parameter rectangle (:mod:`equimesh.surface.auxiliary`,
-   :mod:`equimesh.surface.chart`);
+   :mod:`equimesh.surface.charts.chart`);
    the surface is refused if it is not finite, singular or folds
    (:mod:`equimesh.surface.regularity`), or if the mesh would be too large
    (:data:`MAX_NODES`, :data:`MAX_OPTIMIZE_NODES`, :data:`MAX_GRID_CELLS`);
 2. flattening by eq. (1) (:mod:`equimesh.surface.flatten`);
 3. the flattened boundary, and the images of any openings of the chart
-   (:mod:`equimesh.surface.openings`), as a polygon with holes
+   (:mod:`equimesh.surface.charts.openings`), as a polygon with holes
    (:mod:`equimesh.surface.outline`) triangulated by Problem 2
    (:func:`equimesh.uniform_triangulation`), with the lattice
    placement chosen by :func:`equimesh.best_lattice_placement` by default; its
-   refusals are restated in the surface's terms (:mod:`equimesh.surface.restate`);
+   refusals are restated in the surface's terms (:mod:`equimesh.surface.messages`);
 4. remapping to (u, v) by eqs. (2)-(3) and to the surface (:mod:`equimesh.surface.remap`);
 5. optimisation of the (u, v) of the inner nodes (:mod:`equimesh.surface.optimize`).
 
@@ -29,29 +29,28 @@ from typing import Callable
 
 import numpy as np
 
-from .auxiliary import auxiliary_grid, check_grid_size
-from .chart import domain_of
-from ..errors import EquimeshError, InternalError, InvalidPolygonError, InvalidSurfaceError, MeshTooLargeError
-from .flatten import flatten
-from .mesh_chart import MeshChart, flatten_mesh
-from .mesh_outline import boundary_slides, boundary_uv, mesh_outline, restate_mesh_error
-from ._jacobian import signed_areas
+from .._checks import check_length
 from .._geometry import power_of_two_scale
+from ..errors import EquimeshError, InternalError, InvalidPolygonError, InvalidSurfaceError, number
 from ..mesh import G1, edge_lengths
-from .optimize import OBJECTIVES, optimize_uv
-from .openings import Perforated, hole_slides, holes_of
-from .outline import resample_outline
 from ..planar.insertion import DEFAULT_ENGINE, check_engine
 from ..planar.limits import check_max_nodes, check_size, node_estimate
 from ..planar.placement import best_lattice_placement
-from ..planar.polygon import check_length
+from ..planar.strip import BOUNDARY_SPACING, check_spacing, uniform_triangulation
+from ..tolerance import at_least, at_most
+from .auxiliary import auxiliary_grid, check_grid_size
+from .charts.chart import domain_of
+from .charts.mesh_chart import MeshChart, flatten_mesh
+from .charts.openings import Perforated, hole_slides, holes_of
+from .charts.triangulated import TriangulatedSurface
+from .flatten import flatten
+from .mesh_outline import boundary_slides, boundary_uv, mesh_outline, restate_mesh_error
+from .messages import restate_polygon_error
+from .optimize import OBJECTIVES, optimize_uv
+from .optimize.jacobian import signed_areas
+from .outline import resample_outline
 from .regularity import check_regular, evaluate
 from .remap import remap
-from ._places import number
-from .restate import restate_polygon_error
-from ..planar.strip import BOUNDARY_SPACING, check_spacing, uniform_triangulation
-from .triangulated import TriangulatedSurface
-from ..tolerance import at_least, at_most
 
 #: Default limit on the node count of a surface mesh without the final
 #: optimisation (``optimize="none"``); :func:`mesh_surface` refuses, before any
@@ -173,7 +172,7 @@ def mesh_surface(
     ----------
     surface : Chart or TriangulatedSurface
         An object with ``evaluate(u, v)`` and ``derivatives(u, v)`` on its
-        ``domain`` (:class:`~equimesh.surface.chart.Chart`; [0, 1]^2 if it has
+        ``domain`` (:class:`~equimesh.surface.charts.chart.Chart`; [0, 1]^2 if it has
         none), e.g. :class:`equimesh.BezierSurface` or :class:`equimesh.NurbsSurface`;
         or a triangle mesh (:class:`equimesh.TriangulatedSurface`), which is
         then the auxiliary triangulation itself: its boundary loops are the
@@ -184,7 +183,7 @@ def mesh_surface(
         Target member length.
     holes : sequence of (k, 2) array_like, optional
         Openings: closed polylines in (u, v) inside the domain
-        (:class:`~equimesh.surface.openings.Perforated`, which a surface may
+        (:class:`~equimesh.surface.charts.openings.Perforated`, which a surface may
         carry already, e.g. from a JSON ``"holes"`` field).  Each is mapped
         to the flattened plane and kept open by Problem 2; its boundary nodes
         lie on its polyline and stay fixed in the optimisation, or under
@@ -239,7 +238,9 @@ def mesh_surface(
     engine = check_engine(engine)
     if holes is not None:
         if isinstance(surface, TriangulatedSurface):
-            raise EquimeshError("holes= cuts openings out of a parametric surface; a triangle mesh's openings are its boundary loops")
+            raise EquimeshError(
+                "holes= cuts openings out of a parametric surface; a triangle mesh's openings are its boundary loops"
+            )
         if not (hasattr(surface, "evaluate") and hasattr(surface, "derivatives")):
             raise InvalidSurfaceError("surface must provide evaluate(u, v) and derivatives(u, v) to take holes=")
         surface = Perforated(surface, holes)
@@ -252,12 +253,20 @@ def mesh_surface(
         # The surface's own guard (_check_size, measured end to end) bounds the planar stage too.
         holes = steps.holes
         chosen = (
-            best_lattice_placement(steps.outline.vertices, l, holes=holes, max_nodes=None) if placement == "best" else None
+            best_lattice_placement(steps.outline.vertices, l, holes=holes, max_nodes=None)
+            if placement == "best"
+            else None
         )
         angle, offset = (chosen.angle, chosen.offset) if chosen else (0.0, (0.0, 0.0))
         plane = uniform_triangulation(
-            steps.outline.vertices, l, holes=holes, angle=angle, offset=offset, boundary_spacing=boundary_spacing,
-            engine=engine, max_nodes=None,
+            steps.outline.vertices,
+            l,
+            holes=holes,
+            angle=angle,
+            offset=offset,
+            boundary_spacing=boundary_spacing,
+            engine=engine,
+            max_nodes=None,
         )
     except InvalidPolygonError as exc:
         raise steps.restate(exc) from None
@@ -275,7 +284,14 @@ def mesh_surface(
         if optimize in SLIDING_OBJECTIVES:
             boundary = steps.boundary(plane, mapped_uv)
         result = optimize_uv(
-            chart, mapped_uv, plane.edges, plane.edge_groups, l, triangles=plane.triangles, objective=optimize, **boundary
+            chart,
+            mapped_uv,
+            plane.edges,
+            plane.edge_groups,
+            l,
+            triangles=plane.triangles,
+            objective=optimize,
+            **boundary,
         )
         final_uv = result.uv
         _check_orientation(final_uv, plane.triangles, "the optimisation")
@@ -284,7 +300,18 @@ def mesh_surface(
             _check_members(final_points, plane.edges, l)
         clock("optimisation of inner nodes")
 
-    stages = Stages(steps.grid, steps.points, steps.flattening, steps.outline, chosen, plane, mapped_uv, mapped_points, result, seconds)
+    stages = Stages(
+        steps.grid,
+        steps.points,
+        steps.flattening,
+        steps.outline,
+        chosen,
+        plane,
+        mapped_uv,
+        mapped_points,
+        result,
+        seconds,
+    )
     return SurfaceMesh(
         final_points,
         plane.triangles,
@@ -325,7 +352,9 @@ def _chart_front(surface, grid, l, limit, spacing, clock):
     """Steps 1-3 for a chart: auxiliary grid of its domain, eq. (1), the outline of the flattened rectangle."""
     n_u, n_v = _grid_pair(grid)
     if not (hasattr(surface, "evaluate") and hasattr(surface, "derivatives")):
-        raise InvalidSurfaceError("surface must provide evaluate(u, v) and derivatives(u, v), or be a TriangulatedSurface")
+        raise InvalidSurfaceError(
+            "surface must provide evaluate(u, v) and derivatives(u, v), or be a TriangulatedSurface"
+        )
     aux = auxiliary_grid(n_u, n_v, domain_of(surface))
     x_s0 = evaluate(surface, aux.uv)
     check_regular(surface, aux)
@@ -338,7 +367,9 @@ def _chart_front(surface, grid, l, limit, spacing, clock):
     outline = resample_outline(flat.points, aux, l, spacing, holes_of(surface))
 
     def place(plane):
-        mapped = remap(surface, plane.points, flat.points, aux, on_boundary=np.arange(plane.n_boundary), outline=outline)
+        mapped = remap(
+            surface, plane.points, flat.points, aux, on_boundary=np.arange(plane.n_boundary), outline=outline
+        )
         return mapped.uv, mapped.points
 
     def restate(exc):
@@ -357,12 +388,12 @@ def _chart_front(surface, grid, l, limit, spacing, clock):
 
 
 def _mesh_front(surface, grid, l, limit, spacing, clock):
-    """Steps 1-3 for a triangle mesh (:mod:`equimesh.surface.triangulated`): it is the auxiliary triangulation.
+    """Steps 1-3 for a triangle mesh (:mod:`equimesh.surface.charts.triangulated`): it is the auxiliary triangulation.
 
     ``grid`` is not used.  The flattening starts from the projection onto the
     best-fit plane, or a conformal map or Tutte's embedding if that folds, with
-    the openings capped (:func:`~equimesh.surface.mesh_chart.flatten_mesh`); the flattened
-    mesh is the chart (:class:`~equimesh.surface.mesh_chart.MeshChart`) and
+    the openings capped (:func:`~equimesh.surface.charts.mesh_chart.flatten_mesh`); the flattened
+    mesh is the chart (:class:`~equimesh.surface.charts.mesh_chart.MeshChart`) and
     its loops the outline (:mod:`equimesh.surface.mesh_outline`).
     """
     if len(surface.triangles) > 2 * MAX_GRID_CELLS:

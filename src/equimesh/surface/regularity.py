@@ -26,9 +26,8 @@ reads the surface through them.
 
 import numpy as np
 
-from ..errors import InvalidSurfaceError
+from ..errors import InvalidSurfaceError, at
 from ..tolerance import MAX_NORMAL_TURN, SINGULAR_SIN
-from ._places import at
 
 
 def evaluate(surface, uv):

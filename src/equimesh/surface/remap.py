@@ -34,8 +34,9 @@ from dataclasses import dataclass
 import matplotlib.tri
 import numpy as np
 
+from .._geometry import nearest_segment
 from ..errors import InternalError
-from .chart import Domain
+from .charts.chart import Domain
 from .regularity import evaluate
 
 
@@ -141,7 +142,7 @@ def locate(plane_points, flat_points, grid, *, on_boundary=None, outline=None, s
     if snap_tol > 0:
         near = ~boundary_path
         if np.any(near):
-            dist = _nearest_segment(x[near], seg_a, seg_b)[2]
+            dist = nearest_segment(x[near], seg_a, seg_b)[2]
             boundary_path[np.flatnonzero(near)[dist <= snap_tol]] = True
 
     uv = np.empty((k, 2))
@@ -174,7 +175,7 @@ class Loop:
 
     Segment ``k`` runs from vertex ``k`` to vertex ``succ[k]`` (the next one
     around its ring; default: one ring, ``k + 1``).  ``side[k]`` is the side
-    (index into :data:`~equimesh.surface.chart.SIDES`) of ``domain`` that
+    (index into :data:`~equimesh.surface.charts.chart.SIDES`) of ``domain`` that
     segment lies on, or -1 for a segment inside the domain (on a hole).
     """
 
@@ -191,7 +192,7 @@ class Loop:
         domain the side coordinate is then set to exactly the domain's bound.
         """
         succ = np.roll(np.arange(len(self.xy)), -1) if self.succ is None else self.succ
-        seg, tt, _ = _nearest_segment(x, self.xy, self.xy[succ])
+        seg, tt, _ = nearest_segment(x, self.xy, self.xy[succ])
         ua, ub = self.uv[seg], self.uv[succ[seg]]
         uv = (1.0 - tt)[:, None] * ua + tt[:, None] * ub
         side = self.side[seg]  # index into SIDES = (u=u0, u=u1, v=v0, v=v1), -1 inside
@@ -240,25 +241,6 @@ def barycentric(x, corners):
     total = a[over] + b[over]
     a[over], b[over] = a[over] / total, b[over] / total
     return a, b
-
-
-def _nearest_segment(x, a, b, chunk=4096):
-    """Nearest segment index, parameter t in [0, 1] and distance for each point (vectorised, chunked)."""
-    ab = b - a
-    denom = np.maximum(np.sum(ab * ab, axis=1), np.finfo(float).tiny)
-    index = np.empty(len(x), dtype=np.int64)
-    tt = np.empty(len(x))
-    dist = np.empty(len(x))
-    for start in range(0, len(x), chunk):
-        p = x[start : start + chunk, None, :]
-        t = np.clip(np.sum((p - a) * ab, axis=2) / denom, 0.0, 1.0)
-        d = np.linalg.norm(a + t[..., None] * ab - p, axis=2)
-        j = np.argmin(d, axis=1)
-        rows = np.arange(len(j))
-        index[start : start + chunk] = j
-        tt[start : start + chunk] = t[rows, j]
-        dist[start : start + chunk] = d[rows, j]
-    return index, tt, dist
 
 
 __all__ = ["Loop", "Remap", "barycentric", "locate", "remap", "to_plane"]

@@ -6,13 +6,13 @@ Problem 2 (:func:`equimesh.uniform_triangulation`), parameters such as (u, v)
 carried along:
 
 * the sides between corners are split into ``k`` parts at equal arc length,
-  ``k`` by the rule of Step 2 (:func:`~equimesh.planar.polygon.split_counts`);
+  ``k`` by the rule of Step 2 (:func:`~equimesh.planar.boundary.sides.split_counts`);
   a part's chord is at most its arc, so at most ``2l``; where curvature makes
   a chord shorter than ``l``, the side falls back to ``k - 1, k - 2, ...``
   parts;
-* next to a corner sharper than :data:`~equimesh.planar.polygon.SHARP_CORNER`
+* next to a corner sharper than :data:`~equimesh.planar.boundary.sides.SHARP_CORNER`
   each side keeps one straight edge from the corner, on which Problem 2
-  staggers its points (:func:`~equimesh.planar.polygon.side_positions`)
+  staggers its points (:func:`~equimesh.planar.boundary.sides.side_positions`)
   exactly as on a polygon's sides;
 * every polygon vertex lies on the polyline, with the segment and fraction
   it sits at, so its parameters are known exactly.
@@ -23,10 +23,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from .._geometry import inner_angle
-from ..errors import SurfaceTooSmallError
-from ..planar.polygon import split_counts, stagger_reach
+from ..errors import SurfaceTooSmallError, number
+from ..planar.boundary.sides import split_counts, stagger_reach
 from ..tolerance import at_least
-from ._places import number
 
 
 @dataclass(frozen=True)
@@ -69,12 +68,12 @@ def resample_ring(xy, params, corners, l, spacing, too_short=None):
         side that no split leaves with chords of at least ``l``.
 
     A side is split into ``k`` equal parts along its arc, ``k`` by the rule
-    of Step 2 (:func:`~equimesh.planar.polygon.split_counts`), the paper's
+    of Step 2 (:func:`~equimesh.planar.boundary.sides.split_counts`), the paper's
     Step 2 at arc length; where a chord is shorter than ``l``, ``k - 1,
     k - 2, ...`` parts.  Next to a corner sharper than ``SHARP_CORNER`` the
     side keeps one straight edge from the corner, ``stagger_reach + l`` long
     (:func:`_corner_edges`): Problem 2 staggers its points there
-    (:func:`~equimesh.planar.polygon.side_positions`) on a straight edge, where
+    (:func:`~equimesh.planar.boundary.sides.side_positions`) on a straight edge, where
     the proof of their separation holds as it stands (docs/proofs.md, "Sharp
     corners"); staggered points placed on the curve itself would be ``l``
     apart along the arc, closer than ``l`` as chords.
@@ -134,7 +133,10 @@ def _corner_edges(xy, chains, arcs, corners, l):
                 single[leaving] = single[arriving] = True
                 break
             start[leaving], end[arriving] = s, arcs[arriving][-1] - t
-            p, q = (_at_arc(pts, pts, arc, np.array([0.0, x, arc[-1]]))[0][1] for pts, arc, x in ((ahead, arcs[leaving], s), (back, back_arc, t)))
+            p, q = (
+                _at_arc(pts, pts, arc, np.array([0.0, x, arc[-1]]))[0][1]
+                for pts, arc, x in ((ahead, arcs[leaving], s), (back, back_arc, t))
+            )
             angle = inner_angle(np.array([q, xy[c], p]), 1)
     return [None if one or not at_least(b - a, l) else (a, b) for one, a, b in zip(single, start, end)]
 

@@ -170,7 +170,14 @@ def random_convex_polygon(
     axis = rng.uniform(0.0, math.pi)
     shift = rng.uniform(-100.0, 100.0, 2) * min_edge
     vertices = convex_polygon(
-        turns, log_lengths, start=start, axis=axis, elongation=elongation, area=area, min_edge=min_edge, max_area=max_area
+        turns,
+        log_lengths,
+        start=start,
+        axis=axis,
+        elongation=elongation,
+        area=area,
+        min_edge=min_edge,
+        max_area=max_area,
     )
     return vertices + shift
 

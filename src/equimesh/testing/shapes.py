@@ -80,7 +80,11 @@ def star_polygon(k, half_width, inner, outer):
         u = np.array([math.cos(phi), math.sin(phi)])
         n = np.array([-u[1], u[0]])
         psi = phi + math.pi / k
-        out += [outer * u - half_width * n, outer * u + half_width * n, inner * np.array([math.cos(psi), math.sin(psi)])]
+        out += [
+            outer * u - half_width * n,
+            outer * u + half_width * n,
+            inner * np.array([math.cos(psi), math.sin(psi)]),
+        ]
     return np.array(out)
 
 
@@ -93,7 +97,12 @@ def flattened_square(n, parts, a, b, ky, kx, p=0.0, q=0.0):
     t = np.arange(parts) / parts * n
     z = np.zeros(parts)
     ring = np.vstack(
-        [np.column_stack([t, z]), np.column_stack([z + n, t]), np.column_stack([n - t, z + n]), np.column_stack([z, n - t])]
+        [
+            np.column_stack([t, z]),
+            np.column_stack([z + n, t]),
+            np.column_stack([n - t, z + n]),
+            np.column_stack([z, n - t]),
+        ]
     )
     x, y = ring[:, 0], ring[:, 1]
     return np.column_stack([x + a * np.sin(ky * y + p), y + b * np.sin(kx * x + q)])
@@ -119,7 +128,14 @@ def sharp_rhombus(angle, side):
     and ``side sin(angle) >= 1.2`` (the width between opposite sides).
     """
     t = math.radians(angle)
-    return np.array([[0.0, 0.0], [side, 0.0], [side * (1 + math.cos(t)), side * math.sin(t)], [side * math.cos(t), side * math.sin(t)]])
+    return np.array(
+        [
+            [0.0, 0.0],
+            [side, 0.0],
+            [side * (1 + math.cos(t)), side * math.sin(t)],
+            [side * math.cos(t), side * math.sin(t)],
+        ]
+    )
 
 
 def sharp_dart(angle, barbs, side):
@@ -169,7 +185,15 @@ def sharp_corner_shape(kind, angle, reach, u, v, w):
         h, base = side * math.cos(half), 2.0 * side * math.sin(half)
         width, height = base + 2.4 + 6.0 * v, 2.4 + 4.0 * w
         x0 = (width - base) / 2.0
-        outer = [[0, 0], [width, 0], [width, height], [x0 + base, height], [x0 + base / 2.0, height + h], [x0, height], [0, height]]
+        outer = [
+            [0, 0],
+            [width, 0],
+            [width, height],
+            [x0 + base, height],
+            [x0 + base / 2.0, height + h],
+            [x0, height],
+            [0, height],
+        ]
         return np.array(outer, dtype=float), []
     if kind == "dart hole":
         d, h = side * math.cos(half), side * math.sin(half)

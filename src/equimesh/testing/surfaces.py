@@ -2,7 +2,7 @@
 
 import numpy as np
 
-from equimesh.surface.bezier import BezierSurface
+from ..surface.charts.bezier import BezierSurface
 
 
 def dome(size=60.0, rise=12.0, seed=None, jitter=0.0):

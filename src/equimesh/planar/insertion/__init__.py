@@ -15,9 +15,9 @@ signature ``engine(region, l) -> Insertion``.
 """
 
 from ...errors import EquimeshError
-from ._region import Insertion, Region
 from .fast import run as _fast
 from .reference import run as _reference
+from .region import Insertion, Region
 
 #: Available insertion engines, by name.
 ENGINES = {"reference": _reference, "fast": _fast}

@@ -71,11 +71,11 @@ import math
 
 import numpy as np
 
+from ..._jit import compiled
 from ...errors import EquimeshError, InternalError
 from ...tolerance import REL_TOL, SLIVER_GAP
-from ._cdt import adjacency, cavity, cavity_boundary, fill, locate, segments_touch, walk
-from ..._jit import compiled
-from ._region import Insertion, constrained_delaunay
+from .cdt import adjacency, cavity, cavity_boundary, fill, locate, segments_touch, walk
+from .region import Insertion, constrained_delaunay
 
 #: The distance from a circumcentre to the constraints is searched among the
 #: triangles within ``_REACH * SLIVER_GAP * l`` of it (twice the largest gap

@@ -46,7 +46,7 @@ import numpy as np
 from ..._geometry import circumcenters, point_segment_distance, segments_intersect
 from ...mesh import half_edges
 from ...tolerance import REL_TOL, SLIVER_GAP, at_least, at_most
-from ._region import Insertion, constrained_delaunay
+from .region import Insertion, constrained_delaunay
 
 
 def run(region, l):

@@ -9,8 +9,8 @@ outline (step 3), the remapping (step 4) and the bounds of the final
 optimisation read the rectangle from the chart's ``domain``; nothing else in
 Section 4 knows where the rectangle lies.
 
-:class:`~equimesh.surface.bezier.BezierSurface` (the paper's example, on
-[0, 1]^2) and :class:`~equimesh.surface.nurbs.NurbsSurface` (on the span of its
+:class:`~equimesh.surface.charts.bezier.BezierSurface` (the paper's example, on
+[0, 1]^2) and :class:`~equimesh.surface.charts.nurbs.NurbsSurface` (on the span of its
 knot vectors) are charts.  An object with ``evaluate`` and ``derivatives`` but
 no ``domain`` is taken on [0, 1]^2 (:func:`domain_of`).
 """
@@ -21,8 +21,8 @@ from typing import Protocol, runtime_checkable
 
 import numpy as np
 
-from ..errors import InvalidSurfaceError
-from ..tolerance import REL_TOL
+from ...errors import InvalidSurfaceError, number
+from ...tolerance import REL_TOL
 
 #: The sides of a domain, in the order used everywhere (columns of
 #: :attr:`~equimesh.surface.auxiliary.AuxiliaryGrid.boundary_sides`, values of
@@ -128,3 +128,13 @@ def domain_of(surface):
     if not isinstance(domain, Domain):
         raise InvalidSurfaceError(f"surface.domain must be an equimesh Domain, got {type(domain).__name__}")
     return domain
+
+
+def side_name(side, domain):
+    """``side v = 0`` for an index into :data:`~equimesh.surface.charts.chart.SIDES` of ``domain``."""
+    return f"side {'uv'[side // 2]} = {number(domain.side_values[side])}"
+
+
+def corner_name(uv):
+    """``corner (u, v) = (1, 0)`` for a corner of the parameter rectangle."""
+    return f"corner (u, v) = ({number(uv[0])}, {number(uv[1])})"

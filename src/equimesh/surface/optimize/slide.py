@@ -8,7 +8,7 @@ may instead slide along its loop: its one variable is its arc position ``s``,
 segment ``s`` lies on (from the segment's start: at a loop vertex the segment
 that begins there).  It stays between the loop's corners before and after it
 (docs/decisions.md, "Real surfaces in", item 52).  The openings of a
-parametric chart (:mod:`equimesh.surface.openings`) slide the same way along
+parametric chart (:mod:`equimesh.surface.charts.openings`) slide the same way along
 their (u, v) polygons, every vertex a corner.
 """
 
@@ -16,7 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..tolerance import REL_TOL
+from ...tolerance import REL_TOL
 
 
 def loop_arc(xy):

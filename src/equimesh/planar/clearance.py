@@ -71,7 +71,9 @@ def clear_of_boundary(shape, points, first, grid_shape, offset, basis, distance)
 
     # Band: (segment, row) pairs, then (segment, vertex) pairs, then the nearest segment per vertex.
     vlo, vhi = np.minimum(ua[:, 1], ub[:, 1]), np.maximum(ua[:, 1], ub[:, 1])
-    seg, row = _expand(np.maximum(np.ceil(vlo - w), j0).astype(np.int64), np.minimum(np.floor(vhi + w), j0 + nj - 1).astype(np.int64))
+    seg, row = _expand(
+        np.maximum(np.ceil(vlo - w), j0).astype(np.int64), np.minimum(np.floor(vhi + w), j0 + nj - 1).astype(np.int64)
+    )
     dv = ub[seg, 1] - ua[seg, 1]
     flat = dv == 0.0
     # The divisor is never 0 and the numerators are finite, so only a nearly flat segment (dv tiny) can
@@ -92,8 +94,12 @@ def clear_of_boundary(shape, points, first, grid_shape, offset, basis, distance)
 
     # Inside: parity of the boundary crossings left of each vertex along its row.
     # Rows j with vlo <= j < vhi, the rows each segment crosses (a horizontal segment crosses none).
-    crossing, j = _expand(np.maximum(np.ceil(vlo), j0).astype(np.int64), np.minimum(np.ceil(vhi) - 1, j0 + nj - 1).astype(np.int64))
-    uc = ua[crossing, 0] + (j - ua[crossing, 1]) * (ub[crossing, 0] - ua[crossing, 0]) / (ub[crossing, 1] - ua[crossing, 1])
+    crossing, j = _expand(
+        np.maximum(np.ceil(vlo), j0).astype(np.int64), np.minimum(np.ceil(vhi) - 1, j0 + nj - 1).astype(np.int64)
+    )
+    uc = ua[crossing, 0] + (j - ua[crossing, 1]) * (ub[crossing, 0] - ua[crossing, 0]) / (
+        ub[crossing, 1] - ua[crossing, 1]
+    )
     toggles = np.zeros((ni + 1, nj), dtype=np.int64)
     np.add.at(toggles, (np.clip(np.floor(uc).astype(np.int64) + 1 - i0, 0, ni), j - j0), 1)
     inside = (np.cumsum(toggles[:ni], axis=0) & 1).astype(bool).ravel()

@@ -1,16 +1,15 @@
 """The tensor-product Bezier surface, the paper's example chart on [0, 1]^2 (Section 4, step 1).
 
-:class:`BezierSurface` is a :class:`~equimesh.surface.chart.Chart`: its domain
+:class:`BezierSurface` is a :class:`~equimesh.surface.charts.chart.Chart`: its domain
 is the paper's parameter square and it gives X^s with its first and second
 partial derivatives, all vectorised.
 """
 
 import numpy as np
 
-from .._jit import compiled
-from ..errors import InvalidSurfaceError
+from ..._jit import compiled
+from ...errors import InvalidSurfaceError
 from .chart import UNIT
-
 
 #: Beyond the paper: the highest degree of a Bezier net in u or in v.  It
 #: was set when the Bernstein basis used the binomial coefficients C(n, i) as

@@ -19,12 +19,13 @@ import re
 import numpy as np
 import shapely
 
-from ..errors import InvalidSurfaceError
-from ..planar.polygon import SHARP_CORNER, stagger_reach
-from ._places import at, corner_name, number, side_name
-from .openings import holes_of
+from ..errors import InvalidSurfaceError, at, number
+from ..planar.boundary.sides import SHARP_CORNER, stagger_reach
+from .charts.chart import corner_name, side_name
+from .charts.openings import holes_of
 from .outline import hole_image, round_down
 from .regularity import evaluate
+
 
 def restate_polygon_error(exc, surface, flat_points, grid, outline, l):
     """An :class:`~equimesh.errors.InvalidSurfaceError` saying in surface terms why Problem 2 refused ``outline``.
@@ -75,7 +76,9 @@ def restate_polygon_error(exc, surface, flat_points, grid, outline, l):
                 f"{number(need)} l long (docs/proofs.md, 'Sharp corners'), it is {number(length)} on the flattened "
                 f"surface; use l <= {number(round_down(length / need))}"
             )
-        return InvalidSurfaceError(f"near the {name} ({angle:.1f} degrees on the flattened surface) {close}; try l < {number(round_down(gap))}")
+        return InvalidSurfaceError(
+            f"near the {name} ({angle:.1f} degrees on the flattened surface) {close}; try l < {number(round_down(gap))}"
+        )
     width = _side_distance(flat_points, grid, sides) if sides[0] != sides[1] else gap
     return InvalidSurfaceError(
         f"the surface is only {number(width)} wide on the flattened surface there: {close}; use l <= {number(round_down(width))}"
@@ -100,8 +103,11 @@ def _hole_too_close(named, surface, flat_points, grid, outline, l):
     other = named[1] if len(named) > 1 else None
     rings = outline.rings
     exact = [shapely.LinearRing(hole_image(uv, flat_points, grid)) for uv, _ in holes_of(surface)]
-    against = (shapely.LinearRing(flat_points[grid.boundary]), shapely.LinearRing(rings[0])) if other is None else (
-        exact[other], shapely.LinearRing(rings[other + 1]))
+    against = (
+        (shapely.LinearRing(flat_points[grid.boundary]), shapely.LinearRing(rings[0]))
+        if other is None
+        else (exact[other], shapely.LinearRing(rings[other + 1]))
+    )
     pairs = [(exact[k], against[0]), (shapely.LinearRing(rings[k + 1]), against[1])]
     gaps = [float(shapely.distance(a, b)) for a, b in pairs]
     near = shapely.shortest_line(*pairs[int(np.argmin(gaps))])
@@ -127,7 +133,7 @@ def _stagger_needs(flat_points, grid, sides):
     """``(side, length, need)`` for each side: its length on the plane and the staggering's need in units of l.
 
     A side at least ``stagger_reach`` of both its corners plus ``l`` long
-    keeps every staggered point (:func:`~equimesh.planar.polygon.side_positions`).
+    keeps every staggered point (:func:`~equimesh.planar.boundary.sides.side_positions`).
     """
     a, b = flat_points[grid.boundary], flat_points[np.roll(grid.boundary, -1)]
     domain = grid.domain

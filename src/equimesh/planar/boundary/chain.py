@@ -49,8 +49,8 @@ import math
 
 import numpy as np
 
-from ..tolerance import REL_TOL
-from ._corner import CORNER_GRID, CORNER_REFINEMENTS, corner_reach
+from ...tolerance import REL_TOL
+from .corner import CORNER_GRID, CORNER_REFINEMENTS, corner_reach
 
 #: Distinct sets of positions left that one decision may reduce to their useful
 #: part (:func:`_useful`, per grid): a bound on the work, not a tolerance; past
@@ -171,7 +171,11 @@ def _side(length, reach, l, step, cells, tol):
     near, far = ((1.0 - tol) * l, 2.0 * (1.0 + tol) * l), (length - 2.0 * (1.0 + tol) * l, length - (1.0 - tol) * l)
     groups = [(np.zeros(1), np.zeros(1)), grid, _clipped(grid, *near)]  # kinds 0 corner, 1 inner, 2 first
     if not long_:
-        groups += [_clipped(grid, *far), _clipped(_clipped(grid, *near), *far), (np.full(1, length), np.full(1, length))]
+        groups += [
+            _clipped(grid, *far),
+            _clipped(_clipped(grid, *near), *far),
+            (np.full(1, length), np.full(1, length)),
+        ]
     kind = np.concatenate([np.full(len(group[0]), k) for k, group in enumerate(groups)])
     lo, hi = (np.concatenate([group[i] for group in groups]) for i in (0, 1))
     # corner -> first or both (or the far end); first or inner -> inner or last; last or both (or corner) -> far end
@@ -273,7 +277,14 @@ class _Chain:
             if alone:
                 cross = np.ones((len(lo), 1), dtype=bool)
             else:
-                cross = _cross(thetas[k], (lengths[k] - hi, lengths[k] - lo), sides[k + 1][:2], l, tol, (radii[2 * k], radii[2 * k + 1]))
+                cross = _cross(
+                    thetas[k],
+                    (lengths[k] - hi, lengths[k] - lo),
+                    sides[k + 1][:2],
+                    l,
+                    tol,
+                    (radii[2 * k], radii[2 * k + 1]),
+                )
             cross[-1] = cross[:, 0] = True  # a corner is no point of the other side
             self.ahead.append(cross)
         self.back[0] = self.back[:, 0] = True

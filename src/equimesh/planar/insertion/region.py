@@ -67,12 +67,16 @@ def constrained_delaunay(points, segments, holes):
     if out is None:
         said = printed().strip().splitlines()
         raise InternalError(
-            "Triangle failed on a validated input" + (f" ({said[0]})" if said else "") + ": a bug in equimesh, please report it"
+            "Triangle failed on a validated input"
+            + (f" ({said[0]})" if said else "")
+            + ": a bug in equimesh, please report it"
         )
     if "triangles" not in out:
         return np.empty((0, 3), dtype=np.int64)
     if len(out["vertices"]) != len(points):
-        raise InternalError("constrained Delaunay triangulation added Steiner points (constraints intersect): a bug in equimesh")
+        raise InternalError(
+            "constrained Delaunay triangulation added Steiner points (constraints intersect): a bug in equimesh"
+        )
     return np.asarray(out["triangles"], dtype=np.int64)
 
 

@@ -1,7 +1,7 @@
 """A piecewise-linear chart on the flattening of a triangle mesh (Section 4, steps 2 and 4).
 
 When the auxiliary triangulation is the user's own mesh
-(:class:`~equimesh.surface.triangulated.TriangulatedSurface`) there is no
+(:class:`~equimesh.surface.charts.triangulated.TriangulatedSurface`) there is no
 parameter rectangle; the flattened mesh of step 2 is the parameter plane.
 :class:`MeshChart` is the map from it back to the mesh: a point ``(u, v)`` of
 the flattened triangle ``(q, r, s)`` with the coefficients ``alpha, beta`` of
@@ -29,18 +29,19 @@ import scipy.sparse
 import scipy.sparse.linalg
 import shapely
 
-from .._geometry import orient
-from ..errors import InvalidSurfaceError
-from ..tolerance import REL_TOL
+from ..._geometry import nearest_segment as nearest_segment
+from ..._geometry import orient
+from ...errors import InvalidSurfaceError
+from ...mesh import triangle_orient, unique_edges
+from ...planar.insertion.region import constrained_delaunay
+from ...tolerance import REL_TOL
+from ..flatten import _plane_start, flatten
+from ..remap import barycentric
 from .chart import Domain
-from .flatten import _plane_start, flatten
-from ..planar.insertion._region import constrained_delaunay
-from .remap import _nearest_segment, barycentric
-from ..mesh import triangle_orient, unique_edges
 
 
 class MeshChart:
-    """The chart X^s of a :class:`~equimesh.surface.triangulated.TriangulatedSurface` on its flattening.
+    """The chart X^s of a :class:`~equimesh.surface.charts.triangulated.TriangulatedSurface` on its flattening.
 
     Parameters
     ----------
@@ -96,7 +97,7 @@ class MeshChart:
         found = np.asarray(self._finder(x[:, 0], x[:, 1]), dtype=np.int64)
         out = np.flatnonzero(found < 0)
         if out.size:
-            seg, t, _ = _nearest_segment(x[out], self.plane[self._seg_a], self.plane[self._seg_b])
+            seg, t, _ = nearest_segment(x[out], self.plane[self._seg_a], self.plane[self._seg_b])
             x = x.copy()
             a, b = self.plane[self._seg_a[seg]], self.plane[self._seg_b[seg]]
             x[out] = a + t[:, None] * (b - a)
@@ -135,7 +136,9 @@ def check_one_to_one(surface, plane):
     total = 0.5 * float(orient(p[:, 0], p[:, 1], p[:, 2]).sum())
     if not region.is_valid or abs(region.area - total) > REL_TOL * total:
         crossing = [k for k, xy in enumerate(loops) if not shapely.LinearRing(xy).is_simple]
-        which = f"boundary loop {crossing[0]} of {len(loops)} crosses itself" if crossing else "its boundary loops cross"
+        which = (
+            f"boundary loop {crossing[0]} of {len(loops)} crosses itself" if crossing else "its boundary loops cross"
+        )
         raise InvalidSurfaceError(
             f"the flattened triangle mesh overlaps itself ({which} on the plane): the surface is too strongly curved "
             "to flatten by eq. (1) in one piece; cut it into flatter pieces"
@@ -158,7 +161,9 @@ def flatten_mesh(surface):
     """
     start = flattening_start(surface)
     caps = opening_caps(surface, start)
-    return flatten(surface.vertices, np.vstack([surface.triangles, caps]), x0=start, edges=unique_edges(surface.triangles))
+    return flatten(
+        surface.vertices, np.vstack([surface.triangles, caps]), x0=start, edges=unique_edges(surface.triangles)
+    )
 
 
 def opening_caps(surface, start):
@@ -211,8 +216,14 @@ def conformal_start(surface):
     ax = e1 / np.linalg.norm(e1, axis=1, keepdims=True)
     normal = np.cross(e1, e2)
     ay = np.cross(normal / np.linalg.norm(normal, axis=1, keepdims=True), ax)
-    local = np.stack([np.zeros((m, 2)), np.column_stack([np.linalg.norm(e1, axis=1), np.zeros(m)]),
-                      np.column_stack([np.einsum("ij,ij->i", e2, ax), np.einsum("ij,ij->i", e2, ay)])], axis=1)
+    local = np.stack(
+        [
+            np.zeros((m, 2)),
+            np.column_stack([np.linalg.norm(e1, axis=1), np.zeros(m)]),
+            np.column_stack([np.einsum("ij,ij->i", e2, ax), np.einsum("ij,ij->i", e2, ay)]),
+        ],
+        axis=1,
+    )
     w = np.roll(local, -2, axis=1) - np.roll(local, -1, axis=1)  # (m, 3, 2): W_j = corner j+2 - corner j+1
     scale = 1.0 / np.sqrt(np.abs(orient(local[:, 0], local[:, 1], local[:, 2])))[:, None]
     a, b = w[:, :, 0] * scale, w[:, :, 1] * scale
@@ -220,8 +231,10 @@ def conformal_start(surface):
     cols = tri.ravel()
     # Real part: sum a_j u_j - b_j v_j; imaginary part: sum b_j u_j + a_j v_j.  Unknowns (u_0..u_n-1, v_0..v_n-1).
     matrix = scipy.sparse.coo_matrix(
-        (np.concatenate([a.ravel(), -b.ravel(), b.ravel(), a.ravel()]),
-         (np.concatenate([rows, rows, rows + m, rows + m]), np.concatenate([cols, cols + n, cols, cols + n]))),
+        (
+            np.concatenate([a.ravel(), -b.ravel(), b.ravel(), a.ravel()]),
+            (np.concatenate([rows, rows, rows + m, rows + m]), np.concatenate([cols, cols + n, cols, cols + n])),
+        ),
         shape=(2 * m, 2 * n),
     ).tocsc()
     loop = surface.loops[0]
@@ -241,7 +254,10 @@ def conformal_start(surface):
         if not _unfolded(start, tri):
             return None
     e = unique_edges(tri)
-    return start * (np.linalg.norm(x[e[:, 1]] - x[e[:, 0]], axis=1).sum() / np.linalg.norm(start[e[:, 1]] - start[e[:, 0]], axis=1).sum())
+    return start * (
+        np.linalg.norm(x[e[:, 1]] - x[e[:, 0]], axis=1).sum()
+        / np.linalg.norm(start[e[:, 1]] - start[e[:, 0]], axis=1).sum()
+    )
 
 
 def harmonic_start(surface):
@@ -264,7 +280,9 @@ def harmonic_start(surface):
     start = np.zeros((n, 2))
     start[loop] = radius * np.column_stack([np.cos(angle), np.sin(angle)])
     e = unique_edges(surface.triangles)
-    adjacency = scipy.sparse.coo_matrix((np.ones(2 * len(e)), (np.r_[e[:, 0], e[:, 1]], np.r_[e[:, 1], e[:, 0]])), shape=(n, n)).tocsr()
+    adjacency = scipy.sparse.coo_matrix(
+        (np.ones(2 * len(e)), (np.r_[e[:, 0], e[:, 1]], np.r_[e[:, 1], e[:, 0]])), shape=(n, n)
+    ).tocsr()
     laplacian = (scipy.sparse.diags(np.asarray(adjacency.sum(axis=1)).ravel()) - adjacency).tocsr()
     free = np.flatnonzero(~fixed)
     if free.size:

@@ -25,7 +25,7 @@ counting (``nrt=False``; the reason is in :mod:`.fast`).
 import numpy as np
 
 from ..._jit import compiled
-from ._predicates import incircle, orient2d
+from .predicates import incircle, orient2d
 
 
 def adjacency(V, SA, SB, n_points):

@@ -48,7 +48,7 @@ import math
 
 import numpy as np
 
-from ..tolerance import REL_TOL
+from ...tolerance import REL_TOL
 
 #: Grid steps per l of :func:`place_corner` and :func:`corner_unplaceable`:
 #: a bound on the work (``(16 (K + 3))^2`` states), not a tolerance; a
@@ -104,7 +104,9 @@ def corner_unplaceable(theta, lengths, l, radii):
     checked.  False means only that the relaxation found a path on the
     finest grid, not that a placement exists.
     """
-    return any(_relaxed(theta, tuple(lengths), l, tuple(radii), level) is None for level in range(CORNER_REFINEMENTS + 1))
+    return any(
+        _relaxed(theta, tuple(lengths), l, tuple(radii), level) is None for level in range(CORNER_REFINEMENTS + 1)
+    )
 
 
 @functools.lru_cache(maxsize=1024)

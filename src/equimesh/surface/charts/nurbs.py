@@ -19,12 +19,12 @@ eq. (4.20)).
 
 import numpy as np
 
-from ..errors import InvalidSurfaceError
+from ...errors import InvalidSurfaceError
 from .chart import Domain
 
 
 class NurbsSurface:
-    """A tensor-product NURBS surface; a :class:`~equimesh.surface.chart.Chart`.
+    """A tensor-product NURBS surface; a :class:`~equimesh.surface.charts.chart.Chart`.
 
     Parameters
     ----------
@@ -76,7 +76,9 @@ class NurbsSurface:
 
     def __repr__(self):
         n_u, n_v, _ = self.control_points.shape
-        return f"NurbsSurface(degree={self.degree}, control net {n_u} x {n_v}, domain {self.domain.u} x {self.domain.v})"
+        return (
+            f"NurbsSurface(degree={self.degree}, control net {n_u} x {n_v}, domain {self.domain.u} x {self.domain.v})"
+        )
 
     def evaluate(self, u, v):
         """Points ``X^s(u, v)``, shape ``broadcast(u, v).shape + (3,)``."""
@@ -152,7 +154,9 @@ def _basis_derivatives(knots, degree, t, order):
         for k in range(degree - a + 1, degree + 1):  # lift the derivative from degree k - 1 to k
             i = span[:, None] - k + np.arange(k + 1)
             prev = np.pad(values, ((0, 0), (1, 1)))
-            values = k * (_ratio(prev[:, :-1], knots[i + k] - knots[i]) - _ratio(prev[:, 1:], knots[i + k + 1] - knots[i + 1]))
+            values = k * (
+                _ratio(prev[:, :-1], knots[i + k] - knots[i]) - _ratio(prev[:, 1:], knots[i + k + 1] - knots[i + 1])
+            )
         derivatives.append(values)
     return span[:, None] - degree + np.arange(degree + 1), derivatives
 

@@ -15,17 +15,16 @@ rectangle as the polygon): each hole simple, with at least 3 distinct
 vertices, inside the rectangle without touching its boundary, no two holes
 overlapping.  What depends on l (a hole closer than l to the boundary or to
 another hole on the flattened surface) is Problem 2's refusal, restated by
-:mod:`equimesh.surface.restate`.
+:mod:`equimesh.surface.messages`.
 """
 
 import numpy as np
 
-from ..errors import InvalidPolygonError, InvalidSurfaceError
-from ..planar.polygon import as_polygon
-from ._places import number
+from ..._geometry import nearest_segment as nearest_segment
+from ...errors import InvalidPolygonError, InvalidSurfaceError, number
+from ...planar.polygon import as_polygon
+from ..optimize.slide import between_corners, loop_arc
 from .chart import domain_of
-from .remap import _nearest_segment
-from ._slide import between_corners, loop_arc
 
 
 class Perforated:
@@ -34,7 +33,7 @@ class Perforated:
     Parameters
     ----------
     chart : Chart
-        The surface (:class:`~equimesh.surface.chart.Chart`).
+        The surface (:class:`~equimesh.surface.charts.chart.Chart`).
     holes : sequence of (k, 2) array_like
         Closed polylines in (u, v) (a closing copy of the first vertex is
         dropped), either orientation.
@@ -89,7 +88,7 @@ def hole_slides(surface, uv, nodes):
 
     ``nodes[k]`` are the nodes on hole ``k`` (:func:`holes_of`'s order), at
     ``uv``.  Every vertex of a hole is a corner: a node slides along the hole
-    edge it lies on (:func:`~equimesh.surface._slide.between_corners`).
+    edge it lies on (:func:`~equimesh.surface.optimize.slide.between_corners`).
 
     Returns
     -------
@@ -100,7 +99,7 @@ def hole_slides(surface, uv, nodes):
     pairs = []
     for (ring, _), on_hole in zip(holes_of(surface), nodes):
         arc = loop_arc(ring)
-        seg, t, _ = _nearest_segment(uv[on_hole], ring, np.roll(ring, -1, axis=0))
+        seg, t, _ = nearest_segment(uv[on_hole], ring, np.roll(ring, -1, axis=0))
         pairs.append(between_corners(on_hole, ring, arc, (1.0 - t) * arc[seg] + t * arc[seg + 1], arc[:-1]))
     return [slide for slide, _ in pairs], np.concatenate([np.zeros(0, dtype=np.int64), *(fixed for _, fixed in pairs)])
 

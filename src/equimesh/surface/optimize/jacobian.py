@@ -12,7 +12,7 @@ import copy
 import numpy as np
 import scipy.sparse
 
-from .._jit import compiled
+from ..._jit import compiled
 
 
 class ElementJacobian:

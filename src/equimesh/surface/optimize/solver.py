@@ -53,8 +53,8 @@ import numpy as np
 import scipy.sparse
 import scipy.sparse.linalg
 
-from .._jit import compiled
-from ..tolerance import LM_BACKTRACKS, LM_DIAGONAL_FLOOR, LM_INITIAL_DAMPING
+from ..._jit import compiled
+from ...tolerance import LM_BACKTRACKS, LM_DIAGONAL_FLOOR, LM_INITIAL_DAMPING
 
 try:
     import pypardiso
@@ -80,8 +80,22 @@ class Solution:
     damping: float
 
 
-def least_squares(residuals, jacobian, x0, lower, upper, *, accept=None, gtol=1e-10, xtol=1e-10, ftol=1e-12,
-                  max_iterations=500, damping=LM_INITIAL_DAMPING, normal_equations=None, limit=None):
+def least_squares(
+    residuals,
+    jacobian,
+    x0,
+    lower,
+    upper,
+    *,
+    accept=None,
+    gtol=1e-10,
+    xtol=1e-10,
+    ftol=1e-12,
+    max_iterations=500,
+    damping=LM_INITIAL_DAMPING,
+    normal_equations=None,
+    limit=None,
+):
     """Minimise ``|residuals(x)|^2 / 2`` over the box ``[lower, upper]`` (see the module docstring).
 
     ``x0`` must lie in the box and satisfy ``accept`` (if given); every
@@ -221,7 +235,7 @@ class NormalEquations:
         ``k (k + 1) / 2`` products ``J_rp J_rq`` (positions ``p <= q``), and the
         slot of the pattern each product is summed into.  The structure is
         taken as it comes (no sort per iteration: the Jacobians of
-        :class:`~equimesh.surface._jacobian.ElementJacobian` list a row's
+        :class:`~equimesh.surface.optimize.jacobian.ElementJacobian` list a row's
         columns by corner): a row's columns may be in any order, and a column
         may appear twice (entries to be summed): the product of its two
         entries then counts twice, ``(J_rp + J_rq)^2 = J_rp^2 + J_rq^2 + 2 J_rp J_rq``,
@@ -269,7 +283,9 @@ class _SuperLU:
         off = rows != cols
         entry_rows, entry_cols = np.concatenate([rows, cols[off]]), np.concatenate([cols, rows[off]])
         pattern = scipy.sparse.csc_matrix((np.ones(len(entry_rows)), (entry_rows, entry_cols)), shape=(n, n))
-        self._order = np.argsort(_factorise(pattern + n * scipy.sparse.identity(n, format="csc"), "MMD_AT_PLUS_A").perm_c)
+        self._order = np.argsort(
+            _factorise(pattern + n * scipy.sparse.identity(n, format="csc"), "MMD_AT_PLUS_A").perm_c
+        )
         position = np.empty(n, dtype=np.int64)
         position[self._order] = np.arange(n)
         # Which upper entry each entry of the permuted full CSC matrix takes its value from.

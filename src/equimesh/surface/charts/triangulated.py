@@ -6,7 +6,7 @@ A :class:`TriangulatedSurface` is that triangulation given directly (a mesh
 exported by a modeller).  Steps 2-4 then run on it unchanged (flattening by
 eq. (1), Problem 2 on the flattened outline, remapping by eq. (2)), and the
 flattening itself serves as the parameter plane
-(:class:`~equimesh.surface.mesh_chart.MeshChart`).
+(:class:`~equimesh.surface.charts.mesh_chart.MeshChart`).
 
 What eq. (1) and the remapping need, and what is checked here (each refusal
 one :class:`~equimesh.errors.InvalidSurfaceError` line naming the vertex or
@@ -35,10 +35,9 @@ import numpy as np
 import scipy.sparse
 import scipy.sparse.csgraph
 
-from ..errors import InvalidSurfaceError
-from ..mesh import edge_keys, half_edges
-from ..tolerance import SINGULAR_SIN
-from ._places import coordinates
+from ...errors import InvalidSurfaceError, coordinates
+from ...mesh import edge_keys, half_edges
+from ...tolerance import SINGULAR_SIN
 
 
 class TriangulatedSurface:
@@ -101,7 +100,9 @@ def _parse(vertices, triangles):
     if t.size == 0:
         raise InvalidSurfaceError("the mesh has no triangles")
     if t.ndim != 2 or t.shape[1] != 3 or not np.issubdtype(t.dtype, np.integer):
-        raise InvalidSurfaceError(f"triangles must be an (M, 3) array of vertex indices, got shape {t.shape} of {t.dtype}")
+        raise InvalidSurfaceError(
+            f"triangles must be an (M, 3) array of vertex indices, got shape {t.shape} of {t.dtype}"
+        )
     t = t.astype(np.int64)
     bad = np.flatnonzero(np.any((t < 0) | (t >= len(v)), axis=1))
     if bad.size:
@@ -125,7 +126,9 @@ def _check_degenerate(v, t):
         k = int(same[0])
         a, b, c = t[k]
         twice = a if a in (b, c) else b
-        raise InvalidSurfaceError(f"triangle {k} of the mesh is degenerate: two of its corners are the same point {coordinates(v[twice])}")
+        raise InvalidSurfaceError(
+            f"triangle {k} of the mesh is degenerate: two of its corners are the same point {coordinates(v[twice])}"
+        )
     e1, e2 = v[t[:, 1]] - v[t[:, 0]], v[t[:, 2]] - v[t[:, 0]]
     scale = np.max(np.abs(np.concatenate([e1, e2], axis=1)), axis=1, keepdims=True)
     e1, e2 = e1 / scale, e2 / scale  # no overflow or underflow in the products below

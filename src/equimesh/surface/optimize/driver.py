@@ -1,0 +1,266 @@
+"""Final optimisation of the nodes' parameters (Section 4, last paragraph, and beyond).
+
+"Finally, the deviation of the edge lengths in G1 from the target value is
+minimized by considering (u_i, v_i) of inner nodes as variables."  The
+variables are the (u, v) of the free nodes, kept in the chart's parameter domain by
+bounds (:func:`parameter_box`), for "sliding" boundary nodes the one
+parameter along the side they lie on (the other stays on the side; corners
+stay fixed), and for nodes sliding along a polyline (the flattened loops of a
+triangle mesh, the openings' edges) their arc position ``s``
+(:class:`~equimesh.surface.optimize.slide.Slide`, ``uv = loop(s)``, the Jacobian by
+the chain rule through ``d uv / d s``, :meth:`UVProblem.chain`).  The least-squares problem is solved by the sparse bounded
+Levenberg-Marquardt of :mod:`equimesh.surface.optimize.solver` with an analytic sparse
+Jacobian (chain rule through the surface's first derivatives).
+
+The seam.  What is minimised is looked up by name in :data:`OBJECTIVES`: a
+builder ``builder(problem: UVProblem) -> Objective`` returning the residual
+and sparse Jacobian functions of the variable vector, optionally a hard
+constraint (``feasible``) and a continuation (``refine``).
+
+* ``"paper"``: the paper's objective, ``(L - l) / l`` of the G1 members,
+  boundary fixed;
+* ``"bounded"`` (beyond the paper, the default of
+  :func:`~equimesh.surface.pipeline.mesh_surface`): every member in [l, 2l]
+  as a hard constraint, and as many members as possible at the target
+  ``l (1 + BOUNDED_OFFSET)`` by rounds of reweighted (Cauchy) least squares
+  that also pull the members outside the bounds in (:func:`bounded_objective`),
+  boundary nodes sliding.
+
+Fold-over.  Lengths do not see orientation, and the G1 edges do not see the
+triangles between the lattice and the boundary at all: minimising the G1
+deviation alone lets the lattice slide over the boundary nodes and flips
+boundary-strip triangles (observed on doubly curved patches).  Two guards:
+
+* a barrier (:class:`~equimesh.surface.optimize.jacobian.AreaBarrier`), zero unless a triangle's (u, v) area
+  falls below ``area_floor`` (default 0.5) of its start area, heavy enough
+  that a folded triangle costs more than the whole start; while no triangle
+  is that squeezed the objective is exactly the paper's;
+* the solver's acceptance test: a step that leaves any triangle that was
+  counter-clockwise in (u, v) at the start not strictly counter-clockwise is
+  refused, so no iterate, and no result, has a fold-over.
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.optimize
+import scipy.sparse
+
+from ...errors import EquimeshError, InvalidSurfaceError
+from ...tolerance import LM_INITIAL_DAMPING, PAPER_FTOL
+from .jacobian import AreaBarrier, signed_areas
+from .objectives import OBJECTIVES, Objective
+from .problem import UVProblem, free_parameters, parameter_box
+from .solver import NormalEquations, inner, least_squares
+
+
+@dataclass(frozen=True)
+class UVOptimization:
+    """Result of :func:`optimize_uv`.
+
+    Attributes
+    ----------
+    uv : (N, 2) float array
+        Optimised parameters; fixed nodes bit-identical to the start.
+    cost_before, cost_after : float
+        ``|r|^2 / 2`` of the last objective (the one whose solve ended at ``uv``) at the start and at ``uv``.
+    nfev, njev : int
+        Residual and Jacobian evaluations of the solver (all stages).
+    converged : bool, message : str
+        Whether the last stage met a convergence test, and which.
+    objective : str
+    """
+
+    uv: np.ndarray
+    cost_before: float
+    cost_after: float
+    nfev: int
+    njev: int
+    converged: bool
+    message: str
+    objective: str
+
+
+def optimize_uv(
+    surface,
+    uv,
+    edges,
+    edge_groups,
+    length,
+    *,
+    fixed,
+    sliding=(),
+    slides=(),
+    triangles=None,
+    objective="paper",
+    area_floor=0.5,
+    ftol=None,
+    xtol=1e-10,
+    gtol=1e-10,
+):
+    """Optimise the (u, v) of the free nodes (Section 4, final step).
+
+    Parameters
+    ----------
+    surface : Chart
+    uv : (N, 2) array_like
+        Start parameters of every node, in the parameter domain (step 4's output).
+    edges : (E, 2) int array_like
+    edge_groups : (E,) int array_like
+        G1 / OTHER label per edge.
+    length : float
+        The target length l.
+    fixed : array_like of int or (N,) bool
+        Nodes that stay put (the boundary nodes for ``"paper"``).
+    sliding : array_like of int
+        Nodes on the boundary of the parameter domain that move along it:
+        the parameter(s) at a side of :func:`parameter_box` stay, the other
+        varies (a node at a corner stays put).
+    slides : sequence of :class:`~equimesh.surface.optimize.slide.Slide`
+        Nodes that slide along a polyline in (u, v) by their arc position,
+        within their bounds (the boundary loops of a triangle-mesh chart).
+    triangles : (M, 3) int array_like, optional
+        For the fold-over guards (recommended): without them neither the
+        barrier nor the acceptance test is applied.
+    objective : str
+        Key of :data:`OBJECTIVES`.
+    area_floor : float
+        Fold-over barrier threshold ``tau`` in [0, 1): a triangle is penalised
+        once its (u, v) area falls below ``tau`` times its start area (see
+        :class:`~equimesh.surface.optimize.jacobian.AreaBarrier`).  0 disables the
+        barrier (the acceptance test still applies).
+    ftol, xtol, gtol
+        Convergence tolerances of :func:`equimesh.surface.optimize.solver.least_squares`;
+        ``ftol=None`` takes the objective's (:attr:`Objective.ftol`).
+
+    Returns
+    -------
+    UVOptimization
+
+    Raises
+    ------
+    InvalidSurfaceError
+        The objective has a hard constraint (``"bounded"``: every member in
+        [l, 2l]) and no point satisfying it was found; the message suggests a
+        smaller l, a finer grid (``surface.finer`` names what refines a chart,
+        "a finer auxiliary grid" by default) or ``optimize='paper'``.
+    """
+    try:
+        builder = OBJECTIVES[objective]
+    except (KeyError, TypeError):
+        raise EquimeshError(f"unknown objective {objective!r}; choose from {sorted(OBJECTIVES)}") from None
+    lower, upper = parameter_box(surface)
+    uv = np.clip(np.array(uv, dtype=float).reshape(-1, 2), lower, upper)
+    slides = tuple(slides)
+    free = free_parameters(uv, fixed, sliding, lower, upper)
+    for slide in slides:
+        free[slide.nodes] = False
+    problem = UVProblem(
+        surface, uv, np.asarray(edges, dtype=np.int64), np.asarray(edge_groups), float(length), free, slides
+    )
+    obj = builder(problem)
+    x0 = problem.x0
+    if len(x0) == 0:
+        cost0 = _cost(obj, x0)
+        return UVOptimization(uv, cost0, cost0, 0, 0, True, "no free nodes", objective)
+    tri = None if triangles is None else np.asarray(triangles, dtype=np.int64).reshape(-1, 3)
+    x, nfev, njev, damping = x0, 0, 0, LM_INITIAL_DAMPING
+    normal_equations = NormalEquations()  # one pattern for every stage: analysed once
+    barrier = None if tri is None or area_floor <= 0 else _fold_over_barrier(problem, tri, area_floor)
+    while True:
+        if obj.start is not None:  # a restart is a fresh solve: its own start and the initial damping
+            x, damping = obj.start, LM_INITIAL_DAMPING
+        guard = _Guard(problem, tri, obj.feasible, x)
+        solve = obj if barrier is None else _with_barrier(problem, obj, barrier, x)
+        tol = obj.ftol if ftol is None else ftol
+        box = problem.bounds if obj.hold is None else tuple(np.where(obj.hold, x, bound) for bound in problem.bounds)
+        while True:
+            solution = least_squares(
+                solve.residuals,
+                solve.jacobian,
+                x,
+                *box,
+                accept=guard,
+                gtol=gtol,
+                xtol=xtol,
+                ftol=tol,
+                max_iterations=obj.max_iterations,
+                damping=damping,
+                normal_equations=normal_equations,
+                limit=obj.limit,
+            )
+            x, nfev, njev = solution.x, nfev + solution.evaluations, njev + solution.iterations + 1
+            damping = solution.damping  # warm start: the next solve begins where this one's damping ended
+            if obj.feasible is None or obj.refine is not None or obj.feasible(x) or tol <= PAPER_FTOL:
+                break
+            tol = PAPER_FTOL  # a last stage that ends outside the hard constraint goes on to the tight tolerance
+        following = None if obj.refine is None else obj.refine(x)
+        if following is None:
+            break
+        obj = following
+    if obj.final is not None:
+        x, obj = obj.final(x)
+    if obj.feasible is not None and not obj.feasible(x):
+        raise InvalidSurfaceError(
+            f"optimisation ({objective}): no mesh with every member in [l, 2l] found, {obj.violation(x)}; "
+            f"use a smaller l, {getattr(surface, 'finer', 'a finer auxiliary grid')}, or optimize='paper' "
+            "(which does not bound the members on the surface)"
+        )
+    return UVOptimization(
+        problem.uv_of(x), _cost(obj, x0), _cost(obj, x), nfev, njev, solution.converged, solution.message, objective
+    )
+
+
+def _cost(obj, x):
+    r = obj.residuals(x)
+    return 0.5 * inner(r, r)
+
+
+class _Guard:
+    """The solver's acceptance test: no fold-over in (u, v), and a reached hard constraint kept.
+
+    :func:`~equimesh.surface.optimize.solver.least_squares` calls it only on
+    cost-reducing steps and takes the step exactly when it returns True, so
+    it tracks whether the current iterate is feasible.
+    """
+
+    def __init__(self, problem, triangles, feasible, x):
+        self.problem, self.triangles, self.feasible = problem, triangles, feasible
+        self.inside = feasible is not None and feasible(x)
+        if triangles is not None:  # the triangles counter-clockwise at the start, which must stay so
+            self.triangles = triangles[signed_areas(problem.uv, triangles) > 0]
+
+    def __call__(self, x):
+        if self.triangles is not None and np.any(signed_areas(self.problem.uv_of(x), self.triangles) <= 0):
+            return False
+        if self.feasible is None:
+            return True
+        now = self.feasible(x)
+        if self.inside and not now:
+            return False
+        self.inside = now
+        return True
+
+
+def _fold_over_barrier(problem, triangles, fraction):
+    """The fold-over barrier (:class:`~equimesh.surface.optimize.jacobian.AreaBarrier`) on the (u, v) areas of ``triangles``, weight 1."""
+    return AreaBarrier(triangles, problem.uv, fraction, 1.0, problem.moving, power=2)
+
+
+def _with_barrier(problem, obj, barrier, x):
+    """Append the fold-over ``barrier`` (:func:`_fold_over_barrier`) to ``obj``.
+
+    Its weight ``w`` has ``w^2 / 2`` above the objective's cost at ``x``: a
+    folded triangle alone costs more than the start of the solve.
+    """
+    barrier = barrier.weighted(1.0 + 2.0 * np.sqrt(_cost(obj, x)))
+
+    def residuals(y):
+        return np.concatenate([obj.residuals(y), barrier.residuals(problem.uv_of(y))])
+
+    def jacobian(y):
+        return scipy.sparse.vstack(
+            [obj.jacobian(y), problem.chain(barrier.jacobian(problem.uv_of(y)), y)], format="csr"
+        )
+
+    return Objective(residuals, jacobian, obj.description + " + fold-over barrier")
