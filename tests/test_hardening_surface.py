@@ -22,6 +22,7 @@ from equimesh.errors import InternalError, InvalidPolygonError, InvalidSurfaceEr
 from equimesh.surface import pipeline
 from equimesh.surface.auxiliary import auxiliary_grid
 from equimesh.surface.charts.bezier import BezierSurface
+from equimesh.surface.optimize import OBJECTIVES
 from equimesh.surface.regularity import check_regular
 
 SURFACES = Path(__file__).resolve().parent.parent / "experiments" / "surfaces"
@@ -146,7 +147,7 @@ def test_length_outside_the_supported_range_is_refused(l):
 @pytest.mark.parametrize("l", [1e-140, 1e-12])
 def test_tiny_length_is_too_large_a_mesh(l):
     """The estimate is a plain float: never an OverflowError or ZeroDivisionError."""
-    limit = pipeline.MAX_OPTIMIZE_NODES["bounded"]  # the default objective's
+    limit = OBJECTIVES["bounded"].max_nodes  # the default objective's
     refuse(MeshTooLargeError, plane_patch(), l, rf"would need about .* nodes in this surface .* max_nodes = {limit}\b")
 
 
@@ -166,7 +167,7 @@ def test_max_nodes_none_means_no_limit_and_default_depends_on_optimize():
     for optimize in ("none", "paper"):
         refuse(MeshTooLargeError, plane_patch(), 3.0, "max_nodes = 100", max_nodes=100, optimize=optimize)
     for objective in ("paper", "bounded"):
-        assert pipeline._node_limit("default", objective) == pipeline.MAX_OPTIMIZE_NODES[objective] < pipeline.MAX_NODES
+        assert pipeline._node_limit("default", objective) == OBJECTIVES[objective].max_nodes < pipeline.UNOPTIMIZED_MAX_NODES
 
 
 def test_size_is_checked_before_flattening():

@@ -9,11 +9,11 @@ from section4_standin import CircularVault, flat_patch, parabolic_vault, standin
 from equimesh import EquimeshError
 from equimesh._geometry import nearest_segment as nearest_segment
 from equimesh.mesh import edge_lengths, triangle_orient
-from equimesh.surface.optimize import OBJECTIVES, Objective, UVProblem, objectives, optimize_uv
+from equimesh.surface.optimize import OBJECTIVES, Objective, Stage, UVProblem, objectives, optimize_uv
 from equimesh.surface.optimize.driver import _fold_over_barrier, _with_barrier
 from equimesh.surface.optimize.jacobian import signed_areas
-from equimesh.surface.optimize.objectives import bounded_objective, edge_length_terms, paper_objective
-from equimesh.surface.optimize.slide import between_corners, loop_arc
+from equimesh.surface.optimize.objectives import bounded_stages, edge_length_terms, paper_stage
+from equimesh.surface.optimize.slide import along_polygon
 from equimesh.testing.surfaces import dome
 
 
@@ -56,7 +56,7 @@ def test_edge_length_jacobian_matches_finite_differences(seed):
 
 def test_paper_objective_and_barrier_jacobians_match_finite_differences():
     mesh, problem = problem_for(dome(rise=15.0), 12.0, 1)
-    obj = paper_objective(problem)
+    obj = paper_stage(problem)
     x = problem.x0
     np.testing.assert_allclose(obj.jacobian(x).toarray(), finite_difference(obj.residuals, x), atol=1e-6)
     barrier = _with_barrier(problem, obj, _fold_over_barrier(problem, mesh.triangles, 0.9), x)
@@ -71,10 +71,8 @@ def sliding_problem():
     """A stand-in dome's problem with its boundary nodes sliding along the unit square (four corners fixed), and the plain one."""
     mesh, plain = problem_for(dome(rise=15.0), 12.0, 3)
     square = np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]])
-    arc = loop_arc(square)
     nodes = np.arange(mesh.n_boundary)
-    seg, t, _ = nearest_segment(plain.uv[nodes], square, np.roll(square, -1, axis=0))
-    slide, corners = between_corners(nodes, square, arc, (1.0 - t) * arc[seg] + t * arc[seg + 1], arc[:-1])
+    slide, corners = along_polygon(nodes, square, plain.uv[nodes])
     assert len(corners) == 4 and len(slide.nodes) == mesh.n_boundary - 4
     problem = UVProblem(plain.surface, plain.uv, mesh.edges, mesh.edge_groups, 12.0, plain.free, (slide,))
     return mesh, plain, problem, slide
@@ -87,7 +85,7 @@ def test_sliding_nodes_jacobians_match_finite_differences():
     assert len(x) == len(plain.x0) + len(slide.nodes)
     np.testing.assert_allclose(problem.uv_of(x), plain.uv, rtol=0, atol=1e-15)
     x = x + np.concatenate([np.zeros(len(plain.x0)), 0.01 * np.random.default_rng(4).standard_normal(len(slide.nodes))])
-    obj = paper_objective(problem)
+    obj = paper_stage(problem)
     lengths, jacobian = edge_length_terms(problem, mesh.edges)
     np.testing.assert_allclose(jacobian(x)[1].toarray(), finite_difference(lengths, x), atol=1e-5 * lengths(x).max())
     barrier = _with_barrier(problem, obj, _fold_over_barrier(problem, mesh.triangles, 0.9), x)
@@ -173,35 +171,43 @@ def test_acceptance_guard_without_barrier():
 
 
 def test_bounded_objective_jacobian_matches_finite_differences(monkeypatch):
-    """The stages in order; a round (members pulled in from outside the band, Cauchy-weighted inside) and the penalised last stage."""
+    """The stages in order; a round (members pulled in from outside the band, Cauchy-weighted inside) and the penalised
+    last stage."""
     monkeypatch.setattr(objectives, "BOUNDED_ROUNDS", 1)  # each series of rounds is one round
     mesh, problem = problem_for(dome(rise=15.0), 12.0, 3, spread=0.03)
     x = problem.x0
-    first = bounded_objective(problem)  # round 1 from the remapped mesh
+    stages = bounded_stages(problem)
+    first = next(stages)  # round 1 from the remapped mesh
     ratio = edge_lengths(problem.surface.evaluate(*problem.uv.T), mesh.edges) / 12.0
     assert np.any(ratio < 1.0) and first.max_iterations == objectives.BOUNDED_ROUND_ITERATIONS  # some pulled in
-    paper = first.refine(x)  # the paper's objective from the remapped mesh, boundary nodes held
+    paper = stages.send(x)  # the paper's objective from the remapped mesh, boundary nodes held
     assert np.array_equal(paper.start, x) and paper.hold.shape == x.shape
-    released = paper.refine(x)  # its share beats no kept point: the boundary nodes are released
+    released = stages.send(x)  # its share beats no kept point: the boundary nodes are released
     assert released.hold is None and released.start is None
-    second = released.refine(x)  # round 1 from the paper's optimum
+    second = stages.send(x)  # round 1 from the paper's optimum
     assert second.max_iterations == objectives.BOUNDED_ROUND_ITERATIONS
-    last = second.refine(x)  # no round ended in [l, 2l]
-    assert last.refine is None and np.any(last.residuals(x)[len(mesh.edges) :] > 0)  # the penalty acts
-    for obj in (first, last):
-        np.testing.assert_allclose(obj.jacobian(x).toarray(), finite_difference(obj.residuals, x), atol=1e-4)
+    last = stages.send(x)  # no round ended in [l, 2l]
+    assert last.feasible is not None and np.any(last.residuals(x)[len(mesh.edges) :] > 0)  # the penalty acts
+    with pytest.raises(StopIteration) as done:
+        stages.send(x)
+    assert done.value.value[1] is last  # the last stage's point and costs are the result
+    for stage in (first, last):
+        np.testing.assert_allclose(stage.jacobian(x).toarray(), finite_difference(stage.residuals, x), atol=1e-4)
 
 
 def test_objective_table_is_the_seam(monkeypatch):
-    """A new objective with the same signature is picked up by name."""
+    """A new objective record with its stages is picked up by name."""
     calls = []
 
     def all_edges(problem):
         calls.append(problem)
         lengths, jacobian = edge_length_terms(problem, problem.edges)
-        return Objective(lambda x: lengths(x) / problem.length - 1.0, lambda x: jacobian(x)[1] / problem.length)
+        stage = Stage(lambda x: lengths(x) / problem.length - 1.0, lambda x: jacobian(x)[1] / problem.length)
+        x = yield stage
+        return x, stage
 
-    monkeypatch.setitem(OBJECTIVES, "all", all_edges)
+    record = Objective("all", all_edges, "every member to l", slides=False, bounds_members=False, max_nodes=100)
+    monkeypatch.setitem(OBJECTIVES, "all", record)
     mesh, r, opt = run(dome(), 8.0, objective="all")
     assert calls and opt.objective == "all"
     check_invariants(mesh, r, opt)

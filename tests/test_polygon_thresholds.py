@@ -28,7 +28,6 @@ import shapely
 
 import equimesh
 from equimesh.errors import InvalidPolygonError
-from equimesh.planar import polygon
 from equimesh.planar.boundary import corner as _corner
 from equimesh.planar.boundary import resample, separation
 from equimesh.planar.boundary import sides as boundary_sides

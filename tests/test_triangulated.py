@@ -35,7 +35,6 @@ from equimesh.surface.charts.mesh_chart import (
 from equimesh.surface.flatten import _plane_start, flatten
 from equimesh.surface.mesh_outline import CORNER_TURN, FIRM_TURN, loop_corners
 from equimesh.surface.optimize import optimize_uv
-from equimesh.surface.optimize.slide import on_loop
 from equimesh.testing.meshes import roof_mesh, wedge_mesh
 
 L = 1.5
@@ -127,15 +126,16 @@ def assert_boundary_slid_along_the_loops(mesh):
     """Boundary nodes on their flattened loops (to 1e-12 of its length), corners where they were, some moved."""
     outline, plane = mesh.stages.outline, mesh.stages.plane
     start, moved = 0, 0
-    for loop, arc, corners, count in zip(
-        outline.loops, outline.loop_arcs, outline.corners, plane.info["boundary_rings"]
-    ):
+    for loop, corners, count in zip(outline.loops, outline.corners, plane.info["boundary_rings"]):
         nodes = np.arange(start, start + count)
         start += count
-        assert np.all(shapely.distance(shapely.LinearRing(loop), shapely.points(mesh.uv[nodes])) <= 1e-12 * arc[-1])
+        length = loop.length
+        assert np.all(
+            shapely.distance(shapely.LinearRing(loop.points), shapely.points(mesh.uv[nodes])) <= 1e-12 * length
+        )
         before = mesh.stages.remapped_uv[nodes]
-        for corner in on_loop(loop, arc, corners):
-            at = np.linalg.norm(before - corner, axis=1) <= REL_TOL * arc[-1]
+        for corner in loop.at(corners):
+            at = np.linalg.norm(before - corner, axis=1) <= REL_TOL * length
             assert at.sum() == 1 and np.array_equal(mesh.uv[nodes[at]], before[at])
         moved += int(np.count_nonzero(np.any(mesh.uv[nodes] != before, axis=1)))
     assert moved > 0

@@ -50,7 +50,7 @@ def build_parser():
     from .io import INPUT_FORMATS, MESH_FORMATS
     from .planar.insertion import DEFAULT_ENGINE, ENGINES
     from .surface.optimize import OBJECTIVES
-    from .surface.pipeline import DEFAULT_OPTIMIZE, MAX_GRID_CELLS, MAX_NODES, MAX_OPTIMIZE_NODES, PLACEMENTS
+    from .surface.pipeline import DEFAULT_OPTIMIZE, MAX_GRID_CELLS, PLACEMENTS, UNOPTIMIZED_MAX_NODES
 
     parser = _Parser(
         prog="equimesh",
@@ -128,10 +128,13 @@ def build_parser():
         default=argparse.SUPPRESS,
         metavar="N",
         help="refuse, before any heavy work, a mesh estimated to need more than N nodes; 'none' for "
-        f"no limit. The defaults, {MAX_NODES} nodes with --optimize none and "
-        f"{MAX_OPTIMIZE_NODES['bounded']} with --optimize bounded and {MAX_OPTIMIZE_NODES['paper']} with "
-        "--optimize paper, keep a run to about two minutes on a "
-        "2-core machine (docs/performance.md); beyond them time grows faster than the node count",
+        "no limit. The defaults ("
+        + ", ".join(
+            [f"{UNOPTIMIZED_MAX_NODES} nodes with --optimize none"]
+            + [f"{record.max_nodes} with --optimize {name}" for name, record in OBJECTIVES.items()]
+        )
+        + ") keep a run to about two minutes on a 2-core machine (docs/performance.md); beyond them time grows "
+        "faster than the node count",
     )
     mesh.add_argument(
         "-o",

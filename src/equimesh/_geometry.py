@@ -157,3 +157,101 @@ def nearest_segment(x, a, b, chunk=4096):
         tt[start : start + chunk] = t[rows, j]
         dist[start : start + chunk] = d[rows, j]
     return index, tt, dist
+
+
+def between(a, b, t):
+    """``(1 - t) a + t b`` row by row: values at the fractions ``t`` of segments, exactly ``a`` at 0 and ``b`` at 1."""
+    t = np.asarray(t, dtype=float)
+    if np.ndim(a) > 1:
+        t = t[:, None]
+    return (1.0 - t) * a + t * b
+
+
+@dataclass(frozen=True)
+class Polyline:
+    """A plane polyline measured by arc length, values carried along it (the one arc-position helper).
+
+    Attributes
+    ----------
+    points : (n, 2) float array
+        The vertices; for a ``closed`` polyline the segment from the last back
+        to the first is part of it (the first is not repeated).
+    closed : bool
+    values : (n, k) float array, optional
+        Carried along (e.g. (u, v)): at an arc position they are interpolated
+        with the same fraction of the same segment as the point.
+    arc : float array
+        Arc position of each vertex, increasing from 0, and for a closed
+        polyline its length last (``n + 1`` entries); measured from the points
+        unless given (e.g. a polyline reversed, measured from its other end).
+
+    A point at an arc position is ``a + t (b - a)`` on its segment ``(a, b)``:
+    a coordinate that ``a`` and ``b`` share (a side of the parameter
+    rectangle) stays that float exactly, and a position at a vertex gives the
+    vertex bit for bit.  A projection (:meth:`project`) instead interpolates
+    with :func:`between`, exact at both ends of its segment.
+    """
+
+    points: np.ndarray
+    closed: bool = True
+    values: np.ndarray | None = None
+    arc: np.ndarray | None = None
+
+    def __post_init__(self):
+        if self.arc is None:
+            object.__setattr__(
+                self, "arc", np.concatenate([[0.0], np.cumsum(np.linalg.norm(self.ends - self.starts, axis=1))])
+            )
+
+    @property
+    def length(self):
+        return float(self.arc[-1])
+
+    @property
+    def starts(self):
+        """The first vertex of each segment."""
+        return self.points if self.closed else self.points[:-1]
+
+    @property
+    def ends(self):
+        """The last vertex of each segment."""
+        return np.roll(self.points, -1, axis=0) if self.closed else self.points[1:]
+
+    def segment(self, s):
+        """The segment ``k`` each arc position lies on (at a vertex: the one that begins there) and the fraction ``t``.
+
+        On a closed polyline a position ``s >= length`` is ``s - length`` (one turn).
+        """
+        s = np.asarray(s, dtype=float)
+        if self.closed:
+            s = np.where(s >= self.arc[-1], s - self.arc[-1], s)
+        arc = self.arc
+        k = np.clip(np.searchsorted(arc, s, side="right") - 1, 0, len(arc) - 2)
+        return k, (s - arc[k]) / (arc[k + 1] - arc[k])
+
+    def at(self, s):
+        """Points at arc positions ``s``; an open polyline's last position, its length, gives its last vertex exactly."""
+        return self._interpolate(self.points, s)
+
+    def values_at(self, s):
+        """The carried :attr:`values` at arc positions ``s``, interpolated as :meth:`at` interpolates the points."""
+        return self._interpolate(self.values, s)
+
+    def direction(self, s):
+        """``d point / d s`` at arc positions ``s``: the unit direction of the segment each lies on."""
+        k, _ = self.segment(s)
+        return (self.ends[k] - self.starts[k]) / (self.arc[k + 1] - self.arc[k])[:, None]
+
+    def project(self, x):
+        """The nearest point of the polyline to each of ``x``: its segment ``k``, fraction ``t`` and arc position."""
+        k, t, _ = nearest_segment(np.asarray(x, dtype=float), self.starts, self.ends)
+        return k, t, (1.0 - t) * self.arc[k] + t * self.arc[k + 1]
+
+    def _interpolate(self, data, s):
+        k, t = self.segment(s)
+        a = data[k]
+        b = np.roll(data, -1, axis=0)[k] if self.closed else data[k + 1]
+        inner = np.where((t == 0.0)[:, None], a, a + t[:, None] * (b - a))
+        if self.closed:
+            return inner
+        return np.where((np.asarray(s) >= self.arc[-1])[:, None], data[-1], inner)

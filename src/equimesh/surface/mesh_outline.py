@@ -25,11 +25,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._geometry import inner_angle
-from .._geometry import nearest_segment as nearest_segment
+from .._geometry import Polyline, between, inner_angle
 from ..errors import InvalidSurfaceError, coordinates, number
 from ..tolerance import REL_TOL
-from .optimize.slide import between_corners, loop_arc, on_loop
+from .optimize.slide import between_corners
 from .outline import round_down
 from .ring import resample_ring
 
@@ -57,15 +56,13 @@ class MeshOutline:
 
     Attributes
     ----------
-    loops : tuple of (m, 2) arrays
+    loops : tuple of closed :class:`~equimesh._geometry.Polyline`
         The flattened loops (the surface on their left), the outer one first.
     rings : tuple of (n, 2) arrays
         The polygon of each loop, same order: the outer ring, then the holes.
     arcs : tuple of (n + 1,) arrays
         Arc position along its loop of each ring vertex, increasing (past the
         loop's length after its start), and the first one plus the length last.
-    loop_arcs : tuple of (m + 1,) arrays
-        Arc position of each loop vertex, and the loop's length last.
     order : tuple of int
         The index in ``surface.loops`` of each loop.
     corners : tuple of (c,) arrays
@@ -75,7 +72,6 @@ class MeshOutline:
     loops: tuple
     rings: tuple
     arcs: tuple
-    loop_arcs: tuple
     order: tuple
     corners: tuple
 
@@ -99,10 +95,10 @@ def mesh_outline(chart, l, spacing):
         A part of a loop between two corners is shorter than l.
     """
     order = [chart.outer] + [k for k in range(len(chart.surface.loops)) if k != chart.outer]
-    loops = [chart.plane[chart.surface.loops[k]] for k in order]
-    rings, arcs, loop_arcs, corner_arcs = [], [], [], []
-    for k, xy in enumerate(loops):
-        arc = loop_arc(xy)
+    loops = [Polyline(chart.plane[chart.surface.loops[k]]) for k in order]
+    rings, arcs, corner_arcs = [], [], []
+    for k, loop in enumerate(loops):
+        xy, arc = loop.points, loop.arc
         name = ring_name(chart, order, k)
         corners = loop_corners(xy, l, _too_close(chart, xy, name, l))
         ring = resample_ring(xy, xy, corners, l, spacing, too_short=_too_short(name, l, len(corners))).points
@@ -111,14 +107,12 @@ def mesh_outline(chart, l, spacing):
                 f"{name} of the mesh is too small for l = {number(l)}: its rim, {number(arc[-1])} long on the flattened "
                 "surface, gives fewer than 3 parts of at least l; use a smaller l"
             )
-        seg, t, _ = nearest_segment(ring, xy, np.roll(xy, -1, axis=0))
-        at = (1.0 - t) * arc[seg] + t * arc[seg + 1]
+        at = loop.project(ring)[2]
         at[1:] += arc[-1] * np.cumsum(np.diff(at) < 0)  # the ring starts at a corner: unwrap past the loop's start
         rings.append(ring)
         arcs.append(np.append(at, at[0] + arc[-1]))
-        loop_arcs.append(arc)
         corner_arcs.append(arc[np.sort(corners)])
-    return MeshOutline(tuple(loops), tuple(rings), tuple(arcs), tuple(loop_arcs), tuple(order), tuple(corner_arcs))
+    return MeshOutline(tuple(loops), tuple(rings), tuple(arcs), tuple(order), tuple(corner_arcs))
 
 
 def loop_corners(xy, l, too_close):
@@ -193,8 +187,7 @@ def boundary_uv(outline, plane):
     ``plane`` is the :class:`~equimesh.mesh.PlanarMesh` of Problem 2 on
     ``outline`` (the rings in the order of ``info["boundary_rings"]``).
     """
-    rings = _ring_arcs(outline, plane)
-    return np.vstack([on_loop(loop, arc, np.where(s >= arc[-1], s - arc[-1], s)) for _, loop, arc, s, _ in rings])
+    return np.vstack([loop.at(s) for _, loop, s, _ in _ring_arcs(outline, plane)])
 
 
 def boundary_slides(outline, plane):
@@ -214,7 +207,7 @@ def boundary_slides(outline, plane):
 
 
 def _ring_arcs(outline, plane):
-    """Per loop: the boundary nodes of ``plane`` on it, the loop, its arc positions, the nodes', its corners'.
+    """Per loop: the boundary nodes of ``plane`` on it, the loop, the nodes' arc positions, its corners'.
 
     A node at the fraction ``t`` of the ring edge between ring vertices at arc
     positions ``s_a``, ``s_b`` is at ``(1 - t) s_a + t s_b`` (step 4).  The
@@ -222,15 +215,15 @@ def _ring_arcs(outline, plane):
     ``s_0 + length``; the corners are taken into that range.
     """
     start = 0
-    for ring, arcs, loop, loop_arc, corner, count in zip(
-        outline.rings, outline.arcs, outline.loops, outline.loop_arcs, outline.corners, plane.info["boundary_rings"]
+    for ring, arcs, loop, corner, count in zip(
+        outline.rings, outline.arcs, outline.loops, outline.corners, plane.info["boundary_rings"]
     ):
         nodes = np.arange(start, start + count)
         start += count
-        seg, t, _ = nearest_segment(plane.points[nodes], ring, np.roll(ring, -1, axis=0))
-        s = (1.0 - t) * arcs[seg] + t * arcs[seg + 1]
-        first = arcs[0] - REL_TOL * loop_arc[-1]  # the ring's first vertex, a corner, up to rounding
-        yield nodes, loop, loop_arc, s, np.sort(np.where(corner < first, corner + loop_arc[-1], corner))
+        seg, t, _ = Polyline(ring).project(plane.points[nodes])
+        s = between(arcs[seg], arcs[seg + 1], t)
+        first = arcs[0] - REL_TOL * loop.length  # the ring's first vertex, a corner, up to rounding
+        yield nodes, loop, s, np.sort(np.where(corner < first, corner + loop.length, corner))
 
 
 def restate_mesh_error(exc, chart, outline, l):

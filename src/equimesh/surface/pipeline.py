@@ -9,7 +9,7 @@ chart (:mod:`equimesh.surface.charts.mesh_chart`) and its boundary loops the out
    :mod:`equimesh.surface.charts.chart`);
    the surface is refused if it is not finite, singular or folds
    (:mod:`equimesh.surface.regularity`), or if the mesh would be too large
-   (:data:`MAX_NODES`, :data:`MAX_OPTIMIZE_NODES`, :data:`MAX_GRID_CELLS`);
+   (:data:`UNOPTIMIZED_MAX_NODES`, the objective's ``max_nodes``, :data:`MAX_GRID_CELLS`);
 2. flattening by eq. (1) (:mod:`equimesh.surface.flatten`);
 3. the flattened boundary, and the images of any openings of the chart
    (:mod:`equimesh.surface.charts.openings`), as a polygon with holes
@@ -59,23 +59,7 @@ from .remap import remap
 #: none` on an idle 2-core machine took 3.2 s for the reference dome at 36,847
 #: nodes, 12 s for the saddle at 184,518 and 30 s (0.74 GB) at 565,740
 #: (docs/performance.md, "Section 4 without optimisation").
-MAX_NODES = 500_000
-
-#: Objectives whose boundary nodes slide along the boundary (beyond the paper)
-#: and whose members are guaranteed to lie in [l, 2l] (checked on the result).
-SLIDING_OBJECTIVES = ("bounded",)
-
-#: Default node limits with an optimisation, per objective, measured with the
-#: sparse Levenberg-Marquardt solver on the reference dome (15 x 15 grid,
-#: default placement) on this project's busy 2-core machine (docs/decisions.md,
-#: "A solver that scales" and "The bounded objective", load average 10 to 12):
-#: "paper" took 21.5 s at 5,840 nodes (17,333 members) and 496 s at 34,031
-#: nodes (101,654 members), n^1.78, so about 2 minutes at 15,000 nodes (an
-#: idle machine is 3-5 times faster: 118.8 s at 34,031 nodes before the last
-#: speed-up); "bounded" (rounds of reweighted least squares) 14 s at 1,438
-#: nodes and 143 s at 5,840 nodes (load about 10), and did not finish within
-#: 17 minutes at 34,031 nodes.
-MAX_OPTIMIZE_NODES = {"paper": 15_000, "bounded": 6_000}
+UNOPTIMIZED_MAX_NODES = 500_000
 
 #: Limit on the auxiliary grid's cells n_u * n_v (a triangle mesh given as the
 #: auxiliary triangulation may have twice as many triangles): flattening by eq. (1) took
@@ -205,7 +189,8 @@ def mesh_surface(
         Refuse, before flattening, a mesh estimated (from the surface area of
         the auxiliary triangulation and the lattice density ``2 / (sqrt(3) l^2)``)
         to need more nodes; None means no limit.  "default" is
-        :data:`MAX_NODES`, or :data:`MAX_OPTIMIZE_NODES` of the objective:
+        :data:`UNOPTIMIZED_MAX_NODES`, or the objective's ``max_nodes``
+        (:data:`~equimesh.surface.optimize.OBJECTIVES`):
         runs within the defaults take at most about two minutes on a small
         machine.
     progress : callable, optional
@@ -280,9 +265,8 @@ def mesh_surface(
     chart = steps.chart
     final_uv, final_points = mapped_uv, mapped_points
     if optimize != "none":
-        boundary = {"fixed": np.arange(plane.n_boundary)}
-        if optimize in SLIDING_OBJECTIVES:
-            boundary = steps.boundary(plane, mapped_uv)
+        record = OBJECTIVES[optimize]
+        boundary = steps.boundary(plane, mapped_uv) if record.slides else {"fixed": np.arange(plane.n_boundary)}
         result = optimize_uv(
             chart,
             mapped_uv,
@@ -296,7 +280,7 @@ def mesh_surface(
         final_uv = result.uv
         _check_orientation(final_uv, plane.triangles, "the optimisation")
         final_points = evaluate(chart, final_uv)
-        if optimize in SLIDING_OBJECTIVES:
+        if record.bounds_members:
             _check_members(final_points, plane.edges, l)
         clock("optimisation of inner nodes")
 
@@ -457,8 +441,8 @@ def _grid_pair(grid):
 
 
 def _node_limit(max_nodes, optimize):
-    """The node limit: a positive int, None (no limit) or "default" (:data:`MAX_NODES` or :data:`MAX_OPTIMIZE_NODES`)."""
-    return check_max_nodes(max_nodes, MAX_NODES if optimize == "none" else MAX_OPTIMIZE_NODES[optimize])
+    """The node limit: a positive int, None (no limit) or "default" (:data:`UNOPTIMIZED_MAX_NODES` or the objective's)."""
+    return check_max_nodes(max_nodes, UNOPTIMIZED_MAX_NODES if optimize == "none" else OBJECTIVES[optimize].max_nodes)
 
 
 def _check_size(surface_points, triangles, l, max_nodes):

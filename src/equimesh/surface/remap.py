@@ -34,7 +34,7 @@ from dataclasses import dataclass
 import matplotlib.tri
 import numpy as np
 
-from .._geometry import nearest_segment
+from .._geometry import between, nearest_segment
 from ..errors import InternalError
 from .charts.chart import Domain
 from .regularity import evaluate
@@ -193,8 +193,7 @@ class Loop:
         """
         succ = np.roll(np.arange(len(self.xy)), -1) if self.succ is None else self.succ
         seg, tt, _ = nearest_segment(x, self.xy, self.xy[succ])
-        ua, ub = self.uv[seg], self.uv[succ[seg]]
-        uv = (1.0 - tt)[:, None] * ua + tt[:, None] * ub
+        uv = between(self.uv[seg], self.uv[succ[seg]], tt)
         side = self.side[seg]  # index into SIDES = (u=u0, u=u1, v=v0, v=v1), -1 inside
         on = np.flatnonzero(side >= 0)
         uv[on, side[on] // 2] = self.domain.side_values[side[on]]

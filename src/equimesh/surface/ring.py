@@ -22,7 +22,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._geometry import inner_angle
+from .._geometry import Polyline, inner_angle
 from ..errors import SurfaceTooSmallError, number
 from ..planar.boundary.sides import split_counts, stagger_reach
 from ..tolerance import at_least
@@ -82,14 +82,14 @@ def resample_ring(xy, params, corners, l, spacing, too_short=None):
     corners = np.asarray(corners, dtype=np.int64)
     n = len(xy)
     chains = [np.r_[c0 : c1 + 1] if c1 > c0 else np.r_[c0:n, : c1 + 1] for c0, c1 in zip(corners, np.roll(corners, -1))]
-    arcs = [np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(xy[c], axis=0), axis=1))]) for c in chains]
-    stretches = _corner_edges(xy, chains, arcs, corners, l)
+    sides = [Polyline(xy[c], closed=False, values=params[c]) for c in chains]
+    stretches = _corner_edges(xy, sides, corners, l)
     points, carried, side = [], [], []
-    for i, (chain, arc, stretch) in enumerate(zip(chains, arcs, stretches)):
-        pts, prm = _split_side(xy[chain], params[chain], arc, stretch, l, spacing)
+    for i, (polyline, stretch) in enumerate(zip(sides, stretches)):
+        pts, prm = _split_side(polyline, stretch, l, spacing)
         if pts is None:
-            chord = float(np.linalg.norm(xy[chain[-1]] - xy[chain[0]]))
-            raise (too_short or _too_short)(i, float(arc[-1]), chord)
+            chord = float(np.linalg.norm(polyline.points[-1] - polyline.points[0]))
+            raise (too_short or _too_short)(i, polyline.length, chord)
         points.append(pts[:-1])
         carried.append(prm[:-1])
         side.append(np.full(len(pts) - 1, i))
@@ -102,7 +102,7 @@ def resample_ring(xy, params, corners, l, spacing, too_short=None):
 CORNER_PASSES = 4
 
 
-def _corner_edges(xy, chains, arcs, corners, l):
+def _corner_edges(xy, sides, corners, l):
     """Per side, the stretch ``(a, b)`` of its arc split into equal parts, or None for one straight edge.
 
     At a corner sharper than ``SHARP_CORNER`` the sides keep straight edges
@@ -115,34 +115,32 @@ def _corner_edges(xy, chains, arcs, corners, l):
     it has no room for, or refuses the corner.  A side with no sharp corner
     is split whole: ``(0, length)``.
     """
-    n = len(chains)
-    start, end = [0.0] * n, [arc[-1] for arc in arcs]
+    n = len(sides)
+    start, end = [0.0] * n, [side.length for side in sides]
     single = [False] * n
     for i, c in enumerate(corners):
         leaving, arriving = i, (i - 1) % n
-        ahead = xy[chains[leaving]]
-        back, back_arc = xy[chains[arriving]][::-1], arcs[arriving][-1] - arcs[arriving][::-1]
+        ahead, into = sides[leaving], sides[arriving]
+        back = Polyline(into.points[::-1], closed=False, arc=into.length - into.arc[::-1])  # from the corner
         angle, reach = inner_angle(xy, c), 0.0
         for _ in range(CORNER_PASSES):
             need = stagger_reach(angle, l)
             if need <= reach:
                 break
             reach = need
-            s, t = _arc_at_distance(ahead, arcs[leaving], reach + l), _arc_at_distance(back, back_arc, reach + l)
+            s, t = _arc_at_distance(ahead, reach + l), _arc_at_distance(back, reach + l)
             if s is None or t is None:
                 single[leaving] = single[arriving] = True
                 break
-            start[leaving], end[arriving] = s, arcs[arriving][-1] - t
-            p, q = (
-                _at_arc(pts, pts, arc, np.array([0.0, x, arc[-1]]))[0][1]
-                for pts, arc, x in ((ahead, arcs[leaving], s), (back, back_arc, t))
-            )
+            start[leaving], end[arriving] = s, into.length - t
+            p, q = (polyline.at(np.array([x]))[0] for polyline, x in ((ahead, s), (back, t)))
             angle = inner_angle(np.array([q, xy[c], p]), 1)
     return [None if one or not at_least(b - a, l) else (a, b) for one, a, b in zip(single, start, end)]
 
 
-def _arc_at_distance(pts, arc, distance):
-    """Arc length along the polyline ``pts`` at which it first reaches ``distance`` from ``pts[0]``, or None."""
+def _arc_at_distance(polyline, distance):
+    """Arc length along the open ``polyline`` at which it first reaches ``distance`` from its start, or None."""
+    pts, arc = polyline.points, polyline.arc
     far = np.flatnonzero(np.linalg.norm(pts - pts[0], axis=1) >= distance)
     if not len(far):
         return None
@@ -153,7 +151,7 @@ def _arc_at_distance(pts, arc, distance):
     return float(arc[j - 1] + t * (arc[j] - arc[j - 1]))
 
 
-def _split_side(xy, params, arc, stretch, l, spacing):
+def _split_side(polyline, stretch, l, spacing):
     """Points of one side with chords of at least ``l``, or None: its start, the stretch split evenly, its end.
 
     The stretch ``(a, b)`` is split into ``k`` equal parts (Step 2's count),
@@ -161,7 +159,7 @@ def _split_side(xy, params, arc, stretch, l, spacing):
     side's ends when they are not the ends themselves.  ``stretch`` None: one
     straight edge, the side's chord.
     """
-    length = arc[-1]
+    length = polyline.length
     if stretch is None:
         candidates = [np.array([0.0, length])]
     else:
@@ -170,7 +168,7 @@ def _split_side(xy, params, arc, stretch, l, spacing):
         head, tail = [0.0] if a > 0 else [], [b] if b < length else []
         candidates = [np.concatenate([head, a + (b - a) * np.arange(j) / j, tail, [length]]) for j in range(k, 0, -1)]
     for s in candidates:
-        pts, prm = _at_arc(xy, params, arc, s)
+        pts, prm = polyline.at(s), polyline.values_at(s)
         if np.all(at_least(np.linalg.norm(np.diff(pts, axis=0), axis=1), l)):
             return pts, prm
     return None, None
@@ -182,13 +180,3 @@ def _too_short(side, arc, chord):
         f"side {side} of the boundary polyline is {number(arc)} long (its ends {number(chord)} apart), "
         "too short to split into parts of at least l"
     )
-
-
-def _at_arc(xy, params, arc, s):
-    """Points and parameters at arc lengths ``s`` (from 0 to the polyline's length) along ``xy``, endpoints exact."""
-    idx = np.clip(np.searchsorted(arc, s, side="right") - 1, 0, len(arc) - 2)
-    t = (s - arc[idx]) / (arc[idx + 1] - arc[idx])
-    pts = xy[idx] + t[:, None] * (xy[idx + 1] - xy[idx])
-    prm = params[idx] + t[:, None] * (params[idx + 1] - params[idx])
-    pts[0], prm[0], pts[-1], prm[-1] = xy[0], params[0], xy[-1], params[-1]
-    return pts, prm

@@ -20,10 +20,9 @@ another hole on the flattened surface) is Problem 2's refusal, restated by
 
 import numpy as np
 
-from ..._geometry import nearest_segment as nearest_segment
 from ...errors import InvalidPolygonError, InvalidSurfaceError, number
 from ...planar.polygon import as_polygon
-from ..optimize.slide import between_corners, loop_arc
+from ..optimize.slide import along_polygon
 from .chart import domain_of
 
 
@@ -98,9 +97,7 @@ def hole_slides(surface, uv, nodes):
     """
     pairs = []
     for (ring, _), on_hole in zip(holes_of(surface), nodes):
-        arc = loop_arc(ring)
-        seg, t, _ = nearest_segment(uv[on_hole], ring, np.roll(ring, -1, axis=0))
-        pairs.append(between_corners(on_hole, ring, arc, (1.0 - t) * arc[seg] + t * arc[seg + 1], arc[:-1]))
+        pairs.append(along_polygon(on_hole, ring, uv[on_hole]))
     return [slide for slide, _ in pairs], np.concatenate([np.zeros(0, dtype=np.int64), *(fixed for _, fixed in pairs)])
 
 

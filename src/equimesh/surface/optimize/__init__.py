@@ -11,7 +11,7 @@
 """
 
 from .driver import UVOptimization, optimize_uv
-from .objectives import OBJECTIVES, Objective
+from .objectives import OBJECTIVES, Objective, Stage
 from .problem import UVProblem
 
-__all__ = ["OBJECTIVES", "Objective", "UVOptimization", "UVProblem", "optimize_uv"]
+__all__ = ["OBJECTIVES", "Objective", "Stage", "UVOptimization", "UVProblem", "optimize_uv"]

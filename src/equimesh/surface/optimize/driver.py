@@ -40,7 +40,7 @@ boundary-strip triangles (observed on doubly curved patches).  Two guards:
   refused, so no iterate, and no result, has a fold-over.
 """
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 import scipy.optimize
@@ -49,7 +49,7 @@ import scipy.sparse
 from ...errors import EquimeshError, InvalidSurfaceError
 from ...tolerance import LM_INITIAL_DAMPING, PAPER_FTOL
 from .jacobian import AreaBarrier, signed_areas
-from .objectives import OBJECTIVES, Objective
+from .objectives import OBJECTIVES, Stage
 from .problem import UVProblem, free_parameters, parameter_box
 from .solver import NormalEquations, inner, least_squares
 
@@ -146,7 +146,7 @@ def optimize_uv(
         "a finer auxiliary grid" by default) or ``optimize='paper'``.
     """
     try:
-        builder = OBJECTIVES[objective]
+        record = OBJECTIVES[objective]
     except (KeyError, TypeError):
         raise EquimeshError(f"unknown objective {objective!r}; choose from {sorted(OBJECTIVES)}") from None
     lower, upper = parameter_box(surface)
@@ -158,57 +158,66 @@ def optimize_uv(
     problem = UVProblem(
         surface, uv, np.asarray(edges, dtype=np.int64), np.asarray(edge_groups), float(length), free, slides
     )
-    obj = builder(problem)
+    stages = record.stages(problem)
+    stage = next(stages)
     x0 = problem.x0
     if len(x0) == 0:
-        cost0 = _cost(obj, x0)
+        cost0 = _cost(stage, x0)
         return UVOptimization(uv, cost0, cost0, 0, 0, True, "no free nodes", objective)
     tri = None if triangles is None else np.asarray(triangles, dtype=np.int64).reshape(-1, 3)
     x, nfev, njev, damping = x0, 0, 0, LM_INITIAL_DAMPING
     normal_equations = NormalEquations()  # one pattern for every stage: analysed once
     barrier = None if tri is None or area_floor <= 0 else _fold_over_barrier(problem, tri, area_floor)
     while True:
-        if obj.start is not None:  # a restart is a fresh solve: its own start and the initial damping
-            x, damping = obj.start, LM_INITIAL_DAMPING
-        guard = _Guard(problem, tri, obj.feasible, x)
-        solve = obj if barrier is None else _with_barrier(problem, obj, barrier, x)
-        tol = obj.ftol if ftol is None else ftol
-        box = problem.bounds if obj.hold is None else tuple(np.where(obj.hold, x, bound) for bound in problem.bounds)
-        while True:
-            solution = least_squares(
-                solve.residuals,
-                solve.jacobian,
-                x,
-                *box,
-                accept=guard,
-                gtol=gtol,
-                xtol=xtol,
-                ftol=tol,
-                max_iterations=obj.max_iterations,
-                damping=damping,
-                normal_equations=normal_equations,
-                limit=obj.limit,
-            )
-            x, nfev, njev = solution.x, nfev + solution.evaluations, njev + solution.iterations + 1
-            damping = solution.damping  # warm start: the next solve begins where this one's damping ended
-            if obj.feasible is None or obj.refine is not None or obj.feasible(x) or tol <= PAPER_FTOL:
-                break
-            tol = PAPER_FTOL  # a last stage that ends outside the hard constraint goes on to the tight tolerance
-        following = None if obj.refine is None else obj.refine(x)
-        if following is None:
+        if stage.start is not None:  # a restart is a fresh solve: its own start and the initial damping
+            x, damping = stage.start, LM_INITIAL_DAMPING
+        solution = _solve(problem, stage, x, damping, tri, barrier, normal_equations, ftol, xtol, gtol)
+        x, nfev, njev = solution.x, nfev + solution.evaluations, njev + solution.iterations
+        damping = solution.damping  # warm start: the next solve begins where this one's damping ended
+        try:
+            stage = stages.send(x)
+        except StopIteration as done:
+            x, stage = done.value
             break
-        obj = following
-    if obj.final is not None:
-        x, obj = obj.final(x)
-    if obj.feasible is not None and not obj.feasible(x):
+    if stage.feasible is not None and not stage.feasible(x):
         raise InvalidSurfaceError(
-            f"optimisation ({objective}): no mesh with every member in [l, 2l] found, {obj.violation(x)}; "
+            f"optimisation ({objective}): no mesh with every member in [l, 2l] found, {stage.violation(x)}; "
             f"use a smaller l, {getattr(surface, 'finer', 'a finer auxiliary grid')}, or optimize='paper' "
             "(which does not bound the members on the surface)"
         )
     return UVOptimization(
-        problem.uv_of(x), _cost(obj, x0), _cost(obj, x), nfev, njev, solution.converged, solution.message, objective
+        problem.uv_of(x), _cost(stage, x0), _cost(stage, x), nfev, njev, solution.converged, solution.message, objective
     )
+
+
+def _solve(problem, stage, x, damping, triangles, barrier, normal_equations, ftol, xtol, gtol):
+    """One stage solved from ``x`` with the fold-over guards; a stage with a hard constraint that ends outside it is
+    solved on at ``PAPER_FTOL``.  The solution's ``iterations`` count every Jacobian evaluated."""
+    guard = _Guard(problem, triangles, stage.feasible, x)
+    solve = stage if barrier is None else _with_barrier(problem, stage, barrier, x)
+    tol = stage.ftol if ftol is None else ftol
+    box = problem.bounds if stage.hold is None else tuple(np.where(stage.hold, x, bound) for bound in problem.bounds)
+    evaluations = iterations = 0
+    while True:
+        solution = least_squares(
+            solve.residuals,
+            solve.jacobian,
+            x,
+            *box,
+            accept=guard,
+            gtol=gtol,
+            xtol=xtol,
+            ftol=tol,
+            max_iterations=stage.max_iterations,
+            damping=damping,
+            normal_equations=normal_equations,
+            limit=stage.limit,
+        )
+        x, damping = solution.x, solution.damping
+        evaluations, iterations = evaluations + solution.evaluations, iterations + solution.iterations + 1
+        if stage.feasible is None or stage.feasible(x) or tol <= PAPER_FTOL:
+            return replace(solution, evaluations=evaluations, iterations=iterations)
+        tol = PAPER_FTOL
 
 
 def _cost(obj, x):
@@ -263,4 +272,4 @@ def _with_barrier(problem, obj, barrier, x):
             [obj.jacobian(y), problem.chain(barrier.jacobian(problem.uv_of(y)), y)], format="csr"
         )
 
-    return Objective(residuals, jacobian, obj.description + " + fold-over barrier")
+    return Stage(residuals, jacobian, obj.description + " + fold-over barrier")

@@ -1,17 +1,25 @@
 """What the final optimisation minimises: one record per objective (Section 4, last paragraph, and beyond).
 
+An objective is an :class:`Objective` in :data:`OBJECTIVES`: its name, what it
+promises (members bounded to [l, 2l] or not), whether the boundary nodes
+slide, its default node limit, and its *stages*: a generator that yields one
+:class:`Stage` (a least-squares problem over the variables) at a time,
+receives the point where that stage's solve ended, and returns the point the
+optimisation ends at with the stage whose costs are reported.
+:func:`~equimesh.surface.optimize.driver.optimize_uv` drives it.
+
 * ``"paper"``: the paper's objective, ``(L - l) / l`` of the G1 members,
-  boundary fixed;
+  boundary fixed (:func:`paper_stages`);
 * ``"bounded"`` (beyond the paper): every member in [l, 2l] as a hard
   constraint, and as many members as possible at one length by rounds of
-  reweighted (Cauchy) least squares, boundary nodes sliding.
+  reweighted (Cauchy) least squares, boundary nodes sliding
+  (:func:`bounded_stages`).
 """
 
 from dataclasses import dataclass, replace
 from typing import Callable
 
 import numpy as np
-import scipy.optimize
 import scipy.sparse
 
 from ..._jit import compiled
@@ -34,39 +42,41 @@ from .jacobian import ElementJacobian
 
 
 @dataclass(frozen=True)
-class Objective:
-    """Residuals ``r(x)`` and their sparse Jacobian ``J(x)`` over the variable vector; cost is ``|r|^2 / 2``.
+class Stage:
+    """One least-squares solve: residuals ``r(x)`` and their sparse Jacobian ``J(x)``; its cost is ``|r|^2 / 2``.
 
-    ``feasible(x)`` (optional) is a hard constraint: once an iterate satisfies
-    it every later one does, and the result must (else :func:`optimize_uv`
-    raises ``InvalidSurfaceError`` with ``violation(x)``, a phrase naming what
-    is violated).  ``refine(x)`` (optional) gives the next objective of a
-    continuation from the solution ``x`` of this one, or None when done.
-    ``ftol`` is the solver's relative-reduction tolerance for this objective and
-    ``max_iterations`` its iteration limit (a round of a continuation need not converge).
-    ``start`` (optional) restarts the solve there, with the initial damping,
-    instead of at the previous objective's solution (a second path).
-    ``hold`` (optional) is a bool mask of variables kept at their start value
-    by this objective's solve.  ``final(x)`` (optional, on the objective that
-    ends a continuation) gives the point returned instead of its solution ``x``
-    (an earlier iterate the continuation kept as its best) and the objective
-    whose solve ended there (its costs are reported).  ``limit`` (optional)
-    is applied to every step of this objective's solve (a trust region,
-    :meth:`UVProblem.step_limit`).
+    Attributes
+    ----------
+    residuals, jacobian : callables of the variable vector
+    description : str
+    ftol : float
+        The solver's relative-reduction tolerance.
+    max_iterations : int
+        The solver's iteration limit (a round of a series need not converge).
+    start : array or None
+        Restart the solve there with the initial damping, instead of going on
+        from where the previous stage ended with its damping.
+    hold : bool array or None
+        Variables kept at their start value by this solve.
+    limit : callable or None
+        Applied to every step (a trust region, :meth:`~.problem.UVProblem.step_limit`).
+    feasible : callable or None
+        A hard constraint ``x -> bool``: once an iterate satisfies it every
+        later one does, and a stage that ends outside it is solved on to
+        ``PAPER_FTOL``; if the point the optimisation ends at is outside, the
+        surface is refused with ``violation(x)``, a phrase naming what is violated.
     """
 
     residuals: Callable[[np.ndarray], np.ndarray]
     jacobian: Callable[[np.ndarray], object]
     description: str = ""
-    feasible: Callable[[np.ndarray], bool] = None
-    violation: Callable[[np.ndarray], str] = None
-    refine: Callable[[np.ndarray], object] = None
     ftol: float = PAPER_FTOL
     max_iterations: int = 500
     start: np.ndarray = None
     hold: np.ndarray = None
-    final: Callable[[np.ndarray], tuple] = None
     limit: Callable[[np.ndarray], np.ndarray] = None
+    feasible: Callable[[np.ndarray], bool] = None
+    violation: Callable[[np.ndarray], str] = None
 
 
 def edge_length_terms(problem, edges):
@@ -131,8 +141,8 @@ def _length_gradients(points, su, sv, edges):
 _length_gradients = compiled(_length_gradients)
 
 
-def paper_objective(problem):
-    """The paper's objective: ``r_e = (L_e - l) / l`` for every G1 edge ``e``."""
+def paper_stage(problem):
+    """The paper's objective as one stage: ``r_e = (L_e - l) / l`` for every G1 edge ``e``."""
     l = problem.length
     g1 = problem.edges[problem.edge_groups == G1]
     lengths, jacobian = edge_length_terms(problem, g1)
@@ -143,13 +153,20 @@ def paper_objective(problem):
     def jac(x):
         return jacobian(x)[1] / l
 
-    return Objective(residuals, jac, "relative deviation (L - l) / l of the G1 edges")
+    return Stage(residuals, jac, "relative deviation (L - l) / l of the G1 edges")
 
 
-def bounded_objective(problem):
+def paper_stages(problem):
+    """Section 4's last step: the paper's objective solved once from the remapped mesh (:func:`paper_stage`)."""
+    stage = paper_stage(problem)
+    x = yield stage
+    return x, stage
+
+
+def bounded_stages(problem):
     """Beyond the paper: every member in [l, 2l], and as many as possible at one length.
 
-    Counting (the issue's argument): each free node has 2 parameters and each
+    Counting: each free node has 2 parameters and each
     member is one equation, so on a doubly curved surface about 2 of every 3
     members can be exact, on a developable one all lattice members can.  Which
     ones is not known in advance, so the objective seeks a sparse deviation
@@ -196,7 +213,7 @@ def bounded_objective(problem):
       (docs/decisions.md);
     * the result is the iterate in [l, 2l] with the largest share of members
       within :data:`~equimesh.tolerance.BOUNDED_BAND` of l seen at the end of
-      any round (:attr:`Objective.final`);
+      any round;
     * if no round of either series ended in [l, 2l], a last stage restarts
       from the remapped mesh (a member the rounds cannot pull in was
       observed): Cauchy terms plus a smoothed one-sided penalty of slope
@@ -217,7 +234,7 @@ def bounded_objective(problem):
         return bool(np.all((ratio >= 1.0) & (ratio <= 2.0)))
 
     def share(ratio):
-        """The issue's measure: the share of members within ``BOUNDED_BAND`` of l."""
+        """The share of members within ``BOUNDED_BAND`` of l (what the rounds keep the best of)."""
         return float(np.mean(np.abs(ratio - 1.0) <= BOUNDED_BAND))
 
     def feasible(x):
@@ -257,47 +274,48 @@ def bounded_objective(problem):
 
         return residuals, jacobian
 
-    best = {"x": None, "share": -1.0}
+    best = {"x": None, "share": -1.0, "stage": None}
 
-    def keep_best(x, ratio, objective):
-        """Remember ``x`` (``ratio = L / l``), where ``objective``'s solve ended, if in [l, 2l] with the largest share so far."""
+    def keep_best(x, ratio, stage):
+        """Remember ``x`` (``ratio = L / l``), where ``stage``'s solve ended, if in [l, 2l] with the largest share so far."""
         if inside(ratio) and share(ratio) > best["share"]:
-            best.update(x=np.array(x), share=share(ratio), objective=objective)
+            best.update(x=np.array(x), share=share(ratio), stage=stage)
 
-    def round_(k, x_start, then, start=None):
-        """Round ``k + 1`` of a series from ``x_start`` (restarted there if ``start`` is given); ``then(x)`` follows it."""
+    def round_stage(k, x_start, restart):
+        """Round ``k + 1`` of a series from ``x_start`` (restarted there if ``restart``), and its loss and cost there."""
         ratio = lengths(x_start) / l
         goal = np.clip(ratio, target, high)
         weight = np.where(goal == ratio, cauchy_weight(ratio), BOUNDED_PULL)
         goal = np.where(goal == ratio, target, goal)
         residuals, jacobian = weighted(weight, goal)
-        loss, cost = cauchy_loss(ratio), float(np.sum((weight * (ratio - goal)) ** 2))
-
-        def refine(x):
-            end = lengths(x) / l
-            keep_best(x, end, objective)
-            settled = abs(cauchy_loss(end) - loss) <= BOUNDED_LOSS_TOL * loss
-            stalled = settled and cost - float(np.sum((weight * (end - goal)) ** 2)) <= BOUNDED_LOSS_TOL * cost
-            if k + 1 >= BOUNDED_ROUNDS or (settled and inside(end)) or (stalled and start is not None):
-                return then(x)
-            # A stalled round poses the next one the same problem: it ends the series, unless its solve began with
-            # a damping left large by earlier solves; then the next round starts afresh.
-            return round_(k + 1, x, then, start=x if stalled else None)
-
-        objective = Objective(
+        stage = Stage(
             residuals,
             jacobian,
             f"members into [l, 2l] and to {target:g} l, round {k + 1}",
-            None,
-            None,
-            refine,
             BOUNDED_FTOL,
             BOUNDED_ROUND_ITERATIONS,
-            start=start,
-            final=chosen,
+            start=x_start if restart else None,
             limit=limit,
         )
-        return objective
+        return stage, weight, goal, cauchy_loss(ratio), float(np.sum((weight * (ratio - goal)) ** 2))
+
+    def series(x):
+        """Rounds from ``x`` until one settles in [l, 2l], stalls, or :data:`BOUNDED_ROUNDS` are done; ends where the
+        last round did."""
+        restart = False
+        for k in range(BOUNDED_ROUNDS):
+            stage, weight, goal, loss, cost = round_stage(k, x, restart)
+            x = yield stage
+            end = lengths(x) / l
+            keep_best(x, end, stage)
+            settled = abs(cauchy_loss(end) - loss) <= BOUNDED_LOSS_TOL * loss
+            stalled = settled and cost - float(np.sum((weight * (end - goal)) ** 2)) <= BOUNDED_LOSS_TOL * cost
+            if (settled and inside(end)) or (stalled and restart):
+                break
+            # A stalled round poses the next one the same problem: it ends the series, unless its solve began with
+            # a damping left large by earlier solves; then the next round starts afresh.
+            restart = stalled
+        return x
 
     def last_stage():
         low, smooth = 1.0 + 0.5 * BOUNDED_OFFSET, 0.25 * BOUNDED_OFFSET
@@ -311,34 +329,27 @@ def bounded_objective(problem):
             slope = np.where(inner, depth / smooth, 1.0) * side
             return BOUNDED_PENALTY * value, BOUNDED_PENALTY * slope
 
-        return Objective(
+        return Stage(
             *weighted(cauchy_weight(lengths(problem.x0) / l), target, penalty),
             f"members in [l, 2l] by a penalty, Cauchy loss on L / l - {target:g}",
-            feasible,
-            violation,
-            None,
             BOUNDED_FTOL,
             start=problem.x0,
+            feasible=feasible,
+            violation=violation,
         )
 
-    def chosen(x):
-        return best["x"], best["objective"]
-
-    def finish(x):
-        return None if best["x"] is not None else last_stage()
-
-    def paper_stage(x):
-        """The paper's optimum (boundary held, as ``optimize="paper"``), then rounds from it if it has the larger share."""
-
-        def refine(x):
-            if share(lengths(x) / l) <= best["share"]:
-                return finish(x)
-            return replace(paper_objective(problem), refine=lambda y: round_(0, y, finish), final=chosen)
-
-        held = problem.sliding_variables
-        return replace(paper_objective(problem), refine=refine, start=problem.x0, hold=held, final=chosen)
-
-    return round_(0, problem.x0, paper_stage)
+    yield from series(problem.x0)
+    # The paper's optimum, boundary held (the paper's problem, as optimize="paper"), then rounds from it if it has
+    # the larger share: the boundary released (the paper's objective solved on) first.
+    x = yield replace(paper_stage(problem), start=problem.x0, hold=problem.sliding_variables)
+    if share(lengths(x) / l) > best["share"]:
+        x = yield paper_stage(problem)
+        yield from series(x)
+    if best["x"] is not None:
+        return best["x"], best["stage"]
+    stage = last_stage()
+    x = yield stage
+    return x, stage
 
 
 def _scale_rows(scale, jac):
@@ -348,5 +359,55 @@ def _scale_rows(scale, jac):
     return scipy.sparse.csr_matrix((data, jac.indices, jac.indptr), shape=jac.shape)
 
 
-#: Objective builders by name, each ``builder(problem: UVProblem) -> Objective``.
-OBJECTIVES = {"paper": paper_objective, "bounded": bounded_objective}
+@dataclass(frozen=True)
+class Objective:
+    """One objective of the final optimisation: how it is solved and what it promises.
+
+    Attributes
+    ----------
+    name : str
+        Its key in :data:`OBJECTIVES`, what ``optimize=`` and ``--optimize`` name.
+    stages : callable
+        ``stages(problem)``: a generator of :class:`Stage` (module docstring).
+    description : str
+    slides : bool
+        The boundary nodes slide along the boundary (between its corners);
+        otherwise they stay fixed.
+    bounds_members : bool
+        Every member of the result lies in [l, 2l] (the pipeline checks it on
+        every mesh it returns).
+    max_nodes : int
+        The default node limit of :func:`~equimesh.surface.pipeline.mesh_surface`
+        with this objective (docs/performance.md, "The optimisation").
+    """
+
+    name: str
+    stages: Callable
+    description: str
+    slides: bool
+    bounds_members: bool
+    max_nodes: int
+
+
+#: Every objective's record: what ``optimize=`` names.
+OBJECTIVES = {
+    objective.name: objective
+    for objective in (
+        Objective(
+            "paper",
+            paper_stages,
+            "the paper's: the G1 members' relative deviation from l, boundary fixed",
+            slides=False,
+            bounds_members=False,
+            max_nodes=15_000,
+        ),
+        Objective(
+            "bounded",
+            bounded_stages,
+            "every member in [l, 2l], as many as possible at l; boundary nodes slide along the boundary",
+            slides=True,
+            bounds_members=True,
+            max_nodes=6_000,
+        ),
+    )
+}
