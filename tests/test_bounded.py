@@ -118,7 +118,9 @@ def test_a_member_outside_the_bounds_is_an_internal_error(monkeypatch):
     def broken(*args, **kwargs):
         result = real(*args, **kwargs)
         squeezed = result.uv.copy()
-        squeezed[kwargs["sliding"][-1] + 1 :] = 0.5 * squeezed[kwargs["sliding"][-1] + 1 :] + 0.25  # shrink inside
+        boundary = np.concatenate([kwargs["fixed"], *(slide.nodes for slide in kwargs["slides"])])
+        inner = np.setdiff1d(np.arange(len(squeezed)), boundary)
+        squeezed[inner] = 0.5 * squeezed[inner] + 0.25  # shrink inside
         return type(result)(squeezed, *(getattr(result, f) for f in result.__dataclass_fields__ if f != "uv"))
 
     monkeypatch.setattr(pipeline, "optimize_uv", broken)

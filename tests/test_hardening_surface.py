@@ -167,7 +167,11 @@ def test_max_nodes_none_means_no_limit_and_default_depends_on_optimize():
     for optimize in ("none", "paper"):
         refuse(MeshTooLargeError, plane_patch(), 3.0, "max_nodes = 100", max_nodes=100, optimize=optimize)
     for objective in ("paper", "bounded"):
-        assert pipeline._node_limit("default", objective) == OBJECTIVES[objective].max_nodes < pipeline.UNOPTIMIZED_MAX_NODES
+        assert (
+            pipeline._node_limit("default", objective)
+            == OBJECTIVES[objective].max_nodes
+            < pipeline.UNOPTIMIZED_MAX_NODES
+        )
 
 
 def test_size_is_checked_before_flattening():

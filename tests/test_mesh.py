@@ -1,7 +1,7 @@
 """Topology and geometry helpers of equimesh.mesh: column-wise versions give the floats and rows of the obvious ones."""
 
 import numpy as np
-from hypothesis import given
+from hypothesis import given, settings
 from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
 
@@ -47,3 +47,13 @@ def test_unique_edges_are_the_sorted_unique_undirected_edges(data):
     got = unique_edges(t)
     assert got.dtype == np.int64
     assert np.array_equal(got, expected)
+
+
+@settings(max_examples=20, deadline=None)
+@given(seed=st.integers(0, 2**32 - 1))
+def test_compiled_orientation_is_the_floats_of_orient(seed):
+    """``triangle_orient`` (a compiled loop) gives the floats of ``_geometry.orient`` bit for bit, at any scale."""
+    rng = np.random.default_rng(seed)
+    p = rng.standard_normal((200, 2)) * np.exp(rng.uniform(-30.0, 30.0, (200, 1)))
+    t = rng.integers(0, 200, (500, 3))
+    assert np.array_equal(triangle_orient(p, t), orient(p[t[:, 0]], p[t[:, 1]], p[t[:, 2]]))

@@ -118,8 +118,10 @@ class Optimisation:
     def _run(self, cache, objective, l):
         surface, meshes = cache
         mesh = meshes[l]
-        boundary = np.arange(mesh.n_boundary)
-        slides = objective == "bounded"
+        if objective == "bounded":  # its boundary slides, as mesh_surface sets it up
+            slides, fixed = mesh.stages.outline.slides(mesh.stages.plane, mesh.uv)
+        else:
+            slides, fixed = (), np.arange(mesh.n_boundary)
         return (
             equimesh.optimize_uv(
                 surface,
@@ -127,8 +129,8 @@ class Optimisation:
                 mesh.edges,
                 mesh.edge_groups,
                 l,
-                fixed=boundary[:0] if slides else boundary,
-                sliding=boundary if slides else (),
+                fixed=fixed,
+                slides=slides,
                 triangles=mesh.triangles,
                 objective=objective,
             ),

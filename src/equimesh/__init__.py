@@ -25,20 +25,18 @@ equimesh.testing (input generators); see docs/architecture.md.
 
 import importlib
 
-from .errors import (
-    EquimeshError,
-    InternalError,
-    InvalidLengthError,
-    InvalidPolygonError,
-    InvalidSurfaceError,
-    InvalidToleranceError,
-    MeshTooLargeError,
-    MissingDependencyError,
-    OutputPathError,
-    SurfaceTooSmallError,
-    SurfaceWarning,
-)
-from .tolerance import REL_TOL
+from .errors import EquimeshError as EquimeshError
+from .errors import InternalError as InternalError
+from .errors import InvalidLengthError as InvalidLengthError
+from .errors import InvalidPolygonError as InvalidPolygonError
+from .errors import InvalidSurfaceError as InvalidSurfaceError
+from .errors import InvalidToleranceError as InvalidToleranceError
+from .errors import MeshTooLargeError as MeshTooLargeError
+from .errors import MissingDependencyError as MissingDependencyError
+from .errors import OutputPathError as OutputPathError
+from .errors import SurfaceTooSmallError as SurfaceTooSmallError
+from .errors import SurfaceWarning as SurfaceWarning
+from .tolerance import REL_TOL as REL_TOL
 
 #: Where each public verb and type lives.  They are imported on first use
 #: (PEP 562), so that ``import equimesh._cli`` loads no numpy, scipy or

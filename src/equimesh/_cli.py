@@ -28,7 +28,7 @@ import sys
 import warnings
 from pathlib import Path
 
-from .errors import EquimeshError, SurfaceWarning
+from .errors import EquimeshError, SurfaceWarning, number
 
 EXIT_USAGE = 2
 EXIT_INTERNAL = 3
@@ -281,8 +281,8 @@ def _summary(lengths, l, tolerance):
         ("members", f"{s['members']}"),
         ("length classes", f"{s['classes']} (every member within {tol} of L of its class's nominal length)"),
         ("in the largest class", f"{100 * s['largest_class_share']:.1f} %"),
-        ("shortest member", f"{s['min_length']:.6g} ({s['min_length'] / l:.4f} L)"),
-        ("longest member", f"{s['max_length']:.6g} ({s['max_length'] / l:.4f} L)"),
+        ("shortest member", f"{number(s['min_length'])} ({s['min_length'] / l:.4f} L)"),
+        ("longest member", f"{number(s['max_length'])} ({s['max_length'] / l:.4f} L)"),
         (f"within {tol} of L", f"{100 * s['within_tolerance']:.1f} %"),
     ]
     width = max(len(label) for label, _ in rows) + 2

@@ -16,11 +16,11 @@ Numbers in messages are written by :func:`number`, the one formatter.
 """
 
 
-def number(x, exact=False):
-    """A number for a message: six significant digits (``0.42``, ``1e-200``, ``13.37``), or with ``exact`` the
-    shortest text that reads back as the same float, so that two different values never print alike (a length
-    compared with l, a suggested bound)."""
-    return repr(float(x)) if exact else f"{float(x):.6g}"
+def number(x, digits=6):
+    """A number for a message, with ``digits`` significant digits (``0.42``, ``1e-200``, ``13.37``); ``digits=None``
+    gives the shortest text that reads back as the same float, so that two different values never print alike (a
+    length compared with l, a suggested bound)."""
+    return repr(float(x)) if digits is None else f"{float(x):.{digits}g}"
 
 
 def coordinates(x):

@@ -93,7 +93,7 @@ class Polygon:
     def vertex_name(self, i):
         j = int(self.input_index[i % len(self.vertices)])
         x, y = self.vertices[i % len(self.vertices)]
-        return f"vertex {j}{self._of} at ({x:.10g}, {y:.10g})"
+        return f"vertex {j}{self._of} at ({number(x, 10)}, {number(y, 10)})"
 
     def edge_name(self, i):
         n = len(self.vertices)
@@ -134,8 +134,8 @@ def _local_frame(v, l):
         return Frame(origin, power_of_two_scale(extent))
     if not extent <= MAX_EXTENT * l:
         raise InvalidPolygonError(
-            f"polygon spans {number(extent, exact=True)} = {number(extent / l, exact=True)} l, more than the {MAX_EXTENT:.0f} l within which "
-            f"edge lengths are exact to REL_TOL; use l >= {number(extent / MAX_EXTENT, exact=True)}"
+            f"polygon spans {number(extent, None)} = {number(extent / l, None)} l, more than the {MAX_EXTENT:.0f} l within which "
+            f"edge lengths are exact to REL_TOL; use l >= {number(extent / MAX_EXTENT, None)}"
         )
     return Frame(origin, power_of_two_scale(l))
 
@@ -200,7 +200,7 @@ def _check_holes(outer, holes, l):
         if out.size:
             x, y = v[out[0]]
             raise InvalidPolygonError(
-                f"{label} is not inside the polygon: its vertex {out[0]} at ({x:.10g}, {y:.10g}) lies outside"
+                f"{label} is not inside the polygon: its vertex {out[0]} at ({number(x, 10)}, {number(y, 10)}) lies outside"
             )
         rings.append(_ring(_ring_vertices(v, label), outer.frame, label))
     if not rings:
@@ -229,9 +229,9 @@ def _check_holes_apart(outer, rings, shapes, tree, l):
     close = np.flatnonzero(~at_least(gap, lp))
     if close.size:
         k = int(close[0])
-        d = number(gap[k] / outer.frame.scale, exact=True)
+        d = number(gap[k] / outer.frame.scale, None)
         raise InvalidPolygonError(
-            f"{rings[k].label} is {d} from the boundary of the polygon, closer than l = {number(l, exact=True)} "
+            f"{rings[k].label} is {d} from the boundary of the polygon, closer than l = {number(l, None)} "
             f"(Lemma 3 (1)); move it or use l <= {d}"
         )
     i, j = tree.query(shapes, predicate="dwithin", distance=lp)
@@ -241,9 +241,9 @@ def _check_holes_apart(outer, rings, shapes, tree, l):
     close = np.flatnonzero(~at_least(gap, lp))
     if close.size:
         k = close[np.lexsort((j[close], i[close]))[0]]
-        d = number(gap[k] / outer.frame.scale, exact=True)
+        d = number(gap[k] / outer.frame.scale, None)
         raise InvalidPolygonError(
-            f"hole {i[k]} and hole {j[k]} are {d} apart, closer than l = {number(l, exact=True)} (Lemma 3 (1)); "
+            f"hole {i[k]} and hole {j[k]} are {d} apart, closer than l = {number(l, None)} (Lemma 3 (1)); "
             f"move them apart or use l <= {d}"
         )
 
@@ -254,7 +254,9 @@ def _check_no_repeated_vertex(v, of=""):
     if np.any(same):
         k = np.flatnonzero(same)[0]
         i, j = sorted((int(order[k]), int(order[k + 1])))
-        raise InvalidPolygonError(f"vertices {i} and {j}{of} coincide at ({v[i, 0]:.10g}, {v[i, 1]:.10g})")
+        raise InvalidPolygonError(
+            f"vertices {i} and {j}{of} coincide at ({number(v[i, 0], 10)}, {number(v[i, 1], 10)})"
+        )
 
 
 def _check_not_collinear(local, what):
@@ -305,8 +307,8 @@ def check_edges_at_least(poly, l):
             i = int(short[0])
             raise InvalidPolygonError(
                 "no mesh with every edge in [l, 2l] exists (both ends of a side are nodes, so some mesh edge on it "
-                f"is no longer than the side): {ring.edge_name(i)} has length {number(ring.edge_lengths[i], exact=True)}, "
-                f"shorter than l = {number(l, exact=True)}"
+                f"is no longer than the side): {ring.edge_name(i)} has length {number(ring.edge_lengths[i], None)}, "
+                f"shorter than l = {number(l, None)}"
             )
 
 
@@ -332,7 +334,7 @@ def check_convex_right_angles(poly):
     if acute.size:
         i = int(acute[0])
         raise InvalidPolygonError(
-            f"inner angle {poly.inner_angle(i):.10g} degrees at {poly.vertex_name(i)} is below 90 degrees"
+            f"inner angle {number(poly.inner_angle(i), 10)} degrees at {poly.vertex_name(i)} is below 90 degrees"
         )
 
 

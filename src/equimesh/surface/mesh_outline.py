@@ -85,6 +85,23 @@ class MeshOutline:
         """The rings of the openings (``holes=`` of Problem 2)."""
         return list(self.rings[1:])
 
+    def slides(self, plane, uv):
+        """The boundary nodes of ``plane`` sliding along their loops in the final optimisation.
+
+        Each node not at a corner of its loop slides between the corners before
+        and after it (:func:`~equimesh.surface.optimize.slide.between_corners`).
+        ``uv`` is not read: the nodes' arc positions follow from ``plane``
+        (:func:`boundary_uv`, whose (u, v) they are).
+
+        Returns
+        -------
+        slides : list of Slide, one per loop
+        fixed : (c,) int array
+            The boundary nodes at a corner.
+        """
+        pairs = [between_corners(*ring) for ring in _ring_arcs(self, plane)]
+        return [slide for slide, _ in pairs], np.concatenate([fixed for _, fixed in pairs])
+
 
 def mesh_outline(chart, l, spacing):
     """Step 3: the flattened loops of ``chart`` (a :class:`~equimesh.surface.charts.mesh_chart.MeshChart`) as rings.
@@ -188,22 +205,6 @@ def boundary_uv(outline, plane):
     ``outline`` (the rings in the order of ``info["boundary_rings"]``).
     """
     return np.vstack([loop.at(s) for _, loop, s, _ in _ring_arcs(outline, plane)])
-
-
-def boundary_slides(outline, plane):
-    """The boundary nodes of ``plane`` sliding along their loops in the final optimisation (item 52).
-
-    Each node not at a corner of its loop slides between the corners before
-    and after it (:func:`~equimesh.surface.optimize.slide.between_corners`).
-
-    Returns
-    -------
-    slides : list of Slide, one per loop
-    fixed : (c,) int array
-        The boundary nodes at a corner.
-    """
-    pairs = [between_corners(*ring) for ring in _ring_arcs(outline, plane)]
-    return [slide for slide, _ in pairs], np.concatenate([fixed for _, fixed in pairs])
 
 
 def _ring_arcs(outline, plane):

@@ -20,6 +20,7 @@ from .._geometry import cross
 from ..errors import SurfaceTooSmallError, number
 from ..tolerance import REL_TOL
 from .charts.chart import Domain, corner_name, side_name
+from .optimize.slide import along_polygon
 from .remap import Loop, to_plane
 from .ring import resample_ring
 
@@ -38,6 +39,7 @@ class Outline:
     holes : tuple of :class:`~equimesh.surface.ring.Ring`, the openings (:func:`resample_holes`):
         clockwise on the plane, ``params`` their exact (u, v) on the hole's
         polyline, ``side`` the hole's edge (corner ``i`` of its clockwise ring).
+    openings : tuple of (k, 2) arrays, the openings' polygons in (u, v), clockwise.
     """
 
     vertices: np.ndarray
@@ -45,6 +47,7 @@ class Outline:
     side: np.ndarray
     domain: Domain
     holes: tuple = ()
+    openings: tuple = ()
 
     @property
     def rings(self):
@@ -63,6 +66,29 @@ class Outline:
             self.domain,
             succ,
         )
+
+    def slides(self, plane, uv):
+        """The boundary nodes of ``plane`` sliding in the final optimisation: the outer ring's along the parameter
+        rectangle, each opening's along its (u, v) polygon.
+
+        Both are closed polygons with every vertex a corner
+        (:func:`~equimesh.surface.optimize.slide.along_polygon`): the
+        rectangle's four corners and the openings' vertices stay fixed, so with
+        the other nodes on the edges and no fold-over no node can enter an
+        opening.  ``plane`` is Problem 2's mesh of this outline (its rings in
+        the order of ``info["boundary_rings"]``), ``uv`` its nodes' remapped parameters.
+
+        Returns
+        -------
+        slides : list of Slide, one per ring
+        fixed : (c,) int array
+            The boundary nodes at a corner.
+        """
+        ends = np.cumsum(plane.info["boundary_rings"])
+        rings = [(self.domain.corners, np.arange(ends[0]))]
+        rings += [(polygon, np.arange(a, b)) for polygon, a, b in zip(self.openings, ends[:-1], ends[1:])]
+        pairs = [along_polygon(nodes, polygon, uv[nodes]) for polygon, nodes in rings]
+        return [slide for slide, _ in pairs], np.concatenate([fixed for _, fixed in pairs])
 
     def ring_of(self, vertex):
         """Index into :attr:`rings` of the ring holding vertex ``vertex`` of :meth:`loop`."""
@@ -97,7 +123,15 @@ def resample_outline(plane, grid, l, spacing, holes=()):
 
     ring = resample_ring(plane[loop], uv, corners, l, spacing, too_short)
     sides = np.array([side_index(a, b, domain) for a, b in ends])
-    return Outline(ring.points, ring.params, sides[ring.side], domain, resample_holes(holes, plane, grid, l, spacing))
+    holes = tuple(holes)
+    return Outline(
+        ring.points,
+        ring.params,
+        sides[ring.side],
+        domain,
+        resample_holes(holes, plane, grid, l, spacing),
+        tuple(polygon for polygon, _ in holes),
+    )
 
 
 def resample_holes(rings, plane, grid, l, spacing):

@@ -41,10 +41,10 @@ from ..tolerance import at_least, at_most
 from .auxiliary import auxiliary_grid, check_grid_size
 from .charts.chart import domain_of
 from .charts.mesh_chart import MeshChart, flatten_mesh
-from .charts.openings import Perforated, hole_slides, holes_of
+from .charts.openings import Perforated, holes_of
 from .charts.triangulated import TriangulatedSurface
 from .flatten import flatten
-from .mesh_outline import boundary_slides, boundary_uv, mesh_outline, restate_mesh_error
+from .mesh_outline import boundary_uv, mesh_outline, restate_mesh_error
 from .messages import restate_polygon_error
 from .optimize import OBJECTIVES, optimize_uv
 from .optimize.jacobian import signed_areas
@@ -266,16 +266,17 @@ def mesh_surface(
     final_uv, final_points = mapped_uv, mapped_points
     if optimize != "none":
         record = OBJECTIVES[optimize]
-        boundary = steps.boundary(plane, mapped_uv) if record.slides else {"fixed": np.arange(plane.n_boundary)}
+        slides, fixed = steps.outline.slides(plane, mapped_uv) if record.slides else ((), np.arange(plane.n_boundary))
         result = optimize_uv(
             chart,
             mapped_uv,
             plane.edges,
             plane.edge_groups,
             l,
+            fixed=fixed,
+            slides=slides,
             triangles=plane.triangles,
             objective=optimize,
-            **boundary,
         )
         final_uv = result.uv
         _check_orientation(final_uv, plane.triangles, "the optimisation")
@@ -316,9 +317,8 @@ class _Front:
     gives the remapped ``(uv, points)`` of a plane mesh; ``restate(exc)``
     turns Problem 2's refusal of the outline into the surface's terms;
     ``holes`` are the rings of the openings (``holes=`` of Problem 2);
-    ``boundary(plane, uv)`` gives the keywords ``fixed``, ``sliding`` and
-    ``slides`` of :func:`~equimesh.surface.optimize.optimize_uv` for the
-    boundary nodes under a sliding objective.
+    ``outline.slides(plane, uv)`` says how the boundary nodes slide under an
+    objective whose boundary slides.
     """
 
     chart: object
@@ -329,7 +329,6 @@ class _Front:
     place: Callable
     restate: Callable
     holes: list | None
-    boundary: Callable
 
 
 def _chart_front(surface, grid, l, limit, spacing, clock):
@@ -359,16 +358,7 @@ def _chart_front(surface, grid, l, limit, spacing, clock):
     def restate(exc):
         return restate_polygon_error(exc, surface, flat.points, aux, outline, l)
 
-    def boundary(plane, uv):
-        """The outer boundary's nodes slide along the sides of the domain, the openings' along their edges.
-
-        With every opening's vertices fixed, its other nodes on its edges and no fold-over no node can enter it.
-        """
-        ends = np.cumsum(plane.info["boundary_rings"])
-        slides, fixed = hole_slides(surface, uv, [np.arange(a, b) for a, b in zip(ends[:-1], ends[1:])])
-        return {"fixed": fixed, "sliding": np.arange(ends[0]), "slides": slides}
-
-    return _Front(surface, aux, x_s0, flat, outline, place, restate, [hole.points for hole in outline.holes], boundary)
+    return _Front(surface, aux, x_s0, flat, outline, place, restate, [hole.points for hole in outline.holes])
 
 
 def _mesh_front(surface, grid, l, limit, spacing, clock):
@@ -403,12 +393,7 @@ def _mesh_front(surface, grid, l, limit, spacing, clock):
     def restate(exc):
         return restate_mesh_error(exc, chart, outline, l)
 
-    def boundary(plane, uv):
-        """Every boundary node slides along its loop between the loop's corners, which stay fixed (item 52)."""
-        slides, corners = boundary_slides(outline, plane)
-        return {"fixed": corners, "slides": slides}
-
-    return _Front(chart, surface, surface.vertices, flat, outline, place, restate, outline.holes, boundary)
+    return _Front(chart, surface, surface.vertices, flat, outline, place, restate, outline.holes)
 
 
 class _Clock:
@@ -470,7 +455,7 @@ def _check_members(points, edges, l):
     if bad.size:
         raise InternalError(
             f"the bounded optimisation returned {bad.size} of {len(edges)} members outside [l, 2l] "
-            f"(lengths from {ratio.min():.10g} l to {ratio.max():.10g} l); please report this surface"
+            f"(lengths from {number(ratio.min(), 10)} l to {number(ratio.max(), 10)} l); please report this surface"
         )
 
 

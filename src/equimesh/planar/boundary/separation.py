@@ -122,12 +122,12 @@ def _unmeshable_corner(poly, l):
                 c = math.cos(theta)
                 low, need = (2.0 * c - math.sqrt(4.0 * c * c - 3.0)) * l, 2.0 * c * l
                 return InvalidPolygonError(
-                    f"no mesh with every edge in [l, 2l] exists for l = {number(l, exact=True)}: at the corner at "
-                    f"{ring.vertex_name(i)} ({math.degrees(theta):.6g} degrees) {ring.edge_name(side)} is "
-                    f"{number(beta / poly.frame.scale, exact=True)} long, a single mesh edge, and the third node of its triangle "
+                    f"no mesh with every edge in [l, 2l] exists for l = {number(l, None)}: at the corner at "
+                    f"{ring.vertex_name(i)} ({number(math.degrees(theta))} degrees) {ring.edge_name(side)} is "
+                    f"{number(beta / poly.frame.scale, None)} long, a single mesh edge, and the third node of its triangle "
                     f"would be closer than l to its other end, {ring.vertex_name(side if side < i else i + 1)} "
-                    f"(docs/proofs.md, 'Sharp corners'); at this angle that side must be at least {need:.10g} long "
-                    f"(or at most {low:.10g})"
+                    f"(docs/proofs.md, 'Sharp corners'); at this angle that side must be at least {number(need, 10)} long "
+                    f"(or at most {number(low, 10)})"
                 )
     return None
 
@@ -152,11 +152,11 @@ def _unseparable_corner(poly, l):
         if theta < math.pi and max(_chord(a, b, theta) for a, b in ends) < (1.0 - REL_TOL) * lp:
             if not _sees_within(grown, ring, i, *ends[-1]):
                 continue
-            need = number((stagger_reach(math.degrees(theta), lp) + lp) / poly.frame.scale, exact=True)
+            need = number((stagger_reach(math.degrees(theta), lp) + lp) / poly.frame.scale, None)
             return InvalidPolygonError(
-                f"the corner at {ring.vertex_name(i)} ({math.degrees(theta):.6g} degrees) cannot meet Lemma 3 (1) "
-                f"for l = {number(l, exact=True)}: with sides of {number(leaving / poly.frame.scale, exact=True)} and "
-                f"{number(arriving / poly.frame.scale, exact=True)} the first boundary points of its two sides are closer than l "
+                f"the corner at {ring.vertex_name(i)} ({number(math.degrees(theta))} degrees) cannot meet Lemma 3 (1) "
+                f"for l = {number(l, None)}: with sides of {number(leaving / poly.frame.scale, None)} and "
+                f"{number(arriving / poly.frame.scale, None)} the first boundary points of its two sides are closer than l "
                 "wherever they lie, so no Step 2 separates them (a limit of the paper's method, not a proof that no "
                 f"mesh exists; docs/proofs.md, 'Sharp corners'); sides of at least {need} are handled; "
                 "use a smaller l, longer sides or a wider corner"
@@ -250,10 +250,10 @@ def _unplaceable_corner(poly, l, corners):
             (theta, None), (sides[1], sides[0], 0.0), lp, (radii[1], radii[0], 0.0, 0.0)
         ):
             continue
-        need = number((stagger_reach(angle, lp) + lp) / poly.frame.scale, exact=True)
+        need = number((stagger_reach(angle, lp) + lp) / poly.frame.scale, None)
         return InvalidPolygonError(
-            f"the corner at {ring.vertex_name(i)} ({angle:.6g} degrees) cannot meet Lemma 3 (1) for l = {number(l, exact=True)}: "
-            f"no split of its sides of {number(sides[0] / poly.frame.scale, exact=True)} and {number(sides[1] / poly.frame.scale, exact=True)} "
+            f"the corner at {ring.vertex_name(i)} ({number(angle)} degrees) cannot meet Lemma 3 (1) for l = {number(l, None)}: "
+            f"no split of its sides of {number(sides[0] / poly.frame.scale, None)} and {number(sides[1] / poly.frame.scale, None)} "
             "into parts of [l, 2l] keeps every two points of different sides l apart (decided on a grid of cells), so "
             "no Step 2 separates them (a limit of the paper's method, not a proof that no mesh exists; docs/proofs.md, "
             f"'Sharp corners'); sides of at least {need} are handled; use a smaller l, longer sides or a wider corner"
@@ -294,10 +294,10 @@ def _unplaceable_chain(poly, l, corners):
         radii = sum((_visible_radii(grown, ring, c, (edges[k + 1], edges[k]))[::-1] for k, c in enumerate(run)), ())
         if not _chain.chain_unplaceable(tuple(math.radians(a) for a in angles), tuple(edges), lp, radii):
             continue
-        names = [f"{ring.vertex_name(c)} ({a:.6g} degrees)" for c, a in zip(run, angles)]
-        sides = ", ".join(number(x / poly.frame.scale, exact=True) for x in edges)
+        names = [f"{ring.vertex_name(c)} ({number(a)} degrees)" for c, a in zip(run, angles)]
+        sides = ", ".join(number(x / poly.frame.scale, None) for x in edges)
         return InvalidPolygonError(
-            f"the corners at {', '.join(names[:-1])} and {names[-1]} cannot meet Lemma 3 (1) together for l = {number(l, exact=True)}: "
+            f"the corners at {', '.join(names[:-1])} and {names[-1]} cannot meet Lemma 3 (1) together for l = {number(l, None)}: "
             f"no split of their sides of {sides} (the middle {'ones' if len(run) > 2 else 'one'} shared) into parts of "
             f"[l, 2l] keeps every two points of different sides l apart at {'both corners' if len(run) == 2 else 'every corner'} "
             "(decided on a grid of cells), so "
@@ -310,7 +310,7 @@ def _unplaceable_chain(poly, l, corners):
 def _separation_error(poly, boundary, l, i, j):
     """The error for boundary points ``i`` and ``j`` closer than ``l`` that see each other."""
     p, q = boundary.points[i], boundary.points[j]
-    d = number(np.linalg.norm(q - p) / poly.frame.scale, exact=True)
+    d = number(np.linalg.norm(q - p) / poly.frame.scale, None)
     ri, rj = (poly.rings[int(boundary.ring[k])] for k in (i, j))
     ei, ej = int(boundary.edge[i]), int(boundary.edge[j])
     where = f"boundary points on {ri.edge_name(ei)} and {rj.edge_name(ej)} are {d} apart"
@@ -319,10 +319,10 @@ def _separation_error(poly, boundary, l, i, j):
     corner = None if ri is not rj else ej if (ei + 1) % n == ej else ei if (ej + 1) % n == ei else None
     if corner is not None:
         angle = ri.inner_angle(corner)
-        need = number((stagger_reach(angle, poly.local_length(l)) / poly.frame.scale) + l, exact=True)
+        need = number((stagger_reach(angle, poly.local_length(l)) / poly.frame.scale) + l, None)
         message = (
-            f"the corner at {ri.vertex_name(corner)} ({angle:.6g} degrees) is not handled for l = {number(l, exact=True)}: "
-            f"{where}, closer than l (Lemma 3 (1)); the staggered Step 2 is proven at {angle:.6g} degrees for sides "
+            f"the corner at {ri.vertex_name(corner)} ({number(angle)} degrees) is not handled for l = {number(l, None)}: "
+            f"{where}, closer than l (Lemma 3 (1)); the staggered Step 2 is proven at {number(angle)} degrees for sides "
             f"of at least {need}, longer if the next corner is sharp too; for these the searches found no placement "
             "and none is proven impossible, even for each corner alone (a limit of this method, not a proof that no "
             "mesh exists; docs/proofs.md, 'Sharp corners'); "
@@ -330,7 +330,7 @@ def _separation_error(poly, boundary, l, i, j):
         )
     else:
         message = (
-            f"polygon is too narrow for l = {number(l, exact=True)}: {where} and see each other across the polygon "
+            f"polygon is too narrow for l = {number(l, None)}: {where} and see each other across the polygon "
             f"(Lemma 3 (1), a limit of this method); use l <= {d} or widen the polygon there"
         )
     return InvalidPolygonError(message, points=caller)

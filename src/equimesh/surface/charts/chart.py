@@ -86,6 +86,12 @@ class Domain:
         """(4,) array: the constant coordinate of each side, in the order of :data:`SIDES`."""
         return np.array([*self.u, *self.v])
 
+    @property
+    def corners(self):
+        """(4, 2) array: the rectangle's corners counter-clockwise from ``(u0, v0)``."""
+        (u0, u1), (v0, v1) = self.u, self.v
+        return np.array([[u0, v0], [u1, v0], [u1, v1], [u0, v1]])
+
     def at_fractions(self, s, t):
         """Points ``(1 - s) u0 + s u1, (1 - t) v0 + t v1`` for fractions ``s, t`` in [0, 1].
 

@@ -22,7 +22,6 @@ import numpy as np
 
 from ...errors import InvalidPolygonError, InvalidSurfaceError, number
 from ...planar.polygon import as_polygon
-from ..optimize.slide import along_polygon
 from .chart import domain_of
 
 
@@ -80,25 +79,6 @@ def _as_given(ring):
     out = np.empty_like(ring.vertices)
     out[ring.input_index] = ring.vertices
     return out
-
-
-def hole_slides(surface, uv, nodes):
-    """The openings' nodes sliding along the holes' (u, v) polygons in the final optimisation (item 52).
-
-    ``nodes[k]`` are the nodes on hole ``k`` (:func:`holes_of`'s order), at
-    ``uv``.  Every vertex of a hole is a corner: a node slides along the hole
-    edge it lies on (:func:`~equimesh.surface.optimize.slide.between_corners`).
-
-    Returns
-    -------
-    slides : list of Slide, one per hole
-    fixed : (c,) int array
-        The nodes at a hole's vertex.
-    """
-    pairs = []
-    for (ring, _), on_hole in zip(holes_of(surface), nodes):
-        pairs.append(along_polygon(on_hole, ring, uv[on_hole]))
-    return [slide for slide, _ in pairs], np.concatenate([np.zeros(0, dtype=np.int64), *(fixed for _, fixed in pairs)])
 
 
 def holes_of(surface):

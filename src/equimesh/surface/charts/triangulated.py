@@ -70,7 +70,7 @@ class TriangulatedSurface:
         v, t = _merge(v, t)
         _check_degenerate(v, t)
         _check_manifold(v, t)
-        t = _orient(v, t)
+        t = _orient_consistently(v, t)
         loops = _boundary_loops(v, t)
         n_edges = len(_edges(t)[2])
         handles = (2 - len(loops) - (len(v) - n_edges + len(t))) // 2
@@ -201,7 +201,7 @@ def _components(rows, cols, n):
     return scipy.sparse.csgraph.connected_components(graph, directed=False)
 
 
-def _orient(v, t):
+def _orient_consistently(v, t):
     """Flip triangles so that every inner edge is used in opposite directions; refuse a non-orientable mesh.
 
     Two triangles using their shared edge in the same direction need opposite

@@ -1,40 +1,29 @@
-"""Final optimisation of the nodes' parameters (Section 4, last paragraph, and beyond).
+"""Final optimisation of the nodes' parameters (Section 4, last paragraph, and beyond): :func:`optimize_uv`.
 
 "Finally, the deviation of the edge lengths in G1 from the target value is
 minimized by considering (u_i, v_i) of inner nodes as variables."  The
-variables are the (u, v) of the free nodes, kept in the chart's parameter domain by
-bounds (:func:`parameter_box`), for "sliding" boundary nodes the one
-parameter along the side they lie on (the other stays on the side; corners
-stay fixed), and for nodes sliding along a polyline (the flattened loops of a
-triangle mesh, the openings' edges) their arc position ``s``
-(:class:`~equimesh.surface.optimize.slide.Slide`, ``uv = loop(s)``, the Jacobian by
-the chain rule through ``d uv / d s``, :meth:`UVProblem.chain`).  The least-squares problem is solved by the sparse bounded
-Levenberg-Marquardt of :mod:`equimesh.surface.optimize.solver` with an analytic sparse
-Jacobian (chain rule through the surface's first derivatives).
-
-The seam.  What is minimised is looked up by name in :data:`OBJECTIVES`: a
-builder ``builder(problem: UVProblem) -> Objective`` returning the residual
-and sparse Jacobian functions of the variable vector, optionally a hard
-constraint (``feasible``) and a continuation (``refine``).
-
-* ``"paper"``: the paper's objective, ``(L - l) / l`` of the G1 members,
-  boundary fixed;
-* ``"bounded"`` (beyond the paper, the default of
-  :func:`~equimesh.surface.pipeline.mesh_surface`): every member in [l, 2l]
-  as a hard constraint, and as many members as possible at the target
-  ``l (1 + BOUNDED_OFFSET)`` by rounds of reweighted (Cauchy) least squares
-  that also pull the members outside the bounds in (:func:`bounded_objective`),
-  boundary nodes sliding.
+variables (:class:`~equimesh.surface.optimize.problem.UVProblem`) are the
+(u, v) of the free nodes, kept in the chart's parameter domain by bounds, and
+the arc position of each node that slides along a closed polyline in (u, v)
+(the parameter rectangle, an opening, a triangle mesh's flattened loop).  An
+objective (:data:`~equimesh.surface.optimize.objectives.OBJECTIVES`) is a
+sequence of stages, each a least-squares problem solved by the sparse bounded
+Levenberg-Marquardt of :mod:`equimesh.surface.optimize.solver` with an
+analytic sparse Jacobian (chain rule through the surface's first
+derivatives); the damping and the normal equations' analysis carry over
+from one stage to the next.
 
 Fold-over.  Lengths do not see orientation, and the G1 edges do not see the
 triangles between the lattice and the boundary at all: minimising the G1
 deviation alone lets the lattice slide over the boundary nodes and flips
-boundary-strip triangles (observed on doubly curved patches).  Two guards:
+boundary-strip triangles (observed on doubly curved patches).  Two guards,
+on every stage:
 
-* a barrier (:class:`~equimesh.surface.optimize.jacobian.AreaBarrier`), zero unless a triangle's (u, v) area
-  falls below ``area_floor`` (default 0.5) of its start area, heavy enough
-  that a folded triangle costs more than the whole start; while no triangle
-  is that squeezed the objective is exactly the paper's;
+* a barrier (:class:`~equimesh.surface.optimize.jacobian.AreaBarrier`), zero
+  unless a triangle's (u, v) area falls below ``area_floor`` (default 0.5)
+  of its start area, heavy enough that a folded triangle costs more than the
+  whole start; while no triangle is that squeezed the objective is exactly
+  the stage's;
 * the solver's acceptance test: a step that leaves any triangle that was
   counter-clockwise in (u, v) at the start not strictly counter-clockwise is
   refused, so no iterate, and no result, has a fold-over.
@@ -50,7 +39,7 @@ from ...errors import EquimeshError, InvalidSurfaceError
 from ...tolerance import LM_INITIAL_DAMPING, PAPER_FTOL
 from .jacobian import AreaBarrier, signed_areas
 from .objectives import OBJECTIVES, Stage
-from .problem import UVProblem, free_parameters, parameter_box
+from .problem import UVProblem, free_nodes, parameter_box
 from .solver import NormalEquations, inner, least_squares
 
 
@@ -89,7 +78,6 @@ def optimize_uv(
     length,
     *,
     fixed,
-    sliding=(),
     slides=(),
     triangles=None,
     objective="paper",
@@ -112,13 +100,10 @@ def optimize_uv(
         The target length l.
     fixed : array_like of int or (N,) bool
         Nodes that stay put (the boundary nodes for ``"paper"``).
-    sliding : array_like of int
-        Nodes on the boundary of the parameter domain that move along it:
-        the parameter(s) at a side of :func:`parameter_box` stay, the other
-        varies (a node at a corner stays put).
     slides : sequence of :class:`~equimesh.surface.optimize.slide.Slide`
-        Nodes that slide along a polyline in (u, v) by their arc position,
-        within their bounds (the boundary loops of a triangle-mesh chart).
+        Nodes that slide along a closed polyline in (u, v) by their arc
+        position, within their bounds (the sides of the parameter rectangle,
+        an opening's edges, the boundary loops of a triangle-mesh chart).
     triangles : (M, 3) int array_like, optional
         For the fold-over guards (recommended): without them neither the
         barrier nor the acceptance test is applied.
@@ -131,7 +116,7 @@ def optimize_uv(
         barrier (the acceptance test still applies).
     ftol, xtol, gtol
         Convergence tolerances of :func:`equimesh.surface.optimize.solver.least_squares`;
-        ``ftol=None`` takes the objective's (:attr:`Objective.ftol`).
+        ``ftol=None`` takes each stage's (:attr:`~equimesh.surface.optimize.objectives.Stage.ftol`).
 
     Returns
     -------
@@ -152,9 +137,7 @@ def optimize_uv(
     lower, upper = parameter_box(surface)
     uv = np.clip(np.array(uv, dtype=float).reshape(-1, 2), lower, upper)
     slides = tuple(slides)
-    free = free_parameters(uv, fixed, sliding, lower, upper)
-    for slide in slides:
-        free[slide.nodes] = False
+    free = free_nodes(len(uv), fixed, slides)
     problem = UVProblem(
         surface, uv, np.asarray(edges, dtype=np.int64), np.asarray(edge_groups), float(length), free, slides
     )

@@ -13,6 +13,7 @@ import numpy as np
 import scipy.sparse
 
 from ..._jit import compiled
+from ...mesh import triangle_orient
 
 
 class ElementJacobian:
@@ -49,21 +50,8 @@ class ElementJacobian:
 
 
 def signed_areas(points, triangles):
-    """Signed areas of ``triangles`` over 2D ``points`` (> 0 counter-clockwise): half of :func:`~equimesh.mesh.triangle_orient`, compiled."""
-    return 0.5 * _orient(np.asarray(points, dtype=float), np.asarray(triangles, dtype=np.int64).reshape(-1, 3))
-
-
-def _orient(points, triangles):
-    """The floats of :func:`~equimesh.mesh.triangle_orient`, in a compiled loop (the solver's guards call it at every step)."""
-    out = np.empty(len(triangles))
-    for t in range(len(triangles)):
-        a, b, c = triangles[t, 0], triangles[t, 1], triangles[t, 2]
-        ax, ay = points[a, 0], points[a, 1]
-        out[t] = (points[b, 0] - ax) * (points[c, 1] - ay) - (points[b, 1] - ay) * (points[c, 0] - ax)
-    return out
-
-
-_orient = compiled(_orient)
+    """Signed areas of ``triangles`` over 2D ``points`` (> 0 counter-clockwise): half of :func:`~equimesh.mesh.triangle_orient`."""
+    return 0.5 * triangle_orient(points, triangles)
 
 
 def _area_gradients(points, triangles, scale):

@@ -23,6 +23,7 @@ import numpy as np
 import scipy.sparse
 
 from ..._jit import compiled
+from ...errors import number
 from ...mesh import G1, edge_lengths
 from ...tolerance import (
     BOUNDED_BAND,
@@ -243,9 +244,7 @@ def bounded_stages(problem):
     def violation(x):
         ratio = lengths(x) / l
         out = int(np.count_nonzero((ratio < 1.0) | (ratio > 2.0)))
-        return (
-            f"{out} of {len(ratio)} members outside [l, 2l] (lengths from {ratio.min():.6g} l to {ratio.max():.6g} l)"
-        )
+        return f"{out} of {len(ratio)} members outside [l, 2l] (lengths from {number(ratio.min())} l to {number(ratio.max())} l)"
 
     def cauchy_loss(ratio):
         """The loss that the rounds decrease (majorise-minimise): ``sum log(1 + (d_e / s)^2)``."""

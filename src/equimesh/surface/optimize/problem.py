@@ -30,11 +30,10 @@ class UVProblem:
         :data:`~equimesh.mesh.G1` or :data:`~equimesh.mesh.OTHER` per edge.
     length : float
         The target length l.
-    free : (N,) or (N, 2) bool array
-        True for the variable nodes (both parameters), or per parameter
-        (a sliding boundary node varies one of u and v).
+    free : (N,) bool array
+        True for the nodes whose two parameters are variables.
     slides : tuple of :class:`~equimesh.surface.optimize.slide.Slide`
-        Nodes that slide along a polyline by their arc position (their
+        Nodes that slide along a closed polyline by their arc position (their
         ``free`` entries False): one variable each, after the free parameters.
     """
 
@@ -49,7 +48,7 @@ class UVProblem:
     @property
     def variables(self):
         """(2N,) bool mask of the entries of ``uv.ravel()`` that are variables themselves."""
-        return np.broadcast_to(np.asarray(self.free, dtype=bool).reshape(len(self.uv), -1), self.uv.shape).ravel()
+        return np.repeat(np.asarray(self.free, dtype=bool), 2)
 
     @property
     def moving(self):
@@ -61,10 +60,11 @@ class UVProblem:
 
     @property
     def sliding_variables(self):
-        """Bool mask of the variables that move boundary nodes: the free parameter of a node on a side, the arc positions."""
-        variables = self.variables
-        one = np.repeat(variables.reshape(len(self.uv), 2).sum(axis=1) == 1, 2)
-        return np.concatenate([one[variables], *(np.ones(len(slide.nodes), dtype=bool) for slide in self.slides)])
+        """Bool mask of the variables that move boundary nodes: the arc positions."""
+        n = int(np.count_nonzero(self.free))
+        return np.concatenate(
+            [np.zeros(2 * n, dtype=bool), *(np.ones(len(slide.nodes), dtype=bool) for slide in self.slides)]
+        )
 
     @property
     def x0(self):
@@ -147,11 +147,11 @@ def parameter_box(surface):
     return np.asarray(domain.lower, dtype=float), np.asarray(domain.upper, dtype=float)
 
 
-def free_parameters(uv, fixed, sliding, lower, upper):
-    """(N, 2) mask of the variable parameters: all but the fixed nodes', and a sliding node's only off its sides."""
-    free = np.ones(uv.shape, dtype=bool)
+def free_nodes(n, fixed, slides):
+    """(n,) mask of the nodes whose two parameters are variables: all but the ``fixed`` ones and the sliding ones."""
+    free = np.ones(n, dtype=bool)
     fixed = np.asarray(fixed)
     free[np.flatnonzero(fixed) if fixed.dtype == bool else fixed.astype(np.int64)] = False
-    slide = np.asarray(sliding, dtype=np.int64)
-    free[slide] &= (uv[slide] > lower) & (uv[slide] < upper)
+    for slide in slides:
+        free[slide.nodes] = False
     return free
