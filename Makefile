@@ -67,7 +67,12 @@ MUTATION_STAMP := $(VENV)/.equimesh-mutation-installed
 
 .PHONY: test test-thorough reproduce bench bench-history bench-compare bench-publish mutation venv clean-venv
 
+# Lint and format check first (ruff, configured in pyproject.toml), then the tests.
+LINTED := src tests experiments benchmarks tools
+
 test: $(STAMP) $(EXTRAS_STAMP)
+	$(VENV)/bin/ruff check $(wildcard $(LINTED))
+	$(VENV)/bin/ruff format --check $(wildcard $(LINTED))
 	$(PY) -m pytest $(PYTEST_ARGS)
 
 test-thorough: $(STAMP) $(EXTRAS_STAMP)

@@ -63,7 +63,8 @@ MEASURES = ("share_within_0.5pct", "share_in_l_2l", "min_over_l", "max_over_l", 
 
 
 def cases(count):
-    """The first ``count`` domes ``(index, rise, seed, l)``: :data:`EXPLICIT`, then the draws of the module docstring."""
+    """The first ``count`` domes ``(index, rise, seed, l)``: :data:`EXPLICIT`, then the draws of the module
+    docstring."""
     rng = np.random.default_rng(SEED)
     drawn = [
         (float(rng.uniform(*RISE)), int(rng.integers(0, 2**32 - 1)), float(rng.uniform(*LENGTH)))
@@ -168,7 +169,8 @@ def report(df, times, record, count):
         body.append(
             f"| {r['index']} | {r['set']} | {r['rise']:.4f} | {r['seed']} | {r['l']:.4f} | "
             f"{r['paper_share_within_0.5pct']:.4f} | {r['bounded_share_within_0.5pct']:.4f} | {r['margin']:+.4f} | "
-            f"{r['bounded_min_over_l']:.4f} | {r['bounded_max_over_l']:.4f} | {r['paper_njev']} / {r['bounded_njev']} | "
+            f"{r['bounded_min_over_l']:.4f} | {r['bounded_max_over_l']:.4f} | {r['paper_njev']} / {r['bounded_njev']} "
+            "| "
             f"{r['paper_seconds']:.1f} / {r['bounded_seconds']:.1f} | {error} |"
         )
     return _common.markdown_report(
@@ -230,7 +232,8 @@ def main(argv=None):
     below = int((df["margin"] < 0).sum())
     print(
         f"{NAME}: {len(df)} domes; bounded below the paper on {below}, smallest margin {df['margin'].min():+.4f}, "
-        f"mean share paper {df['paper_share_within_0.5pct'].mean():.4f}, bounded {df['bounded_share_within_0.5pct'].mean():.4f}"
+        f"mean share paper {df['paper_share_within_0.5pct'].mean():.4f}, bounded "
+        f"{df['bounded_share_within_0.5pct'].mean():.4f}"
     )
     return 0
 

@@ -92,7 +92,8 @@ def _surfaces():
 SURFACES = tuple(_surfaces())
 
 
-# --------------------------------------------------------------------------- meshers: (surface, l) -> (points, triangles)
+# --------------------------------------------------------------------------- meshers: (surface, l) -> (points,
+# triangles)
 
 
 def _equimesh(objective):

@@ -139,7 +139,8 @@ def _hidden(points, triangles, edges, chunk=256):
 
 
 def _members(ax, points, triangles, edges, width, colors=None, values=None, cmap=None, norm=None, linestyle="solid"):
-    """Draw members: visible ones on top of the surface, hidden ones faint beneath it.  Returns the visible collection."""
+    """Draw members: visible ones on top of the surface, hidden ones faint beneath it.  Returns the visible
+    collection."""
     seg = _segments(points, edges)
     hidden = _hidden(points, triangles, edges)
     made = []
@@ -259,7 +260,8 @@ def fig2_auxiliary_plane(d):
     ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.08), ncol=2, fontsize=8, frameon=False)
     ax.set_title(
         "Fig. 2  Auxiliary triangulation of the plane (flattened by eq. (1))\n"
-        f"the boundary is not convex: it lies up to {gap:.2f} (= {gap / float(d['length']):.2f} l) inside its convex hull",
+        f"the boundary is not convex: it lies up to {gap:.2f} (= {gap / float(d['length']):.2f} l) inside its convex "
+        "hull",
         fontsize=10,
     )
     return fig

@@ -44,7 +44,8 @@ BAND = 0.005
 
 @dataclass(frozen=True)
 class Input:
-    """One example input: a label, its file in experiments/surfaces/, the member length, the object of a file with several."""
+    """One example input: a label, its file in experiments/surfaces/, the member length, the object of a file with
+    several."""
 
     label: str
     file: str

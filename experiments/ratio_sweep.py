@@ -169,7 +169,8 @@ def summarize(df, record):
             f"## Worst polygon (index {int(worst['index'])})",
             "",
             f"n' = {int(worst['n_nodes'])}, LB = {int(worst['lower_bound'])}, n'/LB = {worst['ratio']:.4f}, "
-            f"area {worst['area']:.6g}, perimeter {worst['perimeter']:.6g}, {int(worst['n_vertices'])} vertices, l = 1:",
+            f"area {worst['area']:.6g}, perimeter {worst['perimeter']:.6g}, {int(worst['n_vertices'])} vertices, l = "
+            "1:",
             "",
             "```",
             json.dumps(vertices),

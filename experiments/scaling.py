@@ -165,7 +165,8 @@ def report(frame, floor, record):
         "",
         "## Fast engine against Triangle's quality refinement (time per output point)",
         "",
-        "| n (fast) | fast us/point | n (Triangle) | Triangle us/point | ratio | ratio of CPU time per point | fast peak MB |",
+        "| n (fast) | fast us/point | n (Triangle) | Triangle us/point | ratio | ratio of CPU time per point | fast "
+        "peak MB |",
         "|---|---|---|---|---|---|---|",
     ]
     for n, group in frame.groupby("n_target"):

@@ -58,7 +58,8 @@ COLUMNS = [
 
 
 def triangulate(outer, holes, engine="fast"):
-    """Problem 2 with l = 1 on ``outer`` and ``holes``: the mesh, or the kind of its refusal (a key of :data:`REFUSALS`)."""
+    """Problem 2 with l = 1 on ``outer`` and ``holes``: the mesh, or the kind of its refusal (a key of
+    :data:`REFUSALS`)."""
     try:
         return equimesh.uniform_triangulation(outer, 1.0, holes=holes or None, engine=engine)
     except equimesh.InvalidPolygonError as error:
@@ -104,7 +105,8 @@ def summarize(df, record):
         "means within stagger_reach + l of the sharp corner.  Both engines agree on every outcome when",
         "'engines agree' is yes.",
         "",
-        "| family | corner | cases | meshed | impossible | no separation | not handled | neck | min angle | min angle near | G1 share | G1 share near | engines agree |",
+        "| family | corner | cases | meshed | impossible | no separation | not handled | neck | min angle | min angle "
+        "near | G1 share | G1 share near | engines agree |",
         "|---|---|---|---|---|---|---|---|---|---|---|---|---|",
     ]
     for (kind, angle), group in df.groupby(["kind", "angle"], sort=False):

@@ -50,7 +50,8 @@ def measure(case):
 
 
 def _pair_triangle(angle, u, v, w):
-    """The triangle of the module docstring: corners of ``angle`` and ``10 + 50 u`` degrees on a base of ``1 + v (K_1 + K_2 + 2)``."""
+    """The triangle of the module docstring: corners of ``angle`` and ``10 + 50 u`` degrees on a base of ``1 + v (K_1 +
+    K_2 + 2)``."""
     other = 10.0 + 50.0 * u
     base = 1.0 + v * (stagger_reach(angle, 1.0) + stagger_reach(other, 1.0) + 2.0)
     a, b = np.radians(angle), np.radians(other)
@@ -59,7 +60,8 @@ def _pair_triangle(angle, u, v, w):
 
 
 def _dart(angle, u, v, w):
-    """The dart of the module docstring: a tip of ``angle`` degrees, barbs of ``10 + 50 u`` and ``10 + 50 v`` degrees."""
+    """The dart of the module docstring: a tip of ``angle`` degrees, barbs of ``10 + 50 u`` and ``10 + 50 v``
+    degrees."""
     barbs = (10.0 + 50.0 * u, 10.0 + 50.0 * v)
     return sharp_dart(
         angle, barbs, 1.0 + w * (stagger_reach(angle, 1.0) + max(stagger_reach(b, 1.0) for b in barbs) + 3.0)
@@ -67,7 +69,8 @@ def _dart(angle, u, v, w):
 
 
 def cases(count, seed, kinds=KINDS):
-    """``count`` draws per family of ``kinds``: ``(kind, angle, u, v, w)``, each family's the same whatever ``kinds`` are."""
+    """``count`` draws per family of ``kinds``: ``(kind, angle, u, v, w)``, each family's the same whatever ``kinds``
+    are."""
     rng = np.random.default_rng(seed)
     draws = rng.uniform(size=(len(KINDS), count, 4))
     return [

@@ -79,7 +79,8 @@ class SurfaceStages:
         equimesh.uniform_triangulation(outline, SURFACE_LENGTH, angle=place.angle, offset=place.offset)
 
     def time_remapping(self, cache):
-        """Step 4 exactly as mesh_surface calls it: eqs. (2)-(3) inside, the outline for the boundary nodes, evaluate."""
+        """Step 4 exactly as mesh_surface calls it: eqs. (2)-(3) inside, the outline for the boundary nodes,
+        evaluate."""
         surface, mesh = cache
         st = mesh.stages
         plane = st.plane
@@ -152,7 +153,8 @@ class Optimisation:
     track_share_within_half_percent.unit = "share"
 
     def track_jacobian_evaluations(self, cache, objective, l):
-        """Jacobian evaluations of the solver, one per iteration (each about one factorisation): its work, whatever the load."""
+        """Jacobian evaluations of the solver, one per iteration (each about one factorisation): its work, whatever the
+        load."""
         return self._run(cache, objective, l)[0].njev
 
     track_jacobian_evaluations.unit = "evaluations"

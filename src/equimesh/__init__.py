@@ -5,11 +5,13 @@ Public verbs
 increment(vertices, l)            Problem 1, Algorithm INCREMENT (Section 2)
 node_lower_bound(vertices, l)     lower bound on the optimum of Problem 1 (Theorem 2)
 packing_upper_bound(vertices, l)  Oler's bound on l-separated point sets
-mesh_surface(surface, l)          Section 4: uniform mesh of a parametric surface (holes=: openings in (u, v)) or a triangle mesh
+mesh_surface(surface, l)          Section 4: uniform mesh of a parametric surface (holes=: openings in (u, v)) or a
+triangle mesh
 uniform_triangulation(vertices, l) Problem 2: lattice + boundary strip (Section 3)
 best_lattice_placement(vertices, l) lattice angle/offset maximising G1 (beyond the paper)
 length_classes(lengths, l, tol)   fewest member-length classes at a tolerance (beyond the paper)
-load_surface(path, object=None)   a surface from a file (.json, Rhino .3dm, triangle meshes .obj .stl .ply .vtk .vtu) (format by extension; JSON "type" by equimesh.io.SURFACE_TYPES)
+load_surface(path, object=None)   a surface from a file (.json, Rhino .3dm, triangle meshes .obj .stl .ply .vtk .vtu)
+(format by extension; JSON "type" by equimesh.io.SURFACE_TYPES)
 surface_from_dict(d), surface_to_dict(surface)  the JSON description of a surface, both ways
 
 Section 4 stages (what mesh_surface chains; public so that they can be timed and reused)

@@ -43,7 +43,8 @@ def check_count(value, name, least=1):
 
 
 def _plain(value):
-    """``value`` with a numpy scalar as the Python number it holds, so that a message shows ``2.5``, not its numpy repr."""
+    """``value`` with a numpy scalar as the Python number it holds, so that a message shows ``2.5``, not its numpy
+    repr."""
     return value.item() if isinstance(value, np.generic) else value
 
 

@@ -230,7 +230,8 @@ class Polyline:
         return k, (s - arc[k]) / (arc[k + 1] - arc[k])
 
     def at(self, s):
-        """Points at arc positions ``s``; an open polyline's last position, its length, gives its last vertex exactly."""
+        """Points at arc positions ``s``; an open polyline's last position, its length, gives its last vertex
+        exactly."""
         return self._interpolate(self.points, s)
 
     def values_at(self, s):

@@ -2,7 +2,8 @@
 
 The kernels of the fast engine (:mod:`equimesh.planar.insertion.predicates`,
 ``._cdt`` and ``.fast``) and the solver's sum of the normal matrix
-(:func:`equimesh.surface.optimize.solver._sum_products`) are plain functions, each compiled right after its definition by
+(:func:`equimesh.surface.optimize.solver._sum_products`) are plain functions, each compiled right after its definition
+by
 ``name = compiled(name)``: the same as the decorator ``@njit(cache=True)``,
 but mutation testing reaches them (mutmut leaves decorated functions alone),
 and under ``NUMBA_DISABLE_JIT=1`` they run as the Python they are written in

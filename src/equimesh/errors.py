@@ -87,4 +87,5 @@ class MissingDependencyError(EquimeshError):
 
 
 class SurfaceWarning(UserWarning):
-    """The surface read is not exactly what the file describes (a trimmed face read untrimmed); the mesh is still made."""
+    """The surface read is not exactly what the file describes (a trimmed face read untrimmed); the mesh is still
+    made."""

@@ -20,7 +20,8 @@ def half_edges(triangles):
 
 
 def edge_keys(edges):
-    """``(keys, n)``: one int64 ``min * n + max`` per edge ``(E, 2)`` (``n`` above every index), ordered like the sorted rows."""
+    """``(keys, n)``: one int64 ``min * n + max`` per edge ``(E, 2)`` (``n`` above every index), ordered like the sorted
+    rows."""
     e = np.asarray(edges, dtype=np.int64).reshape(-1, 2)
     n = int(e.max()) + 1 if e.size else 1
     return np.minimum(e[:, 0], e[:, 1]) * n + np.maximum(e[:, 0], e[:, 1]), n

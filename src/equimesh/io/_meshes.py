@@ -165,7 +165,8 @@ def _mesh_output(path, fmt, points, triangles):
 
 
 def _members_outputs(path, points, edges, groups, l, tolerance):
-    """The schedule and the classes CSV (paths checked by the caller); floats as the shortest text that reads back to the same bits."""
+    """The schedule and the classes CSV (paths checked by the caller); floats as the shortest text that reads back to
+    the same bits."""
     classes = length_classes(edge_lengths(points, edges), l, tolerance)
     schedule = member_schedule(points, edges, groups, l, classes)
     return [

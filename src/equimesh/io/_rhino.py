@@ -24,7 +24,8 @@ from ._schema import shown, shown_path
 
 
 def read_rhino_surface(path, object=None):
-    """The surface of the Rhino file ``path``; ``object`` (a name, or an index in the object table) picks one of several.
+    """The surface of the Rhino file ``path``; ``object`` (a name, or an index in the object table) picks one of
+    several.
 
     Raises
     ------
@@ -39,7 +40,8 @@ def read_rhino_surface(path, object=None):
         import rhino3dm
     except ImportError:
         raise MissingDependencyError(
-            f"reading Rhino files needs rhino3dm, which is not installed: pip install 'equimesh[rhino]' ({shown_path(path)})"
+            "reading Rhino files needs rhino3dm, which is not installed: pip install 'equimesh[rhino]' "
+            f"({shown_path(path)})"
         ) from None
     model = rhino3dm.File3dm.Read(str(path))
     if model is None:
@@ -122,7 +124,8 @@ def _to_nurbs(geometry, name, path, rhino3dm):
     if not np.all(weights > 0):
         i, j = (int(k) for k in np.argwhere(~(weights > 0))[0])
         raise InvalidSurfaceError(
-            f"object {name} of {shown_path(path)}: control point [{i}][{j}] has weight {float(weights[i, j])!r}, not positive"
+            f"object {name} of {shown_path(path)}: control point [{i}][{j}] has weight {float(weights[i, j])!r}, not "
+            "positive"
         )
     knots = [_full_knots(nurbs.KnotsU.ToList()), _full_knots(nurbs.KnotsV.ToList())]
     return NurbsSurface((nurbs.Degree(0), nurbs.Degree(1)), *knots, net[..., :3] / weights[..., None], weights)

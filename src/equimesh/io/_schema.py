@@ -89,7 +89,8 @@ def coordinates(point, where, names):
     """``point`` if it is a list of ``len(names)`` finite numbers (e.g. ``[x, y, z]`` for ``names = "xyz"``)."""
     if not isinstance(point, list) or len(point) != len(names):
         raise InvalidSurfaceError(
-            f"{where} must be a list [{', '.join(names)}] of {len(names)} numbers, got {json_type(point)} {shown(point)}"
+            f"{where} must be a list [{', '.join(names)}] of {len(names)} numbers, got {json_type(point)} "
+            f"{shown(point)}"
         )
     for k, c in enumerate(point):
         finite_number(c, f"{where}[{k}]")

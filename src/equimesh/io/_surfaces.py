@@ -5,7 +5,8 @@ a JSON description names its surface type in ``"type"``
 (:data:`SURFACE_TYPES`), whose schema turns the object into a surface (step 1
 of Section 4: the map X^s(u, v)).  Every type may have openings,
 ``"holes": [[[u, v], ...], ...]`` (closed polylines in parameter space, see
-:class:`~equimesh.surface.charts.openings.Perforated`), and a ``"description"``.  A new type or format is one new row in a
+:class:`~equimesh.surface.charts.openings.Perforated`), and a ``"description"``.  A new type or format is one new row in
+a
 table, nothing else.  Every problem, from an unreadable path to a coordinate
 that is not a finite number, is one :class:`InvalidSurfaceError` line.
 """
@@ -141,7 +142,8 @@ def load_surface(path, *, object=None):
 
 
 def read_json_surface(path):
-    """Read a JSON surface description (UTF-8, a byte-order mark allowed) and build it with :func:`surface_from_dict`."""
+    """Read a JSON surface description (UTF-8, a byte-order mark allowed) and build it with
+    :func:`surface_from_dict`."""
     data = Path(path).read_bytes()
     where = shown_path(path)
     try:

@@ -35,7 +35,8 @@ IGNORED_CELLS = ("vertex", "line", "line3", "polyline")
 
 
 def read_triangle_mesh(path):
-    """The :class:`~equimesh.surface.charts.triangulated.TriangulatedSurface` in the mesh file ``path`` (format by extension).
+    """The :class:`~equimesh.surface.charts.triangulated.TriangulatedSurface` in the mesh file ``path`` (format by
+    extension).
 
     Raises
     ------

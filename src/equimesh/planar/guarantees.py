@@ -56,7 +56,8 @@ def verify_planar(mesh):
     ring = sum(signed_area(points[end - size : end]) for end, size in zip(ends, sizes))
     if not abs(float(np.sum(area)) - ring) <= REL_TOL * ring:
         raise InternalError(
-            f"triangle areas sum to {float(np.sum(area)) / scale**2!r}, the polygon's area is {ring / scale**2!r}: {_REPORT}"
+            f"triangle areas sum to {float(np.sum(area)) / scale**2!r}, the polygon's area is {ring / scale**2!r}: "
+            f"{_REPORT}"
         )
     lengths = edge_lengths(points, mesh.edges)
     bad = np.flatnonzero(~(at_least(lengths, lp) & at_most(lengths, 2.0 * lp)))

@@ -134,7 +134,8 @@ def _local_frame(v, l):
         return Frame(origin, power_of_two_scale(extent))
     if not extent <= MAX_EXTENT * l:
         raise InvalidPolygonError(
-            f"polygon spans {number(extent, None)} = {number(extent / l, None)} l, more than the {MAX_EXTENT:.0f} l within which "
+            f"polygon spans {number(extent, None)} = {number(extent / l, None)} l, more than the {MAX_EXTENT:.0f} l "
+            "within which "
             f"edge lengths are exact to REL_TOL; use l >= {number(extent / MAX_EXTENT, None)}"
         )
     return Frame(origin, power_of_two_scale(l))
@@ -200,7 +201,8 @@ def _check_holes(outer, holes, l):
         if out.size:
             x, y = v[out[0]]
             raise InvalidPolygonError(
-                f"{label} is not inside the polygon: its vertex {out[0]} at ({number(x, 10)}, {number(y, 10)}) lies outside"
+                f"{label} is not inside the polygon: its vertex {out[0]} at ({number(x, 10)}, {number(y, 10)}) lies "
+                "outside"
             )
         rings.append(_ring(_ring_vertices(v, label), outer.frame, label))
     if not rings:

@@ -80,7 +80,8 @@ class AuxiliaryGrid:
 
     @property
     def boundary_segment_side(self):
-        """(B,) int: index into :data:`~equimesh.surface.charts.chart.SIDES` of the side carrying each boundary segment."""
+        """(B,) int: index into :data:`~equimesh.surface.charts.chart.SIDES` of the side carrying each boundary
+        segment."""
         both = self.boundary_sides & np.roll(self.boundary_sides, -1, axis=0)
         return np.argmax(both, axis=1)
 

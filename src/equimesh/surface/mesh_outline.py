@@ -121,7 +121,8 @@ def mesh_outline(chart, l, spacing):
         ring = resample_ring(xy, xy, corners, l, spacing, too_short=_too_short(name, l, len(corners))).points
         if len(ring) < 3:
             raise InvalidSurfaceError(
-                f"{name} of the mesh is too small for l = {number(l)}: its rim, {number(arc[-1])} long on the flattened "
+                f"{name} of the mesh is too small for l = {number(l)}: its rim, {number(arc[-1])} long on the "
+                "flattened "
                 "surface, gives fewer than 3 parts of at least l; use a smaller l"
             )
         at = loop.project(ring)[2]
@@ -165,7 +166,8 @@ def loop_corners(xy, l, too_close):
 
 
 def ring_name(chart, order, k):
-    """``the outer boundary``, or ``hole k - 1 (the opening through (x, y, z))``: Problem 2's hole numbers, located in space."""
+    """``the outer boundary``, or ``hole k - 1 (the opening through (x, y, z))``: Problem 2's hole numbers, located in
+    space."""
     if k == 0:
         return "the outer boundary"
     return f"hole {k - 1} (the opening through {coordinates(chart.surface.vertices[chart.surface.loops[order[k]][0]])})"

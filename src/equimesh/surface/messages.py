@@ -55,7 +55,10 @@ def restate_polygon_error(exc, surface, flat_points, grid, outline, l):
     gap = float(np.linalg.norm(xy[1] - xy[0]))
     places = [_place(outline, k, r) for k, r in zip(seg, rings)]
     one, two = (f"{name} at {at(p, x)}" for name, p, x in zip(places, uv, space))
-    close = f"boundary points on {one} and on {two} are {number(gap)} apart on the flattened surface, closer than l = {number(l)}"
+    close = (
+        f"boundary points on {one} and on {two} are {number(gap)} apart on the flattened surface, "
+        f"closer than l = {number(l)}"
+    )
     if any(rings):
         return InvalidSurfaceError(
             f"{close}: a hole is too narrow there or has a corner too sharp for its edges' length on the flattened "
@@ -81,7 +84,8 @@ def restate_polygon_error(exc, surface, flat_points, grid, outline, l):
         )
     width = _side_distance(flat_points, grid, sides) if sides[0] != sides[1] else gap
     return InvalidSurfaceError(
-        f"the surface is only {number(width)} wide on the flattened surface there: {close}; use l <= {number(round_down(width))}"
+        f"the surface is only {number(width)} wide on the flattened surface there: {close}; use l <= "
+        f"{number(round_down(width))}"
     )
 
 

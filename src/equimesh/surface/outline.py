@@ -161,7 +161,8 @@ def resample_holes(rings, plane, grid, l, spacing):
             return SurfaceTooSmallError(
                 f"edge ({index[a]}, {index[b]}) of hole {k}, from (u, v) = ({number(uv[a, 0])}, {number(uv[a, 1])}) "
                 f"to ({number(uv[b, 0])}, {number(uv[b, 1])}), is {number(arc)} long on the flattened surface "
-                f"(its ends {number(chord)} apart), too short for l = {number(l)}; use l <= {number(round_down(chord))} "
+                f"(its ends {number(chord)} apart), too short for l = {number(l)}; use l <= "
+                f"{number(round_down(chord))} "
                 "or give the hole with fewer vertices"
             )
 
@@ -170,7 +171,8 @@ def resample_holes(rings, plane, grid, l, spacing):
 
 
 def hole_image(uv, plane, grid):
-    """The exact image on the flattened plane of a hole's closed (u, v) polyline (:func:`densify`, then eqs. (2)-(3) forward)."""
+    """The exact image on the flattened plane of a hole's closed (u, v) polyline (:func:`densify`, then eqs. (2)-(3)
+    forward)."""
     return to_plane(densify(uv, grid)[0], plane, grid)
 
 

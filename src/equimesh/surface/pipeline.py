@@ -426,7 +426,8 @@ def _grid_pair(grid):
 
 
 def _node_limit(max_nodes, optimize):
-    """The node limit: a positive int, None (no limit) or "default" (:data:`UNOPTIMIZED_MAX_NODES` or the objective's)."""
+    """The node limit: a positive int, None (no limit) or "default" (:data:`UNOPTIMIZED_MAX_NODES` or the
+    objective's)."""
     return check_max_nodes(max_nodes, UNOPTIMIZED_MAX_NODES if optimize == "none" else OBJECTIVES[optimize].max_nodes)
 
 

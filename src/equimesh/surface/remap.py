@@ -201,7 +201,8 @@ class Loop:
 
 
 def to_plane(uv, flat_points, grid):
-    """Eqs. (2)-(3) forward: (u, v) points to the flattened plane, by their barycentric coordinates in the auxiliary triangles.
+    """Eqs. (2)-(3) forward: (u, v) points to the flattened plane, by their barycentric coordinates in the auxiliary
+    triangles.
 
     A point on an auxiliary edge has the same image from both triangles
     (the map is continuous and linear on each triangle).

@@ -5,7 +5,8 @@ import triangle
 
 
 def roof_mesh(width, depth, cells, rise, opening=None):
-    """A vault ``z = rise sin(pi x / width) sin(pi y / depth)`` over ``[0, width] x [0, depth]``, triangulated on a grid.
+    """A vault ``z = rise sin(pi x / width) sin(pi y / depth)`` over ``[0, width] x [0, depth]``, triangulated on a
+    grid.
 
     Parameters
     ----------

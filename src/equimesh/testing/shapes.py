@@ -89,7 +89,8 @@ def star_polygon(k, half_width, inner, outer):
 
 
 def flattened_square(n, parts, a, b, ky, kx, p=0.0, q=0.0):
-    """Boundary of ``[0, n]^2``, ``parts`` equal parts per side, mapped by ``F(x, y) = (x + a sin(ky y + p), y + b sin(kx x + q))``.
+    """Boundary of ``[0, n]^2``, ``parts`` equal parts per side, mapped by ``F(x, y) = (x + a sin(ky y + p), y + b
+    sin(kx x + q))``.
 
     A stand-in for the flattened boundary of a surface patch (paper, Fig. 3):
     smooth, wavy, generally not convex.

@@ -134,7 +134,8 @@ def _coupled(thetas, lengths, l):
 
 
 def shared(thetas, length, l):
-    """Whether a side of ``length`` between corners of ``thetas`` couples them: at most ``K_1 l + K_2 l + 4l`` long (:func:`_coupled`)."""
+    """Whether a side of ``length`` between corners of ``thetas`` couples them: at most ``K_1 l + K_2 l + 4l`` long
+    (:func:`_coupled`)."""
     return length <= corner_reach(thetas[0], l) + corner_reach(thetas[1], l) + 4.0 * l
 
 
@@ -302,7 +303,8 @@ class _Chain:
         return tuple(side[0][path[1:]] for side, path in zip(self.sides, [first, *paths, last]))
 
     def _extend(self, k, paths, left):
-        """A continuation of the points ``paths`` of ``T_1 .. T_k`` to ``T_(m-1)``'s far end, every side to come still split, or None."""
+        """A continuation of the points ``paths`` of ``T_1 .. T_k`` to ``T_(m-1)``'s far end, every side to come still
+        split, or None."""
         i = paths[-1][-1]
         lo, _, ends, parts = self.sides[k]
         if ends[i]:

@@ -60,7 +60,8 @@ CORNER_REFINEMENTS = 2
 
 
 def corner_reach(theta, l):
-    """``K l`` with ``K = ceil((1 - REL_TOL) / sin theta)``: a point that far from the corner sees no other side closer than l."""
+    """``K l`` with ``K = ceil((1 - REL_TOL) / sin theta)``: a point that far from the corner sees no other side closer
+    than l."""
     return math.ceil((1.0 - REL_TOL) / math.sin(theta)) * l
 
 
@@ -202,7 +203,8 @@ def _placed(theta, lengths, reach, l, sides, z):
 
 
 def cut(points, length, reach, l):
-    """A side's ``points`` by distance from the corner, up to the first past ``K l`` if the graph cuts the side there."""
+    """A side's ``points`` by distance from the corner, up to the first past ``K l`` if the graph cuts the side
+    there."""
     if not _long(length, reach, l):
         return points
     return points[: int(np.searchsorted(points, reach)) + 1]
@@ -219,7 +221,8 @@ def _horizon(lengths, reach, l):
 
 
 def _nodes(lengths, reach, l, step, fixed):
-    """Grid nodes of the search: multiples of ``step`` from the corner and from each short side's far end, and the fixed points."""
+    """Grid nodes of the search: multiples of ``step`` from the corner and from each short side's far end, and the fixed
+    points."""
     top = _horizon(lengths, reach, l)
     nodes = [np.arange(1, math.floor(top / step) + 1) * step]
     for length in lengths:
@@ -279,7 +282,8 @@ class _Graph:
             self.next.append(step)
 
     def _far_enough(self, theta, short):
-        """``[p, w]``: some points of ``p`` and of ``w`` (of the other side), the latter at least as far, ``short`` apart or more."""
+        """``[p, w]``: some points of ``p`` and of ``w`` (of the other side), the latter at least as far, ``short``
+        apart or more."""
         lo, hi, c = self.lo, self.hi, math.cos(theta)
         if hi is lo:  # points: the one pair
             u, v = lo[:, None], lo[None, :]
@@ -322,7 +326,8 @@ class _Graph:
         return None
 
     def _step(self, reached, parent, dirty, s, p):
-        """Pass on the steps out of the states ``(s, p, q)``: the next point of side ``s``, or a switch; mark what is new."""
+        """Pass on the steps out of the states ``(s, p, q)``: the next point of side ``s``, or a switch; mark what is
+        new."""
         n, o, row = self.n, 1 - s, reached[s, p]
         if not self.stops[s][p]:
             targets = np.flatnonzero(self.next[s][p])
@@ -356,5 +361,6 @@ class _Graph:
 
 
 def _beyond(hi, mine, theirs):
-    """``[p, w]``: a point of ``p`` may lie past ``mine`` or one of ``w`` past ``theirs``, where visibility is not proven."""
+    """``[p, w]``: a point of ``p`` may lie past ``mine`` or one of ``w`` past ``theirs``, where visibility is not
+    proven."""
     return (hi[:, None] > mine) | (hi[None, :] > theirs)

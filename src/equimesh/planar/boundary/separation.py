@@ -124,9 +124,11 @@ def _unmeshable_corner(poly, l):
                 return InvalidPolygonError(
                     f"no mesh with every edge in [l, 2l] exists for l = {number(l, None)}: at the corner at "
                     f"{ring.vertex_name(i)} ({number(math.degrees(theta))} degrees) {ring.edge_name(side)} is "
-                    f"{number(beta / poly.frame.scale, None)} long, a single mesh edge, and the third node of its triangle "
+                    f"{number(beta / poly.frame.scale, None)} long, a single mesh edge, and the third node of its "
+                    "triangle "
                     f"would be closer than l to its other end, {ring.vertex_name(side if side < i else i + 1)} "
-                    f"(docs/proofs.md, 'Sharp corners'); at this angle that side must be at least {number(need, 10)} long "
+                    f"(docs/proofs.md, 'Sharp corners'); at this angle that side must be at least {number(need, 10)} "
+                    "long "
                     f"(or at most {number(low, 10)})"
                 )
     return None
@@ -156,7 +158,8 @@ def _unseparable_corner(poly, l):
             return InvalidPolygonError(
                 f"the corner at {ring.vertex_name(i)} ({number(math.degrees(theta))} degrees) cannot meet Lemma 3 (1) "
                 f"for l = {number(l, None)}: with sides of {number(leaving / poly.frame.scale, None)} and "
-                f"{number(arriving / poly.frame.scale, None)} the first boundary points of its two sides are closer than l "
+                f"{number(arriving / poly.frame.scale, None)} the first boundary points of its two sides are closer "
+                "than l "
                 "wherever they lie, so no Step 2 separates them (a limit of the paper's method, not a proof that no "
                 f"mesh exists; docs/proofs.md, 'Sharp corners'); sides of at least {need} are handled; "
                 "use a smaller l, longer sides or a wider corner"
@@ -165,7 +168,8 @@ def _unseparable_corner(poly, l):
 
 
 def _sees_within(grown, ring, i, leaving, arriving):
-    """Whether the triangle of corner ``i`` and the points ``leaving`` and ``arriving`` along its sides lies in ``grown``.
+    """Whether the triangle of corner ``i`` and the points ``leaving`` and ``arriving`` along its sides lies in
+    ``grown``.
 
     Then every two points of the two sides within those distances see each
     other (the segment joining them lies in the triangle).
@@ -252,8 +256,10 @@ def _unplaceable_corner(poly, l, corners):
             continue
         need = number((stagger_reach(angle, lp) + lp) / poly.frame.scale, None)
         return InvalidPolygonError(
-            f"the corner at {ring.vertex_name(i)} ({number(angle)} degrees) cannot meet Lemma 3 (1) for l = {number(l, None)}: "
-            f"no split of its sides of {number(sides[0] / poly.frame.scale, None)} and {number(sides[1] / poly.frame.scale, None)} "
+            f"the corner at {ring.vertex_name(i)} ({number(angle)} degrees) cannot meet Lemma 3 (1) for l = "
+            f"{number(l, None)}: "
+            f"no split of its sides of {number(sides[0] / poly.frame.scale, None)} and "
+            f"{number(sides[1] / poly.frame.scale, None)} "
             "into parts of [l, 2l] keeps every two points of different sides l apart (decided on a grid of cells), so "
             "no Step 2 separates them (a limit of the paper's method, not a proof that no mesh exists; docs/proofs.md, "
             f"'Sharp corners'); sides of at least {need} are handled; use a smaller l, longer sides or a wider corner"
@@ -297,9 +303,11 @@ def _unplaceable_chain(poly, l, corners):
         names = [f"{ring.vertex_name(c)} ({number(a)} degrees)" for c, a in zip(run, angles)]
         sides = ", ".join(number(x / poly.frame.scale, None) for x in edges)
         return InvalidPolygonError(
-            f"the corners at {', '.join(names[:-1])} and {names[-1]} cannot meet Lemma 3 (1) together for l = {number(l, None)}: "
+            f"the corners at {', '.join(names[:-1])} and {names[-1]} cannot meet Lemma 3 (1) together for l = "
+            f"{number(l, None)}: "
             f"no split of their sides of {sides} (the middle {'ones' if len(run) > 2 else 'one'} shared) into parts of "
-            f"[l, 2l] keeps every two points of different sides l apart at {'both corners' if len(run) == 2 else 'every corner'} "
+            "[l, 2l] keeps every two points of different sides l apart at "
+            f"{'both corners' if len(run) == 2 else 'every corner'} "
             "(decided on a grid of cells), so "
             "no Step 2 separates them (a limit of the paper's method, not a proof that no mesh exists; docs/proofs.md, "
             "'Sharp corners'); use a smaller l, longer sides or wider corners"
@@ -321,8 +329,10 @@ def _separation_error(poly, boundary, l, i, j):
         angle = ri.inner_angle(corner)
         need = number((stagger_reach(angle, poly.local_length(l)) / poly.frame.scale) + l, None)
         message = (
-            f"the corner at {ri.vertex_name(corner)} ({number(angle)} degrees) is not handled for l = {number(l, None)}: "
-            f"{where}, closer than l (Lemma 3 (1)); the staggered Step 2 is proven at {number(angle)} degrees for sides "
+            f"the corner at {ri.vertex_name(corner)} ({number(angle)} degrees) is not handled for l = "
+            f"{number(l, None)}: "
+            f"{where}, closer than l (Lemma 3 (1)); the staggered Step 2 is proven at {number(angle)} degrees for "
+            "sides "
             f"of at least {need}, longer if the next corner is sharp too; for these the searches found no placement "
             "and none is proven impossible, even for each corner alone (a limit of this method, not a proof that no "
             "mesh exists; docs/proofs.md, 'Sharp corners'); "

@@ -109,7 +109,8 @@ def side_positions(lengths, angles, l, spacing=2.0):
 
 
 def _chains(corners, i, length):
-    """The staggered points of side ``i`` below ``length``: from its first corner, and from its last (distances from it)."""
+    """The staggered points of side ``i`` below ``length``: from its first corner, and from its last (distances from
+    it)."""
     start, end = corners[i][0], corners[(i + 1) % len(corners)][1]
     return start[start < length], end[end < length]
 
@@ -248,7 +249,8 @@ PAIR, CHAIN = "pair", "chain"
 
 
 def _place_corners_on_a_grid(sides, lengths, angles, l, spacing):
-    """Each sharp corner still closer than ``l`` after :func:`_separate_short_sides`, placed by :func:`._corner.place_corner`.
+    """Each sharp corner still closer than ``l`` after :func:`_separate_short_sides`, placed by
+    :func:`._corner.place_corner`.
 
     The two sides of the corner are placed again (:func:`_grid_sides`):
     both free; the leaving side kept; the arriving one kept; or, for a side
@@ -347,7 +349,8 @@ def _grid_chain(sides, lengths, angles, l, spacing, run):
 
 
 def _grid_sides(sides, lengths, angles, l, spacing, c, keep):
-    """``sides`` with the two sides of corner ``c`` (leaving, arriving) placed by :func:`._corner.place_corner`, or None.
+    """``sides`` with the two sides of corner ``c`` (leaving, arriving) placed by :func:`._corner.place_corner`, or
+    None.
 
     The sides flagged in ``keep`` are passed as they are (:func:`_from_corner`).
     """
@@ -367,7 +370,8 @@ def _grid_sides(sides, lengths, angles, l, spacing, c, keep):
 
 
 def _from_corner(sides, lengths, c, i):
-    """The points of side ``i`` (``c`` leaving corner ``c``, ``c - 1`` arriving) by distance from corner ``c``, far end included."""
+    """The points of side ``i`` (``c`` leaving corner ``c``, ``c - 1`` arriving) by distance from corner ``c``, far end
+    included."""
     num, den = sides[i]
     positions = num[1:] / den * lengths[i]
     return np.append(positions if i == c else (lengths[i] - positions)[::-1], lengths[i])

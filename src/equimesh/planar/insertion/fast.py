@@ -96,7 +96,8 @@ _BROKEN = -2 - 2**62
 
 
 def _circumcircle(P, a, b, c):
-    """Circumcentre and radius of the triangle ``abc`` (vertex indices), exactly as :func:`equimesh._geometry.circumcenters`.
+    """Circumcentre and radius of the triangle ``abc`` (vertex indices), exactly as
+    :func:`equimesh._geometry.circumcenters`.
 
     Vertices in increasing index order; the operations (relative to the
     first vertex, then ``hypot``) are the reference's, so the bits match.
@@ -460,7 +461,8 @@ _insert_all = compiled(_insert_all)
 
 def _limits(l):
     """The thresholds of the candidate rules for ``l`` and the reach of the distance search, the ``lim`` of
-    :func:`_visible_circumcentre`: ``(1 - REL_TOL) l, (1 + REL_TOL) l, REL_TOL l, SLIVER_GAP l, _REACH SLIVER_GAP l``."""
+    :func:`_visible_circumcentre`: ``(1 - REL_TOL) l, (1 + REL_TOL) l, REL_TOL l, SLIVER_GAP l,
+    _REACH SLIVER_GAP l``."""
     return np.array([(1.0 - REL_TOL) * l, (1.0 + REL_TOL) * l, REL_TOL * l, SLIVER_GAP * l, _REACH * SLIVER_GAP * l])
 
 

@@ -36,7 +36,8 @@ def bernstein(degree, t):
 
 
 def _basis(degree, t, out):
-    """``out[i] = B_i^degree(t)`` for ``i <= degree``, by the triangular recurrence ``B_i^j = (1 - t) B_i^(j-1) + t B_(i-1)^(j-1)``.
+    """``out[i] = B_i^degree(t)`` for ``i <= degree``, by the triangular recurrence ``B_i^j = (1 - t) B_i^(j-1) + t
+    B_(i-1)^(j-1)``.
 
     Piegl and Tiller's ``AllBernstein`` (The NURBS Book, A1.3): only products
     and sums of numbers in [0, 1] (for t in [0, 1]), so no overflow at any
@@ -120,14 +121,16 @@ class BezierSurface:
 
 
 def _tensor_sum(net, u, v):
-    """``sum_ij B_i(u) B_j(v) net_ij`` for a net of shape (a, b, 3), over ``broadcast(u, v)`` (a compiled loop per point)."""
+    """``sum_ij B_i(u) B_j(v) net_ij`` for a net of shape (a, b, 3), over ``broadcast(u, v)`` (a compiled loop per
+    point)."""
     u, v = np.broadcast_arrays(np.asarray(u, dtype=float), np.asarray(v, dtype=float))
     out = _tensor_sum_points(np.ascontiguousarray(net, dtype=float), u.ravel(), v.ravel())
     return out.reshape(u.shape + (3,))
 
 
 def _tensor_sum_points(net, u, v):
-    """``out[k] = sum_ij B_i(u_k) B_j(v_k) net_ij`` for 1-D ``u, v``: the basis of each point (:func:`_basis`), then the double sum."""
+    """``out[k] = sum_ij B_i(u_k) B_j(v_k) net_ij`` for 1-D ``u, v``: the basis of each point (:func:`_basis`), then the
+    double sum."""
     a, b = net.shape[0], net.shape[1]
     out = np.zeros((len(u), 3))
     bu, bv = np.empty(a), np.empty(b)

@@ -91,7 +91,8 @@ class MeshChart:
         self._seg_triangle = np.array([he[(int(a), int(b))] for a, b in zip(self._seg_a, self._seg_b)], dtype=np.int64)
 
     def locate(self, u, v):
-        """Triangle and coefficients ``(alpha, beta)`` of eq. (2) for each point (outside: at its nearest boundary point)."""
+        """Triangle and coefficients ``(alpha, beta)`` of eq. (2) for each point (outside: at its nearest boundary
+        point)."""
         u, v = np.broadcast_arrays(np.asarray(u, dtype=float), np.asarray(v, dtype=float))
         x = np.column_stack([u.ravel(), v.ravel()])
         found = np.asarray(self._finder(x[:, 0], x[:, 1]), dtype=np.int64)
@@ -167,7 +168,8 @@ def flatten_mesh(surface):
 
 
 def opening_caps(surface, start):
-    """Triangles (counter-clockwise in ``start``) filling every loop but the outer one whose rim is simple in ``start``."""
+    """Triangles (counter-clockwise in ``start``) filling every loop but the outer one whose rim is simple in
+    ``start``."""
     loops = [start[loop] for loop in surface.loops]
     outer = int(np.argmax([shapely.Polygon(xy).area for xy in loops]))
     caps = [np.empty((0, 3), dtype=np.int64)]
@@ -261,7 +263,8 @@ def conformal_start(surface):
 
 
 def harmonic_start(surface):
-    """Tutte's embedding: the longest boundary loop on a circle by arc length, every other vertex the mean of its neighbours.
+    """Tutte's embedding: the longest boundary loop on a circle by arc length, every other vertex the mean of its
+    neighbours.
 
     The circle has the loop's length as circumference and runs
     counter-clockwise along the loop (surface on its left), so the

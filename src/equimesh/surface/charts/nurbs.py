@@ -200,25 +200,29 @@ def _knots(name, values, degree, count):
     want = count + degree + 1
     if knots.ndim != 1 or len(knots) != want:
         raise InvalidSurfaceError(
-            f"{name} must hold {want} knots ({count} control points + degree {degree} + 1), got {knots.shape[0] if knots.ndim else 0}"
+            f"{name} must hold {want} knots ({count} control points + degree {degree} + 1), got "
+            f"{knots.shape[0] if knots.ndim else 0}"
         )
     _finite(name, knots)
     down = np.flatnonzero(np.diff(knots) < 0)
     if len(down):
         k = int(down[0])
         raise InvalidSurfaceError(
-            f"{name} must be non-decreasing, but {name}[{k + 1}] = {float(knots[k + 1])!r} < {name}[{k}] = {float(knots[k])!r}"
+            f"{name} must be non-decreasing, but {name}[{k + 1}] = {float(knots[k + 1])!r} < {name}[{k}] = "
+            f"{float(knots[k])!r}"
         )
     lo, hi = knots[degree], knots[count]
     if not lo < hi:
         raise InvalidSurfaceError(
-            f"{name} spans no domain: {name}[{degree}] = {name}[{count}] = {float(lo)!r} (the domain runs from knot p to knot n)"
+            f"{name} spans no domain: {name}[{degree}] = {name}[{count}] = {float(lo)!r} (the domain runs from knot p "
+            "to knot n)"
         )
     values, counts = np.unique(knots[(knots > lo) & (knots < hi)], return_counts=True)
     if np.any(counts > degree):
         k = int(np.argmax(counts > degree))
         raise InvalidSurfaceError(
-            f"{name} repeats {float(values[k])!r} {int(counts[k])} times inside the domain, more than the degree {degree} "
+            f"{name} repeats {float(values[k])!r} {int(counts[k])} times inside the domain, more than the degree "
+            f"{degree} "
             "(the surface would be discontinuous there)"
         )
     return knots

@@ -76,8 +76,10 @@ class TriangulatedSurface:
         handles = (2 - len(loops) - (len(v) - n_edges + len(t))) // 2
         if handles:
             raise InvalidSurfaceError(
-                f"the triangle mesh has {handles} handle{'s' if handles > 1 else ''} (genus {handles}, Euler characteristic "
-                f"{len(v) - n_edges + len(t)} with {len(loops)} boundary loops); only a disc with openings can be flattened, "
+                f"the triangle mesh has {handles} handle{'s' if handles > 1 else ''} (genus {handles}, Euler "
+                "characteristic "
+                f"{len(v) - n_edges + len(t)} with {len(loops)} boundary loops); only a disc with openings can be "
+                "flattened, "
                 "cut it open first"
             )
         length = [float(np.linalg.norm(v[np.roll(loop, -1)] - v[loop], axis=1).sum()) for loop in loops]
@@ -137,7 +139,8 @@ def _check_degenerate(v, t):
     if flat.size:
         k = int(flat[0])
         raise InvalidSurfaceError(
-            f"triangle {k} of the mesh is degenerate (zero area): its corners {', '.join(coordinates(v[i]) for i in t[k])} "
+            f"triangle {k} of the mesh is degenerate (zero area): its corners "
+            f"{', '.join(coordinates(v[i]) for i in t[k])} "
             "are collinear"
         )
     key = np.sort(t, axis=1)
@@ -184,7 +187,8 @@ def _check_manifold(v, t):
     many = np.flatnonzero(np.bincount(fans, minlength=len(v)) > 1)
     if many.size:
         raise InvalidSurfaceError(
-            f"the mesh is not manifold at the vertex {coordinates(v[int(many[0])])}: separate fans of triangles meet there "
+            f"the mesh is not manifold at the vertex {coordinates(v[int(many[0])])}: separate fans of triangles meet "
+            "there "
             "(pieces touching at one point)"
         )
     n, label = _components(tri[pairs[:, 0]], tri[pairs[:, 1]], m)

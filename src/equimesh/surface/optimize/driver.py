@@ -235,7 +235,8 @@ class _Guard:
 
 
 def _fold_over_barrier(problem, triangles, fraction):
-    """The fold-over barrier (:class:`~equimesh.surface.optimize.jacobian.AreaBarrier`) on the (u, v) areas of ``triangles``, weight 1."""
+    """The fold-over barrier (:class:`~equimesh.surface.optimize.jacobian.AreaBarrier`) on the (u, v) areas of
+    ``triangles``, weight 1."""
     return AreaBarrier(triangles, problem.uv, fraction, 1.0, problem.moving, power=2)
 
 

@@ -44,18 +44,21 @@ class ElementJacobian:
         self.shape = (len(e), int(free.sum()))
 
     def __call__(self, *grads):
-        """The Jacobian from ``grads[c] = d r / d x_{corner c}``, each (E, dim), or from one (E, k dim) array of them side by side."""
+        """The Jacobian from ``grads[c] = d r / d x_{corner c}``, each (E, dim), or from one (E, k dim) array of them
+        side by side."""
         data = (np.concatenate(grads, axis=1) if len(grads) > 1 else grads[0])[self._keep]
         return scipy.sparse.csr_matrix((data, self._indices, self._indptr), shape=self.shape)
 
 
 def signed_areas(points, triangles):
-    """Signed areas of ``triangles`` over 2D ``points`` (> 0 counter-clockwise): half of :func:`~equimesh.mesh.triangle_orient`."""
+    """Signed areas of ``triangles`` over 2D ``points`` (> 0 counter-clockwise): half of
+    :func:`~equimesh.mesh.triangle_orient`."""
     return 0.5 * triangle_orient(points, triangles)
 
 
 def _area_gradients(points, triangles, scale):
-    """``scale_t dA_t/dp_k = scale_t / 2 perp(p_{k+2} - p_{k+1})``, ``perp(x, y) = (-y, x)``, per triangle ``t`` and corner ``k`` (a row)."""
+    """``scale_t dA_t/dp_k = scale_t / 2 perp(p_{k+2} - p_{k+1})``, ``perp(x, y) = (-y, x)``, per triangle ``t`` and
+    corner ``k`` (a row)."""
     grads = np.empty((len(triangles), 6))
     for t in range(len(triangles)):
         half = 0.5 * scale[t]

@@ -244,7 +244,10 @@ def bounded_stages(problem):
     def violation(x):
         ratio = lengths(x) / l
         out = int(np.count_nonzero((ratio < 1.0) | (ratio > 2.0)))
-        return f"{out} of {len(ratio)} members outside [l, 2l] (lengths from {number(ratio.min())} l to {number(ratio.max())} l)"
+        return (
+            f"{out} of {len(ratio)} members outside [l, 2l] "
+            f"(lengths from {number(ratio.min())} l to {number(ratio.max())} l)"
+        )
 
     def cauchy_loss(ratio):
         """The loss that the rounds decrease (majorise-minimise): ``sum log(1 + (d_e / s)^2)``."""
@@ -276,12 +279,14 @@ def bounded_stages(problem):
     best = {"x": None, "share": -1.0, "stage": None}
 
     def keep_best(x, ratio, stage):
-        """Remember ``x`` (``ratio = L / l``), where ``stage``'s solve ended, if in [l, 2l] with the largest share so far."""
+        """Remember ``x`` (``ratio = L / l``), where ``stage``'s solve ended, if in [l, 2l] with the largest share so
+        far."""
         if inside(ratio) and share(ratio) > best["share"]:
             best.update(x=np.array(x), share=share(ratio), stage=stage)
 
     def round_stage(k, x_start, restart):
-        """Round ``k + 1`` of a series from ``x_start`` (restarted there if ``restart``), and its loss and cost there."""
+        """Round ``k + 1`` of a series from ``x_start`` (restarted there if ``restart``), and its loss and cost
+        there."""
         ratio = lengths(x_start) / l
         goal = np.clip(ratio, target, high)
         weight = np.where(goal == ratio, cauchy_weight(ratio), BOUNDED_PULL)

@@ -142,7 +142,8 @@ class UVProblem:
 
 
 def parameter_box(surface):
-    """The chart's parameter domain as ``(lower, upper)``, each ``(u, v)`` (:func:`~equimesh.surface.charts.chart.domain_of`)."""
+    """The chart's parameter domain as ``(lower, upper)``, each ``(u, v)``
+    (:func:`~equimesh.surface.charts.chart.domain_of`)."""
     domain = domain_of(surface)
     return np.asarray(domain.lower, dtype=float), np.asarray(domain.upper, dtype=float)
 

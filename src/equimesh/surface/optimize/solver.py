@@ -228,7 +228,8 @@ class NormalEquations:
         return step if np.all(np.isfinite(step)) else None
 
     def _analyse(self, jac):
-        """Index maps from the products of each row's entries to the upper-triangular pattern, and its symbolic factorisation.
+        """Index maps from the products of each row's entries to the upper-triangular pattern, and its symbolic
+        factorisation.
 
         Rows are grouped by their number ``k`` of entries; a group keeps, per
         row, the positions in ``jac.data`` of the two factors of each of its
@@ -314,7 +315,8 @@ class _SuperLU:
 
 
 class _Pardiso:
-    """MKL PARDISO (``pypardiso``): a supernodal Cholesky of the upper triangle, its symbolic analysis (METIS order) done once, one thread."""
+    """MKL PARDISO (``pypardiso``): a supernodal Cholesky of the upper triangle, its symbolic analysis (METIS order)
+    done once, one thread."""
 
     def __init__(self, rows, cols, n):
         self._solver = pypardiso.PyPardisoSolver(mtype=2)
@@ -380,5 +382,6 @@ _sum_products = compiled(_sum_products)
 
 
 def _factorise(matrix, ordering):
-    """SuperLU of a symmetric positive definite CSC ``matrix`` in symmetric mode (diagonal pivots), ``ordering`` its ``permc_spec``."""
+    """SuperLU of a symmetric positive definite CSC ``matrix`` in symmetric mode (diagonal pivots), ``ordering`` its
+    ``permc_spec``."""
     return scipy.sparse.linalg.splu(matrix, permc_spec=ordering, diag_pivot_thresh=0.0, options={"SymmetricMode": True})
