@@ -32,7 +32,7 @@ from equimesh.surface.charts.mesh_chart import (
     flattening_start,
     harmonic_start,
 )
-from equimesh.surface.flatten import _plane_start, flatten
+from equimesh.surface.flatten import plane_start, flatten
 from equimesh.surface.mesh_outline import CORNER_TURN, FIRM_TURN, loop_corners
 from equimesh.surface.optimize import optimize_uv
 from equimesh.testing.meshes import roof_mesh, wedge_mesh
@@ -258,14 +258,14 @@ def test_folding_projection_starts_from_the_conformal_map():
     """A 300-degree cylinder strip folds when projected on a plane: eq. (1) starts from the conformal map and develops it."""
     surface = TriangulatedSurface(*cylinder_strip(300.0))
     tri = surface.triangles
-    assert not _unfolded(_plane_start(surface.vertices, tri), tri)
+    assert not _unfolded(plane_start(surface.vertices, tri), tri)
     np.testing.assert_array_equal(flattening_start(surface), conformal_start(surface))
     assert flatten_mesh(surface).energy < 1e-12
     mesh = mesh_surface(surface, 2.0, optimize="none")
     assert_on_input_surface(mesh, surface, 2.0)
     roof_surface = TriangulatedSurface(*roof())  # a vault projects without folding
     np.testing.assert_array_equal(
-        flattening_start(roof_surface), _plane_start(roof_surface.vertices, roof_surface.triangles)
+        flattening_start(roof_surface), plane_start(roof_surface.vertices, roof_surface.triangles)
     )
 
 

@@ -145,7 +145,7 @@ def flatten(
     g0, g1 = int(e[0, 0]), int(e[0, 1])
     options = dict(ftol=ftol, xtol=xtol, gtol=gtol, max_nfev=max_nfev)
     floor = float(area_floor)
-    default = _metric_start(uv, e, ls) if uv is not None else _plane_start(x3, tri)
+    default = _metric_start(uv, e, ls) if uv is not None else plane_start(x3, tri)
 
     nfev = 0
     for start, guess in (("given", x0), ("metric" if uv is not None else "plane", default)):
@@ -328,7 +328,7 @@ def _metric_start(uv, edges, ls):
     return uv @ r.T
 
 
-def _plane_start(x3, tri):
+def plane_start(x3, tri):
     """Orthogonal projection on the best-fit plane, axes chosen to keep triangles counter-clockwise."""
     c = x3 - x3.mean(axis=0)
     axes = np.linalg.svd(c, full_matrices=False)[2][:2]

@@ -35,7 +35,7 @@ from ...errors import InvalidSurfaceError
 from ...mesh import triangle_orient, unique_edges
 from ...planar.insertion.region import constrained_delaunay
 from ...tolerance import REL_TOL
-from ..flatten import _plane_start, flatten
+from ..flatten import plane_start, flatten
 from ..remap import barycentric
 from .chart import Domain
 
@@ -190,7 +190,7 @@ def flattening_start(surface):
     (:func:`harmonic_start`, which never folds a disc).
     """
     tri = surface.triangles
-    projected = _plane_start(surface.vertices, tri)
+    projected = plane_start(surface.vertices, tri)
     if _unfolded(projected, tri):
         return projected
     conformal = conformal_start(surface)
