@@ -32,7 +32,7 @@ from equimesh.surface.charts.mesh_chart import (
     flattening_start,
     harmonic_start,
 )
-from equimesh.surface.flatten import plane_start, flatten
+from equimesh.surface.flatten import flatten, plane_start
 from equimesh.surface.mesh_outline import CORNER_TURN, FIRM_TURN, loop_corners
 from equimesh.surface.optimize import optimize_uv
 from equimesh.testing.meshes import roof_mesh, wedge_mesh

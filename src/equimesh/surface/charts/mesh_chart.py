@@ -35,7 +35,7 @@ from ...errors import InvalidSurfaceError
 from ...mesh import triangle_orient, unique_edges
 from ...planar.insertion.region import constrained_delaunay
 from ...tolerance import REL_TOL
-from ..flatten import plane_start, flatten
+from ..flatten import flatten, plane_start
 from ..remap import barycentric
 from .chart import Domain
 
