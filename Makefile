@@ -124,8 +124,8 @@ bench-publish: $(STAMP)
 	cd benchmarks && ../$(VENV)/bin/asv publish
 	@echo "==> open .asv/html/index.html (or: cd benchmarks && ../$(VENV)/bin/asv preview)"
 
-# Mutation testing of the algorithm modules (not part of `make test`; about
-# an hour on 2 cores, see README): writes results/mutation.md.
+# Mutation testing of the algorithm modules (not part of `make test`; see
+# docs/development.md): writes results/mutation.md.
 mutation: $(MUTATION_STAMP)
 	$(PY) experiments/mutation_report.py $(MUTATION_ARGS) $(MODULES)
 

@@ -6,7 +6,7 @@ l = span / 16 and span / 19, run :func:`equimesh.mesh_surface` with
 ``optimize="paper"`` and ``optimize="bounded"`` and record the share of members
 within 0.5 % of l, the share in [l, 2l], the shortest and longest member, the
 share of G1 members within 0.5 % (on the plane all G1 members are exactly l)
-and the optimisation time.  The issue's targets: bounded keeps 100 % in
+and the optimisation time.  The targets of "bounded": 100 % in
 [l, 2l], >= 50 % within 0.5 % on doubly curved surfaces, >= 75 % on
 developable ones.
 
@@ -37,7 +37,7 @@ from equimesh.surface.pipeline import mesh_surface  # noqa: E402
 NAME = "bounded"
 REPO = Path(__file__).resolve().parent.parent
 SPAN = 80.0
-#: l = span / divisor: the issue asks for l between span / 15 and span / 20.
+#: l = span / divisor: two lengths between span / 15 and span / 20.
 DIVISORS = (16, 19)
 QUICK_DIVISORS = (16,)
 OBJECTIVES = ("paper", "bounded")

@@ -5,8 +5,7 @@ Runs :func:`equimesh.mesh_surface` on ``experiments/surfaces/reference_dome.json
 objective, the members, the solver's Jacobian evaluations (one per iteration) and final cost, the share of
 members within 0.5 % of l, the factorisation used (PARDISO where the extra ``fast`` is
 installed, else SuperLU) and the wall time of each stage.  It writes no file:
-it is the command behind the optimisation timings of docs/decisions.md (items
-40, 41 and 56) and docs/performance.md.  To compare two checkouts in the same
+it is the command behind the optimisation timings of docs/performance.md.  To compare two checkouts in the same
 run, start it once per checkout, side by side::
 
     PYTHONPATH=/path/to/old/src python experiments/optimisation_timing.py --length 0.52 &
@@ -35,7 +34,7 @@ from equimesh.surface.optimize import OBJECTIVES, driver, objectives
 from equimesh.surface.optimize import solver as _solver
 
 DOME = Path(__file__).resolve().parent / "surfaces" / "reference_dome.json"
-#: Members within this relative deviation of l count as exact (the issue's 0.5 %).
+#: Members within this relative deviation of l count as exact (the 0.5 % of every share).
 BAND = 0.005
 
 

@@ -7,8 +7,8 @@ process (so that its peak memory is its own), on the unit square:
   with ``l = sqrt(0.68 / n)`` (farthest-point insertion places about
   ``0.68 / l^2`` points per unit area); the whole call, validation, Step 2 and
   the Theorem 1 check included.  The reference engine runs only while its
-  predicted time (the last run's, or the issue's 0.44 s at 308 nodes, scaled
-  by ``(n / n_last)^2.5``, the issue's measured exponent) stays under ``--reference-limit`` seconds (a minute with
+  predicted time (the last run's, or :data:`REFERENCE_START`'s 0.44 s at 308 nodes,
+  scaled by ``(n / n_last)^2.5``, :data:`REFERENCE_EXPONENT`) stays under ``--reference-limit`` seconds (a minute with
   ``--full``, 5 s in the default range, which should take about a minute);
 * ``triangle``: Triangle's own quality refinement
   ``triangle.triangulate(square, "pqa<area>Q")``, the area bound set from n
@@ -59,7 +59,7 @@ FULL_SIZES = (100, 300, 1000, 3000, 10000, 30000, 100000, 300000, 1000000)
 #: Points per unit area of farthest-point insertion at spacing l = 1 (measured on squares).
 DENSITY = 0.68
 #: Exponent used to predict the reference engine's next run, and the run it starts from
-#: before it has run (the issue's measurement: 0.44 s for 308 nodes).
+#: before it has run (a measured start: 0.44 s for 308 nodes).
 REFERENCE_EXPONENT = 2.5
 REFERENCE_START = {"n_target": 308, "seconds": 0.44}
 COLUMNS = ["method", "n_target", "n_points", "seconds", "cpu_seconds", "us_per_point", "peak_mb", "first_call_s"]

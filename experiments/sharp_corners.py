@@ -12,7 +12,7 @@ method (nothing proven either way), or a neck.  For a mesh:
 the smallest triangle angle, overall and among the triangles with a node
 within ``stagger_reach + l`` of the sharp corner, and the share of G1 edges
 (lattice edges of length l), overall and among the edges near the corner.
-Writes results/sharp_corners.csv and .md (docs/decisions.md, item 23).
+Writes results/sharp_corners.csv and .md (docs/decisions.md, "Refusals at a corner say what is proven").
 """
 
 import sys

@@ -14,7 +14,7 @@ long with ``K_barb`` the larger barb's: three sharp corners in a row),
 runs ``uniform_triangulation`` with l = 1 (fast engine) and classifies each
 refusal by its message as ``experiments/sharp_corners.py`` does.  The count
 that matters is "not handled": a ring where nothing is proven either way
-(docs/proofs.md, "Sharp corners"; docs/decisions.md, items 58, 59 and 78).
+(docs/proofs.md, "Sharp corners"; docs/decisions.md, "Refusals at a corner say what is proven").
 Writes results/sharp_sweep.csv and .md.
 """
 

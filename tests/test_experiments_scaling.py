@@ -41,6 +41,6 @@ def test_reference_skipped_when_predicted_over_the_limit(load_experiment, monkey
     frame = scaling.sweep([10, 100, 1000], reference_limit=5.0, progress=lambda _: None)
     assert list(frame[frame["method"] == "reference"]["n_target"]) == [10, 100]
     assert list(frame[frame["method"] == "fast"]["n_target"]) == [10, 100, 1000]
-    # Before any reference run, the prediction starts from the measurement (0.44 s at 308 nodes).
+    # Before any reference run, the prediction starts from REFERENCE_START (0.44 s at 308 nodes).
     frame = scaling.sweep([100000], reference_limit=60.0, progress=lambda _: None)
     assert "reference" not in set(frame["method"])

@@ -1,4 +1,4 @@
-"""Hardening of the planar core (docs/decisions.md, "Hardening of the planar core").
+"""Hardening of the planar core (docs/decisions.md, "Size guards and limits" and "Verification").
 
 What must hold for Problems 1 and 2: every accepted input gives a mesh within
 Theorem 1/3 (checked on the output before it is returned), every hostile input
@@ -42,7 +42,7 @@ def assert_theorem(mesh, l):
 
 @pytest.mark.parametrize("vertices", [[[0, 0], [10, 0], [10, 2]], TIP20], ids=["11 degrees", "20 degree tip"])
 def test_reported_sharp_corners_are_meshed_validly(vertices):
-    """The issue's accepted-but-invalid inputs (edges of 0.29 l to 0.52 l, then refused): the staggered
+    """Inputs once accepted with invalid meshes (edges of 0.29 l to 0.52 l), then refused: the staggered
     Step 2 now meshes them within every guarantee of Problem 2."""
     import invariants_uniform as inv
 
@@ -109,8 +109,8 @@ def test_a_neck_narrower_than_l_is_refused_naming_both_edges():
 
 
 def test_the_cause_pairs_a_rounding_error_outside_are_still_seen():
-    """The cause of the issue: resampled points fall a rounding error outside P, so an exact
-    ``covers`` test called the too-close pair invisible; the grown-polygon test sees it.  (The issue's
+    """Why an exact test failed: resampled points fall a rounding error outside P, so an exact
+    ``covers`` test called the too-close pair invisible; the grown-polygon test sees it.  (The
     11- and 6.3-degree triangles are meshed now, their points staggered, and so is a 5.7-degree one; a triangle
     with a 2.8-degree corner between sides of 3.52 and 4.5, proven beyond Lemma 3 (1), still shows the cause.)"""
     poly = as_polygon([[0, 0], [1, 0], [4.5 * np.cos(np.radians(10.0)), 4.5 * np.sin(np.radians(10.0))]], 1.0)
@@ -125,7 +125,7 @@ def test_the_cause_pairs_a_rounding_error_outside_are_still_seen():
 
 @st.composite
 def stars(draw):
-    """Star-shaped polygons of the issue: 3 to 8 vertices, radii 3 to 10, l = 1."""
+    """Star-shaped polygons: 3 to 8 vertices, radii 3 to 10, l = 1."""
     k = draw(st.integers(3, 8))
     gaps = np.array(draw(st.lists(st.floats(0.2, 1.0), min_size=k, max_size=k)))
     angles = 2.0 * np.pi * np.cumsum(gaps) / gaps.sum()
@@ -327,7 +327,7 @@ REFERENCE = {"engine": "reference"}
     ],
 )
 def test_size_guard_refuses_before_any_work(verb, l, kwargs, what, limit):
-    """The issue's unbounded runs are refused with the estimate, the engine's limit and what to change."""
+    """Runs that would be unbounded are refused with the estimate, the engine's limit and what to change."""
     with pytest.raises(
         MeshTooLargeError, match=rf"would need about .* nodes in {what}, more than max_nodes = {limit}; use a larger l"
     ):

@@ -91,7 +91,7 @@ def refuse(error, surface, l, match, **kwargs):
 
 
 def test_folding_net_is_refused_where_it_folds():
-    """The issue's net (74 of 198 triangles reversed before) is refused near u = 0.31, where x_u = 0."""
+    """A folding net (74 of 198 triangles reversed without the check) is refused near u = 0.31, where x_u = 0."""
     message = refuse(InvalidSurfaceError, folding_net(), 1.0, r"folds over near \(u, v\) = \(0\.3")
     assert "point (" in message and "overlap" in message
 

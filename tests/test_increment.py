@@ -176,7 +176,8 @@ def test_unit_square_needs_no_insertion():
 # and say so in the commit message.
 FINGERPRINTS = [
     (rectangle(7.0, 5.0), 1.0, 31, 106.41828785908042),
-    # 16 nodes before the local frame (docs/decisions.md, item 18): a tie broken differently in the last bit.
+    # 16 nodes before the local frame (docs/decisions.md, "The local frame"): a tie broken differently in the
+    # last bit.
     (regular_polygon(9, 1.5, center=(3.0, -2.0), rotation=0.3), 1.0, 15, 45.21493876380816),
     (np.array([[0.0, 0.0], [9.0, 1.0], [10.5, 6.0], [6.0, 11.0], [-1.0, 8.0]]), 1.25, 48, 212.15458515151278),
 ]

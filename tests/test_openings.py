@@ -201,7 +201,7 @@ def test_densified_hole_is_linear_on_every_piece(hole):
 
 
 def test_a_notched_hole_gives_the_surface_a_sharp_corner_meshed_in_l_2l():
-    """Step 3 of the brief: a corner of the meshed region below 60 degrees, on a hole; the plane members stay in [l, 2l]."""
+    """A corner of the meshed region below 60 degrees, on a hole: the plane members stay in [l, 2l]."""
     surface = load_surface(SURFACES / "nurbs_roof.json")
     mesh = equimesh.mesh_surface(surface, 2.0, holes=[NOTCHED], optimize="none")
     ring = mesh.stages.outline.holes[0].points

@@ -1,4 +1,4 @@
-"""Beyond the paper: :func:`equimesh.best_lattice_placement` (docs/decisions.md, item 11).
+"""Beyond the paper: :func:`equimesh.best_lattice_placement` (docs/decisions.md, "The lattice placement search").
 
 The search maximises the number of edges of the kept lattice part K over the
 lattice angle and offset.  What must hold: it is deterministic, it never

@@ -831,8 +831,9 @@ def test_visible_radii_end_on_the_last_bisection_step_seen(monkeypatch, threshol
     assert radii == (float(2 * t), float(4 * t))
 
 
-#: The triangle of docs/decisions.md with two sharp corners on its base (29.4 and 23.07 degrees), each placeable
-#: alone, not together; scaled by 6 with l = 6 (the local frame scales by 1/4, so local and given lengths differ).
+#: A triangle with two sharp corners on its base (29.4 and 23.07 degrees), each placeable alone, not together
+#: (docs/decisions.md, "Sharp corners in a row decided jointly"); scaled by 6 with l = 6 (the local frame scales by
+#: 1/4, so local and given lengths differ).
 _PAIR_TRIANGLE = [[0.0, 0.0], [25.5, 0.0], _at(29.4, 12.6)]
 _REFUSED_TOGETHER = (
     "cannot meet Lemma 3 (1) together for l = 6.0: no split of their sides of {sides} (the middle {middle} shared) into "

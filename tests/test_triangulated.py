@@ -144,7 +144,7 @@ def assert_boundary_slid_along_the_loops(mesh):
 @pytest.mark.parametrize(
     "case, l",
     [
-        ("steep vault", 1.2),  # 20 x 14 rising 8 (item 51's known limit)
+        ("steep vault", 1.2),  # 20 x 14 rising 8 (docs/decisions.md, "Boundary nodes slide under bounded")
         ("warped wedge", 1.0),  # refused with the boundary fixed: 1 of 588 members a hair over 2l
     ],
 )

@@ -290,7 +290,8 @@ def test_rotated_plus_with_collinear_edges_is_simple():
     equimesh.uniform_triangulation(vertices, 1.0)
 
 
-# --------------------------------------------------------------------------- 6: acceptance check (docs/decisions.md, item 9)
+# --------------------------------------------------------------------------- 6: acceptance check
+# (docs/decisions.md, "G1 is the set of lattice edges")
 
 
 def _convex_12gon_area(area):
@@ -614,7 +615,8 @@ def test_placement_and_size_guard_take_holes():
         equimesh.uniform_triangulation(FRAME, 1.0, holes=[WINDOW], max_nodes=limit, engine="reference")
 
 
-# --------------------------------------------------------------------------- 8: sharp corners (docs/decisions.md, item 23)
+# --------------------------------------------------------------------------- 8: sharp corners
+# (docs/decisions.md, "Sharp corners are staggered")
 
 
 @given(ss.cases(MAX_AREA, families=["sharp wedge", "sharp rhombus"]))

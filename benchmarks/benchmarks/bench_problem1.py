@@ -12,7 +12,7 @@ from .common import POLYGON_AREAS, SHAPES, L, polygon
 class Increment:
     """``equimesh.increment(vertices, l, engine="reference")``: the reference engine, as since the first commit.
 
-    (The default engine became "fast" (docs/decisions.md item 28); this suite keeps the
+    (The default engine is "fast" (docs/decisions.md, "Two engines, one algorithm"); this suite keeps the
     reference engine so that its history stays comparable.  Both engines by
     size: ``bench_engines.py``.)
 

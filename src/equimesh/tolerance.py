@@ -14,15 +14,18 @@ root.  With the tolerance the guarantees read
 The tolerance is relative, so scaling the input by a power of two scales the
 output exactly (tested).  Input validation (edges >= l, point separation) uses
 the same tolerance so that a boundary resampled from an edge of length exactly
-``k l`` is accepted.
+``k l`` is accepted (docs/decisions.md, "One relative tolerance for every
+comparison with l").  Every other constant the paper does not have is named
+below or beside the function it bounds, with the heading of its entry.
 """
 
 REL_TOL = 1e-9
 
-#: Beyond the paper (docs/decisions.md): a circumcentre closer than
-#: ``SLIVER_GAP * l`` to a constraint whose value is ``l`` up to REL_TOL is not
-#: a candidate of the farthest-point insertion, because inserting it would
-#: leave a triangle flatter than 179.9 degrees next to the constraint (see
+#: Beyond the paper (docs/decisions.md, "No circumcentre against a constraint"):
+#: a circumcentre closer than ``SLIVER_GAP * l`` to a constraint whose value is
+#: ``l`` up to REL_TOL is not a candidate of the farthest-point insertion,
+#: because inserting it would leave a triangle flatter than 179.9 degrees next
+#: to the constraint (see
 #: :mod:`equimesh.planar.insertion.reference`; test:
 #: the near-cocircular rectangles of ``tests/test_increment.py::test_regression_cases_satisfy_every_invariant``).
 SLIVER_GAP = 1e-3
@@ -38,43 +41,45 @@ def at_most(value, l):
     return value <= (1.0 + REL_TOL) * l
 
 
-#: Beyond the paper (docs/decisions.md, "Hardening of the planar core"): the
-#: supported range of the target length l.  ``l^2`` (areas, node estimates)
+#: Beyond the paper (docs/decisions.md, "Supported range of l and of a polygon"):
+#: the supported range of the target length l.  ``l^2`` (areas, node estimates)
 #: stays a normal float inside it; outside it, :class:`~equimesh.errors.InvalidLengthError`.
 #: Test: ``tests/test_hardening_planar.py::test_lengths_outside_the_range_are_refused``.
 MIN_LENGTH = 1e-150
 MAX_LENGTH = 1e150
 
-#: Beyond the paper: the largest extent of a polygon (width or height of its
-#: bounding box), in units of l.  In the local frame (l in [1, 2)) coordinates
-#: then stay below 2^17, whose rounding unit 2^-35 = 2.9e-11 is 30 times below
-#: ``REL_TOL``, so the edge bounds [(1 - REL_TOL) l, 2 l] survive rounding.
+#: Beyond the paper (docs/decisions.md, "Supported range of l and of a polygon"):
+#: the largest extent of a polygon (width or height of its bounding box), in
+#: units of l.  In the local frame (l in [1, 2)) coordinates then stay below
+#: 2^17, whose rounding unit 2^-35 = 2.9e-11 is 30 times below ``REL_TOL``, so
+#: the edge bounds [(1 - REL_TOL) l, 2 l] survive rounding.
 #: Test: ``tests/test_hardening_planar.py::test_polygon_wider_than_the_precision_range_is_refused``.
 MAX_EXTENT = 2.0**16
 
-#: Beyond the paper (docs/decisions.md, Section 4): a surface sample where
-#: ``|X_u x X_v| <= SINGULAR_SIN |X_u| |X_v|`` (X_u and X_v within about
-#: 2e-4 degrees of parallel) is singular and refused
+#: Beyond the paper (docs/decisions.md, "Regular surfaces only"): a surface
+#: sample where ``|X_u x X_v| <= SINGULAR_SIN |X_u| |X_v|`` (X_u and X_v within
+#: about 2e-4 degrees of parallel) is singular and refused
 #: (:mod:`equimesh.surface.regularity`; test: tests/test_hardening_surface.py).
 SINGULAR_SIN = 1e-6
 
-#: Beyond the paper: a surface whose normal turns by this many degrees or more
-#: between an auxiliary triangle's centroid and one of its corners is refused
+#: Beyond the paper (docs/decisions.md, "Regular surfaces only"): a surface whose
+#: normal turns by this many degrees or more between an auxiliary triangle's
+#: centroid and one of its corners is refused
 #: as folded (:mod:`equimesh.surface.regularity`; test: the folding net of
 #: tests/test_hardening_surface.py).
 MAX_NORMAL_TURN = 90.0
 
-#: Beyond the paper (docs/decisions.md, "A solver that scales"): the
-#: Levenberg-Marquardt damping of :mod:`equimesh.surface.optimize.solver` starts at
+#: Beyond the paper (docs/decisions.md, "A sparse Levenberg-Marquardt solver"):
+#: the Levenberg-Marquardt damping of :mod:`equimesh.surface.optimize.solver` starts at
 #: ``LM_INITIAL_DAMPING`` times Marquardt's diagonal ``diag(J^T J)`` (the usual
 #: ``tau = 1e-3``), whose entries are floored at ``LM_DIAGONAL_FLOOR`` times the
 #: largest one, so that a variable no active residual sees keeps a regular
-#: system.  Neither changes a converged result; tests: tests/test_optimize.py.
+#: system.  Neither changes a converged result; tests: tests/test_solver.py.
 LM_INITIAL_DAMPING = 1e-3
 LM_DIAGONAL_FLOOR = 1e-12
 #: A rejected Levenberg-Marquardt step is halved along its direction, with the
 #: same factorisation, up to ``LM_BACKTRACKS`` times before the damping is raised
-#: (docs/decisions.md, "Rejected steps"; test: tests/test_solver.py).
+#: (docs/decisions.md, "Rejected steps are shortened first"; test: tests/test_solver.py).
 LM_BACKTRACKS = 4
 
 #: Beyond the paper (docs/decisions.md, "The bounded objective"): the
@@ -90,14 +95,14 @@ LM_BACKTRACKS = 4
 #: Cauchy loss by less than ``BOUNDED_LOSS_TOL`` (relative) and ends with every
 #: member in [l, 2l], or stalls (its own cost changes by less than that too),
 #: or after ``BOUNDED_ROUNDS`` rounds.  The result is the end of a round in
-#: [l, 2l] with the largest share of members within ``BOUNDED_BAND`` of l (the
-#: issue's "within 0.5 %"; docs/decisions.md item 74).  If no round ended in
-#: [l, 2l], a last stage restarts from the
+#: [l, 2l] with the largest share of members within ``BOUNDED_BAND`` of l
+#: ("within 0.5 %"; docs/decisions.md, "Two starts for bounded, and the best
+#: point kept").  If no round ended in [l, 2l], a last stage restarts from the
 #: remapped mesh with a one-sided penalty of slope ``BOUNDED_PENALTY``
 #: (below ``l (1 + BOUNDED_OFFSET / 2)``, above ``l (2 - BOUNDED_OFFSET)``, a hinge
 #: smoothed over ``BOUNDED_OFFSET / 4``), solved to convergence.  The paper's
-#: objective is solved to ``PAPER_FTOL``.  Measured on the reference dome at
-#: l = 2.5 and 1.25 (docs/decisions.md).  Tests: tests/test_bounded.py, tests/test_optimize.py.
+#: objective is solved to ``PAPER_FTOL`` (docs/decisions.md, "The paper's
+#: objective").  Tests: tests/test_bounded.py, tests/test_optimize.py.
 BOUNDED_OFFSET = 1e-3
 BOUNDED_BAND = 0.005
 BOUNDED_PULL = 10.0

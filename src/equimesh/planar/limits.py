@@ -2,8 +2,7 @@
 
 ``max_nodes`` bounds, before any heavy work, the estimated number of nodes a
 run has to place; its default depends on the insertion engine
-(:data:`MAX_NODES`), each measured to about a minute on a 2-core machine
-(docs/decisions.md):
+(:data:`MAX_NODES`; docs/decisions.md, "A size guard per engine"):
 
 * the reference engine re-triangulates after every inserted point and tests
   every candidate against every constraint, far more than linear time in the
@@ -28,7 +27,8 @@ from .insertion import check_engine
 #: Default of ``max_nodes`` (``max_nodes="default"``) for each insertion engine,
 #: in the nodes it counts (module docstring).  Reference: a run at 2500 takes
 #: about a minute; fast: 10^6 nodes take about 20 s and stay under 1 GB (the
-#: memory, not the time, sets it; docs/decisions.md).  ``None`` means no limit.
+#: memory, not the time, sets it; docs/decisions.md, "A size guard per engine").
+#: ``None`` means no limit.
 MAX_NODES = {"reference": 2500, "fast": 1_000_000}
 
 

@@ -23,10 +23,9 @@ Cost: ``1 + n_angles n_offsets^2 + 27 refine`` evaluations (247 by default),
 each O(A / l^2) elementwise array operations on the lattice's bounding-box
 grid plus O((clearance + 1) P / l) point-segment distances for the vertices
 near the boundary (:mod:`equimesh.planar.clearance`; A the area, P the
-perimeter).  Before the row-by-row clearance every grid vertex was measured against every
-boundary edge, O(A P / l^3): on the reference dome at l = 0.5 the search
-now takes about 2 s, where the whole planar stage took 149 s before
-(docs/performance.md).
+perimeter), where measuring every grid vertex against every boundary edge
+would cost O(A P / l^3) (docs/performance.md, "Problem 2 and the placement
+search").
 """
 
 from dataclasses import dataclass
@@ -41,10 +40,11 @@ from .limits import MAX_NODES, check_max_nodes, check_size, planar_estimate
 from .polygon import as_polygon
 from .strip import check_clearance, strip_estimate
 
-#: Beyond the paper: the most placements one search may evaluate,
+#: Beyond the paper (docs/decisions.md, "The lattice placement search"): the most
+#: placements one search may evaluate,
 #: ``1 + n_angles n_offsets^2 + 27 refine`` (16 times the default 247).  Each
 #: evaluation builds the lattice grid (bounded through ``max_nodes``), so this
-#: bounds the search; before, ``n_offsets=10**6`` asked for 1.2e13 evaluations.
+#: bounds the search (``n_offsets=10**6`` would ask for 1.2e13 evaluations).
 #: Test: tests/test_hardening_planar.py::test_placement_search_is_bounded.
 MAX_EVALUATIONS = 4096
 

@@ -45,7 +45,8 @@ from .polygon import as_polygon, check_edges_at_least, pinned_vertices
 #: boundary part is at least ``l sqrt(1 - 0.75^2) = 0.66 l`` inside it.  Among
 #: the spacings 1.0, 1.2, 1.5, 1.8 and 2.0 compared by ``experiments/problem2.py``
 #: (results/problem2.md), 1.8 gives a mean G1 share up to 0.9 points larger and
-#: 1.5 the larger smallest angle; we take the angle (docs/decisions.md, item 9).
+#: 1.5 the larger smallest angle; we take the angle (docs/decisions.md,
+#: "Boundary parts of at most 1.5 l in Problem 2").
 BOUNDARY_SPACING = 1.5
 
 

@@ -39,7 +39,7 @@ its rim than a plane disk, and eq. (1) alone then wrinkles it.  Two guards:
   start; a failure from the default start raises
   :class:`~equimesh.errors.InvalidSurfaceError`.
 
-Speed: see docs/performance.md (BLAS threads) for the timings quoted above.
+Speed: docs/performance.md, "Flattening and the grid size".
 """
 
 from dataclasses import dataclass

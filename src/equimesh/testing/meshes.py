@@ -45,7 +45,8 @@ def wedge_mesh(angle=25.0, radius=30.0, opening=((15.0, 2.0), (18.0, 3.2)), warp
     Triangulated by Triangle (quality 30 degrees, triangles of at most
     ``max_area``); the arc is a 9-point polyline.  With the defaults, the
     sharp corner's staggered boundary parts of exactly 2l come out a hair
-    longer than 2l on the surface at l = 1 (docs/decisions.md, items 51 and 52).
+    longer than 2l on the surface at l = 1, which only sliding boundary nodes fix
+    (docs/decisions.md, "Boundary nodes slide under bounded").
 
     Returns
     -------

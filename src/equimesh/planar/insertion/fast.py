@@ -54,8 +54,8 @@ side only), as in Problems 1 and 2.
 Compilation.  The helpers that take arrays only index them, never allocate,
 and are compiled without numba's reference counting (``nrt=False``, :mod:`equimesh._jit`):
 with it, every call increments and decrements the count of each array
-argument atomically, a quarter of the engine's time at 10^5 points (perf,
-docs/performance.md).  numba hands that flag down to the functions they
+argument atomically, which dominated the calls of these helpers (docs/decisions.md,
+"Kernels compiled by a call").  numba hands that flag down to the functions they
 call, so the predicates, whose exact fallback allocates, ask for the
 runtime explicitly (``nrt=True`` in :mod:`._predicates`).  The heap's
 sift loops call no helper that takes an array for the same reason.

@@ -15,7 +15,7 @@ Outside the flattened mesh the chart is continued by the nearest point of its
 boundary, so that it is defined on the whole plane and every value is a point
 of the input surface.  The final optimisation keeps the boundary fixed and
 refuses fold-over, so its inner nodes stay inside the polygon of the boundary
-nodes (docs/decisions.md, "Real surfaces in": triangle meshes).
+nodes (docs/decisions.md, "The flattening of a mesh is its chart").
 
 :func:`flattening_start` chooses the start of eq. (1): the projection onto
 the best-fit plane, or where that folds the least-squares conformal map, or
