@@ -18,7 +18,7 @@ from equimesh.surface.optimize.problem import parameter_box
 from equimesh.surface.pipeline import mesh_surface
 from equimesh.testing.surfaces import dome
 
-#: "Within 0.5 % of l", the issue's measure of an exact member.
+#: "Within 0.5 % of l": what counts as an exact member.
 BAND = 0.005
 
 
@@ -46,8 +46,8 @@ EXAMPLES = {"thorough": 60}.get(os.environ.get("EQUIMESH_HYPOTHESIS_PROFILE", "c
 # Rounds from the remapped mesh alone crawled here for 200 rounds with one member at 2.005 l and the last
 # stage ended at 0.462 against the paper's 0.654 (docs/decisions.md, "The bounded objective").
 @example(rise=8.623446459779622, seed=2893441600, l=4.876515103851089)
-# Dome 3 of experiments/bounded_sweep.py: 0.7444 against the paper's 0.7333 when docs/decisions.md item 74 was
-# merged, 0.7259 after the line search of item 70 (b1569af), 0.7574 with the trust region per node (item 88).
+# Dome 3 of experiments/bounded_sweep.py, where the bounded share fell below the paper's without the trust region per
+# node (docs/decisions.md, "Two starts for bounded, and the best point kept" and "A trust region per node").
 @example(rise=6.326581062262999, seed=2437408156, l=4.593367092801857)
 def test_bounded_keeps_members_in_bounds_and_reaches_the_papers_share(rise, seed, l):
     """Mildly curved Bezier patches: 100 % of the members in [l, 2l], and a share within 0.5 % of l at least the paper's."""
@@ -75,7 +75,7 @@ def test_bounded_beats_paper_on_a_doubly_curved_dome():
 
 
 def test_developable_vault_reaches_three_quarters():
-    """A developable surface: lattice members can all be exact (target: >= 75 % within 0.5 %, docs/decisions.md item 41)."""
+    """A developable surface: lattice members can all be exact (target: >= 75 % within 0.5 %, docs/decisions.md, "The bounded objective")."""
     mesh = mesh_surface(parabolic_vault(), 60.0 / 17)
     assert in_bounds(mesh)
     assert share_exact(mesh) >= 0.75
@@ -129,7 +129,7 @@ def test_a_member_outside_the_bounds_is_an_internal_error(monkeypatch):
 
 
 def test_experiment_measures_a_surface_and_reports_the_target(load_experiment):
-    """experiments/bounded.py on its developable barrel vault: a row that meets the issue's target."""
+    """experiments/bounded.py on its developable barrel vault: a row that meets the developable target."""
     bounded = load_experiment("bounded")
     row = bounded._measure(("barrel vault", True, 16, "bounded"))
     assert row["share_in_l_2l"] == 1.0 and row["share_within_0.5pct"] >= bounded.DEVELOPABLE_TARGET

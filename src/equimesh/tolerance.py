@@ -83,7 +83,7 @@ LM_DIAGONAL_FLOOR = 1e-12
 LM_BACKTRACKS = 4
 
 #: Beyond the paper (docs/decisions.md, "The bounded objective"): the
-#: ``"bounded"`` optimisation (:func:`equimesh.surface.optimize.objectives.bounded_objective`)
+#: ``"bounded"`` optimisation (:func:`equimesh.surface.optimize.objectives.bounded_stages`)
 #: aims every member at ``l (1 + BOUNDED_OFFSET)``, inside the 0.5 % band and
 #: away from the hard bound l.  Its rounds of reweighted least squares pull a
 #: member below that target or above ``l (2 - BOUNDED_OFFSET)`` with the weight

@@ -193,7 +193,7 @@ def bounded_stages(problem):
       where the model fails, the line search shortens the step of every
       node, so one bad region slowed the whole mesh, more so the larger it was).  The rounds do not
       lock the bounds in (a step may push a member out, the next round pulls
-      it back; locking them in stalled the sparsity, docs/decisions.md).  A
+      it back; locking them in stalled the sparsity, docs/decisions.md, "The bounded objective").  A
       series of rounds ends at the first round whose Cauchy loss is within
       :data:`~equimesh.tolerance.BOUNDED_LOSS_TOL` (relative) of its start's
       and that ends with every member in [l, 2l], or that stalls (its own
@@ -203,7 +203,7 @@ def bounded_stages(problem):
       :data:`~equimesh.tolerance.BOUNDED_ROUNDS` rounds;
     * two starts, because the rounds are a local method: first the remapped
       mesh; then the optimum of the paper's objective (Section 4's last step,
-      :func:`paper_objective`, solved from the remapped mesh with the
+      :func:`paper_stage`, solved from the remapped mesh with the
       boundary nodes held, so that it is the paper's problem).  If its share
       of members within :data:`~equimesh.tolerance.BOUNDED_BAND` of l beats
       every point in [l, 2l] kept so far, the boundary nodes are released
@@ -211,7 +211,7 @@ def bounded_stages(problem):
       there: it begins with the exact members the paper reaches.  On steep
       surfaces (where the paper's optimum leaves many members far outside
       [l, 2l]) the first start wins, on mild ones often the second
-      (docs/decisions.md);
+      (docs/decisions.md, "Two starts for bounded, and the best point kept");
     * the result is the iterate in [l, 2l] with the largest share of members
       within :data:`~equimesh.tolerance.BOUNDED_BAND` of l seen at the end of
       any round;

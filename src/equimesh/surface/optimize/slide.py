@@ -7,7 +7,7 @@ may instead slide along its loop: its one variable is its arc position ``s``,
 ``uv = loop(s)`` piecewise linear, ``d uv / d s`` the unit direction of the
 segment ``s`` lies on (from the segment's start: at a loop vertex the segment
 that begins there).  It stays between the loop's corners before and after it
-(docs/decisions.md, "Real surfaces in", item 52).  The openings of a
+(docs/decisions.md, "Boundary nodes slide under bounded").  The openings of a
 parametric chart (:mod:`equimesh.surface.charts.openings`) slide the same way along
 their (u, v) polygons, every vertex a corner.
 """

@@ -32,7 +32,7 @@ on surface meshes) instead of an inner iterative solve:
   "no triangle folds over", "every member stays in [l, 2l]") are required;
   ``lambda`` follows Nielsen's rule after a full step and stays after a
   shortened one (lowering it there made more steps fail, raising it made
-  more iterations: docs/decisions.md);
+  more iterations: docs/decisions.md, "Rejected steps are shortened first");
 * convergence, not an evaluation cap: the infinity norm of the projected
   gradient below ``gtol``, or a step below ``xtol (xtol + |x|)``, or actual
   and predicted relative reductions below ``ftol``.  ``max_iterations`` is
