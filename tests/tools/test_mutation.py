@@ -42,12 +42,7 @@ def f(a, b=2.0):
     """Doc."""
     x = np.asarray(a, dtype=float)  # the array
     if x.max() > b and x.min() < 0:
-        return {
-            "key": (
-                x,
-                b,
-            )
-        }
+        return {"key": (x, b)}
     return None
 '''
 
