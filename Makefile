@@ -59,9 +59,9 @@ RANGE ?= HEAD~20..HEAD
 # base with main, or HEAD~1 on main) and the factor that counts as a change.
 BASE ?=
 FACTOR ?= 1.2
-# `make mutation`: modules to mutate (default: all of experiments/mutation_report.py's table).
+# `make mutation`: modules to mutate (default: every module of tools/mutation/modules.py).
 MODULES ?=
-# and options of experiments/mutation_report.py (e.g. --survivors, --max-children 1).
+# and options of `python -m tools.mutation` (e.g. --survivors, --max-children 1, --check, --report).
 MUTATION_ARGS ?=
 MUTATION_STAMP := $(VENV)/.equimesh-mutation-installed
 
@@ -125,9 +125,9 @@ bench-publish: $(STAMP)
 	@echo "==> open .asv/html/index.html (or: cd benchmarks && ../$(VENV)/bin/asv preview)"
 
 # Mutation testing of the algorithm modules (not part of `make test`; see
-# docs/development.md): writes results/mutation.md.
+# docs/development.md): writes results/mutation.md and .json.
 mutation: $(MUTATION_STAMP)
-	$(PY) experiments/mutation_report.py $(MUTATION_ARGS) $(MODULES)
+	$(PY) -m tools.mutation $(MUTATION_ARGS) $(MODULES)
 
 $(MUTATION_STAMP): $(STAMP)
 	$(PY) -m pip install -e '.[test,bench,mutation]'

@@ -1,7 +1,7 @@
 """Direct tests of the internals of planar/_coupled.py (sharp corners in a row, Step 2 with Lemma 3 (1)).
 
 The properties of the search and the proof are in tests/test_polygon_corner.py; these pin the pieces they are
-built of, so that mutation testing (experiments/mutation_report.py) sees each rule decide something.
+built of, so that mutation testing (tools/mutation) sees each rule decide something.
 """
 
 import math

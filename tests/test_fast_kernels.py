@@ -22,7 +22,7 @@ What must hold:
 
 Small inputs, so that the file runs in seconds with the kernels run as
 Python (``NUMBA_DISABLE_JIT=1``, as mutation testing runs them:
-``experiments/mutation_report.py``).
+``tools/mutation``).
 """
 
 import math

@@ -7,7 +7,7 @@ by
 ``name = compiled(name)``: the same as the decorator ``@njit(cache=True)``,
 but mutation testing reaches them (mutmut leaves decorated functions alone),
 and under ``NUMBA_DISABLE_JIT=1`` they run as the Python they are written in
-(``experiments/mutation_report.py``).  So a kernel must mean the same as
+(``tools/mutation``).  So a kernel must mean the same as
 Python and compiled: a count of booleans is a sum of ``int(...)``, as NumPy's
 booleans add as a logical or.
 """

@@ -1,0 +1,1 @@
+"""Developer tools that are not results: mutation testing of the algorithm modules (:mod:`tools.mutation`)."""
