@@ -39,7 +39,7 @@ ALLOWED = (
     r"\bsession\.config\b",
     # "recomputed from scratch": re-triangulating without reusing the previous triangulation.
     r"\bfrom scratch\b",
-    # mutation testing's working copy of src/ and tests/ under .mutation/ (experiments/mutation_report.py).
+    # mutation testing's working copy of src/ and tests/ under .mutation/ (tools/mutation).
     r"\bscratch (?:copy|copies|folder)\b",
     # plain English: "in brief", said of a summary.
     r"\bin brief\b",
