@@ -14,7 +14,7 @@ import math
 
 import numpy as np
 
-from equimesh.planar.boundary import corner as _corner
+from equimesh.planar.boundary import corner
 from equimesh.tolerance import REL_TOL
 
 
@@ -119,7 +119,7 @@ def cross(theta, a, b):
 def assert_placement(theta, lengths, l, found):
     """Parts in [l, 2l], each side ending at its far end (or, cut short, at least l before it and past K l),
     every cross pair l apart; all up to REL_TOL."""
-    reach = _corner.corner_reach(theta, l)
+    reach = corner.corner_reach(theta, l)
     for points, length in zip(found, lengths):
         steps = np.diff(np.concatenate([[0.0], points]))
         assert np.all(steps >= (1.0 - REL_TOL) * l) and np.all(steps <= 2.0 * (1.0 + REL_TOL) * l), points

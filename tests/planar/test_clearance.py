@@ -21,7 +21,7 @@ from hypothesis import strategies as st
 
 import equimesh
 from equimesh.planar import lattice
-from equimesh.planar.clearance import DOUBT, _expand, clear_of_boundary
+from equimesh.planar.clearance import DOUBT, clear_of_boundary, expand
 from equimesh.planar.lattice import kept_vertices
 from equimesh.planar.polygon import as_polygon
 from equimesh.testing.generators import rectangle, regular_polygon
@@ -74,7 +74,7 @@ def check_window(shape, first, grid_shape, l, angle, offset, distance):
 
 def test_expand_by_hand():
     """One row per integer of each range; an empty range (lo > hi) gives none."""
-    owner, value = _expand(np.array([0, 5, 3, 7]), np.array([2, 4, 3, 5]))
+    owner, value = expand(np.array([0, 5, 3, 7]), np.array([2, 4, 3, 5]))
     assert owner.tolist() == [0, 0, 0, 2] and value.tolist() == [0, 1, 2, 3]
 
 

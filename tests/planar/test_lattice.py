@@ -239,7 +239,7 @@ def test_square_lattice_part_by_hand():
 
 def test_single_edges_by_hand():
     """Two triangles sharing edge 1-2: its two half-edges are dropped, the four others kept in their direction."""
-    edges = lattice._single_edges(np.array([[0, 1, 2], [2, 1, 3]]))
+    edges = lattice.single_edges(np.array([[0, 1, 2], [2, 1, 3]]))
     assert sorted(map(tuple, edges.tolist())) == [(0, 1), (1, 3), (2, 0), (3, 2)]
 
 
@@ -247,9 +247,9 @@ def test_component_seeds_by_hand():
     """Triangles touching at a vertex only are two components; the seed is the centroid of each first triangle."""
     points = np.array([[0, 0], [3, 0], [0, 3], [3, 3], [6, 3], [3, 6], [6, 0]], float)
     tri = np.array([[1, 3, 2], [3, 4, 5], [0, 1, 2], [1, 6, 3]])  # {0, 2, 3} share edges, 1 touches at 3 only
-    seeds = lattice._component_seeds(points, tri)
+    seeds = lattice.component_seeds(points, tri)
     np.testing.assert_allclose(seeds, [points[[1, 3, 2]].mean(axis=0), points[[3, 4, 5]].mean(axis=0)])
-    assert lattice._component_seeds(points, np.empty((0, 3), int)).shape == (0, 2)
+    assert lattice.component_seeds(points, np.empty((0, 3), int)).shape == (0, 2)
 
 
 def test_lattice_adjacent_is_exactly_the_six_steps():

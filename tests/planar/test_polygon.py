@@ -24,7 +24,7 @@ from strategies import problems
 import equimesh
 from equimesh import InvalidLengthError, InvalidPolygonError
 from equimesh.planar.increment import validate_problem1
-from equimesh.planar.polygon import as_polygon
+from equimesh.planar.polygon import as_polygon, check_edges_at_least
 from equimesh.testing.generators import rectangle, regular_polygon
 from equimesh.tolerance import MAX_EXTENT
 
@@ -370,7 +370,6 @@ def test_polygon_folding_back_names_the_vertex(vertices, where):
 
 
 def test_a_side_shorter_than_l_is_refused_as_impossible():
-    from equimesh.planar.polygon import check_edges_at_least
 
     with pytest.raises(InvalidPolygonError) as err:
         check_edges_at_least(as_polygon([[0, 0], [4, 0], [4, 0.5], [0, 0.5]]), 1.0)

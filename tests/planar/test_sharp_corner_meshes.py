@@ -41,16 +41,12 @@ TIP20 = [[0, 0], [12 * math.cos(H), -12 * math.sin(H)], [18, -6], [18, 6], [12 *
 def test_reported_sharp_corners_are_meshed_validly(vertices):
     """The issue's accepted-but-invalid inputs (edges of 0.29 l to 0.52 l, then refused): the staggered
     Step 2 now meshes them within every guarantee of Problem 2."""
-    import invariants_uniform as inv
-
     inv.assert_problem2_invariants(equimesh.uniform_triangulation(vertices, 1.0), vertices, 1.0)
 
 
 def test_the_thin_triangle_refused_before_is_meshed_by_the_continued_zigzag():
     """6.3 degrees with sides of 10 and 9.06 l (the staggered points up to K l = 10 l do not fit): the
     stagger continues along the whole short side, odd multiples of l on one side, even on the other."""
-    import invariants_uniform as inv
-
     vertices = [[0, 0], [10, 0], [9, 1]]
     mesh = equimesh.uniform_triangulation(vertices, 1.0)
     inv.assert_problem2_invariants(mesh, vertices, 1.0)
@@ -62,8 +58,6 @@ def test_a_corner_below_the_proven_side_length_is_placed_by_the_grid_search():
     """5.7 degrees: the staggered Step 2 is proven for sides of K l + l = 12 l (K = ceil(1 / sin 5.7) = 11); with
     sides of 10 and 10.05 l the short-side search finds no placement, the grid search of the corner does
     (docs/proofs.md, "Sharp corners"), and every guarantee of Problem 2 holds."""
-    import invariants_uniform as inv
-
     vertices = [[0, 0], [10, 0], [10, 1]]
     inv.assert_problem2_invariants(equimesh.uniform_triangulation(vertices, 1.0), vertices, 1.0)
 

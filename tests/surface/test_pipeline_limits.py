@@ -38,12 +38,16 @@ def test_bad_max_nodes(max_nodes):
 
 
 def test_max_nodes_none_means_no_limit_and_default_depends_on_optimize():
+    """None is no limit; the default is MAX_NODES without optimisation and each objective's own, smaller, limit
+    with it (the refusal of a tiny l names the limit that applied)."""
     assert equimesh.mesh_surface(plane_patch(), 3.0, grid=(4, 4), optimize="none", max_nodes=None).points.size
     # about 115 nodes: refused under a limit of 100, with either optimisation
     for optimize in ("none", "paper"):
         refuse(MeshTooLargeError, plane_patch(), 3.0, "max_nodes = 100", max_nodes=100, optimize=optimize)
-    for objective in ("paper", "bounded"):
-        assert pipeline._node_limit("default", objective) == pipeline.MAX_OPTIMIZE_NODES[objective] < pipeline.MAX_NODES
+    defaults = {"none": pipeline.MAX_NODES, **pipeline.MAX_OPTIMIZE_NODES}
+    for optimize, limit in defaults.items():
+        assert optimize == "none" or limit < pipeline.MAX_NODES
+        refuse(MeshTooLargeError, plane_patch(), 1e-12, rf"max_nodes = {limit}\b", optimize=optimize)
 
 
 def test_size_is_checked_before_flattening():

@@ -14,14 +14,14 @@ from corner_sampling import assert_placement, cross, sampled_placement
 from hypothesis import given
 from hypothesis import strategies as st
 
-from equimesh.planar.boundary import corner as _corner
+from equimesh.planar.boundary import corner
 from equimesh.tolerance import REL_TOL
 
 
 @pytest.fixture(autouse=True)
 def _no_cached_relaxation():
-    """Each test computes the relaxation afresh (_relaxed is cached per corner across calls)."""
-    _corner._relaxed.cache_clear()
+    """Each test computes the relaxation afresh (corner.relaxed is cached per corner across calls)."""
+    corner.relaxed.cache_clear()
 
 
 parts = st.lists(st.floats(1.0, 2.0), min_size=1, max_size=8)
@@ -44,24 +44,23 @@ def test_a_placement_found_meets_lemma_3_and_is_never_proven_impossible(angle, a
     """Whatever place_corner returns is a placement (checked pair by pair), and corner_unplaceable (which claims
     a proof) never says impossible where a placement exists: the relaxation is checked against the search."""
     theta, lengths = math.radians(angle), (a * l, b * l)
-    found = _corner.place_corner(theta, lengths, l)
+    found = corner.place_corner(theta, lengths, l)
     if found is not None:
         assert_placement(theta, lengths, l, found)
-        assert not _corner.corner_unplaceable(theta, lengths, l, (math.inf, math.inf))
+        assert not corner.corner_unplaceable(theta, lengths, l, (math.inf, math.inf))
 
 
 def test_a_placement_off_every_grid_is_found_by_tightening():
     """17.46 degrees with sides of 4.132 l: the placements form a sliver that the grids of 1/16 to 1/64 l miss;
-    the order of the relaxation's path, pushed as near the corner as it allows (_tighten), is one."""
+    the order of the relaxation's path, pushed as near the corner as it allows (corner.tighten), is one."""
     theta, lengths = math.radians(17.460507302465036), (4.132016938510646, 4.132016938510646)
-    reach = _corner.corner_reach(theta, 1.0)
+    reach = corner.corner_reach(theta, 1.0)
     for grid in (16, 32, 64):
-        nodes = _corner._nodes(lengths, reach, 1.0, 1.0 / grid, (None, None))
+        nodes = corner.nodes(lengths, reach, 1.0, 1.0 / grid, (None, None))
         assert (
-            _corner._Graph(theta, lengths, reach, 1.0, nodes, nodes, REL_TOL / 4.0, (math.inf, math.inf)).search()
-            is None
+            corner.Graph(theta, lengths, reach, 1.0, nodes, nodes, REL_TOL / 4.0, (math.inf, math.inf)).search() is None
         )
-    found = _corner.place_corner(theta, lengths, 1.0)
+    found = corner.place_corner(theta, lengths, 1.0)
     assert_placement(theta, lengths, 1.0, found)
     assert [points.tolist() for points in found] == [
         [1.0, 2.6398839449125027, 4.132016938510646],
@@ -73,11 +72,11 @@ def test_a_long_side_is_cut_past_k_l_and_kept_sides_are_kept():
     """5 degrees with sides of 40 l (K = 12): both sides stop at their first point past 12 l; with the leaving
     side given (multiples of 2 l), it is returned as given."""
     theta, lengths = math.radians(5.0), (40.0, 40.0)
-    found = _corner.place_corner(theta, lengths, 1.0)
+    found = corner.place_corner(theta, lengths, 1.0)
     assert_placement(theta, lengths, 1.0, found)
     assert all(12.0 <= points[-1] < 14.0 for points in found)
     kept = np.arange(1, 8) * 2.0 - 1.0
-    found = _corner.place_corner(theta, lengths, 1.0, (kept, None))
+    found = corner.place_corner(theta, lengths, 1.0, (kept, None))
     assert found is not None and np.array_equal(found[0], kept)
     assert_placement(theta, lengths, 1.0, found)
 
@@ -97,8 +96,8 @@ def test_a_corner_proven_impossible_has_nosampled_placement(angle, a, b):
     """corner_unplaceable proves these; enumerating parts in steps of l/8 finds no placement either, and the
     search gives up (it is never handed a corner the proof refuses)."""
     theta = math.radians(angle)
-    assert _corner.corner_unplaceable(theta, (a, b), 1.0, (math.inf, math.inf))
-    assert _corner.place_corner(theta, (a, b), 1.0) is None
+    assert corner.corner_unplaceable(theta, (a, b), 1.0, (math.inf, math.inf))
+    assert corner.place_corner(theta, (a, b), 1.0) is None
     assert sampled_placement(theta, (a, b), 1.0) is None
 
 
@@ -112,16 +111,16 @@ def test_visibility_radii_drop_the_pairs_beyond_them():
     """The 20-degree corner with sides 3.4553 is proven impossible with every pair checked; with no pair seen
     (radii 0) nothing is proven."""
     theta = math.radians(20.0)
-    assert _corner.corner_unplaceable(theta, (3.4553, 3.4553), 1.0, (math.inf, math.inf))
-    assert not _corner.corner_unplaceable(theta, (3.4553, 3.4553), 1.0, (0.0, 0.0))
+    assert corner.corner_unplaceable(theta, (3.4553, 3.4553), 1.0, (math.inf, math.inf))
+    assert not corner.corner_unplaceable(theta, (3.4553, 3.4553), 1.0, (0.0, 0.0))
 
 
 def test_visibility_radii_belong_to_their_sides():
     """5.83 degrees with sides 3.5 (leaving) and 2.5473: proven when the leaving side is seen up to 2.5 l and the
     arriving one whole, not the other way round."""
     theta, lengths = math.radians(5.83171), (3.5, 2.5473)
-    assert _corner.corner_unplaceable(theta, lengths, 1.0, (2.5, math.inf))
-    assert not _corner.corner_unplaceable(theta, lengths, 1.0, (math.inf, 2.5))
+    assert corner.corner_unplaceable(theta, lengths, 1.0, (2.5, math.inf))
+    assert not corner.corner_unplaceable(theta, lengths, 1.0, (math.inf, 2.5))
 
 
 def _corners(seed, count, angles, sides):
@@ -145,14 +144,14 @@ def _corner_fingerprint(corners):
     for k, (angle, a, b, l) in enumerate(corners, 1):
         theta, lengths = math.radians(angle), (a * l, b * l)
         for radii in ((math.inf, math.inf), (a * l / 2.0, b * l / 2.0)):
-            decided = _corner.corner_unplaceable(theta, lengths, l, radii)
+            decided = corner.corner_unplaceable(theta, lengths, l, radii)
             proven, weighted_proven = proven + decided, weighted_proven + k * decided
-        found = _corner.place_corner(theta, lengths, l)
+        found = corner.place_corner(theta, lengths, l)
         if found is None:
             continue
         assert_placement(theta, lengths, l, found)
-        again = _corner.place_corner(theta, lengths, l, (found[0], None))
-        if again is not None:  # None where found came from _tighten, off the grid (the search alone misses it)
+        again = corner.place_corner(theta, lengths, l, (found[0], None))
+        if again is not None:  # None where found came from corner.tighten, off the grid (the search alone misses it)
             assert np.array_equal(again[0], found[0])
             assert_placement(theta, lengths, l, again)
             found = (*found, *again)
@@ -173,7 +172,7 @@ def test_corner_fingerprint_long_sides():
     assert _corner_fingerprint(_corners(6, 8, (12.0, 25.0), (6.0, 30.0))) == (0, 0, 74, 7138.78125)
 
 
-TOL = REL_TOL / 4.0  # the tolerance of _placed's checks
+TOL = REL_TOL / 4.0  # the tolerance of corner.placed's checks
 
 
 FAR = 2.0**-31  # TOL * FAR_L exactly, a multiple of the ulp of 3.5: a far end exactly at the tolerance
@@ -219,11 +218,11 @@ EXACT = 3.464101614560404  # at 30 degrees and l = 2, its squared distance from 
     ],
 )
 def test_placed_checks_parts_ends_and_cross_pairs_at_their_tolerance(angle, l, lengths, xs, ys, placed):
-    """_placed accepts parts from (1 - TOL) l to 2 (1 + TOL) l, far ends within TOL l (moved onto them), a long
+    """corner.placed accepts parts from (1 - TOL) l to 2 (1 + TOL) l, far ends within TOL l (moved onto them), a long
     side's last point up to l before its end, cross pairs from (1 - TOL) l; each threshold exactly and just past."""
     theta = math.radians(angle)
     sides, z = np.array([0] * len(xs) + [1] * len(ys)), np.array(xs + ys)
-    found = _corner._placed(theta, lengths, _corner.corner_reach(theta, l), l, sides, z)
+    found = corner.placed(theta, lengths, corner.corner_reach(theta, l), l, sides, z)
     assert (found is not None) == placed
     if placed:
         assert [points.tolist() for points in found] == [xs[:-1] + [min(xs[-1], lengths[0])], ys]
@@ -233,9 +232,9 @@ def test_cut_keeps_a_long_sides_points_up_to_the_first_past_k_l():
     """K l = 12 (5 degrees): a side longer than 15 l keeps its points up to the first at or past 12; one of 15 l is
     not cut."""
     odd, even = np.arange(1.0, 40.0, 2.0), np.arange(2.0, 40.0, 2.0)
-    assert _corner.cut(odd, 40.0, 12.0, 1.0).tolist() == [1.0, 3.0, 5.0, 7.0, 9.0, 11.0, 13.0]
-    assert _corner.cut(even, 15.5, 12.0, 1.0).tolist() == [2.0, 4.0, 6.0, 8.0, 10.0, 12.0]
-    assert _corner.cut(even, 15.0, 12.0, 1.0) is even
+    assert corner.cut(odd, 40.0, 12.0, 1.0).tolist() == [1.0, 3.0, 5.0, 7.0, 9.0, 11.0, 13.0]
+    assert corner.cut(even, 15.5, 12.0, 1.0).tolist() == [2.0, 4.0, 6.0, 8.0, 10.0, 12.0]
+    assert corner.cut(even, 15.0, 12.0, 1.0) is even
 
 
 def test_cells_and_nodes_by_hand():
@@ -243,18 +242,18 @@ def test_cells_and_nodes_by_hand():
     the step up to K l + 2 l = 8, the short side's far end less multiples of the step, and the points kept; the
     proof's cells cover [0, 8.25] in steps (one more than 8 needs), with the corner and the short side's far end as points."""
     lengths, step = (3.125, 20.0), 0.25
-    nodes = _corner._nodes(lengths, 6.0, 1.0, step, (np.array([1.1, 3.125]), None))
+    nodes = corner.nodes(lengths, 6.0, 1.0, step, (np.array([1.1, 3.125]), None))
     assert nodes.tolist() == sorted(
         {0.0, 1.1} | {step * k for k in range(1, 33)} | {3.125 - step * k for k in range(12)}
     )
-    lo, hi = _corner._cells(lengths, 6.0, 1.0, step)
+    lo, hi = corner.cells(lengths, 6.0, 1.0, step)
     assert lo.tolist() == [0.0, *(step * k for k in range(33)), 3.125]
     assert hi.tolist() == [0.0, *(step * k for k in range(1, 34)), 3.125]
-    assert _corner._horizon((20.0, 9.0), 6.0, 1.0) == 9.0 and _corner._horizon((9.5, 7.0), 6.0, 1.0) == 8.0
+    assert corner.horizon((20.0, 9.0), 6.0, 1.0) == 9.0 and corner.horizon((9.5, 7.0), 6.0, 1.0) == 8.0
 
 
 def test_far_enough_cells_against_sampled_points():
-    """_Graph._far_enough on cells: some u of cell p and v >= u of cell w with u^2 + v^2 - 2 c u v >= short^2, the
+    """Graph.far_enough on cells: some u of cell p and v >= u of cell w with u^2 + v^2 - 2 c u v >= short^2, the
     same answer as sampling each cell (ends included) and the diagonal v = u where the cells overlap (the largest value
     of the convex quadratic lies at a corner of that region); on random cells, points and overlaps, at 3 angles."""
     rng = np.random.default_rng(3)
@@ -264,7 +263,7 @@ def test_far_enough_cells_against_sampled_points():
     samples = np.linspace(0.0, 1.0, 9)
     for angle in (10.0, 35.0, 80.0):
         c, short = math.cos(math.radians(angle)), 1.0
-        far = _corner._Graph._far_enough(cells, math.radians(angle), short)
+        far = corner.Graph.far_enough(cells, math.radians(angle), short)
         for p in range(len(lo)):
             for w in range(len(lo)):
                 u = lo[p] + (hi[p] - lo[p]) * samples
@@ -295,7 +294,7 @@ def test_tighten_by_hand(angle, sides, placed):
     lower bounds (l past the point before it on its side, G of the other side's point before it, K l for the long
     side's last point, 2 l before the next point of its side)."""
     theta = math.radians(angle)
-    found = _corner._tighten(theta, (12.0, 3.0), _corner.corner_reach(theta, 1.0), 1.0, sides)
+    found = corner.tighten(theta, (12.0, 3.0), corner.corner_reach(theta, 1.0), 1.0, sides)
     assert [points.tolist() for points in found] == placed
 
 
@@ -303,20 +302,20 @@ def test_tighten_and_the_reach_scale_with_l():
     """The 8 degree order above at l = 1.5 is the same placement scaled; K at 30 degrees is 2 although 1 / sin 30
     degrees rounds to 2 + 4e-16 (the 1 - REL_TOL of K)."""
     theta = math.radians(8.0)
-    found = _corner._tighten(theta, (18.0, 4.5), _corner.corner_reach(theta, 1.5), 1.5, [1, 0, 1, 0, 0, 0])
+    found = corner.tighten(theta, (18.0, 4.5), corner.corner_reach(theta, 1.5), 1.5, [1, 0, 1, 0, 0, 0])
     assert [points.tolist() for points in found] == [[3.0, 6.0, 9.0, 12.0], [1.5, 4.5]]
-    assert _corner.corner_reach(math.radians(30.0), 1.5) == 3.0
+    assert corner.corner_reach(math.radians(30.0), 1.5) == 3.0
 
 
 def test_horizon_of_a_long_side_is_k_l_plus_2l_at_any_l():
     """At l = 2 and K l = 12 a long side (past K l + 3 l = 18) is read up to K l + 2 l = 16, a short one whole."""
-    assert _corner._horizon((40.0, 9.0), 12.0, 2.0) == 16.0
-    assert _corner._horizon((17.0, 9.0), 12.0, 2.0) == 17.0
+    assert corner.horizon((40.0, 9.0), 12.0, 2.0) == 16.0
+    assert corner.horizon((17.0, 9.0), 12.0, 2.0) == 17.0
 
 
 def test_beyond_the_radii_only_past_them():
     """A point (or a cell's far end) exactly at its side's visibility radius is seen; only one past it is not."""
-    beyond = _corner._beyond(np.array([0.0, 1.0, 2.0]), 1.0, 2.0)
+    beyond = corner.beyond(np.array([0.0, 1.0, 2.0]), 1.0, 2.0)
     assert beyond.tolist() == [[False, False, False], [False, False, False], [True, True, True]]
 
 
@@ -324,11 +323,11 @@ def _graph(lo, lengths, hi=None):
     """The graph at theta = 0 (the distance of u and v is |u - v|) with tolerance 0, so that parts are exactly in
     [l, 2l] (l = 1), K l = 2; on the points ``lo`` or, with ``hi``, on cells."""
     lo = np.array(lo)
-    return _corner._Graph(0.0, lengths, 2.0, 1.0, lo, lo if hi is None else np.array(hi), 0.0, (math.inf, math.inf))
+    return corner.Graph(0.0, lengths, 2.0, 1.0, lo, lo if hi is None else np.array(hi), 0.0, (math.inf, math.inf))
 
 
 def test_graph_thresholds_are_closed():
-    """Every threshold of _Graph holds with equality (tolerance 0, l = 1): parts of exactly l and 2l are steps; cross
+    """Every threshold of Graph holds with equality (tolerance 0, l = 1): parts of exactly l and 2l are steps; cross
     pairs exactly l apart are far enough, for points and for cells; a short side (3) ends only at a position that is
     its far end whole, and no cell starting there goes on; a long side (20, K l = 2) stops at a point exactly at K l
     and may step to one exactly at K l + 2l."""
@@ -350,7 +349,7 @@ def test_no_node_past_the_horizon_where_the_quotient_rounds_up():
     l = 1.2187810373376886
     step, length = l / 32.0, 5.674949205103612
     assert math.floor(length / step) * step > length
-    nodes = _corner._nodes((length, 2.0), 3.0 * l, l, step, (None, None))
+    nodes = corner.nodes((length, 2.0), 3.0 * l, l, step, (None, None))
     assert nodes.max() == length
 
 
@@ -364,7 +363,7 @@ def test_the_search_accepts_a_cross_pair_within_rel_tol_over_4(first, placed):
     squared = 1.5**2 + first**2 - 2.0 * math.cos(theta) * 1.5 * first
     assert (squared >= (1.0 - REL_TOL / 4.0) ** 2) == placed and squared >= (1.0 - 4.0 * REL_TOL) ** 2
     assert squared < (1.0 - REL_TOL / 5.0) ** 2
-    found = _corner.place_corner(theta, (first + 1.5, 1.5), 1.0, (kept, None))
+    found = corner.place_corner(theta, (first + 1.5, 1.5), 1.0, (kept, None))
     assert (found is not None) == placed
     if placed:
         assert [points.tolist() for points in found] == [kept.tolist(), [1.5]]
@@ -384,9 +383,9 @@ def test_a_kept_side_is_searched_on_each_finer_grid(first, second, arriving, mon
     search tries the grids of l/16, l/32 and l/64 in turn, and takes the first placement found; with one more
     refinement the second corner is placed at 243/128."""
     theta, kept = math.radians(25.0), np.array([first, second, second + 1.5])
-    found = _corner.place_corner(theta, (second + 1.5, 3.3), 1.0, (kept, None))
+    found = corner.place_corner(theta, (second + 1.5, 3.3), 1.0, (kept, None))
     assert (found if found is None else found[1].tolist()) == arriving
-    monkeypatch.setattr(_corner, "CORNER_REFINEMENTS", 3)
-    assert _corner.place_corner(theta, (second + 1.5, 3.3), 1.0, (kept, None))[1].tolist() == (
+    monkeypatch.setattr(corner, "CORNER_REFINEMENTS", 3)
+    assert corner.place_corner(theta, (second + 1.5, 3.3), 1.0, (kept, None))[1].tolist() == (
         arriving or [243 / 128, 3.3]
     )

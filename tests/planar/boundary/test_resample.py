@@ -15,9 +15,11 @@ from strategies import problems
 
 from equimesh import REL_TOL
 from equimesh.planar.boundary.resample import resample_boundary
+from equimesh.planar.boundary.sides import stagger_reach
 from equimesh.planar.increment import validate_problem1
 from equimesh.planar.polygon import as_polygon
 from equimesh.testing.generators import rectangle
+from equimesh.testing.shapes import sharp_wedge
 
 
 @given(problems)
@@ -48,9 +50,6 @@ def test_staggered_step2_separates_the_sides_of_a_sharp_corner(angle, stretch, s
     """docs/proofs.md, "Sharp corners": at any corner angle down to 0.5 degrees, with both sides at least
     ``stagger_reach + l`` long, the Step 2 points of the two sides are pairwise at least l apart, and every
     boundary part is in [l, 2l]."""
-    from equimesh.planar.boundary.sides import stagger_reach
-    from equimesh.testing.shapes import sharp_wedge
-
     side = max(stagger_reach(angle, 1.0) + 2.0, 1.2 / math.sin(math.radians(angle) / 2.0)) * stretch
     poly = as_polygon(sharp_wedge(angle, side, 2.0) * l, l)
     boundary = resample_boundary(poly, l, spacing)

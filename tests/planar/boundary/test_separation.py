@@ -10,6 +10,7 @@ the threshold (asserted), at l far from 1 so that l and 1 / l differ.
 """
 
 import math
+from fractions import Fraction
 
 import numpy as np
 import pytest
@@ -21,12 +22,22 @@ from scipy.spatial.distance import pdist
 import equimesh
 from equimesh import REL_TOL
 from equimesh.errors import InvalidPolygonError
-from equimesh.planar.boundary import corner as _corner
-from equimesh.planar.boundary import resample, separation
+from equimesh.planar.boundary import chain, corner, resample, separation
 from equimesh.planar.boundary.resample import Boundary, resample_boundary
-from equimesh.planar.boundary.separation import check_boundary_separation
+from equimesh.planar.boundary.separation import (
+    VISIBLE_BISECTIONS,
+    check_boundary_separation,
+    chord,
+    first_node,
+    sees_within,
+    unmeshable_corner,
+    unplaceable_chain,
+    unseparable_corner,
+    visible_radii,
+)
 from equimesh.planar.polygon import as_polygon
 from equimesh.planar.strip import BOUNDARY_SPACING
+from equimesh.testing.shapes import sharp_dart
 
 # --------------------------------------------------------------------------- Lemma 3 (1): the checks' messages
 
@@ -52,8 +63,6 @@ TAPERED_NECK = [
 
 def _separation_message(vertices, l, holes=None, spacing=2.0):
     """``check_boundary_separation``'s refusal of the Step 2 points of ``vertices`` (and ``holes``): message, points."""
-    from equimesh.planar.boundary.separation import check_boundary_separation
-
     poly = as_polygon(vertices, l if holes is None else None, holes)
     with pytest.raises(InvalidPolygonError) as err:
         check_boundary_separation(poly, resample_boundary(poly, l, spacing), l)
@@ -63,8 +72,6 @@ def _separation_message(vertices, l, holes=None, spacing=2.0):
 def test_a_neck_of_exactly_l_is_accepted_and_a_narrower_one_refused():
     """Points exactly l apart across a corridor meet Lemma 3 (1); at l = 1.5 (a local length other than 1) a
     corridor 1.2 wide is refused."""
-    from equimesh.planar.boundary.separation import check_boundary_separation
-
     poly = as_polygon(NECK, 1.0)
     assert check_boundary_separation(poly, resample_boundary(poly, 1.0), 1.0) is None
     message, _ = _separation_message(np.array(NECK) * 1.2, 1.5)
@@ -103,10 +110,7 @@ def test_a_corner_not_handled_is_named_with_its_limit_in_the_callers_units(monke
     each corner alone has a placement, none exists for both; with the joint proof switched off (what a ring it
     does not decide meets) it is "not handled" (docs/proofs.md, "Sharp corners"); K = 3, so sides of
     (K + 1) l = 16 are handled; the closest pair is on edges 0 and 2."""
-    from equimesh.planar.boundary import chain as _coupled
-    from equimesh.planar.strip import BOUNDARY_SPACING
-
-    monkeypatch.setattr(_coupled, "chain_unplaceable", lambda *args: False)
+    monkeypatch.setattr(chain, "chain_unplaceable", lambda *args: False)
 
     triangle = np.array([[0, 0], [4.25, 0], [2.1 * math.cos(math.radians(29.4)), 2.1 * math.sin(math.radians(29.4))]])
     message, points = _separation_message(triangle * 4.0, 4.0, spacing=BOUNDARY_SPACING)
@@ -121,7 +125,7 @@ def test_a_corner_not_handled_is_named_with_its_limit_in_the_callers_units(monke
 
 
 @pytest.mark.parametrize(
-    "a, b, theta, chord",
+    "a, b, theta, expected",
     [
         (3.0, 4.0, math.pi / 2.0, 5.0),
         (3.0, 4.0, math.pi / 3.0, math.sqrt(13.0)),
@@ -129,11 +133,9 @@ def test_a_corner_not_handled_is_named_with_its_limit_in_the_callers_units(monke
         (2.0, 0.0, 1.0, 2.0),
     ],
 )
-def test_chord_by_hand(a, b, theta, chord):
+def test_chord_by_hand(a, b, theta, expected):
     """The law of cosines; a corner of angle 0 with equal distances gives 0, not a rounding below it."""
-    from equimesh.planar.boundary.separation import _chord
-
-    assert _chord(a, b, theta) == pytest.approx(chord, rel=1e-15, abs=0.0)
+    assert chord(a, b, theta) == pytest.approx(expected, rel=1e-15, abs=0.0)
 
 
 LP = 1.5  # the local length of l = 3 (scale 1/2): tells l from the local length and from 1 / l
@@ -152,9 +154,7 @@ LP = 1.5  # the local length of l = 3 (scale 1/2): tells l from the local length
 )
 def test_first_node_by_hand(length, first):
     """Where the first node after a corner can lie on a side split into parts of [l, 2l], widened by REL_TOL."""
-    from equimesh.planar.boundary.separation import _first_node
-
-    assert _first_node(length, LP) == first
+    assert first_node(length, LP) == first
 
 
 def _leaving(x, angle=20.0):
@@ -183,25 +183,19 @@ UNMESHABLE = (
 def test_the_sector_lemma_names_the_side_and_its_far_end(vertices, message):
     """20 degrees, a side of 1.8 l (l = 3) leaving or arriving at the corner: between 2 - sqrt(4 cos^2 - 3) l =
     1.15 l and 2 l cos 20 = 1.879 l, so no mesh exists (docs/proofs.md, "Sharp corners", the sector lemma)."""
-    from equimesh.planar.boundary.separation import _unmeshable_corner
-
-    assert str(_unmeshable_corner(as_polygon(vertices, 3.0), 3.0)) == message
+    assert str(unmeshable_corner(as_polygon(vertices, 3.0), 3.0)) == message
 
 
 @pytest.mark.parametrize("beta, refused", [(1.14, False), (1.2, True), (4.0 / 3.0, True), (1.8, True), (1.95, False)])
 def test_the_sector_lemma_holds_between_its_two_roots(beta, refused):
     """At 20 degrees a side of beta l is refused exactly for 1.15 l < beta < 1.879 l (l = 3, local length 1.5):
     below, the node at 2l on the other side is l away; above, the node at l."""
-    from equimesh.planar.boundary.separation import _unmeshable_corner
-
-    assert (_unmeshable_corner(as_polygon(_leaving(3.0 * beta), 3.0), 3.0) is not None) == refused
+    assert (unmeshable_corner(as_polygon(_leaving(3.0 * beta), 3.0), 3.0) is not None) == refused
 
 
 def test_the_sector_lemma_at_its_widened_bounds():
     """The radii l and 2l are widened by REL_TOL and the distance must stay below (1 - REL_TOL) l: a side 1e-10
     (relative) inside either root of the widened condition is refused, one 1e-10 outside is not."""
-    from equimesh.planar.boundary.separation import _unmeshable_corner
-
     theta = math.radians(as_polygon(_leaving(5.4), 3.0).inner_angle(0))
     c, s, t, r2 = math.cos(theta), math.sin(theta), (1.0 - REL_TOL) * LP, 2.0 * LP * (1.0 + REL_TOL)
     high = 2.0 * (1.0 - REL_TOL) * LP * c  # the chord at radius (1 - REL_TOL) l is t there
@@ -214,16 +208,14 @@ def test_the_sector_lemma_at_its_widened_bounds():
     ]:
         poly = as_polygon(_leaving(2.0 * local), 3.0)
         assert poly.local_edge_lengths[0] == local
-        assert (_unmeshable_corner(poly, 3.0) is not None) == refused, local
+        assert (unmeshable_corner(poly, 3.0) is not None) == refused, local
 
 
 def test_no_separation_at_a_corner_names_it_with_the_handled_sides():
     """The 35.7 degree corner of a triangle with a 30 degree one (sides 1.6 and 2.5 l, l = 3): its sides are 2.5 l
     and 1.37 l, the first points closer than l wherever they lie; K = 2, so sides of 3 l are handled."""
-    from equimesh.planar.boundary.separation import _unseparable_corner
-
     poly = as_polygon(np.array([[1.6, 0.0], at(30.0, 2.5), [0.0, 0.0]]) * 3.0 + [6.0, 3.0], 3.0)
-    assert str(_unseparable_corner(poly, 3.0)) == (
+    assert str(unseparable_corner(poly, 3.0)) == (
         "the corner at vertex 1 at (12.49519053, 6.75) (35.6746 degrees) cannot meet Lemma 3 (1) for l = 3.0: with sides "
         "of 7.499999999999999 and 4.115357934313905 the first boundary points of its two sides are closer than l wherever "
         "they lie, so no Step 2 separates them (a limit of the paper's method, not a proof that no mesh exists; "
@@ -235,22 +227,18 @@ def test_no_separation_needs_the_corners_triangle_inside_the_polygon():
     """The triangle [[0, 0], [1.6, 0], 2.5 at 30 degrees], l = 1: its 30 degree corner is refused first; with a
     hole inside the triangle of that corner and the far ends of its first-point ranges (its first points may not
     see each other), the 35.7 degree corner is refused instead."""
-    from equimesh.planar.boundary.separation import _unseparable_corner
-
     triangle = [[0.0, 0.0], [1.6, 0.0], at(30.0, 2.5)]
-    assert str(_unseparable_corner(as_polygon(triangle), 1.0)).startswith(
+    assert str(unseparable_corner(as_polygon(triangle), 1.0)).startswith(
         "the corner at vertex 0 at (0, 0) (30 degrees)"
     )
     poly = as_polygon(triangle, None, [[[0.9, 0.2], [1.1, 0.2], [1.0, 0.35]]])
-    assert str(_unseparable_corner(poly, 1.0)).startswith(
+    assert str(unseparable_corner(poly, 1.0)).startswith(
         "the corner at vertex 2 at (2.165063509, 1.25) (35.6746 degrees)"
     )
 
 
 def test_separation_refusal_says_first_what_is_proven():
     """Close points at a corner of the sector lemma: the refusal is the proof that no mesh exists."""
-    from equimesh.planar.boundary.separation import check_boundary_separation
-
     poly = as_polygon(_leaving(5.4), 3.0)
     with pytest.raises(
         InvalidPolygonError, match=r"^no mesh with every edge in \[l, 2l\] exists for l = 3.0: at the corner"
@@ -261,8 +249,6 @@ def test_separation_refusal_says_first_what_is_proven():
 def test_points_closer_than_l_across_a_notch_do_not_see_each_other():
     """A V-shaped notch of 16 degrees cut into a square: points 0.5 apart on its two walls, the segment between them
     outside the polygon; Lemma 3 (1) concerns mutually visible points only, so the check accepts."""
-    from equimesh.planar.boundary.separation import check_boundary_separation
-
     poly = as_polygon([[0, 0], [10, 0], [10, 10], [6, 10], [5, 3], [4, 10], [0, 10]], 1.0)
     boundary = resample_boundary(poly, 1.0)
     assert pdist(boundary.points).min() == pytest.approx(0.5, rel=1e-12)
@@ -273,21 +259,17 @@ def test_points_closer_than_l_across_a_notch_do_not_see_each_other():
 def test_no_separation_when_the_first_points_are_closer_than_l_up_to_rel_tol(opposite, refused):
     """A triangle with sides 1.6 and 1.7 at corner 0 (both below 2l, l = 1.5: the first points are their far ends):
     refused when the opposite side is below (1 - REL_TOL) l, not when it is l."""
-    from equimesh.planar.boundary.separation import _unseparable_corner
-
     x = (1.7**2 - opposite**2 + 1.6**2) / 3.2
     assert (
-        _unseparable_corner(as_polygon([[0, 0], [1.6, 0], [x, math.sqrt(1.7**2 - x * x)]]), 1.5) is not None
+        unseparable_corner(as_polygon([[0, 0], [1.6, 0], [x, math.sqrt(1.7**2 - x * x)]]), 1.5) is not None
     ) == refused
 
 
 def test_no_separation_reads_the_far_ends_of_the_first_point_ranges():
     """The 30 degree triangle with a hole near the far end of its arriving side's range [l, 1.5 l]: the triangle of
     the corner and the far ends is not covered, the corner not refused (with the near end it would be)."""
-    from equimesh.planar.boundary.separation import _unseparable_corner
-
     poly = as_polygon([[0.0, 0.0], [1.6, 0.0], at(30.0, 2.5)], None, [[[1.1, 0.5], [1.25, 0.5], [1.2, 0.62]]])
-    assert _unseparable_corner(poly, 1.0) is None
+    assert unseparable_corner(poly, 1.0) is None
 
 
 @pytest.mark.parametrize("hole_at, halvings", [(3.3, 1), (1.5, 2), (5.0, 0)])
@@ -295,21 +277,19 @@ def test_visible_radii_halve_the_sides_until_the_corners_triangle_is_in_the_poly
     """A 20 degree triangle with sides 4 and a small hole at hole_at along the corner's bisector direction (none at
     5: outside): the sides are halved until the triangle they span with the corner misses the hole, then scaled up
     again by bisection to within 2^-VISIBLE_BISECTIONS of touching it."""
-    from equimesh.planar.boundary.separation import VISIBLE_BISECTIONS, _sees_within, _visible_radii
-
     x, y = hole_at * math.cos(math.radians(7.0)), hole_at * math.sin(math.radians(7.0))
     holes = [[[x - 0.05, y - 0.03], [x + 0.05, y - 0.03], [x, y + 0.04]]] if hole_at < 4.0 else None
     poly = as_polygon([[0.0, 0.0], [4.0, 0.0], at(20.0, 4.0)], None, holes)
     ring = poly.rings[0]
     sides = (ring.local_edge_lengths[0], ring.local_edge_lengths[-1])  # in the local frame, as the caller passes them
-    radii = _visible_radii(poly.region, ring, 0, sides)
-    assert _sees_within(poly.region, ring, 0, *radii)
+    radii = visible_radii(poly.region, ring, 0, sides)
+    assert sees_within(poly.region, ring, 0, *radii)
     if not halvings:
         assert radii == sides
         return
     t = radii[0] / sides[0]
     assert radii[1] == pytest.approx(sides[1] * t, rel=1e-15) and 0.5**halvings < t < 2.0 * 0.5**halvings
-    assert not _sees_within(poly.region, ring, 0, *(x * (t + 2.0**-VISIBLE_BISECTIONS * 0.5**halvings) for x in sides))
+    assert not sees_within(poly.region, ring, 0, *(x * (t + 2.0**-VISIBLE_BISECTIONS * 0.5**halvings) for x in sides))
 
 
 @pytest.mark.parametrize("threshold", [1.0, 0.7, 0.3, 0.26, 0.1, 2.0**-63, 0.9 * 2.0**-63])
@@ -317,14 +297,12 @@ def test_visible_radii_end_on_the_last_bisection_step_seen(monkeypatch, threshol
     """With a stand-in visibility (the sides scaled by t are seen iff t <= threshold): halved to the first 2^-k seen
     (k < 64, else nothing seen: (0, 0)), then VISIBLE_BISECTIONS bisections between 2^-k and 2^-(k - 1): the largest
     t = 2^-k (1 + j 2^-VISIBLE_BISECTIONS) seen; the sides as they are when seen whole."""
-    from fractions import Fraction
-
     monkeypatch.setattr(
         equimesh.planar.boundary.separation,
-        "_sees_within",
+        "sees_within",
         lambda grown, ring, i, a, b: a <= 2.0 * threshold and b <= 4.0 * threshold,
     )
-    radii = separation._visible_radii(None, None, 0, (2.0, 4.0))
+    radii = separation.visible_radii(None, None, 0, (2.0, 4.0))
     if threshold >= 1.0:
         assert radii == (2.0, 4.0)
         return
@@ -351,7 +329,6 @@ _REFUSED_TOGETHER = (
 
 
 def _dart():
-    from equimesh.testing.shapes import sharp_dart
 
     return as_polygon(6.0 * sharp_dart(30, (30, 30), 3.5), 6.0)
 
@@ -359,9 +336,7 @@ def _dart():
 @pytest.mark.parametrize("corner", [0, 1])
 def test_a_pair_is_refused_together_from_either_of_its_corners(corner):
     """The offending pairs may lie at either corner of the pair: both ask for the pair (with the corner before)."""
-    from equimesh.planar.boundary.separation import _unplaceable_chain
-
-    error = _unplaceable_chain(as_polygon(_PAIR_TRIANGLE, 6.0), 6.0, [(0, corner)])
+    error = unplaceable_chain(as_polygon(_PAIR_TRIANGLE, 6.0), 6.0, [(0, corner)])
     assert (
         str(error)
         == "the corners at vertex 0 at (0, 0) (29.4 degrees) and vertex 1 at (25.5, 0) (23.0697 degrees) "
@@ -373,13 +348,11 @@ def test_a_pair_is_refused_together_from_either_of_its_corners(corner):
 def test_a_run_of_three_is_refused_after_its_pairs(corner):
     """The dart sharp_dart(30, (30, 30), 3.5): each pair is placeable (so decided and passed over; the pair through the
     notch is not sharp, passed over too), the run of three through any of its corners refused, named in ring order."""
-    from equimesh.planar.boundary.separation import _unplaceable_chain
-
     names = (
         "vertex 3 at (20.28444235, 5.435199947) (30 degrees), vertex 0 at (0, 0) (30 degrees) and vertex 1 at "
         "(20.28444235, -5.435199947) (30 degrees) "
     )
-    assert str(_unplaceable_chain(_dart(), 6.0, [(0, corner)])) == "the corners at " + names + _REFUSED_TOGETHER.format(
+    assert str(unplaceable_chain(_dart(), 6.0, [(0, corner)])) == "the corners at " + names + _REFUSED_TOGETHER.format(
         sides="7.686533479473213, 21.0, 21.0, 7.686533479473213", middle="ones", at="every corner"
     )
 
@@ -387,19 +360,16 @@ def test_a_run_of_three_is_refused_after_its_pairs(corner):
 def test_a_lone_sharp_corner_or_one_at_exactly_the_sharp_threshold_is_not_decided_jointly(monkeypatch):
     """A sharp corner whose neighbours are not sharp is no run (nothing decided jointly); a pair whose wider corner is
     exactly SHARP_CORNER is not sharp (strict), with the threshold moved onto the pair triangle's 29.4 degrees."""
-
-    assert separation._unplaceable_chain(as_polygon([[0.0, 0.0], [5.0, 0.0], [4.0, 3.0]]), 1.0, [(0, 0)]) is None
+    assert separation.unplaceable_chain(as_polygon([[0.0, 0.0], [5.0, 0.0], [4.0, 3.0]]), 1.0, [(0, 0)]) is None
     poly = as_polygon(_PAIR_TRIANGLE, 6.0)
     monkeypatch.setattr(equimesh.planar.boundary.sides, "SHARP_CORNER", poly.rings[0].inner_angle(0))
     monkeypatch.setattr(separation, "SHARP_CORNER", poly.rings[0].inner_angle(0))
-    assert separation._unplaceable_chain(poly, 6.0, [(0, 0)]) is None
+    assert separation.unplaceable_chain(poly, 6.0, [(0, 0)]) is None
 
 
 def test_the_joint_refusal_reads_each_corners_visible_radii_in_side_order(monkeypatch):
     """Each corner of the run gets the radii seen in P grown by REL_TOL l for its sides (leaving, arriving), passed to
     the proof per corner as (T_j, T_(j+1)); stand-ins record them and refute nothing."""
-    from equimesh.planar.boundary import chain as _coupled
-
     poly, seen, decided = _dart(), [], []
     lp = poly.local_length(6.0)
 
@@ -408,9 +378,9 @@ def test_the_joint_refusal_reads_each_corners_visible_radii_in_side_order(monkey
         seen.append((c, tuple(sides)))
         return 10.0 * c + 1.0, 10.0 * c + 2.0
 
-    monkeypatch.setattr(equimesh.planar.boundary.separation, "_visible_radii", radii)
-    monkeypatch.setattr(_coupled, "chain_unplaceable", lambda *args: decided.append(args) and False)
-    assert separation._unplaceable_chain(poly, 6.0, [(0, 0)]) is None
+    monkeypatch.setattr(equimesh.planar.boundary.separation, "visible_radii", radii)
+    monkeypatch.setattr(chain, "chain_unplaceable", lambda *args: decided.append(args) and False)
+    assert separation.unplaceable_chain(poly, 6.0, [(0, 0)]) is None
     edges = tuple(poly.rings[0].local_edge_lengths[[2, 3, 0, 1]])  # T_0 .. T_3 of the run 3, 0, 1
     assert seen[-3:] == [(3, (edges[1], edges[0])), (0, (edges[2], edges[1])), (1, (edges[3], edges[2]))]
     assert decided[-1][1:] == (edges, lp, (32.0, 31.0, 2.0, 1.0, 12.0, 11.0))
@@ -419,10 +389,10 @@ def test_the_joint_refusal_reads_each_corners_visible_radii_in_side_order(monkey
 def first_corner(vertices, l):
     """The polygon and its first corner ``(ring, i, theta, leaving, arriving)`` (local lengths)."""
     poly = as_polygon(np.array(vertices), l)
-    return poly, next(separation._corners(poly))
+    return poly, next(separation.corners(poly))
 
 
-def chord(a, b, theta):
+def law_of_cosines(a, b, theta):
     """Law of cosines: points ``a`` and ``b`` from a corner of ``theta`` radians, on its two sides."""
     return math.sqrt(max(a * a + b * b - 2.0 * a * b * math.cos(theta), 0.0))
 
@@ -437,9 +407,9 @@ def test_unmeshable_corner_exactly_at_the_threshold(beta, refused):
         [(0.0, 0.0), (beta, 0.0), (10 * l * math.cos(a), 10 * l * math.sin(a))], l
     )
     lp = poly.local_length(l)
-    far = max(chord(r, leaving, theta) for r in ((1.0 - REL_TOL) * lp, 2.0 * lp * (1.0 + REL_TOL)))
+    far = max(law_of_cosines(r, leaving, theta) for r in ((1.0 - REL_TOL) * lp, 2.0 * lp * (1.0 + REL_TOL)))
     assert (far == (1.0 - REL_TOL) * lp) == (beta == 1.2981954331865397)
-    error = separation._unmeshable_corner(poly, l)
+    error = separation.unmeshable_corner(poly, l)
     assert (error is not None) == refused
     if refused:
         assert str(error).startswith(
@@ -456,8 +426,10 @@ def test_unseparable_corner_exactly_at_the_threshold(a, refused):
     poly, (_, _, theta, leaving, arriving) = first_corner(
         [(0.0, 0.0), (a, 0.0), (2.25 * math.cos(t), 2.25 * math.sin(t))], l
     )
-    assert (chord(leaving, arriving, theta) == (1.0 - REL_TOL) * poly.local_length(l)) == (a == 2.250271104332659)
-    error = separation._unseparable_corner(poly, l)
+    assert (law_of_cosines(leaving, arriving, theta) == (1.0 - REL_TOL) * poly.local_length(l)) == (
+        a == 2.250271104332659
+    )
+    error = separation.unseparable_corner(poly, l)
     assert (error is not None) == refused
     if refused:
         assert str(error).startswith(
@@ -488,10 +460,10 @@ def test_a_segment_leaving_p_by_less_than_rel_tol_l_is_inside(dent, inside):
             InvalidPolygonError, match=r"^the corner at vertex 0 at \(0, 0\) \(30 degrees\) cannot meet"
         ):
             check_boundary_separation(poly, pq, l)
-        assert separation._unseparable_corner(poly, l) is not None
+        assert separation.unseparable_corner(poly, l) is not None
     else:
         assert check_boundary_separation(poly, pq, l) is None
-        assert separation._unseparable_corner(poly, l) is None
+        assert separation.unseparable_corner(poly, l) is None
 
 
 # --------------------------------------------------------------------------- the grid placement's helpers, by hand
@@ -523,8 +495,8 @@ RING_POINTS = Boundary(
     ],
 )
 def test_corners_of_a_pair_are_where_their_edges_meet(pairs, corners):
-    """``_corners_of``: the corners at which two boundary points lie on the two sides, a vertex on both its edges."""
-    assert separation._corners_of(ring_polygon(), RING_POINTS, np.array(pairs)) == corners
+    """``corners_of``: the corners at which two boundary points lie on the two sides, a vertex on both its edges."""
+    assert separation.corners_of(ring_polygon(), RING_POINTS, np.array(pairs)) == corners
 
 
 def pentagon_point(k):
@@ -545,11 +517,11 @@ def pentagon_point(k):
     ],
 )
 def test_separation_error_names_the_corner_of_two_adjacent_sides(edges, start):
-    """``_separation_error``: two points on the sides of one corner (edges 4 and 0 meet at corner 0, the ring wrapping)
+    """``separation_error``: two points on the sides of one corner (edges 4 and 0 meet at corner 0, the ring wrapping)
     name that corner; on sides apart, the neck."""
     poly = ring_polygon()
     points = np.array([(pentagon_point(e) + pentagon_point(e + 1)) / 2.0 for e in edges])
-    error = separation._separation_error(
+    error = separation.separation_error(
         poly, Boundary(points, np.zeros(2, bool), np.array(edges), np.zeros(2, int)), 1.0, 0, 1
     )
     assert str(error).startswith(start)
@@ -609,10 +581,8 @@ def test_unplaceable_corner_goes_past_corners_not_sharp_or_placeable():
     poly = as_polygon(np.array([(0.0, 0.0), (3.45, 0.0), (12.0, 3.0), at(20.0, 3.3)]) * l, l)
     ring = poly.rings[0]
     assert [round(ring.inner_angle(i), 2) for i in range(4)] == [20.0, 160.67, 7.46, 171.88]
-    assert separation._unplaceable_corner(poly, l, [(0, 2)]) is None
-    assert str(separation._unplaceable_corner(poly, l, [(0, 1), (0, 2), (0, 0)])).startswith(
-        "the corner at vertex 0 at"
-    )
+    assert separation.unplaceable_corner(poly, l, [(0, 2)]) is None
+    assert str(separation.unplaceable_corner(poly, l, [(0, 1), (0, 2), (0, 0)])).startswith("the corner at vertex 0 at")
 
 
 def test_unplaceable_chain_asks_each_corner_with_the_previous_and_the_next():
@@ -622,10 +592,10 @@ def test_unplaceable_chain_asks_each_corner_with_the_previous_and_the_next():
     l = 3.0
     poly = as_polygon(np.array([at(29.4, 2.1), (0.0, 0.0), (4.25, 0.0)]) * l, l)
     for corners in ([(0, 1)], [(0, 2)], [(0, 0), (0, 2)]):
-        assert str(separation._unplaceable_chain(poly, l, corners)).startswith(
+        assert str(separation.unplaceable_chain(poly, l, corners)).startswith(
             "the corners at vertex 1 at (0, 0) (29.4 degrees)"
         )
-    assert separation._unplaceable_chain(poly, l, [(0, 0)]) is None
+    assert separation.unplaceable_chain(poly, l, [(0, 0)]) is None
 
 
 def test_unplaceable_chain_passes_over_a_pair_that_can_be_separated():
@@ -633,10 +603,10 @@ def test_unplaceable_chain_passes_over_a_pair_that_can_be_separated():
     with the second it cannot: asked at both barbs, the first pair is passed over and the second refused (pairs are
     decided before runs); asked at the first barb alone, its pairs pass and the run of all three is refused."""
     poly = as_polygon(np.array([(3.7, 0.0), (4.39, 2.27), (0.0, 0.0), (5.12, -0.86)]), 1.0)
-    assert str(separation._unplaceable_chain(poly, 1.0, [(0, 1)])).startswith(
+    assert str(separation.unplaceable_chain(poly, 1.0, [(0, 1)])).startswith(
         "the corners at vertex 1 at (4.39, 2.27) (45.7498 degrees), vertex 2 at (0, 0) (36.8777 degrees) and vertex 3 at"
     )
-    assert str(separation._unplaceable_chain(poly, 1.0, [(0, 1), (0, 3)])).startswith(
+    assert str(separation.unplaceable_chain(poly, 1.0, [(0, 1), (0, 3)])).startswith(
         "the corners at vertex 2 at (0, 0) (36.8777 degrees) and vertex 3 at (5.12, -0.86) (21.6656 degrees) cannot"
     )
 
@@ -661,7 +631,7 @@ def test_unplaceable_chain_passes_over_a_pair_that_can_be_separated():
 def test_unplaceable_chain_checks_each_side_within_its_own_radius(vertices, l, start):
     """Two sharp corners at vertices 3 and 0 whose sides have different lengths, each seen whole from its corner: each
     side is checked up to its own length, and the pair is refused."""
-    assert str(separation._unplaceable_chain(as_polygon(np.array(vertices), l), l, [(0, 0)])).startswith(start)
+    assert str(separation.unplaceable_chain(as_polygon(np.array(vertices), l), l, [(0, 0)])).startswith(start)
 
 
 def test_a_lone_corner_checks_each_side_within_its_own_radius():
@@ -669,8 +639,8 @@ def test_a_lone_corner_checks_each_side_within_its_own_radius():
     leaving side is checked up to 3.11 l, not to the arriving side's 1.15 l."""
     poly = as_polygon(np.array([(0.0, 0.0), (3.11, 0.0), at(19.05, 1.15)]), 1.0)
     lengths = poly.rings[0].local_edge_lengths
-    assert not _corner.corner_unplaceable(math.radians(19.05), (lengths[0], lengths[2]), 1.0, (lengths[0], lengths[2]))
-    assert str(separation._unplaceable_corner(poly, 1.0, [(0, 0)])).startswith(
+    assert not corner.corner_unplaceable(math.radians(19.05), (lengths[0], lengths[2]), 1.0, (lengths[0], lengths[2]))
+    assert str(separation.unplaceable_corner(poly, 1.0, [(0, 0)])).startswith(
         "the corner at vertex 0 at (0, 0) (19.05 degrees)"
     )
 
@@ -685,11 +655,11 @@ def with_dent(vertices, side, dent):
 
 
 def seen_region(monkeypatch, refusal, poly, l):
-    """``refusal(poly, l, [(0, 0)])`` and the grown region it passed to :func:`separation._visible_radii` (the first)."""
-    grown, visible = [], separation._visible_radii
+    """``refusal(poly, l, [(0, 0)])`` and the grown region it passed to :func:`separation.visible_radii` (the first)."""
+    grown, visible = [], separation.visible_radii
     monkeypatch.setattr(
         equimesh.planar.boundary.separation,
-        "_visible_radii",
+        "visible_radii",
         lambda region, *args: grown.append(region) or visible(region, *args),
     )
     return refusal(poly, l, [(0, 0)]), grown[0]
@@ -703,7 +673,7 @@ def test_a_corner_triangle_dented_by_less_than_rel_tol_l_is_seen_whole(dent, cov
     without the dent; a dent of 2e-9 is not."""
     l, vertices = 1.5, np.array([(0.0, 0.0), (3.45, 0.0), at(20.0, 3.3)])
     error, grown = seen_region(
-        monkeypatch, separation._unplaceable_corner, as_polygon(with_dent(vertices * l, 1, dent), l), l
+        monkeypatch, separation.unplaceable_corner, as_polygon(with_dent(vertices * l, 1, dent), l), l
     )
     assert grown.covers(shapely.Point((vertices[1] + vertices[2]) * l / 2.0)) == covered
     assert error is not None or not covered
@@ -717,7 +687,7 @@ def test_a_pair_whose_triangle_is_dented_by_less_than_rel_tol_l_is_seen_whole(de
     l, side = 1.5, 4.03 * math.sin(math.radians(35.4)) / math.sin(math.radians(75.7))
     vertices = np.array([(0.0, 0.0), (4.03, 0.0), at(40.3, side)])
     error, grown = seen_region(
-        monkeypatch, separation._unplaceable_chain, as_polygon(with_dent(vertices * l, 1, dent), l), l
+        monkeypatch, separation.unplaceable_chain, as_polygon(with_dent(vertices * l, 1, dent), l), l
     )
     assert grown.covers(shapely.Point((vertices[1] + vertices[2]) * l / 2.0)) == covered
     assert error is not None or not covered

@@ -15,9 +15,19 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 import equimesh
-from equimesh.planar.boundary import corner as _corner
+from equimesh.planar.boundary import chain, corner
 from equimesh.planar.boundary import sides as boundary_sides
-from equimesh.planar.boundary.sides import side_positions, split_counts
+from equimesh.planar.boundary.sides import (
+    corner_gap,
+    grid_chain,
+    place,
+    side_positions,
+    split_counts,
+    stagger,
+    stagger_count,
+    stagger_reach,
+)
+from equimesh.planar.boundary.sides import sharp_run as _run
 from equimesh.planar.polygon import as_polygon
 from equimesh.testing.shapes import sharp_dart
 from equimesh.tolerance import REL_TOL, at_least
@@ -58,8 +68,6 @@ def test_split_counts_by_hand(l, spacing, length, parts):
 def test_step2_parts_stay_in_l_2l_on_sides_too_short_for_their_stagger(ring, spacing):
     """docs/proofs.md, "Sharp corners": whatever the corner angles and however short the sides (down to l),
     every side's Step 2 points start at its first corner, increase, and leave parts in [l, 2l]."""
-    from equimesh.planar.boundary.sides import side_positions
-
     lengths, angles = map(list, zip(*ring))
     for length, (num, den) in zip(lengths, side_positions(lengths, angles, 1.0, spacing)):
         at = np.append(num / den * length, length)
@@ -76,9 +84,7 @@ def test_step2_parts_stay_in_l_2l_on_sides_too_short_for_their_stagger(ring, spa
 def test_the_closest_pair_of_a_corner_pairs_each_point_with_the_next_one_across(angle, parts_a, parts_b):
     """The pairing lemma (docs/proofs.md, "Sharp corners"): the closest pair of points on the two sides of a
     corner pairs some point with the first point of the other side at least as far from the corner; and
-    ``_corner_gap`` is that distance whenever it is below l."""
-    from equimesh.planar.boundary.sides import _corner_gap
-
+    ``corner_gap`` is that distance whenever it is below l."""
     a, b = np.cumsum(parts_a), np.cumsum(parts_b)
     t = math.radians(angle)
 
@@ -92,7 +98,7 @@ def test_the_closest_pair_of_a_corner_pairs_each_point_with_the_next_one_across(
         paired = min(paired, chord(p[j < len(q)], q[j[j < len(q)]]).min(initial=np.inf))
     assert paired == pytest.approx(nearest, rel=1e-12)
     sides = [(np.append(0.0, a[:-1]) / a[-1], 1.0), (np.append(0.0, b[-1] - b[::-1][1:]) / b[-1], 1.0)]
-    gap = _corner_gap(sides, np.array([a[-1], b[-1]]), [angle, 360.0 - angle], 1.0, 0)
+    gap = corner_gap(sides, np.array([a[-1], b[-1]]), [angle, 360.0 - angle], 1.0, 0)
     assert min(gap, 1.0) == pytest.approx(min(nearest, 1.0), rel=1e-9)
 
 
@@ -113,8 +119,6 @@ def test_the_closest_pair_of_a_corner_pairs_each_point_with_the_next_one_across(
 )
 def teststagger_count_and_reach_by_hand(angle, count):
     """K = ceil(1 / sin angle) staggered points below SHARP_CORNER = 60 degrees (up to REL_TOL), K l from the corner."""
-    from equimesh.planar.boundary.sides import stagger_count, stagger_reach
-
     assert stagger_count(angle) == count
     assert stagger_reach(angle, 2.0) == 2.0 * count
 
@@ -142,8 +146,6 @@ BELOW_BOTH = math.degrees(2.0 * math.asin(0.25))
 def test_stagger_by_hand(angle, l, reach, leaving, arriving):
     """``stagger``: the points k l, k = 1 .. min(K, floor(reach / l) + 1), odd k leaving the corner, even k
     arriving, and both where the two points k l are l apart already (2 k sin(angle / 2) >= 1, up to REL_TOL)."""
-    from equimesh.planar.boundary.sides import stagger
-
     assert 4.0 * math.sin(math.radians(AT_BOTH) / 2.0) == 1.0 + REL_TOL
     assert 4.0 * math.sin(math.radians(BELOW_BOTH) / 2.0) < 1.0 + REL_TOL / 2.0
     out = stagger(angle, l, reach)
@@ -167,18 +169,15 @@ def test_stagger_by_hand(angle, l, reach, leaving, arriving):
     ],
 )
 def test_place_drops_the_farthest_staggered_point_until_the_middle_is_l(length, start, end, points, denominator):
-    from equimesh.planar.boundary.sides import _place
 
     l = {20.0: 2.0, 0.75: 0.5}.get(length, 1.0)
-    num, den = _place(length, np.array(start), np.array(end), l, 2.0)
+    num, den = place(length, np.array(start), np.array(end), l, 2.0)
     assert num.tolist() == points and den == denominator
 
 
 def test_side_positions_by_hand():
     """A ring of sides 20, 3, 20 with a 10 degree corner at 0: its stagger (K = 6, reach 20) leaving
     [1, 3, 5, 6], arriving [2, 4, 6], the rest in parts of 2 (l = 1) or 4 (l = 2); the short side alone."""
-    from equimesh.planar.boundary.sides import side_positions
-
     for l, expected in [
         (
             1.0,
@@ -197,28 +196,24 @@ def test_side_positions_by_hand():
 def test_corner_gap_reads_only_the_points_within_k_l():
     """A 10 degree corner (K = 6) at l = 2: points at 2 and 6 on one side, 4 on the other, within K l = 12, give the
     gap |c(2) - c(4)|; points from K l on are at least l from the whole other side and are left out."""
-    from equimesh.planar.boundary.sides import _corner_gap
-
     lengths, angles = np.array([20.0, 20.0]), [10.0, 350.0]
     sides = [(np.array([0.0, 2.0, 6.0]), 20.0), (np.array([0.0, 16.0]), 20.0)]
     expected = math.sqrt(4.0 + 16.0 - 16.0 * math.cos(math.radians(10.0)))
-    assert _corner_gap(sides, lengths, angles, 2.0, 0) == pytest.approx(expected, rel=1e-12)
+    assert corner_gap(sides, lengths, angles, 2.0, 0) == pytest.approx(expected, rel=1e-12)
     far = [(np.array([0.0, 12.0]), 20.0), (np.array([0.0, 8.0]), 20.0)]  # 12 = K l on one side, 12 on the other
-    assert _corner_gap(far, lengths, angles, 2.0, 0) == math.inf
-    assert _corner_gap(sides, lengths, [60.0, 300.0], 2.0, 0) == math.inf  # not sharp
+    assert corner_gap(far, lengths, angles, 2.0, 0) == math.inf
+    assert corner_gap(sides, lengths, [60.0, 300.0], 2.0, 0) == math.inf  # not sharp
 
 
 def _fingerprint(lengths, angles, l, spacing):
     """``side_positions`` of a ring, its parts checked in [l, 2l]: (number of points, sum of i times the i-th position)."""
-    from equimesh.planar.boundary.sides import side_positions
-
-    at = []
+    points = []
     for length, (num, den) in zip(lengths, side_positions(lengths, angles, l, spacing)):
         ends = np.append(num / den * length, length)
         assert np.all(np.diff(ends) >= (1.0 - 1e-9) * l) and np.all(np.diff(ends) <= (2.0 + 1e-9) * l)
-        at.extend(ends[:-1])
-    return len(at), math.fsum(
-        float(x) * k for k, x in enumerate(np.round(at, 9), start=1)
+        points.extend(ends[:-1])
+    return len(points), math.fsum(
+        float(x) * k for k, x in enumerate(np.round(points, 9), start=1)
     )  # exactly rounded: no BLAS order
 
 
@@ -265,7 +260,7 @@ def test_short_side_search_on_rings_where_each_step_matters(ring, grid, monkeypa
     then with it."""
     lengths, angles, l, spacing, pinned = ring
     with monkeypatch.context() as patch:
-        patch.setattr(equimesh.planar.boundary.sides, "_place_corners_on_a_grid", lambda *args: None)
+        patch.setattr(equimesh.planar.boundary.sides, "place_corners_on_a_grid", lambda *args: None)
         assert _fingerprint(np.array(lengths) * l, angles, l, spacing) == pinned
     assert _fingerprint(np.array(lengths) * l, angles, l, spacing) == (grid or pinned)
 
@@ -274,8 +269,6 @@ def test_a_run_of_sharp_corners_goes_on_through_coupling_sides_only():
     """The dart of 30 degrees (corners 30, 30, 270, 30; sides 3.5, 1.28, 1.28, 3.5): the run through the tip is
     barb, tip, barb (3, 0, 1), from any of them.  With a tip side longer
     than 2 l + 2 l + 4 l (K = 2) it is cut there."""
-    from equimesh.planar.boundary.sides import sharp_run as _run
-
     angles, lengths = [30.0, 30.0, 270.0, 30.0], [3.5, 1.28, 1.28, 3.5]
     for c in (3, 0, 1):
         assert _run(lengths, angles, 1.0, c) == [3, 0, 1]
@@ -289,21 +282,18 @@ def test_a_pair_placed_jointly_takes_the_shared_sides_points_and_completes_the_o
     """The triangle of 29.4 and 23.07 degrees on a base of 5.25 l (placeable together): the base takes place_chain's
     points of T_1, the other two sides are completed; every part in [l, 2l], both corners' sides l apart.  A run with
     a corner that is not sharp is not placed."""
-    from equimesh.planar.boundary import chain as _coupled
-    from equimesh.planar.boundary.sides import _corner_gap, _grid_chain, side_positions
-
     apex = 5.25 * math.sin(math.radians(23.069711979788835)) / math.sin(math.radians(180.0 - 29.4 - 23.069711979788835))
     ring = as_polygon([[0.0, 0.0], [5.25, 0.0], at(29.4, apex)], 1.0).rings[0]
     lengths, angles = ring.local_edge_lengths, [ring.inner_angle(i) for i in range(3)]
-    found = _coupled.place_chain(tuple(math.radians(a) for a in angles[:2]), tuple(lengths[[2, 0, 1]]), 1.0)
+    found = chain.place_chain(tuple(math.radians(a) for a in angles[:2]), tuple(lengths[[2, 0, 1]]), 1.0)
     sides = side_positions(lengths, angles, 1.0)
-    trial = _grid_chain(sides, lengths, angles, 1.0, 2.0, [0, 1])
+    trial = grid_chain(sides, lengths, angles, 1.0, 2.0, [0, 1])
     assert trial[0][1] == lengths[0] and np.array_equal(trial[0][0], np.concatenate([[0.0], found[1][:-1]]))
     for (num, den), length in zip(trial, lengths):
         parts = np.diff(np.append(num / den * length, length))
         assert np.all(parts >= (1.0 - REL_TOL)) and np.all(parts <= 2.0 * (1.0 + REL_TOL))
-    assert min(_corner_gap(trial, lengths, angles, 1.0, c) for c in (0, 1)) >= 1.0 - REL_TOL
-    assert _grid_chain(sides, lengths, angles, 1.0, 2.0, [1, 2]) is None
+    assert min(corner_gap(trial, lengths, angles, 1.0, c) for c in (0, 1)) >= 1.0 - REL_TOL
+    assert grid_chain(sides, lengths, angles, 1.0, 2.0, [1, 2]) is None
 
 
 @pytest.mark.parametrize(
@@ -317,12 +307,10 @@ def test_a_long_last_side_placed_jointly_keeps_its_points_beyond_the_cut(angles,
     """The side leaving the run's last corner is 10 l long with uneven points (parts 1, 1.5, 2, 2, 2, 1.5 l from that
     corner): place_chain cuts it past K l, its own points at least l beyond the cut are kept, read from that corner
     (the middle is split again), for a pair and for a run of three."""
-    from equimesh.planar.boundary.sides import _grid_chain
-
     far = run[-1]
     sides = [(np.arange(math.ceil(x / 2.0)) * (x / math.ceil(x / 2.0)), x) for x in lengths]
     sides[far] = np.array([0.0, 1.0, 2.5, 4.5, 6.5, 8.5]), 10.0
-    num, den = _grid_chain(sides, np.array(lengths), angles, 1.0, 2.0, run)[far]
+    num, den = grid_chain(sides, np.array(lengths), angles, 1.0, 2.0, run)[far]
     assert den == 10.0 and num[0] == 0.0 and set(num[-3:]) == {4.5, 6.5, 8.5}
     assert np.all(np.diff(np.append(num, den)) >= 1.0 - REL_TOL) and np.all(
         np.diff(np.append(num, den)) <= 2.0 + REL_TOL
@@ -348,8 +336,8 @@ def test_from_corner_measures_a_side_from_either_end():
     """Side 1 (5 long, points at 0, 1 and 3 of it) measured from corner 1, which it leaves, and from corner 2, where it
     arrives; the far end is included."""
     sides, lengths = [None, (np.array([0.0, 1.0, 3.0]), 5.0), None], [4.0, 5.0, 6.0]
-    np.testing.assert_array_equal(boundary_sides._from_corner(sides, lengths, 1, 1), [1.0, 3.0, 5.0])
-    np.testing.assert_array_equal(boundary_sides._from_corner(sides, lengths, 2, 1), [2.0, 4.0, 5.0])
+    np.testing.assert_array_equal(boundary_sides.from_corner(sides, lengths, 1, 1), [1.0, 3.0, 5.0])
+    np.testing.assert_array_equal(boundary_sides.from_corner(sides, lengths, 2, 1), [2.0, 4.0, 5.0])
 
 
 @pytest.mark.parametrize(
@@ -360,7 +348,7 @@ def test_grid_side_keeps_the_points_at_least_l_past_the_cut(leaving, expected):
     2.5, 3.5, 5 and 7, those at least l past the cut are kept, 3.5 (exactly l past it) included, and the middle
     between, exactly l, is one part.  Positions are from the side's first corner: the corner itself if it leaves
     it, the far end if it arrives."""
-    numerators, length = boundary_sides._grid_side(
+    numerators, length = boundary_sides.grid_side(
         9.0, np.array([1.0, 2.5]), np.array([1.5, 2.5, 3.5, 5.0, 7.0, 9.0]), leaving, 1.0, 1.5
     )
     assert length == 9.0
@@ -370,7 +358,7 @@ def test_grid_side_keeps_the_points_at_least_l_past_the_cut(leaving, expected):
 def test_grid_side_drops_the_points_within_l_of_the_cut():
     """A side 10 long cut at 6: its current point 5.5, before the cut but less than l from it, is not kept (else the
     middle would be too short and the grid's own last point dropped); 7.5 is."""
-    numerators, _ = boundary_sides._grid_side(
+    numerators, _ = boundary_sides.grid_side(
         10.0, np.array([1.5, 3.0, 4.5, 6.0]), np.array([1.0, 2.5, 4.0, 5.5, 7.5, 10.0]), True, 1.0, 1.5
     )
     np.testing.assert_array_equal(numerators, [0.0, 1.5, 3.0, 4.5, 6.0, 7.5])
@@ -379,7 +367,7 @@ def test_grid_side_drops_the_points_within_l_of_the_cut():
 def test_grid_side_ending_at_the_far_end_is_the_grid_points():
     """Points ending at the side's far end are the side (from its first corner either way)."""
     for leaving, expected in ((True, [0.0, 1.5, 3.0]), (False, [0.0, 1.0, 2.5])):
-        numerators, length = boundary_sides._grid_side(
+        numerators, length = boundary_sides.grid_side(
             4.0, np.array([1.5, 3.0, 4.0]), np.array([4.0]), leaving, 1.0, 1.5
         )
         np.testing.assert_array_equal(numerators, expected)
@@ -412,16 +400,16 @@ def positions(sides):
     ],
 )
 def test_grid_chain_places_the_three_sides_of_two_corners(last, placed):
-    """_grid_chain at corners 0 and 1: side 3 (arriving at 0, ``last`` long), 0 (shared) and 1 (leaving 1) placed
+    """grid_chain at corners 0 and 1: side 3 (arriving at 0, ``last`` long), 0 (shared) and 1 (leaving 1) placed
     jointly, a long side kept past its cut from where it was; both corners then l apart, side 2 untouched; None when
     the next corner is not sharp."""
     lengths = np.append(GRID_LENGTHS[:3], last)
     sides = side_positions(lengths, GRID_ANGLES, 1.0, 1.5)
-    trial = boundary_sides._grid_chain(sides, lengths, GRID_ANGLES, 1.0, 1.5, [0, 1])
+    trial = boundary_sides.grid_chain(sides, lengths, GRID_ANGLES, 1.0, 1.5, [0, 1])
     assert positions(trial) == placed
     assert trial[2] is sides[2]
-    assert all(at_least(boundary_sides._corner_gap(trial, lengths, GRID_ANGLES, 1.0, c), 1.0) for c in (0, 1))
-    assert boundary_sides._grid_chain(sides, lengths, GRID_ANGLES, 1.0, 1.5, [1, 2]) is None
+    assert all(at_least(boundary_sides.corner_gap(trial, lengths, GRID_ANGLES, 1.0, c), 1.0) for c in (0, 1))
+    assert boundary_sides.grid_chain(sides, lengths, GRID_ANGLES, 1.0, 1.5, [1, 2]) is None
 
 
 @pytest.mark.parametrize(
@@ -433,10 +421,10 @@ def test_grid_chain_places_the_three_sides_of_two_corners(last, placed):
     ],
 )
 def test_grid_sides_places_a_corners_two_sides_keeping_those_asked(keep, first, last):
-    """_grid_sides at corner 0: its leaving side 0 and arriving side 3 placed on the grid, a side flagged in ``keep``
+    """grid_sides at corner 0: its leaving side 0 and arriving side 3 placed on the grid, a side flagged in ``keep``
     passed as it is (up to the cut past K l of a long side); the other sides untouched."""
     sides = side_positions(GRID_LENGTHS, GRID_ANGLES, 1.0, 1.5)
-    trial = boundary_sides._grid_sides(sides, GRID_LENGTHS, GRID_ANGLES, 1.0, 1.5, 0, keep)
+    trial = boundary_sides.grid_sides(sides, GRID_LENGTHS, GRID_ANGLES, 1.0, 1.5, 0, keep)
     assert positions(trial) == [first, positions(sides)[1], positions(sides)[2], last]
     if keep[0]:
         assert positions(trial)[0] == positions(sides)[0]
@@ -451,15 +439,15 @@ def test_place_corners_on_a_grid_tries_the_trials_in_order(monkeypatch):
     previous corner too).  (The grid placements are stubbed: each returns its input, and no trial separates anything.)"""
     calls, angles = [], [29.4, 23.0, 100.0, 20.0, 15.0]
     sides = side_positions(np.full(5, 4.0), angles, 1.0, 1.5)
-    monkeypatch.setattr(_corner, "corner_unplaceable", lambda *args: False)
-    monkeypatch.setattr(equimesh.planar.boundary.sides, "_corner_gap", lambda *args: 0.0)
+    monkeypatch.setattr(corner, "corner_unplaceable", lambda *args: False)
+    monkeypatch.setattr(equimesh.planar.boundary.sides, "corner_gap", lambda *args: 0.0)
     monkeypatch.setattr(
-        equimesh.planar.boundary.sides, "_grid_sides", lambda sides, *args: calls.append((args[-2], args[-1])) or sides
+        equimesh.planar.boundary.sides, "grid_sides", lambda sides, *args: calls.append((args[-2], args[-1])) or sides
     )
     monkeypatch.setattr(
-        equimesh.planar.boundary.sides, "_grid_chain", lambda sides, *args: calls.append((args[-1], "chain")) or sides
+        equimesh.planar.boundary.sides, "grid_chain", lambda sides, *args: calls.append((args[-1], "chain")) or sides
     )
-    boundary_sides._place_corners_on_a_grid(sides, np.full(5, 4.0), angles, 1.0, 1.5)
+    boundary_sides.place_corners_on_a_grid(sides, np.full(5, 4.0), angles, 1.0, 1.5)
     free, leaving, arriving = (False, False), (True, False), (False, True)
 
     def trials(c, after, before):
@@ -494,16 +482,16 @@ def test_place_corners_on_a_grid_checks_every_corner_a_trial_touched(monkeypatch
     corners and one neighbour on each side (here the first trial that returns anything, the joint one)."""
     checked = []
     sides = side_positions(np.full(5, 4.0), [20.0] * 5, 1.0, 1.5)
-    monkeypatch.setattr(_corner, "corner_unplaceable", lambda *args: False)
+    monkeypatch.setattr(corner, "corner_unplaceable", lambda *args: False)
     monkeypatch.setattr(
         equimesh.planar.boundary.sides,
-        "_corner_gap",
+        "corner_gap",
         lambda trial, *args: 0.0 if trial is sides else checked.append(args[-1]),
     )
-    monkeypatch.setattr(equimesh.planar.boundary.sides, "_grid_sides", lambda *args: None)
-    monkeypatch.setattr(equimesh.planar.boundary.sides, "_grid_chain", lambda trial, *args: list(trial))
+    monkeypatch.setattr(equimesh.planar.boundary.sides, "grid_sides", lambda *args: None)
+    monkeypatch.setattr(equimesh.planar.boundary.sides, "grid_chain", lambda trial, *args: list(trial))
     monkeypatch.setattr(boundary_sides, "at_least", lambda value, l: value is None)
-    boundary_sides._place_corners_on_a_grid(sides, np.full(5, 4.0), [20.0] * 5, 1.0, 1.5)
+    boundary_sides.place_corners_on_a_grid(sides, np.full(5, 4.0), [20.0] * 5, 1.0, 1.5)
     assert [set(checked[k : k + 4]) for k in range(0, 20, 4)] == [
         {4, 0, 1, 2},
         {0, 1, 2, 3},
@@ -518,15 +506,15 @@ def test_place_corners_on_a_grid_checks_a_lone_corner_and_its_neighbours(monkeyp
     checked, each once."""
     checked = []
     sides = side_positions(np.full(5, 4.0), [20.0] * 5, 1.0, 1.5)
-    monkeypatch.setattr(_corner, "corner_unplaceable", lambda *args: False)
+    monkeypatch.setattr(corner, "corner_unplaceable", lambda *args: False)
     monkeypatch.setattr(
         equimesh.planar.boundary.sides,
-        "_corner_gap",
+        "corner_gap",
         lambda trial, *args: 0.0 if trial is sides else checked.append(args[-1]),
     )
-    monkeypatch.setattr(equimesh.planar.boundary.sides, "_grid_sides", lambda trial, *args: list(trial))
+    monkeypatch.setattr(equimesh.planar.boundary.sides, "grid_sides", lambda trial, *args: list(trial))
     monkeypatch.setattr(boundary_sides, "at_least", lambda value, l: value is None)
-    boundary_sides._place_corners_on_a_grid(sides, np.full(5, 4.0), [20.0] * 5, 1.0, 1.5)
+    boundary_sides.place_corners_on_a_grid(sides, np.full(5, 4.0), [20.0] * 5, 1.0, 1.5)
     assert sorted(checked[:3]) == [0, 1, 4] and [sorted(checked[k : k + 3]) for k in range(3, 15, 3)] == [
         [0, 1, 2],
         [1, 2, 3],
@@ -539,11 +527,11 @@ def test_a_dart_separated_only_by_its_run_of_three_is_meshed(monkeypatch):
     """A dart (tip 23.97 degrees, barbs 30.55 and 38.91, sides 4.42 l) whose three sharp corners no single corner or
     pair trial separates: the trial of the whole run places it (a chain of three returned), and it is meshed with
     every edge in [l, 2l] (found by a random search over darts; without the run trial it is refused)."""
-    placed, chain = [], boundary_sides._grid_chain
+    placed, real = [], boundary_sides.grid_chain
     monkeypatch.setattr(
         equimesh.planar.boundary.sides,
-        "_grid_chain",
-        lambda *args: placed.append((len(args[-1]), chain(*args))) or placed[-1][1],
+        "grid_chain",
+        lambda *args: placed.append((len(args[-1]), real(*args))) or placed[-1][1],
     )
     dart = sharp_dart(23.97192472430486, (30.54743423844858, 38.9057900966436), 4.424429730465021)
     mesh = equimesh.uniform_triangulation(dart, 1.0)

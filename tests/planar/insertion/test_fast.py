@@ -58,7 +58,7 @@ triangles = st.lists(st.tuples(finite, finite), min_size=3, max_size=3).filter(l
 def test_circumcircle_is_the_reference_bit_for_bit(triangle, order):
     """Centre and radius are :func:`circumcenters` of the vertices in index order; g is their centroid."""
     P = np.array(triangle)
-    cx, cy, r, gx, gy = fast._circumcircle(P, *order)
+    cx, cy, r, gx, gy = fast.circumcircle(P, *order)
     centre, radius = circumcenters(P[0], P[1], P[2])
     assert [cx, cy, r] == [*centre, radius]
     assert (gx, gy) == tuple((P[0] + P[1] + P[2]) / 3.0)
@@ -67,18 +67,18 @@ def test_circumcircle_is_the_reference_bit_for_bit(triangle, order):
 @given(st.tuples(finite, finite), st.tuples(finite, finite), st.tuples(finite, finite))
 def test_point_segment_distance_is_the_reference_bit_for_bit(x, a, b):
     expected = point_segment_distance(np.array(x), np.array(a), np.array(b))
-    assert fast._point_segment_distance(*x, *a, *b) == expected
+    assert fast.point_segment_distance(*x, *a, *b) == expected
     P = np.array([a, b])
-    assert fast._edge_distance(P, 0, 1, *x) == expected
+    assert fast.edge_distance(P, 0, 1, *x) == expected
 
 
 def test_point_segment_distance_by_hand():
     """Beyond either end the distance is to the end; over the segment, to the line; a point segment is a point."""
-    assert fast._point_segment_distance(5.0, 4.0, 0.0, 0.0, 2.0, 0.0) == 5.0
-    assert fast._point_segment_distance(-3.0, 4.0, 0.0, 0.0, 2.0, 0.0) == 5.0
-    assert fast._point_segment_distance(1.5, -2.0, 0.0, 0.0, 2.0, 0.0) == 2.0
-    assert fast._point_segment_distance(4.0, 5.0, 1.0, 1.0, 1.0, 1.0) == 5.0
-    assert fast._point_segment_distance(0.25, 1.0, 0.0, 0.0, 0.5, 0.0) == 1.0  # a segment shorter than 1
+    assert fast.point_segment_distance(5.0, 4.0, 0.0, 0.0, 2.0, 0.0) == 5.0
+    assert fast.point_segment_distance(-3.0, 4.0, 0.0, 0.0, 2.0, 0.0) == 5.0
+    assert fast.point_segment_distance(1.5, -2.0, 0.0, 0.0, 2.0, 0.0) == 2.0
+    assert fast.point_segment_distance(4.0, 5.0, 1.0, 1.0, 1.0, 1.0) == 5.0
+    assert fast.point_segment_distance(0.25, 1.0, 0.0, 0.0, 0.5, 0.0) == 1.0  # a segment shorter than 1
 
 
 # --------------------------------------------------------------------------- the heap
@@ -95,14 +95,14 @@ def _heap(keys):
     HK, HI = np.empty((len(keys) + 1, 3)), np.empty((len(keys) + 1, 3), dtype=np.int64)
     n = 0
     for i, (value, x, y) in enumerate(keys):
-        n = fast._push(HK, HI, n, value, x, y, i, 10 + i, i % 3 - 1)
+        n = fast.push(HK, HI, n, value, x, y, i, 10 + i, i % 3 - 1)
     return HK, HI, n
 
 
 def _pop_all(HK, HI, n):
     out = []
     while n:
-        n = fast._pop(HK, HI, n)
+        n = fast.pop(HK, HI, n)
         out.append((-HK[n, 0], HK[n, 1], HK[n, 2], *HI[n]))
     return out
 
@@ -118,11 +118,11 @@ def test_heap_pops_the_largest_value_then_smallest_x_then_y(keys):
 
 
 def test_before_is_lexicographic():
-    assert fast._before(-2.0, 5.0, 5.0, -1.0, 0.0, 0.0)
-    assert not fast._before(-1.0, 0.0, 0.0, -2.0, 5.0, 5.0)
-    assert fast._before(-1.0, 0.0, 5.0, -1.0, 1.0, 0.0) and not fast._before(-1.0, 1.0, 0.0, -1.0, 0.0, 5.0)
-    assert fast._before(-1.0, 1.0, 0.0, -1.0, 1.0, 1.0) and not fast._before(-1.0, 1.0, 1.0, -1.0, 1.0, 0.0)
-    assert not fast._before(-1.0, 1.0, 1.0, -1.0, 1.0, 1.0)
+    assert fast.before(-2.0, 5.0, 5.0, -1.0, 0.0, 0.0)
+    assert not fast.before(-1.0, 0.0, 0.0, -2.0, 5.0, 5.0)
+    assert fast.before(-1.0, 0.0, 5.0, -1.0, 1.0, 0.0) and not fast.before(-1.0, 1.0, 0.0, -1.0, 0.0, 5.0)
+    assert fast.before(-1.0, 1.0, 0.0, -1.0, 1.0, 1.0) and not fast.before(-1.0, 1.0, 1.0, -1.0, 1.0, 0.0)
+    assert not fast.before(-1.0, 1.0, 1.0, -1.0, 1.0, 1.0)
 
 
 @given(heap_keys, st.data())
@@ -132,11 +132,11 @@ def test_compact_keeps_exactly_the_live_entries_in_heap_order(keys, data):
     ver = np.array([10 + i + data.draw(st.sampled_from([0, 0, 1])) for i in range(len(keys))], dtype=np.int64)
     salive = np.array([data.draw(st.booleans()), data.draw(st.booleans())])
     live = [i for i in range(len(keys)) if ver[i] == 10 + i and (i % 3 - 1 < 0 or salive[i % 3 - 1])]
-    k = fast._compact(HK, HI, n, ver, salive)
+    k = fast.compact(HK, HI, n, ver, salive)
     assert k == len(live)
     assert sorted(e[3] for e in _pop_all(HK, HI, k)) == live
     HK, HI, n = _heap(keys)
-    k = fast._compact(HK, HI, n, ver, salive)
+    k = fast.compact(HK, HI, n, ver, salive)
     popped = _pop_all(HK, HI, k)
     assert [e[:3] for e in popped] == sorted((keys[i] for i in live), key=lambda e: (-e[0], e[1], e[2]))
 
@@ -150,7 +150,7 @@ def test_room_makes_room_and_keeps_the_live_entries_in_heap_order(keys, need, da
     salive = np.array([data.draw(st.booleans()), data.draw(st.booleans())])
     live = [i for i in range(len(keys)) if ver[i] == 10 + i and (i % 3 - 1 < 0 or salive[i % 3 - 1])]
     room = n + need <= len(HK)
-    HK, HI, k = fast._room(HK, HI, n, need, ver, salive)
+    HK, HI, k = fast.room(HK, HI, n, need, ver, salive)
     assert len(HK) == len(HI) >= k + need
     popped = _pop_all(HK, HI, k)
     assert sorted(e[3] for e in popped) == (list(range(n)) if room else live)
@@ -159,16 +159,16 @@ def test_room_makes_room_and_keeps_the_live_entries_in_heap_order(keys, need, da
 
 def test_grown_pads_with_zeros():
     a = np.array([[1, 2], [3, 4]], dtype=np.int64)
-    g = fast._grown(a, 5)
+    g = fast.grown(a, 5)
     assert g.dtype == a.dtype and g.tolist() == [[1, 2], [3, 4], [0, 0], [0, 0], [0, 0]]
-    assert fast._grown(np.array([1.5]), 3).tolist() == [1.5, 0.0, 0.0]
+    assert fast.grown(np.array([1.5]), 3).tolist() == [1.5, 0.0, 0.0]
 
 
 @pytest.mark.parametrize("i, j", [(0, 1), (1, 0), (2, 2)])
 def test_swap_exchanges_two_rows(i, j):
     HK = np.arange(9.0).reshape(3, 3)
     HI = np.arange(9).reshape(3, 3)
-    fast._swap(HK, HI, i, j)
+    fast.swap(HK, HI, i, j)
     order = list(range(3))
     order[i], order[j] = order[j], order[i]
     assert HK.tolist() == np.arange(9.0).reshape(3, 3)[order].tolist()
@@ -185,18 +185,18 @@ def _assert_candidates(P, V, SA, SB, l):
     N, S, _ = adjacency(V, SA, SB, len(P))
     segments = np.column_stack([SA, SB])
     salive, alive = np.ones(len(SA), dtype=np.bool_), np.ones(len(V), dtype=np.bool_)
-    lim, seen = fast._limits(l), np.empty(fast._NEAR_TRIANGLES, dtype=np.int64)
+    lim, seen = fast.limits(l), np.empty(fast.NEAR_TRIANGLES, dtype=np.int64)
     centres, radii = reference.circle_candidates(P, V, segments, l)
     listed = {(x, y): r for (x, y), r in zip(centres.tolist(), radii.tolist())}
     HK, HI = np.empty((4 * len(V), 3)), np.empty((4 * len(V), 3), dtype=np.int64)
     nh = 0
     for t in range(len(V)):
-        r, cx, cy, where = fast._visible_circumcentre(P, V, N, S, SA, SB, salive, len(SA), alive, len(V), t, lim, seen)
+        r, cx, cy, where = fast.visible_circumcentre(P, V, N, S, SA, SB, salive, len(SA), alive, len(V), t, lim, seen)
         assert (r >= 0.0) == ((cx, cy) in listed)
         if r >= 0.0:
             assert r == listed[(cx, cy)] and contains(P, V, where, cx, cy)
-        assert fast._visible_circumcentre(P, V, N, S, SA, SB, salive, len(SA), alive, len(V), t, lim, seen[:1])[0] == r
-        nh = fast._push_candidates(
+        assert fast.visible_circumcentre(P, V, N, S, SA, SB, salive, len(SA), alive, len(V), t, lim, seen[:1])[0] == r
+        nh = fast.push_candidates(
             P, V, N, S, SA, SB, salive, len(SA), alive, np.arange(len(V)), len(V), t, lim, seen, HK, HI, nh
         )
     mids, values, split = reference.midpoint_candidates(P, V, segments, l)
@@ -211,7 +211,7 @@ def _assert_candidates(P, V, SA, SB, l):
 
 @given(square_rings(), st.floats(0.3, 2.0), st.data())
 def test_candidates_are_the_reference_candidates(ring, l, data):
-    """:func:`_assert_candidates`; and ``_gap`` is the distance to the nearest constraint whenever it is at most
+    """:func:`_assert_candidates`; and ``constraint_gap`` is the distance to the nearest constraint whenever it is at most
     half the search reach, also when the search gives up (a buffer of one triangle) and measures every constraint.
     """
     P, V, SA, SB = ring
@@ -219,15 +219,15 @@ def test_candidates_are_the_reference_candidates(ring, l, data):
     N, S, _ = adjacency(V, SA, SB, len(P))
     salive, lim, seen = (
         np.ones(len(SA), dtype=np.bool_),
-        fast._limits(l),
-        np.empty(fast._NEAR_TRIANGLES, dtype=np.int64),
+        fast.limits(l),
+        np.empty(fast.NEAR_TRIANGLES, dtype=np.int64),
     )
     x, y = data.draw(st.tuples(st.floats(0.0, 6.0), st.floats(0.0, 6.0)))
     t = locate(P, V, N, np.ones(len(V), dtype=np.bool_), len(V), 0, x, y, len(V) + 1)
     if t >= 0:
-        nearest = min(fast._point_segment_distance(x, y, *P[a], *P[b]) for a, b in zip(SA, SB))
+        nearest = min(fast.point_segment_distance(x, y, *P[a], *P[b]) for a, b in zip(SA, SB))
         for reach, buffer in ((lim[4], seen), (lim[4], seen[:1]), (0.0, seen)):
-            gap = fast._gap(P, V, N, S, SA, SB, salive, len(SA), t, x, y, reach, buffer)
+            gap = fast.constraint_gap(P, V, N, S, SA, SB, salive, len(SA), t, x, y, reach, buffer)
             assert gap >= nearest and (gap == nearest or nearest > reach / 2.0)
 
 
@@ -243,8 +243,8 @@ def test_a_circumcentre_the_walks_cannot_reach_is_found_by_the_scan():
     N, S, _ = adjacency(V, SA, SB, len(P))
     assert walk(P, V, N, S, 0, 0.0, 1.0 / 3.0, 0.0, -4.0, len(V) + 1) == (-1, -1)
     _assert_candidates(P, V, SA, SB, 4.0)
-    status, points, _, _, values = fast._insert_all(P, V, np.column_stack([SA, SB]), fast._limits(4.0))
-    assert status == fast._OK and points[len(P)].tolist() == [0.0, -4.0] and values[0] == 5.0
+    status, points, _, _, values = fast.insert_all(P, V, np.column_stack([SA, SB]), fast.limits(4.0))
+    assert status == fast.OK and points[len(P)].tolist() == [0.0, -4.0] and values[0] == 5.0
 
 
 def test_candidates_after_a_short_constraint():
@@ -272,15 +272,15 @@ def test_gap_is_the_nearest_constraint_within_half_its_reach(hole):
         t = locate(P, V, N, np.ones(len(V), dtype=np.bool_), len(V), 0, x, y, len(V) + 1)
         if t < 0:
             continue
-        nearest = min(fast._point_segment_distance(x, y, *P[a], *P[b]) for a, b in zip(SA, SB))
+        nearest = min(fast.point_segment_distance(x, y, *P[a], *P[b]) for a, b in zip(SA, SB))
         for reach in (0.3, 1.0, 2.0, 6.0):
-            gap = fast._gap(P, V, N, S, SA, SB, salive, len(SA), t, x, y, reach, seen)
+            gap = fast.constraint_gap(P, V, N, S, SA, SB, salive, len(SA), t, x, y, reach, seen)
             assert gap >= nearest and (gap == nearest or nearest > reach / 2.0)
 
 
 def test_a_cavity_larger_than_its_buffer():
     """A regular 70-gon: its vertices are cocircular, so the first point (a circumcentre near the centre) has a
-    cavity of more than ``_CAVITY`` (64) triangles: the buffer must grow, and the mesh is Problem 1's."""
+    cavity of more than ``CAVITY`` (64) triangles: the buffer must grow, and the mesh is Problem 1's."""
     vertices = regular_polygon(70, 1.5)
     ring = np.array([(i, (i + 1) % 70) for i in range(70)], dtype=np.int64)
     V = np.ascontiguousarray(constrained_delaunay(vertices, ring, np.empty((0, 2))), dtype=np.int64)
@@ -288,8 +288,8 @@ def test_a_cavity_larger_than_its_buffer():
     point, _, _ = reference.best_candidate(vertices, V, ring, 1.0)
     start = locate(vertices, V, N, np.ones(len(V), dtype=np.bool_), len(V), 0, *point, len(V) + 1)
     mark = np.zeros(len(V), dtype=np.int64)
-    assert cavity(vertices, V, N, S, start, *point, mark, 1, np.empty(fast._CAVITY, dtype=np.int64)) == -1
-    assert cavity(vertices, V, N, S, start, *point, mark, 2, np.empty(len(V), dtype=np.int64)) > fast._CAVITY
+    assert cavity(vertices, V, N, S, start, *point, mark, 1, np.empty(fast.CAVITY, dtype=np.int64)) == -1
+    assert cavity(vertices, V, N, S, start, *point, mark, 2, np.empty(len(V), dtype=np.int64)) > fast.CAVITY
     assert_problem1_invariants(equimesh.increment(vertices, 1.0, engine="fast"), vertices, 1.0)
 
 
@@ -357,7 +357,7 @@ def test_the_triangles_come_out_in_slot_order_the_cavitys_slots_first():
 def test_a_broken_cavity_is_an_internal_error(monkeypatch):
     """When the compiled loop reports a cavity it could not re-triangulate (a bug), run raises InternalError, never
     returns the mesh."""
-    monkeypatch.setattr(fast, "_insert_all", lambda P0, T0, SEG0, lim: (fast._BROKEN, P0, T0, SEG0, np.empty(0)))
+    monkeypatch.setattr(fast, "insert_all", lambda P0, T0, SEG0, lim: (fast.BROKEN, P0, T0, SEG0, np.empty(0)))
     with pytest.raises(InternalError) as caught:
         fast.run(Region(rectangle(2.0, 2.0), np.array([[0, 1], [1, 2], [2, 3], [3, 0]]), np.empty((0, 2))), 1.0)
     assert str(caught.value) == "fast engine: a Bowyer-Watson cavity did not re-triangulate (broken triangulation)"
@@ -392,7 +392,7 @@ def _thresholds():
         cases += [(points, l), (points, np.nextafter(l, 0.0) * (1.0 - 4.0 * REL_TOL))]
     for gap, radius, factor in [(0.5, 1.5, 1.0 - REL_TOL), (0.5 * SLIVER_GAP, 1.0, 1.0 + REL_TOL)]:
         points = circle_triangle(gap, radius)[0]
-        cases.append((points, _l_at(fast._circumcircle(points, 0, 1, 2)[2], factor)))
+        cases.append((points, _l_at(fast.circumcircle(points, 0, 1, 2)[2], factor)))
     cases.append((np.array([[-1.0, 0.0], [1.0, 0.0], [0.0, 5.0]]), _l_at(1.0, 1.0 - REL_TOL)))
     return cases
 
@@ -400,7 +400,7 @@ def _thresholds():
 def test_every_limit_is_a_multiple_of_l():
     """Scaling l by a power of two scales every threshold and the search reach by it exactly."""
     for k in (-7, 1, 30):
-        assert fast._limits(math.ldexp(1.3, k)).tolist() == [math.ldexp(x, k) for x in fast._limits(1.3)]
+        assert fast.limits(math.ldexp(1.3, k)).tolist() == [math.ldexp(x, k) for x in fast.limits(1.3)]
 
 
 @pytest.mark.parametrize("points, l", _thresholds())
@@ -438,11 +438,11 @@ def test_a_circumcentre_refused_when_it_surfaces_is_skipped_and_the_insertion_go
         tuple(centre + radius * np.array([-0.6, 0.8])),
     ]
     points = np.array([turn @ np.array(p) + (0.1, 0.0) for p in frame])
-    cx, cy, _, _, _ = fast._circumcircle(points, 0, 3, 4)
+    cx, cy, _, _, _ = fast.circumcircle(points, 0, 3, 4)
     a, b = points[0], points[1]
     p = 0.5 * (a + b)
-    before = fast._point_segment_distance(cx, cy, *a, *b)
-    after = min(fast._point_segment_distance(cx, cy, *a, *p), fast._point_segment_distance(cx, cy, *p, *b))
+    before = fast.point_segment_distance(cx, cy, *a, *b)
+    after = min(fast.point_segment_distance(cx, cy, *a, *p), fast.point_segment_distance(cx, cy, *p, *b))
     l = np.nextafter(_l_at(before, REL_TOL), 0.0)
     assert after <= REL_TOL * l < before and abs(l - 0.7) < 1e-6
     region = Region(points, np.array([[i, (i + 1) % 5] for i in range(5)]), np.empty((0, 2)))

@@ -51,25 +51,25 @@ def assert_expansion(h, n, value):
 
 @given(doubles, doubles)
 def test_two_sum_and_two_product_are_exact(a, b):
-    x, y = pr._two_sum(a, b)
+    x, y = pr.two_sum(a, b)
     assert x == a + b and Fraction(x) + Fraction(y) == Fraction(a) + Fraction(b)
-    x, y = pr._two_product(a, b)
+    x, y = pr.two_product(a, b)
     assert x == a * b and Fraction(x) + Fraction(y) == Fraction(a) * Fraction(b)
-    x, y = pr._difference(a, b)
+    x, y = pr.difference(a, b)
     assert_expansion(x, y, Fraction(a) - Fraction(b))
 
 
 @given(doubles)
 def test_split_halves_have_26_bits(a):
-    hi, lo = pr._split(a)
+    hi, lo = pr.split(a)
     assert Fraction(hi) + Fraction(lo) == Fraction(a)
     assert _significant_bits(hi) <= 26 and _significant_bits(lo) <= 26
 
 
 def test_split_by_hand():
     """2^53 - 1 (53 ones) splits into 2^53 and -1: the splitter is 2^27 + 1."""
-    assert pr._split(2.0**53 - 1.0) == (2.0**53, -1.0)
-    assert pr._split(1.0 + 2.0**-52) == (1.0, 2.0**-52)
+    assert pr.split(2.0**53 - 1.0) == (2.0**53, -1.0)
+    assert pr.split(1.0 + 2.0**-52) == (1.0, 2.0**-52)
 
 
 @given(st.lists(doubles, min_size=1, max_size=8))
@@ -77,19 +77,19 @@ def test_grow_keeps_an_exact_nonoverlapping_expansion(terms):
     h = np.empty(len(terms) + 1)
     n = 0
     for i, b in enumerate(terms):
-        n = pr._grow(h, n, b)
+        n = pr.grow(h, n, b)
         assert_expansion(h, n, sum(map(Fraction, terms[: i + 1]), Fraction(0)))
 
 
 def test_grow_eliminates_zeros_by_hand():
     """1 + 2^-60 is two components; adding -1 leaves one; adding -2^-60 leaves the single zero."""
     h = np.empty(4)
-    n = pr._grow(h, 0, 1.0)
-    n = pr._grow(h, n, 2.0**-60)
+    n = pr.grow(h, 0, 1.0)
+    n = pr.grow(h, n, 2.0**-60)
     assert (n, list(h[:n])) == (2, [2.0**-60, 1.0])
-    n = pr._grow(h, n, -1.0)
+    n = pr.grow(h, n, -1.0)
     assert (n, list(h[:n])) == (1, [2.0**-60])
-    n = pr._grow(h, n, -(2.0**-60))
+    n = pr.grow(h, n, -(2.0**-60))
     assert (n, list(h[:n])) == (1, [0.0])
 
 
@@ -101,17 +101,17 @@ def test_add_product_is_exact(e_terms, f_terms, sign):
         h = np.empty(len(terms) + 1)
         n = 0
         for b in terms:
-            n = pr._grow(h, n, b)
+            n = pr.grow(h, n, b)
         return h, n, sum(map(Fraction, terms), Fraction(0))
 
     (e, ne, ev), (f, nf, fv) = expansion(e_terms), expansion(f_terms)
     h = np.empty(2 * ne * nf + 2)
-    n = pr._grow(h, 0, 3.0)
-    n = pr._add_product(h, n, e, ne, f, nf, sign)
+    n = pr.grow(h, 0, 3.0)
+    n = pr.add_product(h, n, e, ne, f, nf, sign)
     assert_expansion(h, n, 3 + int(sign) * ev * fv)
-    cross, nc = pr._cross_exact(e, ne, f, nf, f, nf, e, ne)
+    cross, nc = pr.cross_exact(e, ne, f, nf, f, nf, e, ne)
     assert_expansion(cross, nc, Fraction(0))
-    lift, nl = pr._lift_exact(e, ne, f, nf)
+    lift, nl = pr.lift_exact(e, ne, f, nf)
     assert_expansion(lift, nl, ev * ev + fv * fv)
 
 
@@ -136,14 +136,14 @@ def test_predicates_give_the_exact_sign(quad):
         value = orient2d(*p, *q, *r)
         assert sign(value) == sign(det)
         assert _close(value, det, permanent, 4 * EPS)
-        exact = pr._orient_exact(*p, *q, *r)
+        exact = pr.orient_exact(*p, *q, *r)
         assert _top_component(exact, det)
     if exact_orient(a, b, c)[0] > 0:
         det, permanent = exact_incircle(a, b, c, d)
         value = incircle(*a, *b, *c, *d)
         assert sign(value) == sign(det)
         assert _close(value, det, permanent, 16 * EPS)
-        exact = pr._incircle_exact(*a, *b, *c, *d)
+        exact = pr.incircle_exact(*a, *b, *c, *d)
         assert _top_component(exact, det)
 
 
@@ -213,7 +213,7 @@ def test_cross_exact_fills_its_buffer():
     """Two products with rounding errors at exponents far apart: four nonoverlapping components, the most possible."""
     one = np.array([1.0 + 2.0**-30])
     tiny = np.array([2.0**-100 * (1.0 + 2.0**-30)])
-    h, n = pr._cross_exact(one, 1, one, 1, tiny, 1, tiny, 1)
+    h, n = pr.cross_exact(one, 1, one, 1, tiny, 1, tiny, 1)
     assert n == 4
     assert_expansion(h, n, Fraction(one[0]) ** 2 - Fraction(tiny[0]) ** 2)
 
@@ -226,7 +226,7 @@ def test_incircle_exact_fills_its_buffer():
     b = (math.ldexp(54385.0, -150), math.ldexp(63279.0, -150))
     c = (math.ldexp(21587.0, -300), math.ldexp(-26565.0, -300))
     d = (0.0, 0.0)
-    assert _top_component(pr._incircle_exact(*a, *b, *c, *d), exact_incircle(a, b, c, d)[0])
+    assert _top_component(pr.incircle_exact(*a, *b, *c, *d), exact_incircle(a, b, c, d)[0])
 
 
 def test_predicates_by_hand():

@@ -109,7 +109,7 @@ def test_each_midpoint_is_capped_by_its_own_apex():
 def test_apex_is_the_third_vertex_of_the_triangle_on_each_pair():
     """Either direction of the pair; -1 for a pair on no triangle, and for every pair when there is no triangle."""
     tri = np.array([[0, 1, 2], [2, 1, 3]])
-    assert reference._apex(tri, np.array([[1, 0], [0, 2], [3, 1], [3, 2], [0, 3], [4, 5]])).tolist() == [
+    assert reference.apexes(tri, np.array([[1, 0], [0, 2], [3, 1], [3, 2], [0, 3], [4, 5]])).tolist() == [
         2,
         1,
         2,
@@ -117,8 +117,8 @@ def test_apex_is_the_third_vertex_of_the_triangle_on_each_pair():
         -1,
         -1,
     ]
-    assert reference._apex(np.empty((0, 3), dtype=np.int64), np.array([[0, 1]])).tolist() == [-1]
-    assert reference._apex(tri, np.empty((0, 2), dtype=np.int64)).tolist() == []
+    assert reference.apexes(np.empty((0, 3), dtype=np.int64), np.array([[0, 1]])).tolist() == [-1]
+    assert reference.apexes(tri, np.empty((0, 2), dtype=np.int64)).tolist() == []
 
 
 def test_points_and_segments_have_the_engines_dtypes_whatever_the_callers():

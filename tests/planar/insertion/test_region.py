@@ -18,7 +18,7 @@ import pytest
 
 import equimesh
 from equimesh.errors import InternalError
-from equimesh.planar.insertion import region as _region
+from equimesh.planar.insertion import region
 from equimesh.planar.insertion.region import constrained_delaunay
 
 SQUARE10 = np.array([[0.0, 0.0], [10.0, 0.0], [10.0, 10.0], [0.0, 10.0]])
@@ -26,13 +26,12 @@ SQUARE10 = np.array([[0.0, 0.0], [10.0, 0.0], [10.0, 10.0], [0.0, 10.0]])
 
 def test_triangle_failure_is_an_internal_error_and_prints_nothing(monkeypatch, capfd):
     """Triangle's own messages go to fd 1 from C; they never reach our stdout, and its failure is ours."""
-    import os
 
     def failing(data, switches):
         os.write(1, b"Internal error in finddirection():  Unable to find a triangle.\n")
         raise RuntimeError("triangle failed")
 
-    monkeypatch.setattr(_region.triangle, "triangulate", failing)
+    monkeypatch.setattr(region.triangle, "triangulate", failing)
     with pytest.raises(InternalError, match=r"Triangle failed .*finddirection"):
         equimesh.increment(SQUARE10, 1.0)
     assert capfd.readouterr().out == ""
@@ -110,7 +109,7 @@ def test_a_failure_of_triangle_is_a_bug_with_what_it_printed(monkeypatch, capfd,
         os.write(1, said)
         raise RuntimeError("Triangle failed")
 
-    monkeypatch.setattr(_region.triangle, "triangulate", failing)
+    monkeypatch.setattr(region.triangle, "triangulate", failing)
     with pytest.raises(InternalError) as err:
         constrained_delaunay(SQUARE, RING, NO_HOLES)
     assert str(err.value) == f"Triangle failed on a validated input{shown}: a bug in equimesh, please report it"
@@ -121,7 +120,7 @@ def test_captured_stdout_takes_what_c_and_the_descriptor_print_and_restores_it(c
     """C's buffered printf and raw writes to descriptor 1 inside the block are returned, not shown; after it,
     descriptor 1 is the one before (what Python printed before the block was flushed there first)."""
     print("before", end="")
-    with _region._captured_stdout() as printed:
+    with region.captured_stdout() as printed:
         ctypes.CDLL(None).printf(b"from C\n")
         os.write(1, b"raw\n")
     os.write(1, b"after\n")
