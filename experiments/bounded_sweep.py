@@ -1,6 +1,6 @@
 """Beyond the paper: does "bounded" reach the paper's share within 0.5 % of l on generated mild domes?
 
-The property of tests/test_bounded.py measured on many surfaces (docs/decisions.md,
+The property of tests/surface/optimize/test_bounded.py measured on many surfaces (docs/decisions.md,
 "Two starts for bounded, and the best point kept").  The domes are
 :func:`equimesh.testing.surfaces.dome` over 60 x 60 with ``jitter=1.0``: first
 the explicit example of the property test (rise 8.62, seed 2893441600,

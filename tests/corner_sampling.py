@@ -1,4 +1,4 @@
-"""Placements of the two sides of a corner (or of sharp corners in a row) enumerated on a grid, independently of planar/_corner.py and planar/_coupled.py.
+"""Placements of the two sides of a corner (or of sharp corners in a row) enumerated on a grid, independently of planar/boundary/corner.py and chain.py.
 
 A placement splits each side (lengths by distance from the corner) into parts of ``[l, 2l]`` and keeps every
 two points of different sides at least ``l`` apart (the corner excluded).  :func:`sampled_placement` tries
@@ -13,6 +13,9 @@ import functools
 import math
 
 import numpy as np
+
+from equimesh.planar.boundary import corner
+from equimesh.tolerance import REL_TOL
 
 
 def _splits(length, l, step, theta=0.0, fixed=()):
@@ -97,3 +100,28 @@ def corners(rings):
             u, w = nxt - v, prev - v
             theta = math.atan2(u[0] * w[1] - u[1] * w[0], float(np.dot(u, w))) % (2.0 * math.pi)
             yield theta, float(np.linalg.norm(u)), float(np.linalg.norm(w))
+
+
+# --------------------------------------------------------------------------- corners built by hand, and placements checked pair by pair
+
+
+def at(angle, r):
+    """The point ``r`` from the origin at ``angle`` degrees."""
+    return np.array([r * math.cos(math.radians(angle)), r * math.sin(math.radians(angle))])
+
+
+def cross(theta, a, b):
+    """Distances between every point at distances ``a`` on one side and ``b`` on the other."""
+    a, b = np.asarray(a)[:, None], np.asarray(b)[None, :]
+    return np.sqrt(np.maximum(a * a + b * b - 2.0 * math.cos(theta) * a * b, 0.0))
+
+
+def assert_placement(theta, lengths, l, found):
+    """Parts in [l, 2l], each side ending at its far end (or, cut short, at least l before it and past K l),
+    every cross pair l apart; all up to REL_TOL."""
+    reach = corner.corner_reach(theta, l)
+    for points, length in zip(found, lengths):
+        steps = np.diff(np.concatenate([[0.0], points]))
+        assert np.all(steps >= (1.0 - REL_TOL) * l) and np.all(steps <= 2.0 * (1.0 + REL_TOL) * l), points
+        assert points[-1] == length or (reach <= points[-1] <= length - (1.0 - REL_TOL) * l), (points, length)
+    assert cross(theta, *found).min() >= (1.0 - REL_TOL) * l

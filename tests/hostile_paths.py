@@ -41,3 +41,10 @@ def fifo(path):
 def name_max(folder):
     """The longest file name (bytes) the file system at ``folder`` allows."""
     return os.pathconf(folder, "PC_NAME_MAX")
+
+
+def plain_file(folder, name="plain"):
+    """A regular file ``folder / name``: a path through it names no folder."""
+    path = folder / name
+    path.write_text("x")
+    return path

@@ -29,7 +29,7 @@ The placement convention, shared with ``tests/strategies_simple.py``: rotate
 about the mean of the vertices by any angle (often exactly 0, 45 or 90
 degrees), move that mean to a shift of at most :data:`MAX_SHIFT` in units of
 l, a multiple of 1/64 (never a tiny nonzero coordinate, whose products
-underflow in Triangle's exact predicates; see test_increment.py), roll the
+underflow in Triangle's exact predicates; see tests/planar/test_increment.py), roll the
 start vertex, and multiply by ``l`` drawn log-uniformly from 2^-8 to 2^9.
 """
 

@@ -18,7 +18,7 @@ the kind of refusal on the others.  Families, in units of ``l = 1``
   corner of ``angle`` degrees of the region on the hole's ring.
 
 :func:`darts` draws arrowheads (:func:`~equimesh.testing.shapes.sharp_dart`):
-three sharp corners in a row, decided jointly (planar/_coupled.py).
+three sharp corners in a row, decided jointly (planar/boundary/chain.py).
 
 :func:`sharp_cases` places them as :func:`strategies.placed` does (rotation,
 shift, rolled start vertex, scale by a drawn ``l``), holes alike.

@@ -1,5 +1,5 @@
 """asv benchmark suites for equimesh (run with ``make bench``).
 
 Each ``bench_*.py`` module holds suites whose benchmark methods start with
-``time_``, ``track_`` or ``peakmem_``; ``tests/test_benchmarks.py`` checks it.
+``time_``, ``track_`` or ``peakmem_``; ``tests/tools/test_benchmarks.py`` checks it.
 """

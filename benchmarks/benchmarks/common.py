@@ -3,7 +3,7 @@
 APPEND-ONLY.  asv compares timings across commits, so an input that changes
 silently breaks every comparison with the past.  Never edit a function or
 constant here in a way that changes what it returns: add a new one instead.
-``tests/test_benchmarks.py`` pins a fingerprint of every input below.
+``tests/tools/test_benchmarks.py`` pins a fingerprint of every input below.
 
 All lengths are in units of the target edge length ``L`` (= 1), so a polygon
 of area ``A`` has area ``A l^2``.  Random shapes were drawn once from a seeded

@@ -44,7 +44,7 @@ from .tolerance import REL_TOL as REL_TOL
 #: (PEP 562), so that ``import equimesh._cli`` loads no numpy, scipy or
 #: shapely: the command line imports them inside ``main``, where a Ctrl-C
 #: during the (seconds long, on a busy machine) import is one line and exit
-#: code 130 like any other interrupt (tests/test_cli.py).
+#: code 130 like any other interrupt (tests/cli/test_cli.py).
 _EXPORTS = {
     "G1": ".mesh",
     "OTHER": ".mesh",

@@ -27,7 +27,7 @@ REL_TOL = 1e-9
 #: because inserting it would leave a triangle flatter than 179.9 degrees next
 #: to the constraint (see
 #: :mod:`equimesh.planar.insertion.reference`; test:
-#: the near-cocircular rectangles of ``tests/test_increment.py::test_regression_cases_satisfy_every_invariant``).
+#: the near-cocircular rectangles of ``tests/planar/test_increment.py::test_regression_cases_satisfy_every_invariant``).
 SLIVER_GAP = 1e-3
 
 
@@ -44,7 +44,7 @@ def at_most(value, l):
 #: Beyond the paper (docs/decisions.md, "Supported range of l and of a polygon"):
 #: the supported range of the target length l.  ``l^2`` (areas, node estimates)
 #: stays a normal float inside it; outside it, :class:`~equimesh.errors.InvalidLengthError`.
-#: Test: ``tests/test_hardening_planar.py::test_lengths_outside_the_range_are_refused``.
+#: Test: ``tests/test_checks.py::test_lengths_outside_the_range_are_refused``.
 MIN_LENGTH = 1e-150
 MAX_LENGTH = 1e150
 
@@ -53,20 +53,20 @@ MAX_LENGTH = 1e150
 #: units of l.  In the local frame (l in [1, 2)) coordinates then stay below
 #: 2^17, whose rounding unit 2^-35 = 2.9e-11 is 30 times below ``REL_TOL``, so
 #: the edge bounds [(1 - REL_TOL) l, 2 l] survive rounding.
-#: Test: ``tests/test_hardening_planar.py::test_polygon_wider_than_the_precision_range_is_refused``.
+#: Test: ``tests/planar/test_polygon.py::test_polygon_wider_than_the_precision_range_is_refused``.
 MAX_EXTENT = 2.0**16
 
 #: Beyond the paper (docs/decisions.md, "Regular surfaces only"): a surface
 #: sample where ``|X_u x X_v| <= SINGULAR_SIN |X_u| |X_v|`` (X_u and X_v within
 #: about 2e-4 degrees of parallel) is singular and refused
-#: (:mod:`equimesh.surface.regularity`; test: tests/test_hardening_surface.py).
+#: (:mod:`equimesh.surface.regularity`; test: tests/surface/test_regularity.py).
 SINGULAR_SIN = 1e-6
 
 #: Beyond the paper (docs/decisions.md, "Regular surfaces only"): a surface whose
 #: normal turns by this many degrees or more between an auxiliary triangle's
 #: centroid and one of its corners is refused
 #: as folded (:mod:`equimesh.surface.regularity`; test: the folding net of
-#: tests/test_hardening_surface.py).
+#: tests/surface/test_regularity.py).
 MAX_NORMAL_TURN = 90.0
 
 #: Beyond the paper (docs/decisions.md, "A sparse Levenberg-Marquardt solver"):
@@ -74,12 +74,12 @@ MAX_NORMAL_TURN = 90.0
 #: ``LM_INITIAL_DAMPING`` times Marquardt's diagonal ``diag(J^T J)`` (the usual
 #: ``tau = 1e-3``), whose entries are floored at ``LM_DIAGONAL_FLOOR`` times the
 #: largest one, so that a variable no active residual sees keeps a regular
-#: system.  Neither changes a converged result; tests: tests/test_solver.py.
+#: system.  Neither changes a converged result; tests: tests/surface/optimize/test_solver.py.
 LM_INITIAL_DAMPING = 1e-3
 LM_DIAGONAL_FLOOR = 1e-12
 #: A rejected Levenberg-Marquardt step is halved along its direction, with the
 #: same factorisation, up to ``LM_BACKTRACKS`` times before the damping is raised
-#: (docs/decisions.md, "Rejected steps are shortened first"; test: tests/test_solver.py).
+#: (docs/decisions.md, "Rejected steps are shortened first"; test: tests/surface/optimize/test_solver.py).
 LM_BACKTRACKS = 4
 
 #: Beyond the paper (docs/decisions.md, "The bounded objective"): the
@@ -102,7 +102,8 @@ LM_BACKTRACKS = 4
 #: (below ``l (1 + BOUNDED_OFFSET / 2)``, above ``l (2 - BOUNDED_OFFSET)``, a hinge
 #: smoothed over ``BOUNDED_OFFSET / 4``), solved to convergence.  The paper's
 #: objective is solved to ``PAPER_FTOL`` (docs/decisions.md, "The paper's
-#: objective").  Tests: tests/test_bounded.py, tests/test_optimize.py.
+#: objective").  Tests: tests/surface/optimize/test_bounded.py,
+#: tests/surface/optimize/test_objectives.py.
 BOUNDED_OFFSET = 1e-3
 BOUNDED_BAND = 0.005
 BOUNDED_PULL = 10.0

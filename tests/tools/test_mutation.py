@@ -188,7 +188,7 @@ def test_report_explains_or_flags_every_survivor():
     assert "| `src/m.py` | tests/test_m.py | 10 | 8 | 2 | 1 | 0 | 0 | 88.9 % | 5 s | `0123456` |" in text
     assert "`m.x_f__mutmut_1`: `x = 1` — the value is never read" in text
     assert "`m.x_f__mutmut_2`: `y = 2` — **not explained: a test is missing**" in text
-    assert "| `src/equimesh/planar/bounds.py` | tests/test_bounds.py | not measured |" in text
+    assert "| `src/equimesh/planar/bounds.py` | tests/planar/test_bounds.py | not measured |" in text
 
 
 def test_a_carried_row_says_where_and_when_it_was_measured():

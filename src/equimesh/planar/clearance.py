@@ -41,7 +41,7 @@ from ..tolerance import REL_TOL, at_least
 DOUBT = 1e-7
 
 
-def _expand(lo, hi):
+def expand(lo, hi):
     """Rows ``(k, value)`` for every integer value in ``[lo[k], hi[k]]`` (empty ranges give nothing)."""
     counts = np.maximum(hi - lo + 1, 0)
     owner = np.repeat(np.arange(len(lo)), counts)
@@ -71,7 +71,7 @@ def clear_of_boundary(shape, points, first, grid_shape, offset, basis, distance)
 
     # Band: (segment, row) pairs, then (segment, vertex) pairs, then the nearest segment per vertex.
     vlo, vhi = np.minimum(ua[:, 1], ub[:, 1]), np.maximum(ua[:, 1], ub[:, 1])
-    seg, row = _expand(
+    seg, row = expand(
         np.maximum(np.ceil(vlo - w), j0).astype(np.int64), np.minimum(np.floor(vhi + w), j0 + nj - 1).astype(np.int64)
     )
     dv = ub[seg, 1] - ua[seg, 1]
@@ -86,7 +86,7 @@ def clear_of_boundary(shape, points, first, grid_shape, offset, basis, distance)
     u1, u2 = ua[seg, 0] + t_lo * du, ua[seg, 0] + t_hi * du
     i_lo = np.maximum(np.ceil(np.minimum(u1, u2) - w), i0).astype(np.int64)
     i_hi = np.minimum(np.floor(np.maximum(u1, u2) + w), i0 + ni - 1).astype(np.int64)
-    pair, col = _expand(i_lo, i_hi)
+    pair, col = expand(i_lo, i_hi)
     vertex = (col - i0) * nj + (row[pair] - j0)
     s = seg[pair]
     near = np.full(ni * nj, np.inf)
@@ -94,7 +94,7 @@ def clear_of_boundary(shape, points, first, grid_shape, offset, basis, distance)
 
     # Inside: parity of the boundary crossings left of each vertex along its row.
     # Rows j with vlo <= j < vhi, the rows each segment crosses (a horizontal segment crosses none).
-    crossing, j = _expand(
+    crossing, j = expand(
         np.maximum(np.ceil(vlo), j0).astype(np.int64), np.minimum(np.ceil(vhi) - 1, j0 + nj - 1).astype(np.int64)
     )
     uc = ua[crossing, 0] + (j - ua[crossing, 1]) * (ub[crossing, 0] - ua[crossing, 0]) / (

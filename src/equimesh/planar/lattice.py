@@ -155,19 +155,19 @@ def lattice_part(poly, l, angle=0.0, offset=(0.0, 0.0), clearance=1.0):
     tri = tri.reshape(-1, 3)
     ij = np.column_stack([ii.ravel()[used], jj.ravel()[used]])
     points = pts[used]
-    boundary_edges = _single_edges(tri)
-    holes = _component_seeds(points, tri)
+    boundary_edges = single_edges(tri)
+    holes = component_seeds(points, tri)
     return LatticePart(points, ij, tri, boundary_edges, holes)
 
 
-def _single_edges(tri):
+def single_edges(tri):
     """Directed edges of ``tri`` that belong to exactly one triangle."""
     directed = half_edges(tri)
     _, inverse, counts = np.unique(edge_keys(directed)[0], return_inverse=True, return_counts=True)
     return directed[counts[inverse] == 1]
 
 
-def _component_seeds(points, tri):
+def component_seeds(points, tri):
     """Centroid of the first triangle of each edge-connected component of the triangles."""
     if not len(tri):
         return np.empty((0, 2))

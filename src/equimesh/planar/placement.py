@@ -45,7 +45,7 @@ from .strip import check_clearance, strip_estimate
 #: ``1 + n_angles n_offsets^2 + 27 refine`` (16 times the default 247).  Each
 #: evaluation builds the lattice grid (bounded through ``max_nodes``), so this
 #: bounds the search (``n_offsets=10**6`` would ask for 1.2e13 evaluations).
-#: Test: tests/test_hardening_planar.py::test_placement_search_is_bounded.
+#: Test: tests/planar/test_placement.py::test_placement_search_is_bounded.
 MAX_EVALUATIONS = 4096
 
 

@@ -36,7 +36,7 @@ from .ring import resample_ring
 #: this many degrees (inner angle at most 150 or at least 210 degrees): the
 #: corners of a roof's outline (about 90 degrees) and any sharp corner are
 #: kept exactly, while a smoothly curved edge, tessellated with small turns,
-#: is resampled as one curve.  Test: tests/test_triangulated.py
+#: is resampled as one curve.  Test: tests/surface/charts/test_triangulated.py
 #: (``test_corners_of_the_outline_are_kept``).
 CORNER_TURN = 30.0
 

@@ -14,9 +14,9 @@ Both readings enumerate the points of the shared sides ``T_1``, then
 ``T_2``, ..., depth first on a grid of positions (nodes for the search, cells
 for the proof).  A point of ``T_k`` removes the positions of ``T_(k+1)``
 closer than ``l`` to it at corner ``k`` (and, for ``T_1``, those of ``T_0`` at
-corner 0: :func:`_cross`); the points of ``T_(k+1)`` are then enumerated
+corner 0: :func:`far_apart`); the points of ``T_(k+1)`` are then enumerated
 through the positions left.  A prefix is dropped as soon as a side still to
-come has no split left (:func:`_useful`: a path of parts in ``[l, 2l]``
+come has no split left (:func:`useful`: a path of parts in ``[l, 2l]``
 through the positions left, from its corner to its far end, or past ``K l``
 for a long side, where every point is ``l`` from the whole other side).
 What a prefix leaves to its continuations depends only on the side being
@@ -36,13 +36,13 @@ split uses lead to the same state.  The work is bounded by
   ``(1 - 2 REL_TOL) l``; ``d^2`` is convex, so its largest value over two
   cells is at their corners), and distances are checked only within the
   radii where the sides see each other.  Cells next to an exact end are
-  clipped to the range a first or last point can have (:func:`_side`).
+  clipped to the range a first or last point can have (:func:`side`).
   Every placement the checks accept maps each point to a position holding
   it and is then an enumerated prefix that is never dropped; when every
   prefix is dropped, no Step 2 meets Lemma 3 (1) at the corners together
   (docs/proofs.md, "Sharp corners").  With no second corner (``theta_1``
   None) the same proof decides one corner on finer cells than
-  :func:`._corner.corner_unplaceable`.
+  :func:`.corner.corner_unplaceable`.
 """
 
 import math
@@ -53,17 +53,17 @@ from ...tolerance import REL_TOL
 from .corner import CORNER_GRID, CORNER_REFINEMENTS, corner_reach
 
 #: Distinct sets of positions left that one decision may reduce to their useful
-#: part (:func:`_useful`, per grid): a bound on the work, not a tolerance; past
+#: part (:func:`useful`, per grid): a bound on the work, not a tolerance; past
 #: it the corners are left undecided.
 PAIR_STEPS = 20000
 #: Halvings of the grid step the proof tries (:func:`chain_unplaceable`, down to
 #: ``l / (CORNER_GRID 2^PAIR_REFINEMENTS)`` = l/256): a bound on the work.  Finer
-#: than the search's (:data:`._corner.CORNER_REFINEMENTS`): where the last
+#: than the search's (:data:`.corner.CORNER_REFINEMENTS`): where the last
 #: placements vanish at a part of exactly ``2l``, cells of l/64 still hold a path.
 PAIR_REFINEMENTS = 4
 
 
-class _Undecided(Exception):
+class Undecided(Exception):
     """The enumeration ran out of :data:`PAIR_STEPS`."""
 
 
@@ -77,18 +77,18 @@ def place_chain(thetas, lengths, l):
     distance from corner ``m - 1``, each up to its far end, a long ``T_0`` or
     ``T_m`` stopping at a point past ``K l`` at least ``l`` before it.  On
     each grid (``l / CORNER_GRID``, then halved up to
-    :data:`._corner.CORNER_REFINEMENTS` times) the search runs, then, if it
+    :data:`.corner.CORNER_REFINEMENTS` times) the search runs, then, if it
     found nothing, the proof with every pair checked: None once it refutes.
     """
-    if not _coupled(thetas, lengths, l):
+    if not coupled(thetas, lengths, l):
         return None
     inf = (math.inf,) * (2 * len(thetas))
     for level in range(CORNER_REFINEMENTS + 1):
         try:
-            found = _Chain(thetas, lengths, l, level, cells=False, radii=inf).search()
-            if found is not None or _Chain(thetas, lengths, l, level, cells=True, radii=inf).search() is None:
+            found = Chain(thetas, lengths, l, level, cells=False, radii=inf).search()
+            if found is not None or Chain(thetas, lengths, l, level, cells=True, radii=inf).search() is None:
                 return found
-        except _Undecided:
+        except Undecided:
             return None
     return None
 
@@ -106,21 +106,21 @@ def chain_unplaceable(thetas, lengths, l, radii):
     False means only that no grid refuted every prefix within
     :data:`PAIR_STEPS`.
     """
-    if not _coupled(thetas, lengths, l):
+    if not coupled(thetas, lengths, l):
         return False
     inf = (math.inf,) * (2 * len(thetas))
     for level in range(PAIR_REFINEMENTS + 1):
         try:
-            if _Chain(thetas, lengths, l, level, cells=True, radii=radii).search() is None:
+            if Chain(thetas, lengths, l, level, cells=True, radii=radii).search() is None:
                 return True
-            if level <= CORNER_REFINEMENTS and _Chain(thetas, lengths, l, level, cells=False, radii=inf).search():
+            if level <= CORNER_REFINEMENTS and Chain(thetas, lengths, l, level, cells=False, radii=inf).search():
                 return False
-        except _Undecided:
+        except Undecided:
             return False
     return False
 
 
-def _coupled(thetas, lengths, l):
+def coupled(thetas, lengths, l):
     """Whether every shared side is short enough for its two corners to read the same points of it.
 
     Each corner's placement reads a side only up to its first point past
@@ -135,11 +135,11 @@ def _coupled(thetas, lengths, l):
 
 def shared(thetas, length, l):
     """Whether a side of ``length`` between corners of ``thetas`` couples them: at most ``K_1 l + K_2 l + 4l`` long
-    (:func:`_coupled`)."""
+    (:func:`coupled`)."""
     return length <= corner_reach(thetas[0], l) + corner_reach(thetas[1], l) + 4.0 * l
 
 
-def _side(length, reach, l, step, cells, tol):
+def side(length, reach, l, step, cells, tol):
     """``(lo, hi, ends, parts)`` of one side: its positions, where a split may stop, and the parts allowed between them.
 
     Positions: the corner (0), grid nodes or cells, and the far end (last).
@@ -149,7 +149,7 @@ def _side(length, reach, l, step, cells, tol):
     positions go to ``K l + 2l`` and a cell more.  ``parts[i, j]``: a part
     from a point of ``i`` to one of ``j`` can be in ``[(1 - tol) l, 2 (1 + tol) l]``.
 
-    Cells next to an exact end are clipped (:func:`_clipped`): the first
+    Cells next to an exact end are clipped (:func:`clipped`): the first
     point lies within ``[(1 - tol) l, 2 (1 + tol) l]`` of the corner and the
     last before the far end as near it, so the cells holding them are cut
     to those ranges, as copies that only the corner leads to (only lead to
@@ -165,16 +165,16 @@ def _side(length, reach, l, step, cells, tol):
             nodes = np.concatenate([nodes, length - np.arange(0, count) * step])
         lo = hi = np.unique(np.concatenate([[0.0], nodes[(nodes > 0.0) & (nodes <= top)]]))
         ends = (lo >= reach) & (lo <= length - l) if long_ else lo == length
-        return lo, hi, ends, _parts(lo, hi, l, tol)
+        return lo, hi, ends, parts(lo, hi, l, tol)
     edges = np.arange(0, count + 1) * step
     keep = edges[:-1] < min(top, length)
     grid = edges[:-1][keep], np.minimum(edges[1:][keep], length)
     near, far = ((1.0 - tol) * l, 2.0 * (1.0 + tol) * l), (length - 2.0 * (1.0 + tol) * l, length - (1.0 - tol) * l)
-    groups = [(np.zeros(1), np.zeros(1)), grid, _clipped(grid, *near)]  # kinds 0 corner, 1 inner, 2 first
+    groups = [(np.zeros(1), np.zeros(1)), grid, clipped(grid, *near)]  # kinds 0 corner, 1 inner, 2 first
     if not long_:
         groups += [
-            _clipped(grid, *far),
-            _clipped(_clipped(grid, *near), *far),
+            clipped(grid, *far),
+            clipped(clipped(grid, *near), *far),
             (np.full(1, length), np.full(1, length)),
         ]
     kind = np.concatenate([np.full(len(group[0]), k) for k, group in enumerate(groups)])
@@ -183,21 +183,21 @@ def _side(length, reach, l, step, cells, tol):
     follows = {0: (2, 4, 5), 1: (1, 3), 2: (1, 3), 3: (5,), 4: (5,), 5: ()}
     allowed = np.array([[j in follows[i] for j in range(6)] for i in range(6)])
     ends = hi >= reach if long_ else kind == 5
-    return lo, hi, ends, _parts(lo, hi, l, tol) & allowed[kind[:, None], kind[None, :]]
+    return lo, hi, ends, parts(lo, hi, l, tol) & allowed[kind[:, None], kind[None, :]]
 
 
-def _clipped(cells, low, high):
+def clipped(cells, low, high):
     """The cells ``(lo, hi)`` cut to ``[low, high]``, those left."""
     lo, hi = np.maximum(cells[0], low), np.minimum(cells[1], high)
     return lo[lo <= hi], hi[lo <= hi]
 
 
-def _parts(lo, hi, l, tol):
+def parts(lo, hi, l, tol):
     """``[i, j]``: a part from a point of position ``i`` to one of ``j`` can be in ``[(1 - tol) l, 2 (1 + tol) l]``."""
     return (hi[None, :] - lo[:, None] >= (1.0 - tol) * l) & (lo[None, :] - hi[:, None] <= 2.0 * (1.0 + tol) * l)
 
 
-def _cross(theta, mine, theirs, l, tol, radii):
+def far_apart(theta, mine, theirs, l, tol, radii):
     """``[i, j]``: a point of position ``i`` of one side can be ``(1 - tol) l`` or more from one of ``j`` of the other.
 
     ``mine`` and ``theirs`` are ``(lo, hi)`` by distance from the corner;
@@ -211,7 +211,7 @@ def _cross(theta, mine, theirs, l, tol, radii):
     return (best >= ((1.0 - tol) * l) ** 2) | (mine[1][:, None] > radii[0]) | (theirs[1][None, :] > radii[1])
 
 
-def _reaches(parts, left, ends):
+def reaches(parts, left, ends):
     """The positions of a path of ``parts`` through ``left`` from position 0 to one of ``ends``, or None.
 
     Breadth first: each position after one reached a round earlier.
@@ -232,7 +232,7 @@ def _reaches(parts, left, ends):
     return found[::-1]
 
 
-def _useful(parts, left, ends):
+def useful(parts, left, ends):
     """The positions of ``left`` on some path of ``parts`` from position 0 to one of ``ends``, or None if there is none.
 
     Every split through ``left`` runs through these only, so they stand for
@@ -255,7 +255,7 @@ def _spread(parts, left, seen):
     return seen
 
 
-class _Chain:
+class Chain:
     """The enumeration of the module docstring on one grid (``l / (CORNER_GRID 2^level)``), nodes or cells."""
 
     def __init__(self, thetas, lengths, l, level, cells, radii):
@@ -264,21 +264,21 @@ class _Chain:
         m, alone = len(thetas), thetas[1] is None
         self.m = m
         # sides: (lo, hi, ends, parts); T_0 and T_m by distance from their sharp corner, the others from their first
-        sides = [_side(lengths[0], corner_reach(thetas[0], l), l, step, cells, tol)]
-        for k in range(1, m):  # alone, T_1 is cut past K l like T_0; shared sides are read whole (_coupled)
-            sides.append(_side(lengths[k], corner_reach(thetas[0], l) if alone else math.inf, l, step, cells, tol))
+        sides = [side(lengths[0], corner_reach(thetas[0], l), l, step, cells, tol)]
+        for k in range(1, m):  # alone, T_1 is cut past K l like T_0; shared sides are read whole (coupled)
+            sides.append(side(lengths[k], corner_reach(thetas[0], l) if alone else math.inf, l, step, cells, tol))
         dummy = (np.zeros(1), np.zeros(1), np.ones(1, dtype=bool), np.zeros((1, 1), dtype=bool))
-        sides.append(dummy if alone else _side(lengths[m], corner_reach(thetas[m - 1], l), l, step, cells, tol))
+        sides.append(dummy if alone else side(lengths[m], corner_reach(thetas[m - 1], l), l, step, cells, tol))
         self.sides = sides
         # back: T_1's points against T_0's at corner 0; ahead[k]: T_k's against T_(k+1)'s at corner k
-        self.back = _cross(thetas[0], sides[1][:2], sides[0][:2], l, tol, (radii[1], radii[0]))
+        self.back = far_apart(thetas[0], sides[1][:2], sides[0][:2], l, tol, (radii[1], radii[0]))
         self.ahead = [None]
         for k in range(1, m):
             lo, hi = sides[k][:2]
             if alone:
                 cross = np.ones((len(lo), 1), dtype=bool)
             else:
-                cross = _cross(
+                cross = far_apart(
                     thetas[k],
                     (lengths[k] - hi, lengths[k] - lo),
                     sides[k + 1][:2],
@@ -299,7 +299,7 @@ class _Chain:
         if found is None:
             return None
         paths, left = found
-        first, last = (_reaches(self.sides[k][3], left[k], self.sides[k][2]) for k in (0, self.m))
+        first, last = (reaches(self.sides[k][3], left[k], self.sides[k][2]) for k in (0, self.m))
         return tuple(side[0][path[1:]] for side, path in zip(self.sides, [first, *paths, last]))
 
     def _extend(self, k, paths, left):
@@ -337,11 +337,11 @@ class _Chain:
             yield None if following[k + 1] is None or following[0] is None else following
 
     def _useful(self, side, left):
-        """:func:`_useful` of one side's positions left (cached; each new set counts towards :data:`PAIR_STEPS`)."""
+        """:func:`useful` of one side's positions left (cached; each new set counts towards :data:`PAIR_STEPS`)."""
         key = (side, left.tobytes())
         if key not in self.tested:
             self.steps += 1
             if self.steps > PAIR_STEPS:
-                raise _Undecided
-            self.tested[key] = _useful(self.sides[side][3], left, self.sides[side][2])
+                raise Undecided
+            self.tested[key] = useful(self.sides[side][3], left, self.sides[side][2])
         return self.tested[key]

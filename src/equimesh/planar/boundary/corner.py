@@ -36,7 +36,7 @@ Two readings of the same graph, on a grid of ``l / CORNER_GRID``:
   corner.  No lemma is needed for this direction: consecutive points of
   the merged order are pairs the checks test.
 
-Where the nodes miss a thin set of placements, :func:`_tighten` places the
+Where the nodes miss a thin set of placements, :func:`tighten` places the
 order of the points along a path of cells as near the corner as it allows.
 
 Both sweep at most ``2 n^2`` states of ``n`` grid positions (``n`` about
@@ -75,22 +75,22 @@ def place_corner(theta, lengths, l, fixed=(None, None)):
     form), kept as they are.  On each grid (:data:`CORNER_GRID` steps per l,
     then finer) the nodes are searched; with no side fixed, the proof's
     relaxation then either shows that no placement exists (None) or gives
-    an order of the points of the two sides, which :func:`_tighten` places
+    an order of the points of the two sides, which :func:`tighten` places
     as near the corner as it allows.
     """
     reach = corner_reach(theta, l)
     for level in range(CORNER_REFINEMENTS + 1):
         step = l / (CORNER_GRID * 2**level)
-        lo = _nodes(lengths, reach, l, step, fixed)
-        order = _Graph(theta, lengths, reach, l, lo, lo, REL_TOL / 4.0, (math.inf, math.inf), fixed).search()
+        lo = nodes(lengths, reach, l, step, fixed)
+        order = Graph(theta, lengths, reach, l, lo, lo, REL_TOL / 4.0, (math.inf, math.inf), fixed).search()
         if order is not None:
             return _by_side(order)
         if any(points is not None for points in fixed):
             continue
-        order = _relaxed(theta, tuple(lengths), l, (math.inf, math.inf), level)
+        order = relaxed(theta, tuple(lengths), l, (math.inf, math.inf), level)
         if order is None:
             return None
-        found = _tighten(theta, lengths, reach, l, [side for side, _ in order])
+        found = tighten(theta, lengths, reach, l, [side for side, _ in order])
         if found is not None:
             return found
     return None
@@ -106,20 +106,20 @@ def corner_unplaceable(theta, lengths, l, radii):
     finest grid, not that a placement exists.
     """
     return any(
-        _relaxed(theta, tuple(lengths), l, tuple(radii), level) is None for level in range(CORNER_REFINEMENTS + 1)
+        relaxed(theta, tuple(lengths), l, tuple(radii), level) is None for level in range(CORNER_REFINEMENTS + 1)
     )
 
 
 @functools.lru_cache(maxsize=1024)
-def _relaxed(theta, lengths, l, radii, level):
+def relaxed(theta, lengths, l, radii, level):
     """A path of the relaxation on cells of ``l / (CORNER_GRID 2^level)`` (points in merged order), or None.
 
     Cached: the grid search of a ring asks for the same corner again
     (:func:`corner_unplaceable` first, then :func:`place_corner`).
     """
     reach = corner_reach(theta, l)
-    lo, hi = _cells(lengths, reach, l, l / (CORNER_GRID * 2**level))
-    return _Graph(theta, lengths, reach, l, lo, hi, 2.0 * REL_TOL, radii).search()
+    lo, hi = cells(lengths, reach, l, l / (CORNER_GRID * 2**level))
+    return Graph(theta, lengths, reach, l, lo, hi, 2.0 * REL_TOL, radii).search()
 
 
 def _by_side(order):
@@ -127,11 +127,11 @@ def _by_side(order):
     return tuple(np.array([x for side, x in order if side == s]) for s in (0, 1))
 
 
-#: Rounds of :func:`_tighten` before it gives up: a bound on the work.
+#: Rounds of :func:`tighten` before it gives up: a bound on the work.
 TIGHTEN_ROUNDS = 200
 
 
-def _tighten(theta, lengths, reach, l, sides):
+def tighten(theta, lengths, reach, l, sides):
     """The placement nearest the corner with the points in the merged order ``sides`` (side of each), or None.
 
     Each point is pushed to the largest of its lower bounds: ``l`` past the
@@ -141,7 +141,7 @@ def _tighten(theta, lengths, reach, l, sides):
     end (``K l`` for a long side), and ``2l`` before the next point of its
     side; repeated until nothing moves.  Where ``G`` increases these bounds
     are monotone, so this is the least placement of that order if there is
-    one; whatever it gives is checked pair by pair (:func:`_placed`).
+    one; whatever it gives is checked pair by pair (:func:`placed`).
     """
     sides = np.asarray(sides)
     z = np.zeros(len(sides))
@@ -165,7 +165,7 @@ def _tighten(theta, lengths, reach, l, sides):
             if before[i] is not None:
                 z[before[i]] = max(z[before[i]], z[i] - 2.0 * l)
         if np.array_equal(z, old):
-            return _placed(theta, lengths, reach, l, sides, z)
+            return placed(theta, lengths, reach, l, sides, z)
     return None
 
 
@@ -175,7 +175,7 @@ def _previous(sides, i):
     return int(same[-1]) if len(same) else None
 
 
-def _placed(theta, lengths, reach, l, sides, z):
+def placed(theta, lengths, reach, l, sides, z):
     """``(xs, ys)`` if the points ``z`` of ``sides`` are a placement (checked within ``REL_TOL / 4``), else None.
 
     Parts in ``[l, 2l]`` from the corner, each side ending at its far end
@@ -215,15 +215,15 @@ def _long(length, reach, l):
     return length > reach + 3.0 * l
 
 
-def _horizon(lengths, reach, l):
+def horizon(lengths, reach, l):
     """How far from the corner the graph places points: each side's length, or ``K l + 2l`` for a long side."""
     return max(min(length, reach + 2.0 * l) if _long(length, reach, l) else length for length in lengths)
 
 
-def _nodes(lengths, reach, l, step, fixed):
+def nodes(lengths, reach, l, step, fixed):
     """Grid nodes of the search: multiples of ``step`` from the corner and from each short side's far end, and the fixed
     points."""
-    top = _horizon(lengths, reach, l)
+    top = horizon(lengths, reach, l)
     nodes = [np.arange(1, math.floor(top / step) + 1) * step]
     for length in lengths:
         if not _long(length, reach, l):
@@ -233,18 +233,18 @@ def _nodes(lengths, reach, l, step, fixed):
     return np.unique(np.concatenate([[0.0], nodes[(nodes > 0.0) & (nodes <= top)], *kept]))
 
 
-def _cells(lengths, reach, l, step):
+def cells(lengths, reach, l, step):
     """Cells of the proof: ``[i step, (i + 1) step]`` past the horizon, and each short side's far end as a point.
 
     One cell more than the horizon needs: a long side's first point past
     ``K l`` may lie up to ``2 REL_TOL l`` beyond ``K l + 2l``.
     """
-    edges = np.arange(0, math.ceil(_horizon(lengths, reach, l) / step) + 2) * step
+    edges = np.arange(0, math.ceil(horizon(lengths, reach, l) / step) + 2) * step
     ends = [length for length in lengths if not _long(length, reach, l)]
     return np.concatenate([[0.0], edges[:-1], ends]), np.concatenate([[0.0], edges[1:], ends])
 
 
-class _Graph:
+class Graph:
     """The states ``(s, p, q)`` of the module docstring over positions ``[lo, hi]`` (points: ``lo == hi``).
 
     ``tol`` is the relative tolerance of its steps: parts in ``[(1 - tol) l,
@@ -261,8 +261,8 @@ class _Graph:
         self.lo, self.hi, self.n = lo, hi, len(lo)
         short, long_ = (1.0 - tol) * l, 2.0 * (1.0 + tol) * l
         part = (hi[None, :] - lo[:, None] >= short) & (lo[None, :] - hi[:, None] <= long_)
-        far = self._far_enough(theta, short)
-        self.cross = [far | _beyond(hi, radii[s], radii[1 - s]) for s in (0, 1)]
+        far = self.far_enough(theta, short)
+        self.cross = [far | beyond(hi, radii[s], radii[1 - s]) for s in (0, 1)]
         index = np.arange(self.n)
         self.ends, self.stops, self.next = [], [], []
         for length, points in zip(lengths, fixed):
@@ -281,7 +281,7 @@ class _Graph:
             self.stops.append(stops)
             self.next.append(step)
 
-    def _far_enough(self, theta, short):
+    def far_enough(self, theta, short):
         """``[p, w]``: some points of ``p`` and of ``w`` (of the other side), the latter at least as far, ``short``
         apart or more."""
         lo, hi, c = self.lo, self.hi, math.cos(theta)
@@ -360,7 +360,7 @@ class _Graph:
         return order[::-1]
 
 
-def _beyond(hi, mine, theirs):
+def beyond(hi, mine, theirs):
     """``[p, w]``: a point of ``p`` may lie past ``mine`` or one of ``w`` past ``theirs``, where visibility is not
     proven."""
     return (hi[:, None] > mine) | (hi[None, :] > theirs)

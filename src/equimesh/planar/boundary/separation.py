@@ -42,11 +42,11 @@ def check_boundary_separation(poly, boundary, l):
     Raises :class:`InvalidPolygonError` for the closest offending pair, with
     ``points`` the two boundary points in the caller's coordinates.  The
     message says what is proven (docs/proofs.md, "Sharp corners"): that no
-    mesh with every edge in ``[l, 2l]`` exists (:func:`_unmeshable_corner`),
+    mesh with every edge in ``[l, 2l]`` exists (:func:`unmeshable_corner`),
     that no Step 2 can meet Lemma 3 (1) at a corner (its first points,
-    :func:`_unseparable_corner`; or all its points, decided on a grid,
-    :func:`_unplaceable_corner` at the corners of the offending pairs, or
-    :func:`_unplaceable_chain` at two or more of them in a row), or neither (a
+    :func:`unseparable_corner`; or all its points, decided on a grid,
+    :func:`unplaceable_corner` at the corners of the offending pairs, or
+    :func:`unplaceable_chain` at two or more of them in a row), or neither (a
     corner or neck this method does not handle).
     """
     pts = boundary.points
@@ -64,15 +64,15 @@ def check_boundary_separation(poly, boundary, l):
     gap = np.linalg.norm(pts[pairs[:, 0]] - pts[pairs[:, 1]], axis=1)
     i, j = pairs[np.lexsort((pairs[:, 1], pairs[:, 0], gap))[0]]
     raise (
-        _unmeshable_corner(poly, l)
-        or _unseparable_corner(poly, l)
-        or _unplaceable_corner(poly, l, _corners_of(poly, boundary, pairs))
-        or _unplaceable_chain(poly, l, _corners_of(poly, boundary, pairs))
-        or _separation_error(poly, boundary, l, int(i), int(j))
+        unmeshable_corner(poly, l)
+        or unseparable_corner(poly, l)
+        or unplaceable_corner(poly, l, corners_of(poly, boundary, pairs))
+        or unplaceable_chain(poly, l, corners_of(poly, boundary, pairs))
+        or separation_error(poly, boundary, l, int(i), int(j))
     )
 
 
-def _corners(poly):
+def corners(poly):
     """Every corner of every ring: ``(ring, i, theta, leaving, arriving)``, the angle in radians, side lengths local."""
     for ring in poly.rings:
         lengths = ring.local_edge_lengths
@@ -80,12 +80,12 @@ def _corners(poly):
             yield ring, i, math.radians(ring.inner_angle(i)), lengths[i], lengths[i - 1]
 
 
-def _chord(a, b, theta):
+def chord(a, b, theta):
     """The distance between points at distances ``a`` and ``b`` from a corner of angle ``theta``, on its two sides."""
     return math.sqrt(max(a * a + b * b - 2.0 * a * b * math.cos(theta), 0.0))
 
 
-def _first_node(length, lp):
+def first_node(length, lp):
     """Where the first node after a corner can lie on a side of ``length``: ``(lowest, highest)`` distance from it.
 
     The side is split into parts in ``[l, 2l]``: the first part ``f`` is at
@@ -100,11 +100,11 @@ def _first_node(length, lp):
     return (1.0 - REL_TOL) * lp, high * (1.0 + REL_TOL)
 
 
-def _unmeshable_corner(poly, l):
+def unmeshable_corner(poly, l):
     """The error for the first corner at which no mesh with every edge in ``[l, 2l]`` exists, or None.
 
     A side of length ``beta < 2l`` at a corner ``v`` of angle ``theta`` is a
-    single mesh edge ``v b`` (:func:`_first_node`).  The triangle on it has
+    single mesh edge ``v b`` (:func:`first_node`).  The triangle on it has
     a third node ``q`` with ``|v q|`` in ``[l, 2l]`` and the segment ``v q``
     in P, so ``q`` lies in the sector of radii ``l`` to ``2l`` between the
     two sides; its farthest point from ``b`` is at radius ``l`` or ``2l`` on
@@ -115,9 +115,9 @@ def _unmeshable_corner(poly, l):
     (docs/proofs.md, "Sharp corners", the sector lemma).
     """
     lp = poly.local_length(l)
-    for ring, i, theta, leaving, arriving in _corners(poly):
+    for ring, i, theta, leaving, arriving in corners(poly):
         for side, beta in ((i, leaving), (i - 1, arriving)):
-            far = max(_chord(r, beta, theta) for r in ((1.0 - REL_TOL) * lp, 2.0 * lp * (1.0 + REL_TOL)))
+            far = max(chord(r, beta, theta) for r in ((1.0 - REL_TOL) * lp, 2.0 * lp * (1.0 + REL_TOL)))
             if beta < 2.0 * lp * (1.0 - REL_TOL) and far < (1.0 - REL_TOL) * lp:
                 c = math.cos(theta)
                 low, need = (2.0 * c - math.sqrt(4.0 * c * c - 3.0)) * l, 2.0 * c * l
@@ -134,11 +134,11 @@ def _unmeshable_corner(poly, l):
     return None
 
 
-def _unseparable_corner(poly, l):
+def unseparable_corner(poly, l):
     """The error for the first corner at which no boundary resampling meets Lemma 3 (1), or None.
 
-    Any Step 2 places on each side a first point within :func:`_first_node`'s
-    range.  :func:`_chord` is convex in each distance, so if it is below ``l``
+    Any Step 2 places on each side a first point within :func:`first_node`'s
+    range.  :func:`chord` is convex in each distance, so if it is below ``l``
     at the four ends of the two ranges, the first points of the two sides are
     closer than ``l`` wherever they lie; when the triangle of the corner and
     the far ends of the ranges lies in P (grown by ``REL_TOL l``, as in
@@ -149,10 +149,10 @@ def _unseparable_corner(poly, l):
     """
     lp = poly.local_length(l)
     grown = poly.region.buffer(REL_TOL * lp)
-    for ring, i, theta, leaving, arriving in _corners(poly):
-        ends = [(a, b) for a in _first_node(leaving, lp) for b in _first_node(arriving, lp)]
-        if theta < math.pi and max(_chord(a, b, theta) for a, b in ends) < (1.0 - REL_TOL) * lp:
-            if not _sees_within(grown, ring, i, *ends[-1]):
+    for ring, i, theta, leaving, arriving in corners(poly):
+        ends = [(a, b) for a in first_node(leaving, lp) for b in first_node(arriving, lp)]
+        if theta < math.pi and max(chord(a, b, theta) for a, b in ends) < (1.0 - REL_TOL) * lp:
+            if not sees_within(grown, ring, i, *ends[-1]):
                 continue
             need = number((stagger_reach(math.degrees(theta), lp) + lp) / poly.frame.scale, None)
             return InvalidPolygonError(
@@ -167,7 +167,7 @@ def _unseparable_corner(poly, l):
     return None
 
 
-def _sees_within(grown, ring, i, leaving, arriving):
+def sees_within(grown, ring, i, leaving, arriving):
     """Whether the triangle of corner ``i`` and the points ``leaving`` and ``arriving`` along its sides lies in
     ``grown``.
 
@@ -180,14 +180,14 @@ def _sees_within(grown, ring, i, leaving, arriving):
     return grown.covers(shapely.Polygon([v, *far]))
 
 
-#: Bisection steps of :func:`_visible_radii` between the last halving of the sides that is seen and the one
+#: Bisection steps of :func:`visible_radii` between the last halving of the sides that is seen and the one
 #: before: a bound on the work (the radii are then within ``2^-VISIBLE_BISECTIONS`` of the largest seen at that
 #: ratio), not a tolerance.
 VISIBLE_BISECTIONS = 20
 
 
-def _visible_radii(grown, ring, i, sides):
-    """``sides`` scaled down until :func:`_sees_within` holds for them, or ``(0, 0)`` (nothing seen).
+def visible_radii(grown, ring, i, sides):
+    """``sides`` scaled down until :func:`sees_within` holds for them, or ``(0, 0)`` (nothing seen).
 
     Halved first (at most 64 times), then bisected between the first
     halving seen and the one before (:data:`VISIBLE_BISECTIONS` steps): the
@@ -195,21 +195,21 @@ def _visible_radii(grown, ring, i, sides):
     below one seen is seen too.  Never below the halving alone.
     """
     for k in range(64):
-        if _sees_within(grown, ring, i, *(x / 2.0**k for x in sides)):
+        if sees_within(grown, ring, i, *(x / 2.0**k for x in sides)):
             break
     else:
         return 0.0, 0.0
     low, high = 0.5**k, 2.0 * 0.5**k
     for _ in range(VISIBLE_BISECTIONS * bool(k)):
         middle = (low + high) / 2.0
-        if _sees_within(grown, ring, i, *(x * middle for x in sides)):
+        if sees_within(grown, ring, i, *(x * middle for x in sides)):
             low = middle
         else:
             high = middle
     return tuple(x * low for x in sides)
 
 
-def _corners_of(poly, boundary, pairs):
+def corners_of(poly, boundary, pairs):
     """The corners ``(ring, i)`` at which a pair of ``pairs`` (boundary point indices) lies on the two sides.
 
     A vertex of P lies on the edge it starts and on the one it ends.
@@ -226,15 +226,15 @@ def _corners_of(poly, boundary, pairs):
     return sorted(found)
 
 
-def _unplaceable_corner(poly, l, corners):
+def unplaceable_corner(poly, l, corners):
     """The error for the first of ``corners`` (``(ring, i)``) that no Step 2 can separate (Lemma 3 (1)), or None.
 
     Only corners sharper than :data:`SHARP_CORNER` are decided
-    (:func:`._corner.corner_unplaceable`, then on finer cells
-    :func:`._chain.chain_unplaceable` with no second corner): distances are
+    (:func:`.corner.corner_unplaceable`, then on finer cells
+    :func:`.chain.chain_unplaceable` with no second corner): distances are
     checked within the largest of the sides' lengths halved until the triangle they span with
     the corner lies in P (grown by ``REL_TOL l``), where every two points of
-    the two sides see each other (:func:`_sees_within`).  When no split of
+    the two sides see each other (:func:`sees_within`).  When no split of
     the two sides into parts of ``[l, 2l]`` keeps them ``l`` apart there, no
     boundary resampling meets Lemma 3 (1), which this method and the
     paper's need; it is not a proof that no mesh exists (docs/proofs.md,
@@ -248,7 +248,7 @@ def _unplaceable_corner(poly, l, corners):
         sides = (lengths[i], lengths[i - 1])
         if not angle < SHARP_CORNER:
             continue
-        radii = _visible_radii(grown, ring, i, sides)
+        radii = visible_radii(grown, ring, i, sides)
         theta = math.radians(angle)
         if not _corner.corner_unplaceable(theta, sides, lp, radii) and not _chain.chain_unplaceable(
             (theta, None), (sides[1], sides[0], 0.0), lp, (radii[1], radii[0], 0.0, 0.0)
@@ -267,14 +267,14 @@ def _unplaceable_corner(poly, l, corners):
     return None
 
 
-def _unplaceable_chain(poly, l, corners):
+def unplaceable_chain(poly, l, corners):
     """The error for the first sharp corners in a row, one of ``corners``, that no Step 2 separates together, or None.
 
     First each two consecutive corners ``i``, ``i + 1`` both sharper than
     :data:`SHARP_CORNER` (either in ``corners``), then each run of three or
     more through one of ``corners`` (:func:`_run`), are decided by
-    :func:`._chain.chain_unplaceable`, distances checked within each
-    corner's :func:`_visible_radii` as in :func:`_unplaceable_corner`.  When
+    :func:`.chain.chain_unplaceable`, distances checked within each
+    corner's :func:`visible_radii` as in :func:`unplaceable_corner`.  When
     no split of their sides into parts of ``[l, 2l]`` keeps every corner's
     two sides ``l`` apart there, no boundary resampling meets Lemma 3 (1);
     it is not a proof that no mesh exists (docs/proofs.md, "Sharp corners").
@@ -297,7 +297,7 @@ def _unplaceable_chain(poly, l, corners):
         if not max(angles) < SHARP_CORNER:
             continue
         edges = [lengths[(run[0] - 1 + k) % n] for k in range(len(run) + 1)]
-        radii = sum((_visible_radii(grown, ring, c, (edges[k + 1], edges[k]))[::-1] for k, c in enumerate(run)), ())
+        radii = sum((visible_radii(grown, ring, c, (edges[k + 1], edges[k]))[::-1] for k, c in enumerate(run)), ())
         if not _chain.chain_unplaceable(tuple(math.radians(a) for a in angles), tuple(edges), lp, radii):
             continue
         names = [f"{ring.vertex_name(c)} ({number(a)} degrees)" for c, a in zip(run, angles)]
@@ -315,7 +315,7 @@ def _unplaceable_chain(poly, l, corners):
     return None
 
 
-def _separation_error(poly, boundary, l, i, j):
+def separation_error(poly, boundary, l, i, j):
     """The error for boundary points ``i`` and ``j`` closer than ``l`` that see each other."""
     p, q = boundary.points[i], boundary.points[j]
     d = number(np.linalg.norm(q - p) / poly.frame.scale, None)

@@ -88,7 +88,7 @@ def side_positions(lengths, angles, l, spacing=2.0):
       :func:`_separate_short_sides`; then each sharp corner still closer
       than ``l`` (also one whose sides fit their staggers but end, shorter
       than the proven length, near a staggered point of the other side) is
-      decided by :func:`_place_corners_on_a_grid`.  Every part is in
+      decided by :func:`place_corners_on_a_grid`.  Every part is in
       ``[l, 2l]`` in every case (docs/proofs.md, "Sharp corners").
     """
     lengths = np.asarray(lengths, dtype=float)
@@ -100,11 +100,11 @@ def side_positions(lengths, angles, l, spacing=2.0):
         start, end = _chains(corners, i, length)
         if (len(start) or len(end)) and not at_least(length - start.max(initial=0.0) - end.max(initial=0.0), l):
             short.append(i)
-        sides.append(_place(length, start, end, l, spacing))
+        sides.append(place(length, start, end, l, spacing))
     if short:
         _separate_short_sides(sides, short, corners, lengths, angles, l, spacing)
-    if short or not all(at_least(_corner_gap(sides, lengths, angles, l, c), l) for c in range(n)):
-        _place_corners_on_a_grid(sides, lengths, angles, l, spacing)
+    if short or not all(at_least(corner_gap(sides, lengths, angles, l, c), l) for c in range(n)):
+        place_corners_on_a_grid(sides, lengths, angles, l, spacing)
     return sides
 
 
@@ -115,7 +115,7 @@ def _chains(corners, i, length):
     return start[start < length], end[end < length]
 
 
-def _place(length, start, end, l, spacing):
+def place(length, start, end, l, spacing):
     """A side of ``length`` with the staggered points ``start`` (from its first corner) and ``end`` (from its last).
 
     Staggered points that leave a middle shorter than ``l`` are dropped, the
@@ -149,7 +149,7 @@ def _separate_short_sides(sides, short, corners, lengths, angles, l, spacing):
     First each short side takes the best of its candidates
     (:func:`_short_side`), again when a neighbour changed, for at most
     :data:`SETTLE_PASSES` rounds.  Then each sharp corner still below ``l``
-    (:func:`_corner_gap`), in order, is tried with its stagger mirrored (odd
+    (:func:`corner_gap`), in order, is tried with its stagger mirrored (odd
     ``k`` on the arriving side): its two sides are placed again (and the
     sides next to them) and the trial is kept if it raises the smallest gap
     at their corners.  Both rounds run first with the staggers alone, then,
@@ -172,17 +172,17 @@ def _separate_short_sides(sides, short, corners, lengths, angles, l, spacing):
                 return
 
     def lowest(sides, changed):
-        return min(_corner_gap(sides, lengths, angles, l, c % n) for i in changed for c in (i, i + 1))
+        return min(corner_gap(sides, lengths, angles, l, c % n) for i in changed for c in (i, i + 1))
 
     for multiples in (False, True):
         settle(sides, free, flipped, multiples)
         for c in sorted({j % n for i in short for j in (i, i + 1)}):
-            if at_least(_corner_gap(sides, lengths, angles, l, c), l):
+            if at_least(corner_gap(sides, lengths, angles, l, c), l):
                 continue
             trial, mirrored = list(sides), list(corners)
             mirrored[c] = corners[c][::-1]
             for i in ((c - 1) % n, c):
-                trial[i] = _place(lengths[i], *_chains(mirrored, i, lengths[i]), l, spacing)
+                trial[i] = place(lengths[i], *_chains(mirrored, i, lengths[i]), l, spacing)
             trial_flipped = flipped[:c] + [not flipped[c]] + flipped[c + 1 :]
             trial_free = sorted(set(free) | {(c - 1) % n, c})
             near = sorted({i % n for i in range(c - 2, c + 2)} & set(trial_free))
@@ -202,7 +202,7 @@ def _short_side(i, sides, lengths, angles, l, spacing, flipped, multiples):
     ``flipped``), at another corner nothing or, with ``multiples``, the
     multiples of ``l``, so that the last part before it can be ``l``.  They
     are tried in order (by start, then by end; the longest stagger first,
-    the fewest multiples first) and the first whose :func:`_corner_gap` at
+    the fewest multiples first) and the first whose :func:`corner_gap` at
     both ends is at least ``l`` (up to REL_TOL) is taken, else the one with
     the largest gap.
     """
@@ -211,7 +211,7 @@ def _short_side(i, sides, lengths, angles, l, spacing, flipped, multiples):
 
     def gap(side):
         trial = {(i - 1) % n: sides[(i - 1) % n], (i + 1) % n: sides[(i + 1) % n], i: side}
-        return min(_corner_gap(trial, lengths, angles, l, c % n) for c in (i, i + 1))
+        return min(corner_gap(trial, lengths, angles, l, c % n) for c in (i, i + 1))
 
     best, best_gap = sides[i], gap(sides[i])
     if at_least(best_gap, l):
@@ -235,7 +235,7 @@ def _short_side(i, sides, lengths, angles, l, spacing, flipped, multiples):
             middle = length - reach_start[a] - reach_end[b]
             if not at_least(middle, l) or at_least(middle, 3.0 * l):
                 continue
-            side = _place(length, start[:a], end[:b], l, spacing)
+            side = place(length, start[:a], end[:b], l, spacing)
             g = gap(side)
             if at_least(g, l):
                 return side
@@ -244,24 +244,24 @@ def _short_side(i, sides, lengths, angles, l, spacing, flipped, multiples):
     return best
 
 
-#: The trials of :func:`_place_corners_on_a_grid` placing a corner and the next one jointly, and its whole run.
+#: The trials of :func:`place_corners_on_a_grid` placing a corner and the next one jointly, and its whole run.
 PAIR, CHAIN = "pair", "chain"
 
 
-def _place_corners_on_a_grid(sides, lengths, angles, l, spacing):
+def place_corners_on_a_grid(sides, lengths, angles, l, spacing):
     """Each sharp corner still closer than ``l`` after :func:`_separate_short_sides`, placed by
-    :func:`._corner.place_corner`.
+    :func:`.corner.place_corner`.
 
-    The two sides of the corner are placed again (:func:`_grid_sides`):
+    The two sides of the corner are placed again (:func:`grid_sides`):
     both free; the leaving side kept; the arriving one kept; or, for a side
     shared with the next (previous) sharp corner, that corner placed first
     with both its sides free and this one then with the shared side kept,
     or the other way round; then with each neighbouring sharp corner
     jointly; last, with the whole run of three or more sharp corners it
-    belongs to (:func:`sharp_run`), jointly (:func:`_grid_chain`).  The first
+    belongs to (:func:`sharp_run`), jointly (:func:`grid_chain`).  The first
     trial after which every corner it touched, and their neighbours, have a
-    :func:`_corner_gap` of at least ``l`` is taken, in place.  A corner that
-    :func:`._corner.corner_unplaceable` proves impossible even with every
+    :func:`corner_gap` of at least ``l`` is taken, in place.  A corner that
+    :func:`.corner.corner_unplaceable` proves impossible even with every
     pair checked ends the search: the ring cannot be separated, and
     :func:`check_boundary_separation` refuses it, naming the first such
     corner.  Every part stays in ``[l, 2l]``.  Deterministic.
@@ -269,7 +269,7 @@ def _place_corners_on_a_grid(sides, lengths, angles, l, spacing):
     n = len(lengths)
     free, leaving, arriving = (False, False), (True, False), (False, True)
     for c in range(n):
-        if at_least(_corner_gap(sides, lengths, angles, l, c), l):
+        if at_least(corner_gap(sides, lengths, angles, l, c), l):
             continue
         if _corner.corner_unplaceable(math.radians(angles[c]), (lengths[c], lengths[c - 1]), l, (math.inf, math.inf)):
             return
@@ -295,15 +295,13 @@ def _place_corners_on_a_grid(sides, lengths, angles, l, spacing):
                     run = [corner, (corner + 1) % n] if keep is PAIR else sharp_run(lengths, angles, l, corner)
                     # a run of two is the pair's trial
                     trial = (
-                        trial
-                        and (keep is PAIR or len(run) > 2)
-                        and _grid_chain(trial, lengths, angles, l, spacing, run)
+                        trial and (keep is PAIR or len(run) > 2) and grid_chain(trial, lengths, angles, l, spacing, run)
                     )
                 else:
                     run = [corner]
-                    trial = trial and _grid_sides(trial, lengths, angles, l, spacing, corner, keep)
+                    trial = trial and grid_sides(trial, lengths, angles, l, spacing, corner, keep)
                 touched |= {(k + d) % n for k in run for d in (-1, 0, 1)}
-            if trial and all(at_least(_corner_gap(trial, lengths, angles, l, k), l) for k in touched):
+            if trial and all(at_least(corner_gap(trial, lengths, angles, l, k), l) for k in touched):
                 sides[:] = trial
                 break
 
@@ -311,7 +309,7 @@ def _place_corners_on_a_grid(sides, lengths, angles, l, spacing):
 def sharp_run(lengths, angles, l, c):
     """The run of sharp corners through the sharp corner ``c``: consecutive, each two sharing a side that couples them.
 
-    Coupled as :func:`._chain.shared` says (no longer than ``K_1 l +
+    Coupled as :func:`.chain.shared` says (no longer than ``K_1 l +
     K_2 l + 4l``); in ring order, at most all corners but one.
     """
     n = len(lengths)
@@ -327,11 +325,11 @@ def sharp_run(lengths, angles, l, c):
     return run
 
 
-def _grid_chain(sides, lengths, angles, l, spacing, run):
-    """``sides`` with the sides of the corners ``run`` (consecutive) placed by :func:`._chain.place_chain`, or None.
+def grid_chain(sides, lengths, angles, l, spacing, run):
+    """``sides`` with the sides of the corners ``run`` (consecutive) placed by :func:`.chain.place_chain`, or None.
 
     None too when a corner is not sharp.  The shared sides take the points
-    found; the first and last side are completed by :func:`_grid_side`.
+    found; the first and last side are completed by :func:`grid_side`.
     """
     if not all(stagger_count(angles[c]) for c in run):
         return None
@@ -344,32 +342,31 @@ def _grid_chain(sides, lengths, angles, l, spacing, run):
     for i, points in zip(edges[1:-1], found[1:-1]):
         trial[i] = np.concatenate([[0.0], points[:-1]]), lengths[i]
     for i, points, c, leaving in ((edges[0], found[0], run[0], False), (edges[-1], found[-1], run[-1], True)):
-        trial[i] = _grid_side(lengths[i], points, _from_corner(sides, lengths, c, i), leaving, l, spacing)
+        trial[i] = grid_side(lengths[i], points, from_corner(sides, lengths, c, i), leaving, l, spacing)
     return trial
 
 
-def _grid_sides(sides, lengths, angles, l, spacing, c, keep):
-    """``sides`` with the two sides of corner ``c`` (leaving, arriving) placed by :func:`._corner.place_corner`, or
-    None.
+def grid_sides(sides, lengths, angles, l, spacing, c, keep):
+    """``sides`` with the two sides of corner ``c`` (leaving, arriving) placed by :func:`.corner.place_corner`, or None.
 
-    The sides flagged in ``keep`` are passed as they are (:func:`_from_corner`).
+    The sides flagged in ``keep`` are passed as they are (:func:`from_corner`).
     """
     n = len(lengths)
     theta = math.radians(angles[c])
     reach = _corner.corner_reach(theta, l)
     ends = (c, (c - 1) % n)
-    near = [_from_corner(sides, lengths, c, i) for i in ends]
+    near = [from_corner(sides, lengths, c, i) for i in ends]
     fixed = [_corner.cut(points, lengths[i], reach, l) if kept else None for i, points, kept in zip(ends, near, keep)]
     found = _corner.place_corner(theta, tuple(lengths[i] for i in ends), l, fixed)
     if found is None:
         return None
     trial = list(sides)
     for i, points, now in zip(ends, found, near):
-        trial[i] = _grid_side(lengths[i], points, now, i == c, l, spacing)
+        trial[i] = grid_side(lengths[i], points, now, i == c, l, spacing)
     return trial
 
 
-def _from_corner(sides, lengths, c, i):
+def from_corner(sides, lengths, c, i):
     """The points of side ``i`` (``c`` leaving corner ``c``, ``c - 1`` arriving) by distance from corner ``c``, far end
     included."""
     num, den = sides[i]
@@ -377,11 +374,11 @@ def _from_corner(sides, lengths, c, i):
     return np.append(positions if i == c else (lengths[i] - positions)[::-1], lengths[i])
 
 
-def _grid_side(length, points, now, leaving, l, spacing):
-    """A side from :func:`._corner.place_corner`'s ``points`` (by distance from the corner), as ``(positions, length)``.
+def grid_side(length, points, now, leaving, l, spacing):
+    """A side from :func:`.corner.place_corner`'s ``points`` (by distance from the corner), as ``(positions, length)``.
 
     Where the grid cut the side short (past ``K l``), its points ``now`` at
-    least ``l`` beyond the cut are kept and :func:`_place` splits the middle
+    least ``l`` beyond the cut are kept and :func:`place` splits the middle
     between, at least ``l`` long, into parts of ``[l, 2l]``; the kept points
     are consecutive points of a side, so their parts are in ``[l, 2l]`` too.
     """
@@ -390,10 +387,10 @@ def _grid_side(length, points, now, leaving, l, spacing):
         return np.concatenate([[0.0], inner if leaving else (length - inner)[::-1]]), length
     kept = now[(now >= points[-1] + l) & (now < length)]
     far = (length - kept)[::-1]
-    return _place(length, points, far, l, spacing) if leaving else _place(length, far, points, l, spacing)
+    return place(length, points, far, l, spacing) if leaving else place(length, far, points, l, spacing)
 
 
-def _corner_gap(sides, lengths, angles, l, c):
+def corner_gap(sides, lengths, angles, l, c):
     """The smallest distance between Step 2 points of the two sides of corner ``c`` (``inf`` if it is not sharp).
 
     Far corners count, the corner itself not.  Points farther than ``K l >= l

@@ -62,7 +62,7 @@ sift loops call no helper that takes an array for the same reason.
 
 numba's on-disk cache (``cache=True``) is keyed by the source file of each
 compiled function, not by the functions it calls: after an edit of
-:mod:`._cdt` or :mod:`._predicates` alone, the cached :func:`_insert_all`
+:mod:`._cdt` or :mod:`._predicates` alone, the cached :func:`insert_all`
 still holds the old code.  Edit this file too (or delete ``__pycache__/*.nb*``)
 whenever one of them changes.
 """
@@ -83,19 +83,19 @@ from .region import Insertion, constrained_delaunay
 _REACH = 2.0
 #: ... and measured against every constraint when there are more than this
 #: many such triangles (a vertex of high degree next to the circumcentre).
-_NEAR_TRIANGLES = 64
+NEAR_TRIANGLES = 64
 
 #: Starting length of the cavity buffers (grown on demand).
-_CAVITY = 64
+CAVITY = 64
 
 #: Returned by the compiled loop: done; else ``-2 - s`` for the first
 #: segment ``s`` that is not an edge of exactly one triangle ...
-_OK = -1
+OK = -1
 #: ... or a Bowyer-Watson cavity produced a non-counter-clockwise fan (a bug).
-_BROKEN = -2 - 2**62
+BROKEN = -2 - 2**62
 
 
-def _circumcircle(P, a, b, c):
+def circumcircle(P, a, b, c):
     """Circumcentre and radius of the triangle ``abc`` (vertex indices), exactly as
     :func:`equimesh._geometry.circumcenters`.
 
@@ -118,10 +118,10 @@ def _circumcircle(P, a, b, c):
     return ax + ux, ay + uy, np.hypot(ux, uy), gx, gy
 
 
-_circumcircle = compiled(_circumcircle, nrt=False)
+circumcircle = compiled(circumcircle, nrt=False)
 
 
-def _point_segment_distance(x, y, ax, ay, bx, by):
+def point_segment_distance(x, y, ax, ay, bx, by):
     """:func:`equimesh._geometry.point_segment_distance` for one point and segment, same operations."""
     abx, aby = bx - ax, by - ay
     denom = abx * abx + aby * aby
@@ -130,17 +130,17 @@ def _point_segment_distance(x, y, ax, ay, bx, by):
     return np.hypot(x - (ax + t * abx), y - (ay + t * aby))
 
 
-_point_segment_distance = compiled(_point_segment_distance, nrt=False)
+point_segment_distance = compiled(point_segment_distance, nrt=False)
 
 
-def _edge_distance(P, a, b, x, y):
-    return _point_segment_distance(x, y, P[a, 0], P[a, 1], P[b, 0], P[b, 1])
+def edge_distance(P, a, b, x, y):
+    return point_segment_distance(x, y, P[a, 0], P[a, 1], P[b, 0], P[b, 1])
 
 
-_edge_distance = compiled(_edge_distance, nrt=False)
+edge_distance = compiled(edge_distance, nrt=False)
 
 
-def _gap(P, V, N, S, SA, SB, salive, n_segs, start, x, y, reach, seen):
+def constraint_gap(P, V, N, S, SA, SB, salive, n_segs, start, x, y, reach, seen):
     """Distance from ``(x, y)`` to the nearest constraint, exact whenever it is at most ``reach / 2``.
 
     Searches the triangles within ``reach`` of the point, from the triangle
@@ -156,10 +156,10 @@ def _gap(P, V, N, S, SA, SB, salive, n_segs, start, x, y, reach, seen):
         for e in range(3):
             s = S[t, e]
             if s >= 0:
-                best = min(best, _edge_distance(P, SA[s], SB[s], x, y))
+                best = min(best, edge_distance(P, SA[s], SB[s], x, y))
                 continue
             n = N[t, e]
-            if n < 0 or _edge_distance(P, V[t, e], V[t, (e + 1) % 3], x, y) > reach:
+            if n < 0 or edge_distance(P, V[t, e], V[t, (e + 1) % 3], x, y) > reach:
                 continue
             known = False
             for j in range(k):
@@ -169,22 +169,22 @@ def _gap(P, V, N, S, SA, SB, salive, n_segs, start, x, y, reach, seen):
                     best = np.inf
                     for s in range(n_segs):
                         if salive[s]:
-                            best = min(best, _edge_distance(P, SA[s], SB[s], x, y))
+                            best = min(best, edge_distance(P, SA[s], SB[s], x, y))
                     return best
                 seen[k] = n
                 k += 1
     return best
 
 
-_gap = compiled(_gap, nrt=False)
+constraint_gap = compiled(constraint_gap, nrt=False)
 
 
-def _visible_circumcentre(P, V, N, S, SA, SB, salive, n_segs, alive, n_slots, t, lim, seen):
+def visible_circumcentre(P, V, N, S, SA, SB, salive, n_segs, alive, n_slots, t, lim, seen):
     """Candidate 1 of the reference for triangle ``t``: ``(value, x, y, triangle containing it)`` or value -1.
 
     ``lim`` = ``(1 - REL_TOL) l, (1 + REL_TOL) l, REL_TOL l, SLIVER_GAP l``, the search reach.
     """
-    cx, cy, r, gx, gy = _circumcircle(P, V[t, 0], V[t, 1], V[t, 2])
+    cx, cy, r, gx, gy = circumcircle(P, V[t, 0], V[t, 1], V[t, 2])
     if not (math.isfinite(r) and r >= lim[0]):
         return -1.0, cx, cy, -1
     status, where = walk(P, V, N, S, t, gx, gy, cx, cy, n_slots + 1)
@@ -195,16 +195,16 @@ def _visible_circumcentre(P, V, N, S, SA, SB, salive, n_segs, alive, n_slots, t,
         where = locate(P, V, N, alive, n_slots, t, cx, cy, n_slots + 1)
     elif status == 0:
         return -1.0, cx, cy, -1
-    gap = _gap(P, V, N, S, SA, SB, salive, n_segs, where, cx, cy, lim[4], seen)
+    gap = constraint_gap(P, V, N, S, SA, SB, salive, n_segs, where, cx, cy, lim[4], seen)
     if gap <= lim[2] or (gap <= lim[3] and r <= lim[1]):
         return -1.0, cx, cy, -1
     return r, cx, cy, where
 
 
-_visible_circumcentre = compiled(_visible_circumcentre, nrt=False)
+visible_circumcentre = compiled(visible_circumcentre, nrt=False)
 
 
-def _before(a0, a1, a2, b0, b1, b2):
+def before(a0, a1, a2, b0, b1, b2):
     """Heap order: key ``(a0, a1, a2)`` before ``(b0, b1, b2)``, lexicographically on ``(-value, x, y)``."""
     if a0 != b0:
         return a0 < b0
@@ -213,16 +213,16 @@ def _before(a0, a1, a2, b0, b1, b2):
     return a2 < b2
 
 
-_before = compiled(_before, nrt=False)
+before = compiled(before, nrt=False)
 
 
-def _swap(HK, HI, a, b):
+def swap(HK, HI, a, b):
     for c in range(3):
         HK[a, c], HK[b, c] = HK[b, c], HK[a, c]
         HI[a, c], HI[b, c] = HI[b, c], HI[a, c]
 
 
-_swap = compiled(_swap, nrt=False)
+swap = compiled(swap, nrt=False)
 
 
 def _sift_down(HK, HI, n, i):
@@ -237,9 +237,9 @@ def _sift_down(HK, HI, n, i):
         c = 2 * i + 1
         if c >= n:
             break
-        if c + 1 < n and _before(HK[c + 1, 0], HK[c + 1, 1], HK[c + 1, 2], HK[c, 0], HK[c, 1], HK[c, 2]):
+        if c + 1 < n and before(HK[c + 1, 0], HK[c + 1, 1], HK[c + 1, 2], HK[c, 0], HK[c, 1], HK[c, 2]):
             c += 1
-        if not _before(HK[c, 0], HK[c, 1], HK[c, 2], k0, k1, k2):
+        if not before(HK[c, 0], HK[c, 1], HK[c, 2], k0, k1, k2):
             break
         for q in range(3):  # (no helper call in the loop: numba would count references to HK and HI)
             HK[i, q], HI[i, q] = HK[c, q], HI[c, q]
@@ -251,12 +251,12 @@ def _sift_down(HK, HI, n, i):
 _sift_down = compiled(_sift_down, nrt=False)
 
 
-def _push(HK, HI, n, value, x, y, t, version, s):
+def push(HK, HI, n, value, x, y, t, version, s):
     """Add an entry to the heap ``[:n]``, moving the entries above it down as in :func:`_sift_down`; the new size."""
     i = n
     while i > 0:
         parent = (i - 1) // 2
-        if not _before(-value, x, y, HK[parent, 0], HK[parent, 1], HK[parent, 2]):
+        if not before(-value, x, y, HK[parent, 0], HK[parent, 1], HK[parent, 2]):
             break
         for q in range(3):
             HK[i, q], HI[i, q] = HK[parent, q], HI[parent, q]
@@ -266,20 +266,20 @@ def _push(HK, HI, n, value, x, y, t, version, s):
     return n + 1
 
 
-_push = compiled(_push, nrt=False)
+push = compiled(push, nrt=False)
 
 
-def _pop(HK, HI, n):
+def pop(HK, HI, n):
     """Remove the top (it is copied to row ``n - 1``); the new size."""
-    _swap(HK, HI, 0, n - 1)
+    swap(HK, HI, 0, n - 1)
     _sift_down(HK, HI, n - 1, 0)
     return n - 1
 
 
-_pop = compiled(_pop, nrt=False)
+pop = compiled(pop, nrt=False)
 
 
-def _compact(HK, HI, n, ver, salive):
+def compact(HK, HI, n, ver, salive):
     """Drop the dead entries of the heap ``[:n]`` (lazy deletion's garbage) and restore the heap order; the new size."""
     k = 0
     for i in range(n):
@@ -292,42 +292,42 @@ def _compact(HK, HI, n, ver, salive):
     return k
 
 
-_compact = compiled(_compact)
+compact = compiled(compact)
 
 
-def _grown(a, size):
+def grown(a, size):
     """``a`` in a zero-filled array of ``size`` rows."""
     out = np.zeros((size,) + a.shape[1:], dtype=a.dtype)
     out[: len(a)] = a
     return out
 
 
-_grown = compiled(_grown)
+grown = compiled(grown)
 
 
-def _room(HK, HI, n, need, ver, salive):
+def room(HK, HI, n, need, ver, salive):
     """The heap ``[:n]`` with room for ``need`` more entries: ``(HK, HI, n)``.
 
-    When it is short of room, drops the dead entries (:func:`_compact`), and
+    When it is short of room, drops the dead entries (:func:`compact`), and
     if they still fill more than half of it, grows both arrays to twice their
     length plus ``need``.
     """
     if n + need > len(HK):
-        n = _compact(HK, HI, n, ver, salive)
+        n = compact(HK, HI, n, ver, salive)
         if 2 * (n + need) > len(HK):
             size = 2 * len(HK) + need
-            HK, HI = _grown(HK, size), _grown(HI, size)
+            HK, HI = grown(HK, size), grown(HI, size)
     return HK, HI, n
 
 
-_room = compiled(_room)
+room = compiled(room)
 
 
-def _push_candidates(P, V, N, S, SA, SB, salive, n_segs, alive, ver, n_slots, t, lim, seen, HK, HI, nh):
+def push_candidates(P, V, N, S, SA, SB, salive, n_segs, alive, ver, n_slots, t, lim, seen, HK, HI, nh):
     """Push the candidates of triangle ``t`` (its circumcentre, its constraint midpoints); the new heap size."""
-    r, cx, cy, _ = _visible_circumcentre(P, V, N, S, SA, SB, salive, n_segs, alive, n_slots, t, lim, seen)
+    r, cx, cy, _ = visible_circumcentre(P, V, N, S, SA, SB, salive, n_segs, alive, n_slots, t, lim, seen)
     if r >= 0.0:
-        nh = _push(HK, HI, nh, r, cx, cy, t, ver[t], -1)
+        nh = push(HK, HI, nh, r, cx, cy, t, ver[t], -1)
     for e in range(3):
         s = S[t, e]
         if s < 0:
@@ -342,14 +342,14 @@ def _push_candidates(P, V, N, S, SA, SB, salive, n_segs, alive, ver, n_slots, t,
         ex, ey = mx - P[apex, 0], my - P[apex, 1]
         value = min(half, math.sqrt(ex * ex + ey * ey))
         if value >= lim[0]:
-            nh = _push(HK, HI, nh, value, mx, my, t, ver[t], s)
+            nh = push(HK, HI, nh, value, mx, my, t, ver[t], s)
     return nh
 
 
-_push_candidates = compiled(_push_candidates, nrt=False)
+push_candidates = compiled(push_candidates, nrt=False)
 
 
-def _insert_all(P0, T0, SEG0, lim):
+def insert_all(P0, T0, SEG0, lim):
     """Steps 3-4 on the CDT ``T0`` of ``P0`` with constraints ``SEG0``: ``(status, P, triangles, segments, values)``."""
     n = len(P0)
     SA, SB = SEG0[:, 0].copy(), SEG0[:, 1].copy()
@@ -367,39 +367,39 @@ def _insert_all(P0, T0, SEG0, lim):
     vfan = np.zeros(n, dtype=np.int64)
     vstamp = np.zeros(n, dtype=np.int64)
     values = np.zeros(n)
-    cav = np.empty(_CAVITY, dtype=np.int64)
-    edges = np.empty((_CAVITY + 2, 4), dtype=np.int64)
+    cav = np.empty(CAVITY, dtype=np.int64)
+    edges = np.empty((CAVITY + 2, 4), dtype=np.int64)
     slots = np.arange(n_slots)
-    seen = np.empty(_NEAR_TRIANGLES, dtype=np.int64)
+    seen = np.empty(NEAR_TRIANGLES, dtype=np.int64)
     HK, HI = np.empty((0, 3)), np.empty((0, 3), dtype=np.int64)
     nh, m, stamp = 0, n_slots, 0
     while True:
         # Push the candidates of the new triangles slots[:m] (at first: every triangle), at most four each
-        # (_room only when short of room: a call at every pop made the engine 5 % slower).
+        # (room only when short of room: a call at every pop made the engine 5 % slower).
         if nh + 4 * m > len(HK):
-            HK, HI, nh = _room(HK, HI, nh, 4 * m, ver, salive)
+            HK, HI, nh = room(HK, HI, nh, 4 * m, ver, salive)
         for f in range(m):
-            nh = _push_candidates(
+            nh = push_candidates(
                 P, V, N, S, SA, SB, salive, n_segs, alive, ver, n_slots, slots[f], lim, seen, HK, HI, nh
             )
         m = 0
         if nh == 0:
             break
-        nh = _pop(HK, HI, nh)
+        nh = pop(HK, HI, nh)
         t, version, s = HI[nh, 0], HI[nh, 1], HI[nh, 2]
         if ver[t] != version or (s >= 0 and not salive[s]):
             continue
         x, y = HK[nh, 1], HK[nh, 2]
         start = t
         if s < 0:
-            r, _, _, start = _visible_circumcentre(P, V, N, S, SA, SB, salive, n_segs, alive, n_slots, t, lim, seen)
+            r, _, _, start = visible_circumcentre(P, V, N, S, SA, SB, salive, n_segs, alive, n_slots, t, lim, seen)
             if r < 0.0:
                 continue
         if n == len(P):
-            P, values = _grown(P, 2 * n), _grown(values, 2 * n)
-            vfan, vstamp = _grown(vfan, 2 * n), _grown(vstamp, 2 * n)
+            P, values = grown(P, 2 * n), grown(values, 2 * n)
+            vfan, vstamp = grown(vfan, 2 * n), grown(vstamp, 2 * n)
         if n_segs + 2 > len(SA):
-            SA, SB, salive = _grown(SA, 2 * len(SA) + 2), _grown(SB, 2 * len(SB) + 2), _grown(salive, 2 * len(SA) + 2)
+            SA, SB, salive = grown(SA, 2 * len(SA) + 2), grown(SB, 2 * len(SB) + 2), grown(salive, 2 * len(SA) + 2)
         p = n
         P[p, 0], P[p, 1] = x, y
         values[p - len(P0)] = -HK[nh, 0]
@@ -407,16 +407,16 @@ def _insert_all(P0, T0, SEG0, lim):
         stamp += 1
         k = cavity(P, V, N, S, start, x, y, mark, stamp, cav)
         while k < 0:
-            cav = _grown(cav, 2 * len(cav))
+            cav = grown(cav, 2 * len(cav))
             stamp += 1
             k = cavity(P, V, N, S, start, x, y, mark, stamp, cav)
         if k + 2 > len(edges):
-            edges = _grown(edges, 2 * k + 2)
+            edges = grown(edges, 2 * k + 2)
         if k + 2 > len(slots):
-            slots = _grown(slots, 2 * k + 2)
+            slots = grown(slots, 2 * k + 2)
         m = cavity_boundary(V, N, S, cav, k, s, mark, stamp, edges)
         if m < 0:
-            return _BROKEN, P, V, SEG0, values
+            return BROKEN, P, V, SEG0, values
         for i in range(k):
             alive[cav[i]] = False
             ver[cav[i]] += 1
@@ -424,8 +424,8 @@ def _insert_all(P0, T0, SEG0, lim):
             n_free += 1
         if m > n_free + len(V) - n_slots:
             size = 2 * len(V) + m
-            V, N, S = _grown(V, size), _grown(N, size), _grown(S, size)
-            alive, ver, mark, free = _grown(alive, size), _grown(ver, size), _grown(mark, size), _grown(free, size)
+            V, N, S = grown(V, size), grown(N, size), grown(S, size)
+            alive, ver, mark, free = grown(alive, size), grown(ver, size), grown(mark, size), grown(free, size)
         for f in range(m):
             if n_free > 0:
                 n_free -= 1
@@ -435,7 +435,7 @@ def _insert_all(P0, T0, SEG0, lim):
                 n_slots += 1
             alive[slots[f]] = True
         if not fill(P, V, N, S, edges, m, p, slots, vfan, vstamp, stamp):
-            return _BROKEN, P, V, SEG0, values
+            return BROKEN, P, V, SEG0, values
         if s >= 0:
             a, b = SA[s], SB[s]
             salive[s] = False
@@ -453,16 +453,15 @@ def _insert_all(P0, T0, SEG0, lim):
     segs = np.flatnonzero(salive[:n_segs])
     out_segments = np.empty((len(segs), 2), dtype=np.int64)
     out_segments[:, 0], out_segments[:, 1] = SA[segs], SB[segs]
-    return _OK, P[:n].copy(), V[live].copy(), out_segments, values[: n - len(P0)].copy()
+    return OK, P[:n].copy(), V[live].copy(), out_segments, values[: n - len(P0)].copy()
 
 
-_insert_all = compiled(_insert_all)
+insert_all = compiled(insert_all)
 
 
-def _limits(l):
+def limits(l):
     """The thresholds of the candidate rules for ``l`` and the reach of the distance search, the ``lim`` of
-    :func:`_visible_circumcentre`: ``(1 - REL_TOL) l, (1 + REL_TOL) l, REL_TOL l, SLIVER_GAP l,
-    _REACH SLIVER_GAP l``."""
+    :func:`visible_circumcentre`: ``(1 - REL_TOL) l, (1 + REL_TOL) l, REL_TOL l, SLIVER_GAP l, _REACH SLIVER_GAP l``."""
     return np.array([(1.0 - REL_TOL) * l, (1.0 + REL_TOL) * l, REL_TOL * l, SLIVER_GAP * l, _REACH * SLIVER_GAP * l])
 
 
@@ -471,12 +470,12 @@ def run(region, l):
     points = np.array(region.points, dtype=float).reshape(-1, 2)
     segments = np.array(region.segments, dtype=np.int64).reshape(-1, 2)
     triangles = constrained_delaunay(points, segments, region.holes)
-    status, points, triangles, segments, values = _insert_all(
-        points, np.ascontiguousarray(triangles, dtype=np.int64), segments, _limits(l)
+    status, points, triangles, segments, values = insert_all(
+        points, np.ascontiguousarray(triangles, dtype=np.int64), segments, limits(l)
     )
-    if status == _BROKEN:
+    if status == BROKEN:
         raise InternalError("fast engine: a Bowyer-Watson cavity did not re-triangulate (broken triangulation)")
-    if status != _OK:
+    if status != OK:
         raise EquimeshError(
             f"the fast engine needs every constraint to bound the region, but segment {-2 - status} "
             "is an edge of zero or two triangles; use engine='reference'"

@@ -33,7 +33,7 @@ _CCW_BOUND = (3.0 + 16.0 * _EPS) * _EPS
 _ICC_BOUND = (10.0 + 96.0 * _EPS) * _EPS
 
 
-def _two_sum(a, b):
+def two_sum(a, b):
     """``a + b = x + y`` exactly, ``x`` the rounded sum (Knuth)."""
     x = a + b
     bv = x - a
@@ -41,34 +41,34 @@ def _two_sum(a, b):
     return x, (a - av) + (b - bv)
 
 
-_two_sum = compiled(_two_sum, nrt=True)
+two_sum = compiled(two_sum, nrt=True)
 
 
-def _split(a):
+def split(a):
     """``a = hi + lo`` with both halves of at most 26 significant bits (Dekker)."""
     c = _SPLITTER * a
     hi = c - (c - a)
     return hi, a - hi
 
 
-_split = compiled(_split, nrt=True)
+split = compiled(split, nrt=True)
 
 
-def _two_product(a, b):
+def two_product(a, b):
     """``a * b = x + y`` exactly, ``x`` the rounded product (Dekker)."""
     x = a * b
-    ahi, alo = _split(a)
-    bhi, blo = _split(b)
+    ahi, alo = split(a)
+    bhi, blo = split(b)
     err = x - ahi * bhi
     err -= alo * bhi
     err -= ahi * blo
     return x, alo * blo - err
 
 
-_two_product = compiled(_two_product, nrt=True)
+two_product = compiled(two_product, nrt=True)
 
 
-def _grow(h, n, b):
+def grow(h, n, b):
     """Add ``b`` to the expansion ``h[:n]`` in place (Grow-Expansion, zero elimination); the new length.
 
     ``h`` needs room for ``n + 1`` components.  Components stay
@@ -77,7 +77,7 @@ def _grow(h, n, b):
     q = b
     k = 0
     for i in range(n):
-        q, e = _two_sum(q, h[i])
+        q, e = two_sum(q, h[i])
         if e != 0.0:
             h[k] = e
             k += 1
@@ -87,43 +87,43 @@ def _grow(h, n, b):
     return k
 
 
-_grow = compiled(_grow, nrt=True)
+grow = compiled(grow, nrt=True)
 
 
-def _add_product(h, n, e, ne, f, nf, sign):
+def add_product(h, n, e, ne, f, nf, sign):
     """``h[:n] += sign * (e[:ne] * f[:nf])`` exactly; the new length (room for ``n + 2 ne nf``)."""
     for i in range(ne):
         for j in range(nf):
-            x, y = _two_product(e[i], f[j])
-            n = _grow(h, n, sign * y)
-            n = _grow(h, n, sign * x)
+            x, y = two_product(e[i], f[j])
+            n = grow(h, n, sign * y)
+            n = grow(h, n, sign * x)
     return n
 
 
-_add_product = compiled(_add_product, nrt=True)
+add_product = compiled(add_product, nrt=True)
 
 
-def _difference(a, b):
+def difference(a, b):
     """``a - b`` as an expansion of one or two components."""
     h = np.empty(2)
     h[0] = a
-    return h, _grow(h, 1, -b)
+    return h, grow(h, 1, -b)
 
 
-_difference = compiled(_difference, nrt=True)
+difference = compiled(difference, nrt=True)
 
 
-def _orient_exact(ax, ay, bx, by, cx, cy):
+def orient_exact(ax, ay, bx, by, cx, cy):
     h = np.empty(13)
     n = 0
     for p, q, s in ((ax, by, 1.0), (ax, cy, -1.0), (cx, by, -1.0), (ay, bx, -1.0), (ay, cx, 1.0), (cy, bx, 1.0)):
-        x, y = _two_product(p, q)
-        n = _grow(h, n, s * y)
-        n = _grow(h, n, s * x)
+        x, y = two_product(p, q)
+        n = grow(h, n, s * y)
+        n = grow(h, n, s * x)
     return h[n - 1]
 
 
-_orient_exact = compiled(_orient_exact, nrt=True)
+orient_exact = compiled(orient_exact, nrt=True)
 
 
 def orient2d(ax, ay, bx, by, cx, cy):
@@ -133,53 +133,53 @@ def orient2d(ax, ay, bx, by, cx, cy):
     det = left - right
     if abs(det) > _CCW_BOUND * (abs(left) + abs(right)):
         return det
-    return _orient_exact(ax, ay, bx, by, cx, cy)
+    return orient_exact(ax, ay, bx, by, cx, cy)
 
 
 orient2d = compiled(orient2d, nrt=True)
 
 
-def _cross_exact(ux, nux, vy, nvy, uy, nuy, vx, nvx):
+def cross_exact(ux, nux, vy, nvy, uy, nuy, vx, nvx):
     """``u x v = ux vy - uy vx`` for expansions, as an expansion ``(h, n)``."""
     h = np.empty(2 * (nux * nvy + nuy * nvx) + 1)
-    n = _add_product(h, 0, ux, nux, vy, nvy, 1.0)
-    return h, _add_product(h, n, uy, nuy, vx, nvx, -1.0)
+    n = add_product(h, 0, ux, nux, vy, nvy, 1.0)
+    return h, add_product(h, n, uy, nuy, vx, nvx, -1.0)
 
 
-_cross_exact = compiled(_cross_exact, nrt=True)
+cross_exact = compiled(cross_exact, nrt=True)
 
 
-def _lift_exact(ux, nux, uy, nuy):
+def lift_exact(ux, nux, uy, nuy):
     """``ux^2 + uy^2`` for expansions, as an expansion ``(h, n)``."""
     h = np.empty(2 * (nux * nux + nuy * nuy) + 1)
-    n = _add_product(h, 0, ux, nux, ux, nux, 1.0)
-    return h, _add_product(h, n, uy, nuy, uy, nuy, 1.0)
+    n = add_product(h, 0, ux, nux, ux, nux, 1.0)
+    return h, add_product(h, n, uy, nuy, uy, nuy, 1.0)
 
 
-_lift_exact = compiled(_lift_exact, nrt=True)
+lift_exact = compiled(lift_exact, nrt=True)
 
 
-def _incircle_exact(ax, ay, bx, by, cx, cy, dx, dy):
-    adx, nadx = _difference(ax, dx)
-    ady, nady = _difference(ay, dy)
-    bdx, nbdx = _difference(bx, dx)
-    bdy, nbdy = _difference(by, dy)
-    cdx, ncdx = _difference(cx, dx)
-    cdy, ncdy = _difference(cy, dy)
-    alift, na = _lift_exact(adx, nadx, ady, nady)
-    blift, nb = _lift_exact(bdx, nbdx, bdy, nbdy)
-    clift, nc = _lift_exact(cdx, ncdx, cdy, ncdy)
-    bc, nbc = _cross_exact(bdx, nbdx, cdy, ncdy, bdy, nbdy, cdx, ncdx)
-    ca, nca = _cross_exact(cdx, ncdx, ady, nady, cdy, ncdy, adx, nadx)
-    ab, nab = _cross_exact(adx, nadx, bdy, nbdy, ady, nady, bdx, nbdx)
+def incircle_exact(ax, ay, bx, by, cx, cy, dx, dy):
+    adx, nadx = difference(ax, dx)
+    ady, nady = difference(ay, dy)
+    bdx, nbdx = difference(bx, dx)
+    bdy, nbdy = difference(by, dy)
+    cdx, ncdx = difference(cx, dx)
+    cdy, ncdy = difference(cy, dy)
+    alift, na = lift_exact(adx, nadx, ady, nady)
+    blift, nb = lift_exact(bdx, nbdx, bdy, nbdy)
+    clift, nc = lift_exact(cdx, ncdx, cdy, ncdy)
+    bc, nbc = cross_exact(bdx, nbdx, cdy, ncdy, bdy, nbdy, cdx, ncdx)
+    ca, nca = cross_exact(cdx, ncdx, ady, nady, cdy, ncdy, adx, nadx)
+    ab, nab = cross_exact(adx, nadx, bdy, nbdy, ady, nady, bdx, nbdx)
     h = np.empty(2 * (na * nbc + nb * nca + nc * nab) + 1)
-    n = _add_product(h, 0, alift, na, bc, nbc, 1.0)
-    n = _add_product(h, n, blift, nb, ca, nca, 1.0)
-    n = _add_product(h, n, clift, nc, ab, nab, 1.0)
+    n = add_product(h, 0, alift, na, bc, nbc, 1.0)
+    n = add_product(h, n, blift, nb, ca, nca, 1.0)
+    n = add_product(h, n, clift, nc, ab, nab, 1.0)
     return h[n - 1]
 
 
-_incircle_exact = compiled(_incircle_exact, nrt=True)
+incircle_exact = compiled(incircle_exact, nrt=True)
 
 
 def incircle(ax, ay, bx, by, cx, cy, dx, dy):
@@ -204,7 +204,7 @@ def incircle(ax, ay, bx, by, cx, cy, dx, dy):
     )
     if abs(det) > _ICC_BOUND * permanent:
         return det
-    return _incircle_exact(ax, ay, bx, by, cx, cy, dx, dy)
+    return incircle_exact(ax, ay, bx, by, cx, cy, dx, dy)
 
 
 incircle = compiled(incircle, nrt=True)

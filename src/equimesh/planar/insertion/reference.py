@@ -112,14 +112,14 @@ def midpoint_candidates(points, triangles, segments, l):
     if not long_.size:
         return np.empty((0, 2)), np.empty(0), np.empty(0, dtype=np.int64)
     mids = 0.5 * (sa[long_] + sb[long_])
-    apex = _apex(triangles, segments[long_])
+    apex = apexes(triangles, segments[long_])
     has = apex >= 0
     values = half[long_].copy()
     values[has] = np.minimum(values[has], np.linalg.norm(mids[has] - points[apex[has]], axis=1))
     return mids, values, long_
 
 
-def _apex(triangles, pairs):
+def apexes(triangles, pairs):
     """Third vertex of the triangle that has edge ``pairs[i]``, or -1 (vectorised)."""
     t = np.asarray(triangles)
     if not len(t):

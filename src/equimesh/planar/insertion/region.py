@@ -59,7 +59,7 @@ def constrained_delaunay(points, segments, holes):
     data = {"vertices": np.asarray(points, dtype=float), "segments": np.asarray(segments, dtype=np.int32)}
     if len(holes):
         data["holes"] = np.asarray(holes, dtype=float)
-    with _captured_stdout() as printed:
+    with captured_stdout() as printed:
         try:
             out = triangle.triangulate(data, "pQ")
         except RuntimeError:
@@ -84,7 +84,7 @@ _LIBC = ctypes.CDLL(None)
 
 
 @contextmanager
-def _captured_stdout():
+def captured_stdout():
     """Redirect file descriptor 1 to a temporary file (Triangle prints its errors there, not to Python).
 
     Yields a function returning what was printed.  The descriptor is restored

@@ -16,7 +16,7 @@ from .chart import UNIT
 #: floats (C(n, n / 2) exceeds the largest float from n = 1030 on); the
 #: recurrence of :func:`_basis` has no such limit, but a point costs
 #: ``(m + 1)(n + 1)`` products, so the bound stays and keeps a mistyped net
-#: from hanging the pipeline.  Test: tests/test_hardening_surface.py.
+#: from hanging the pipeline.  Test: tests/surface/test_pipeline_limits.py.
 MAX_DEGREE = 1000
 
 

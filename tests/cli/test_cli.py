@@ -1,0 +1,530 @@
+"""The command line: every output format, the member schedule, and every bad input (exit 2, no file).
+
+Exit codes: 0 written, 2 bad input or unwritable output (one line, nothing
+written), 3 internal error (one line asking for a report), 130 interrupted.
+"""
+
+import json
+import os
+import re
+import shutil
+import signal
+import subprocess
+import sys
+import warnings
+from pathlib import Path
+
+import meshio
+import numpy as np
+import pandas as pd
+import pytest
+from hostile_paths import fifo, name_max, unwritable_folder
+from repository import SURFACES
+from triangle_meshes import bad_meshes, roof
+
+from equimesh import (
+    InternalError,
+    InvalidLengthError,
+)
+from equimesh._cli import main
+from equimesh.io import _meshes as io_meshes
+from equimesh.surface import pipeline
+
+SADDLE = SURFACES / "saddle.json"
+
+
+def run(args, capsys):
+    try:
+        code = main([str(a) for a in args])
+    except SystemExit as exc:  # argparse usage errors
+        code = exc.code
+    return code, capsys.readouterr()
+
+
+@pytest.fixture(scope="module")
+def meshed(tmp_path_factory):
+    """One mesh written in every format (coarse grid to stay quick)."""
+    out = tmp_path_factory.mktemp("formats")
+    for ext in (".obj", ".vtk", ".vtu", ".stl", ".ply", ".msh"):
+        assert main(["mesh", str(SADDLE), "--length", "6", "--grid", "8", "8", "-q", "-o", str(out / f"m{ext}")]) == 0
+    return out
+
+
+@pytest.mark.parametrize("ext", [".obj", ".vtk", ".vtu", ".stl", ".ply", ".msh"])
+def test_every_format_reads_back(meshed, ext):
+    """Each format is readable by meshio with the same triangles and points."""
+    ref = meshio.read(meshed / "m.vtu")
+    got = meshio.read(meshed / f"m{ext}")
+    tri = got.cells_dict["triangle"]
+    assert tri.shape == ref.cells_dict["triangle"].shape
+    if ext != ".stl":  # STL stores triangles as coordinate triples
+        np.testing.assert_allclose(got.points, ref.points, rtol=1e-6, atol=1e-6)
+
+
+def test_members_schedule_classes_and_summary(tmp_path, capsys):
+    """--members writes one row per member with its class and deviation from L, the classes CSV beside it,
+    and the summary on standard output agrees with both files."""
+    code, captured = run(
+        [
+            "mesh",
+            SADDLE,
+            "--length",
+            6,
+            "--grid",
+            8,
+            8,
+            "-o",
+            tmp_path / "m.obj",
+            "--members",
+            tmp_path / "m.csv",
+            "--optimize",
+            "none",
+            "--tolerance",
+            "1%",
+        ],
+        capsys,
+    )
+    assert code == 0
+    table = pd.read_csv(tmp_path / "m.csv")
+    assert list(table.columns) == [
+        "member",
+        "node_i",
+        "node_j",
+        "length",
+        "group",
+        "class",
+        "deviation",
+        "relative_deviation",
+    ]
+    np.testing.assert_allclose(table["deviation"], table["length"] - 6.0, rtol=0, atol=1e-8)
+    assert set(table["group"]) <= {"G1", "other"} and (table["group"] == "G1").any()
+    classes = pd.read_csv(tmp_path / "m.classes.csv")
+    assert classes["count"].sum() == len(table) and classes["class"].tolist() == list(range(len(classes)))
+    nominal = classes["nominal_length"].to_numpy()[table["class"]]
+    assert np.all(np.abs(table["length"] - nominal) <= 0.01 * 6.0 * (1 + 1e-12))
+    summary = dict(line.split("  ", 1) for line in captured.out.splitlines())
+    assert int(summary["members"]) == len(table)
+    assert summary["length classes"].strip().startswith(f"{len(classes)} ")
+    share = 100 * classes["count"].max() / len(table)
+    assert summary["in the largest class"].strip() == f"{share:.1f} %"
+    within = 100 * np.mean(np.abs(table["length"] - 6.0) <= 0.06)
+    assert summary["within +-1 % of L"].strip() == f"{within:.1f} %"
+
+
+def test_optimize_default_is_the_library_default():
+    """--optimize omitted means mesh_surface's own default, whatever the library makes it."""
+    import inspect
+
+    from equimesh._cli import build_parser
+
+    args = build_parser().parse_args(["mesh", str(SADDLE), "--length", "5", "-o", "m.obj"])
+    assert args.optimize == inspect.signature(pipeline.mesh_surface).parameters["optimize"].default
+
+
+def _write(path, text):
+    path.write_bytes(text if isinstance(text, bytes) else text.encode())
+    return path
+
+
+BAD = {
+    "missing file": lambda d: (["mesh", d / "nope.json", "--length", 5], "not found"),
+    "malformed JSON": lambda d: (["mesh", _write(d / "s.json", "{"), "--length", 5], "malformed JSON"),
+    "wrong type": lambda d: (
+        ["mesh", _write(d / "s.json", json.dumps({"type": "mesh", "control_points": []})), "--length", 5],
+        "bezier",
+    ),
+    "wrong net shape": lambda d: (
+        [
+            "mesh",
+            _write(
+                d / "s.json", json.dumps({"type": "bezier", "control_points": [[[0, 0, 0], [1, 0, 0]], [[0, 1, 0]]]})
+            ),
+            "--length",
+            5,
+        ],
+        "points",
+    ),
+    "point of 2 numbers": lambda d: (
+        [
+            "mesh",
+            _write(
+                d / "s.json", json.dumps({"type": "bezier", "control_points": [[[0, 0], [1, 0]], [[0, 1], [1, 1]]]})
+            ),
+            "--length",
+            5,
+        ],
+        "3 numbers",
+    ),
+    "non-finite": lambda d: (
+        [
+            "mesh",
+            _write(
+                d / "s.json", '{"type": "bezier", "control_points": [[[0, 0, NaN], [1, 0, 0]], [[0, 1, 0], [1, 1, 0]]]}'
+            ),
+            "--length",
+            5,
+        ],
+        "finite",
+    ),
+    "L = 0": lambda d: (["mesh", SADDLE, "--length", 0], "positive"),
+    "L < 0": lambda d: (["mesh", SADDLE, "--length", -5], "positive"),
+    "L nan": lambda d: (["mesh", SADDLE, "--length", "nan"], "finite"),
+    "L too small": lambda d: (["mesh", SADDLE, "--length", 0.05], "max-nodes"),
+    "L too large": lambda d: (["mesh", SADDLE, "--length", 500], "shorter than l"),
+    "L huge": lambda d: (["mesh", SADDLE, "--length", 1e300], "outside the supported range"),
+    "L longer than a side": lambda d: (["mesh", SADDLE, "--length", 1e6], "shorter than l"),
+    "L inf": lambda d: (["mesh", SADDLE, "--length", "inf"], "finite"),
+    "L not a number": lambda d: (["mesh", SADDLE, "--length", "five"], "--length"),
+    "5000-digit integer": lambda d: (["mesh", _write(d / "s.json", "[" + "9" * 5000 + "]"), "--length", 5], "digits"),
+    "nested 100000 deep": lambda d: (["mesh", _write(d / "s.json", "[" * 100_000), "--length", 5], "nested too deeply"),
+    "not UTF-8": lambda d: (["mesh", _write(d / "s.json", b'{"type": "b\xe9zier"}'), "--length", 5], "UTF-8"),
+    "input is a folder": lambda d: (["mesh", d, "--length", 5], "extension"),
+    "input folder named .json": lambda d: (
+        ["mesh", (d / "x.json").mkdir() or d / "x.json", "--length", 5],
+        "not a regular file",
+    ),
+    "input path too long": lambda d: (["mesh", d / ("a" * 5000 + ".json"), "--length", 5], "path too long"),
+    "max-nodes not a number": lambda d: (["mesh", SADDLE, "--length", 5, "--max-nodes", "2.5"], "whole number"),
+    "bad grid": lambda d: (["mesh", SADDLE, "--length", 5, "--grid", 0, 4], "n_u"),
+    "bad max-nodes": lambda d: (["mesh", SADDLE, "--length", 5, "--max-nodes", 0], "max-nodes"),
+    "missing length": lambda d: (["mesh", SADDLE], "--length"),
+    "bad optimize": lambda d: (["mesh", SADDLE, "--length", 5, "--optimize", "magic"], "optimize"),
+    "tolerance 0": lambda d: (["mesh", SADDLE, "--length", 5, "--tolerance", "0"], "above 0"),
+    "tolerance negative": lambda d: (["mesh", SADDLE, "--length", 5, "--tolerance=-0.5%"], "above 0"),
+    "tolerance 50 %": lambda d: (["mesh", SADDLE, "--length", 5, "--tolerance", "50%"], "below 50%"),
+    "tolerance 0.7": lambda d: (["mesh", SADDLE, "--length", 5, "--tolerance", "0.7"], "below 50%"),
+    "tolerance nan": lambda d: (["mesh", SADDLE, "--length", 5, "--tolerance", "nan"], "above 0"),
+    "tolerance not a number": lambda d: (["mesh", SADDLE, "--length", 5, "--tolerance", "tight"], "--tolerance"),
+}
+
+
+@pytest.mark.parametrize("case", sorted(BAD))
+def test_bad_input_exits_2_without_output(case, tmp_path, capsys):
+    """Bad input: exit code 2, one line on stderr naming the problem, no output file (nor temp file) left."""
+    args, match = BAD[case](tmp_path)
+    out = tmp_path / "out" / "mesh.obj"
+    out.parent.mkdir()
+    code, captured = run([*args, "-o", out, "--members", tmp_path / "out" / "m.csv", "-q"], capsys)
+    assert code == 2
+    lines = captured.err.strip().splitlines()
+    assert len(lines) == 1 and match in lines[0], captured.err
+    assert list(out.parent.iterdir()) == []
+
+
+@pytest.mark.parametrize("target, match", [("missing/mesh.obj", "does not exist"), ("mesh.xyz", "extension")])
+def test_bad_output_path(target, match, tmp_path, capsys):
+    code, captured = run(["mesh", SADDLE, "--length", 5, "-o", tmp_path / target], capsys)
+    assert code == 2 and match in captured.err
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_console_script_and_help():
+    """The installed entry point runs; --help of every subcommand works and exits 0."""
+    exe = shutil.which("equimesh") or str(Path(sys.executable).with_name("equimesh"))
+    for args in (["--help"], ["mesh", "--help"], ["table1", "--help"], ["figures", "--help"]):
+        done = subprocess.run([exe, *args], capture_output=True, text=True, check=False)
+        assert done.returncode == 0 and "usage" in done.stdout
+    done = subprocess.run([exe, "mesh", str(SADDLE), "--length", "0", "-o", "x.obj"], capture_output=True, text=True)
+    assert done.returncode == 2 and done.stderr.count("\n") == 1
+
+
+def test_tiny_length_is_refused_in_one_line(tmp_path, capsys):
+    code, captured = run(["mesh", SADDLE, "--length", 1e-300, "-o", tmp_path / "m.obj", "-q"], capsys)
+    assert code == 2 and captured.err.count("\n") == 1, captured.err
+    assert list(tmp_path.iterdir()) == []
+
+
+BAD_OUTPUTS = {
+    "output is a folder": lambda d: ["-o", (d / "m.obj").mkdir() or d / "m.obj"],
+    "output under a regular file": lambda d: ["-o", _write(d / "plain", "x") / "m.obj"],
+    "output a named pipe": lambda d: ["-o", fifo(d / "m.obj")],
+    "output name too long": lambda d: ["-o", d / ("a" * (name_max(d) - 3) + ".obj")],
+    "output folder unwritable": lambda d: ["-o", unwritable_folder(d) / "m.obj"],
+    "members folder unwritable": lambda d: ["-o", d / "m.obj", "--members", unwritable_folder(d) / "m.csv"],
+    "members extension": lambda d: ["-o", d / "m.obj", "--members", d / "m.txt"],
+    "classes CSV is a folder": lambda d: ["-o", d / "m.obj", "--members", (d / "m.classes.csv").mkdir() or d / "m.csv"],
+}
+
+
+@pytest.mark.parametrize("case", sorted(BAD_OUTPUTS))
+def test_bad_outputs_are_refused_before_meshing(case, tmp_path, capsys, monkeypatch):
+    """Every output is checked before the mesh is computed: one line, exit 2, nothing written."""
+    monkeypatch.setattr(pipeline, "mesh_surface", _never_called)
+    extra = BAD_OUTPUTS[case](tmp_path)
+    made = sorted(tmp_path.rglob("*"))
+    code, captured = run(["mesh", SADDLE, "--length", 5, "-q", *extra], capsys)
+    assert code == 2 and captured.err.count("\n") == 1, captured.err
+    assert sorted(tmp_path.rglob("*")) == made
+
+
+def test_longest_name_is_written(tmp_path, capsys):
+    """A file name of exactly NAME_MAX bytes works: the temporary name does not add to it."""
+    out = tmp_path / ("a" * (name_max(tmp_path) - 4) + ".stl")
+    code, captured = run(["mesh", SADDLE, "--length", 6, "--grid", 6, 6, "--optimize", "none", "-q", "-o", out], capsys)
+    assert code == 0, captured.err
+    assert [p.name for p in tmp_path.iterdir()] == [out.name]
+
+
+def test_members_write_failure_leaves_no_mesh(tmp_path, capsys, monkeypatch):
+    """The mesh and the member schedule are renamed together: a failing second write leaves neither."""
+
+    def disk_full(*args, **kwargs):
+        raise OSError(28, "No space left on device")
+
+    monkeypatch.setattr(pd.DataFrame, "to_csv", disk_full)
+    code, captured = run(
+        [
+            "mesh",
+            SADDLE,
+            "--length",
+            6,
+            "--grid",
+            6,
+            6,
+            "--optimize",
+            "none",
+            "-q",
+            "-o",
+            tmp_path / "m.obj",
+            "--members",
+            tmp_path / "m.csv",
+        ],
+        capsys,
+    )
+    assert code == 3 and "No space left on device" in captured.err and captured.err.count("\n") == 1
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_each_output_is_probed_once(tmp_path, capsys, monkeypatch):
+    """The outputs are checked before meshing and not again: one probe per file (mesh, schedule, classes)."""
+    probed = []
+    monkeypatch.setattr(io_meshes, "probe_folder", lambda folder, suffix="": probed.append(suffix))
+    code, captured = run(
+        [
+            "mesh",
+            SADDLE,
+            "--length",
+            6,
+            "--grid",
+            6,
+            6,
+            "--optimize",
+            "none",
+            "-q",
+            "-o",
+            tmp_path / "m.obj",
+            "--members",
+            tmp_path / "m.csv",
+        ],
+        capsys,
+    )
+    assert code == 0, captured.err
+    assert probed == [".obj", ".csv", ".csv"]
+
+
+def _never_called(*args, **kwargs):
+    raise AssertionError("mesh_surface must not run")
+
+
+def _raising(exc):
+    def mesh_surface(*args, **kwargs):
+        raise exc
+
+    return mesh_surface
+
+
+@pytest.mark.parametrize(
+    "exc, code, message",
+    [
+        (
+            InvalidLengthError("target length l must be positive"),
+            2,
+            "equimesh: error: target length l must be positive",
+        ),
+        (
+            InternalError("edge 3 is 2.5 long, more than 2l = 2.0"),
+            3,
+            "equimesh: internal error: InternalError: edge 3 is 2.5 long, more than 2l = 2.0 (please report this",
+        ),
+        (
+            ZeroDivisionError("float division by zero"),
+            3,
+            "equimesh: internal error: ZeroDivisionError: float division by zero",
+        ),
+        (
+            RuntimeError("Triangle failed\nInternal error in finddirection()"),
+            3,
+            "equimesh: internal error: RuntimeError: Triangle failed Internal error in finddirection()",
+        ),
+        (MemoryError(), 2, "equimesh: error: out of memory"),
+        (KeyboardInterrupt(), 130, "equimesh: interrupted"),
+    ],
+)
+def test_every_failure_is_one_line_with_its_exit_code(exc, code, message, tmp_path, capsys, monkeypatch):
+    monkeypatch.setattr(pipeline, "mesh_surface", _raising(exc))
+    got, captured = run(["mesh", SADDLE, "--length", 5, "-o", tmp_path / "m.obj", "-q"], capsys)
+    assert got == code
+    assert captured.err.count("\n") == 1 and captured.err.startswith(message), captured.err
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_library_noise_does_not_reach_the_terminal(tmp_path, capfd, monkeypatch):
+    """Triangle's C-level stdout and numpy's RuntimeWarnings are not printed: the one error line is."""
+
+    def noisy(*args, **kwargs):
+        os.write(1, b"Internal error in finddirection():\n")
+        np.array([1e300]) * 1e300  # overflow warning
+        raise RuntimeError("Triangulation failed")
+
+    monkeypatch.setattr(pipeline, "mesh_surface", noisy)
+    with warnings.catch_warnings(record=True) as shown:
+        warnings.simplefilter("always")
+        code = main(["mesh", str(SADDLE), "--length", "5", "-o", str(tmp_path / "m.obj"), "-q"])
+    captured = capfd.readouterr()
+    assert code == 3 and captured.out == "" and captured.err.count("\n") == 1, captured
+    assert shown == []
+
+
+def test_traceback_option_reraises_internal_errors(tmp_path, monkeypatch):
+    monkeypatch.setattr(pipeline, "mesh_surface", _raising(InternalError("broken")))
+    with pytest.raises(InternalError, match="broken"):
+        main(["--traceback", "mesh", str(SADDLE), "--length", "5", "-o", str(tmp_path / "m.obj")])
+
+
+@pytest.mark.parametrize(
+    "given, passed",
+    [([], {}), (["--max-nodes", "none"], {"max_nodes": None}), (["--max-nodes", "1000"], {"max_nodes": 1000})],
+)
+def test_max_nodes_reaches_the_library(given, passed, tmp_path, capsys, monkeypatch):
+    """Not given: the library's default applies; 'none': no limit (None); a number: that limit."""
+    seen = {}
+
+    def mesh_surface(surface, l, **kwargs):
+        seen.update(kwargs)
+        raise InvalidLengthError("stop here")
+
+    monkeypatch.setattr(pipeline, "mesh_surface", mesh_surface)
+    run(["mesh", SADDLE, "--length", 5, "-o", tmp_path / "m.obj", "-q", *given], capsys)
+    assert {k: v for k, v in seen.items() if k == "max_nodes"} == passed
+
+
+def test_sigint_prints_one_line_exits_130_and_writes_nothing(tmp_path):
+    """Ctrl-C in a long run: 'equimesh: interrupted', exit code 130, no output nor temporary file."""
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join(sys.path)}
+    proc = subprocess.Popen(
+        [
+            sys.executable,
+            "-m",
+            "equimesh._cli",
+            "mesh",
+            str(SADDLE),
+            "--length",
+            "1",
+            "--optimize",
+            "none",
+            "--max-nodes",
+            "100000",
+            "-o",
+            str(tmp_path / "m.obj"),
+            "--members",
+            str(tmp_path / "m.csv"),
+        ],
+        stderr=subprocess.PIPE,
+        text=True,
+        env=env,
+    )
+    try:
+        first = proc.stderr.readline()  # the first progress line: the run is under way
+        assert "auxiliary triangulation" in first, first
+        proc.send_signal(signal.SIGINT)
+        rest = proc.stderr.read()
+        code = proc.wait(timeout=60)
+    finally:
+        proc.kill()
+        proc.wait()
+    assert code == 130 and rest.strip().splitlines()[-1] == "equimesh: interrupted", rest
+    assert "Traceback" not in rest
+    assert list(tmp_path.iterdir()) == []
+
+
+ROOF_3DM = SURFACES / "roof.3dm"
+
+
+@pytest.mark.parametrize("choice, expect", [(None, "holds 2 surfaces"), ("nosuch", "has no surface 'nosuch'")])
+def test_rhino_object_must_be_named_when_ambiguous_or_unknown(tmp_path, capsys, choice, expect):
+    pytest.importorskip("rhino3dm", reason="rhino3dm (the optional extra [rhino]) is not installed")
+    args = ["mesh", ROOF_3DM, "--length", 2, "-o", tmp_path / "m.obj", "-q"] + (["--object", choice] if choice else [])
+    code, captured = run(args, capsys)
+    assert code == 2 and expect in captured.err and len(captured.err.strip().splitlines()) == 1
+    assert not list(tmp_path.iterdir())
+
+
+def test_rhino_trimmed_face_warns_in_one_line_and_meshes(tmp_path, capsys):
+    pytest.importorskip("rhino3dm", reason="rhino3dm (the optional extra [rhino]) is not installed")
+    code, captured = run(
+        [
+            "mesh",
+            ROOF_3DM,
+            "--object",
+            "skylight plate",
+            "--length",
+            1,
+            "--optimize",
+            "none",
+            "--grid",
+            6,
+            6,
+            "-o",
+            tmp_path / "m.obj",
+            "-q",
+        ],
+        capsys,
+    )
+    assert code == 0 and (tmp_path / "m.obj").is_file()
+    assert captured.err.strip() == (
+        f"equimesh: warning: object 1 'skylight plate' of {ROOF_3DM} is a trimmed face: "
+        "it is meshed on its untrimmed surface, not on the trimmed outline"
+    )
+
+
+def test_the_command_line_imports_the_library_inside_main():
+    """``import equimesh._cli`` loads no numpy, scipy or shapely: a Ctrl-C during their import (seconds on
+    a busy machine) happens inside main and is one line and exit code 130, not a traceback."""
+    code = (
+        "import sys, equimesh._cli; "
+        "print(sorted({m.split('.')[0] for m in sys.modules} & {'numpy', 'scipy', 'shapely', 'meshio'}))"
+    )
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join(sys.path)}
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env, check=True).stdout
+    assert out.strip() == "[]"
+
+
+L = 1.5
+
+
+# --------------------------------------------------------------------------- triangle meshes in
+
+
+def test_command_line_meshes_an_obj(tmp_path, capsys):
+    v, t = roof()
+    source = tmp_path / "roof.obj"
+    meshio.write(source, meshio.Mesh(v, [("triangle", t)]))
+    out = tmp_path / "out.vtu"
+    assert main(["mesh", str(source), "--length", str(L), "--optimize", "none", "-q", "-o", str(out)]) == 0
+    written = meshio.read(out)
+    assert len(written.cells_dict["triangle"]) > 0
+
+
+@pytest.mark.parametrize("case", sorted(bad_meshes()))
+def test_command_line_refuses_bad_meshes(tmp_path, capsys, case):
+    """Every malformed mesh, written as a .vtu file: one line, exit 2, nothing written."""
+    (v, t), match = bad_meshes()[case]
+    source = tmp_path / "bad.vtu"
+    # meshio cannot read back an empty triangle block: a mesh of lines only has no triangles either.
+    cells = [("line", np.array([[0, 1]]))] if case == "no triangles" else [("triangle", np.asarray(t, dtype=np.int64))]
+    meshio.write(source, meshio.Mesh(np.asarray(v, dtype=float), cells))
+    out = tmp_path / "out.vtu"
+    assert main(["mesh", str(source), "--length", "1", "-o", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and err.startswith("equimesh: error: ") and re.search(match, err), err
+    assert not out.exists()

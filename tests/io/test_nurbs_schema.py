@@ -1,0 +1,73 @@
+"""The JSON description of a NURBS surface (``io/_nurbs.py``): an exact round trip, and every malformed field refused
+in one line naming it.
+"""
+
+import json
+
+import numpy as np
+import pytest
+from refusals import assert_one_line
+
+from equimesh import InvalidSurfaceError, NurbsSurface
+from equimesh.io import surface_from_dict, surface_to_dict
+
+
+def good():
+    return {
+        "type": "nurbs",
+        "degree": [2, 1],
+        "knots_u": [0, 0, 0, 0.5, 1, 1, 1],
+        "knots_v": [0, 0, 1, 1],
+        "control_points": [[[i, j, (i - 1.5) ** 2], [i, j + 5, 0]] for i, j in zip(range(4), range(4))],
+        "weights": [[1, 1], [0.5, 2], [1, 1], [3, 1]],
+    }
+
+
+def test_json_round_trip():
+    s = surface_from_dict(json.loads(json.dumps(good())))
+    assert isinstance(s, NurbsSurface) and s.domain.u == (0.0, 1.0)
+    again = surface_from_dict(json.loads(json.dumps(surface_to_dict(s))))
+    uv = np.random.default_rng(0).uniform(0, 1, (5, 2))
+    assert np.array_equal(again.evaluate(*uv.T), s.evaluate(*uv.T))
+
+
+def _with(**fields):
+    return lambda d: {**d, **fields}
+
+
+@pytest.mark.parametrize(
+    "mutate, fragment",
+    [
+        (_with(degree=[0, 1]), "degree[0] must be at least 1, got 0"),
+        (_with(degree=[2, 1.5]), "degree[1] must be an integer, got number 1.5"),
+        (_with(degree=[2]), '"degree" needs at least 2 integers [p, q], got 1'),
+        (_with(degree=[2, 1, 1]), '"degree" must be a list of 2 integers [p, q], got 3 entries'),
+        (
+            _with(knots_u=[0, 0, 0, 0.5, 0.4, 1, 1]),
+            "knots_u must be non-decreasing, but knots_u[4] = 0.4 < knots_u[3] = 0.5",
+        ),
+        (_with(knots_u=[0, 0, 0, 1, 1, 1]), "knots_u must hold 7 knots (4 control points + degree 2 + 1), got 6"),
+        (_with(knots_v=[0, 0, 1, "x"]), "knots_v[3] must be a real number, got string"),
+        (_with(knots_v=[0, 0, 0, 0]), "knots_v spans no domain: knots_v[1] = knots_v[2] = 0.0"),
+        (
+            _with(knots_u=[0, 0, 0.5, 0.5, 1, 1], degree=[1, 1]),
+            "knots_u repeats 0.5 2 times inside the domain, more than the degree 1",
+        ),
+        (_with(weights=[[1, 1], [0.5, 0], [1, 1], [3, 1]]), "weights[1][1] must be positive, got 0.0"),
+        (_with(weights=[[1, 1], [0.5, -2], [1, 1], [3, 1]]), "weights[1][1] must be positive, got -2.0"),
+        (_with(weights=[[1, 1], [0.5, 2], [1, 1]]), "weights must have shape (4, 2) like the control net, got (3, 2)"),
+        (_with(weights=[[1, 1], [0.5], [1, 1], [3, 1]]), "weights[1] has 1 weights, but weights[0] has 2"),
+        (_with(weights=[[1, 1], [0.5, float("nan")], [1, 1], [3, 1]]), "weights[1][1] is not a finite number: nan"),
+        (_with(degree=[4, 1]), "control_points must have shape (n_u, n_v, 3) with n_u >= p + 1 = 5"),
+        (
+            _with(control_points=[[[0, 0, 0], [0, 1, 0]], [[1, 0, 0], [1, 1]]]),
+            "control_points[1][1] must be a list [x, y, z]",
+        ),
+        (lambda d: {k: v for k, v in d.items() if k != "weights"}, 'missing the field "weights"'),
+    ],
+)
+def test_bad_nurbs_are_refused_in_one_line_naming_the_field(mutate, fragment):
+    with pytest.raises(InvalidSurfaceError) as err:
+        surface_from_dict(mutate(good()))
+    assert fragment in str(err.value)
+    assert_one_line(str(err.value))

@@ -1,0 +1,193 @@
+"""Surface descriptions in (``io/_surfaces.py``, ``io/_bezier.py``): the surface-type registry, JSON validation, hostile files.
+
+Every refusal is one line of our own (an :class:`equimesh.EquimeshError`) that
+names the problem in the caller's terms, with plain numbers.
+"""
+
+import json
+import sys
+
+import numpy as np
+import pytest
+from hostile_paths import fifo
+from hypothesis import given
+from hypothesis import strategies as st
+from refusals import assert_one_line
+
+from equimesh import BezierSurface, InvalidSurfaceError
+from equimesh.io import (
+    INPUT_FORMATS,
+    SURFACE_TYPES,
+    load_surface,
+    surface_from_dict,
+    surface_to_dict,
+)
+
+
+def good_dict():
+    return {"type": "bezier", "control_points": [[[0, 0, 0], [0, 1, 0]], [[1, 0, 0], [1, 1, 1]]]}
+
+
+# ------------------------------------------------------------------ the surface-type registry
+
+finite = st.floats(min_value=-1e6, max_value=1e6, allow_nan=False)
+
+
+@given(
+    st.integers(2, 4).flatmap(
+        lambda rows: st.integers(2, 4).flatmap(
+            lambda cols: st.lists(
+                st.lists(st.lists(finite, min_size=3, max_size=3), min_size=cols, max_size=cols),
+                min_size=rows,
+                max_size=rows,
+            )
+        )
+    )
+)
+def test_json_round_trip_is_exact(net):
+    """surface_to_dict inverts surface_from_dict through JSON text, bit for bit."""
+    s = surface_from_dict({"type": "bezier", "control_points": net})
+    again = surface_from_dict(json.loads(json.dumps(surface_to_dict(s))))
+    assert type(again) is BezierSurface
+    assert np.array_equal(again.control_points, s.control_points)
+
+
+def test_every_registered_type_and_format_is_complete():
+    """Each table row names a class, its fields and both directions; each format a reader."""
+    assert "bezier" in SURFACE_TYPES and ".json" in INPUT_FORMATS
+    for kind in SURFACE_TYPES.values():
+        assert kind.fields and callable(kind.from_dict) and callable(kind.to_dict)
+    for fmt in INPUT_FORMATS.values():
+        assert fmt.name and callable(fmt.read)
+
+
+def test_surface_to_dict_of_an_unregistered_class():
+    with pytest.raises(TypeError, match="no JSON surface type for object"):
+        surface_to_dict(object())
+
+
+def _cp(rows):
+    return lambda d: {**d, "control_points": rows}
+
+
+@pytest.mark.parametrize(
+    "mutate, fragment",
+    [
+        (lambda d: [d], "must be a JSON object, got list"),
+        (lambda d: {"control_points": d["control_points"]}, 'missing the field "type" (one of "bezier", "nurbs")'),
+        (lambda d: {**d, "type": "mesh"}, 'must be one of "bezier", "nurbs", got \'mesh\''),
+        (lambda d: {**d, "type": 3}, 'must be one of "bezier", "nurbs", got number'),
+        (lambda d: {"type": "bezier"}, 'missing the field "control_points"'),
+        (lambda d: {**d, "colour": 1}, "unknown field 'colour'"),
+        (lambda d: {**d, "description": 7}, '"description" must be a string, got number'),
+        (_cp("abc"), '"control_points" must be a list of rows, got string'),
+        (_cp([[[0, 0, 0], [1, 0, 0]]]), "at least 2 rows, got 1"),
+        (_cp([[[0, 0, 0]], [[1, 0, 0]]]), "control_points[0] needs at least 2 points, got 1"),
+        (_cp([[[0, 0, 0], [0, 1, 0]], {"x": 1}]), "control_points[1] must be a list of points, got object"),
+        (
+            _cp([[[0, 0, 0], [0, 1, 0]], [[1, 0, 0], [1, 1, 1], [2, 2, 2]]]),
+            "control_points[1] has 3 points, but control_points[0] has 2",
+        ),
+        (_cp([[[0, 0], [0, 1, 0]], [[1, 0, 0], [1, 1, 1]]]), "control_points[0][0] must be a list [x, y, z] of 3"),
+        (
+            _cp([[[0, 0, 0], [0, 1, "z"]], [[1, 0, 0], [1, 1, 1]]]),
+            "control_points[0][1][2] must be a real number, got string",
+        ),
+        (_cp([[[0, 0, 0], [0, 1, True]], [[1, 0, 0], [1, 1, 1]]]), "[0][1][2] must be a real number, got boolean"),
+        (_cp([[[0, 0, 0], [0, 1, 2j]], [[1, 0, 0], [1, 1, 1]]]), "[0][1][2] must be a real number, got complex 2j"),
+        (
+            _cp([[[0, 0, 0], [0, 1, 0]], [[1, 0, np.nan], [1, 1, 1]]]),
+            "control_points[1][0][2] is not a finite number: nan",
+        ),
+        (
+            _cp([[[0, 0, 0], [0, 1, 0]], [[1, 0, np.float64(np.inf)], [1, 1, 1]]]),
+            "[1][0][2] is not a finite number: inf",
+        ),
+        (
+            _cp([[[0, 0, 0], [0, 1, 0]], [[1, 0, 0], [1, 10**400, 1]]]),
+            "control_points[1][1][1] is not a finite number: an integer beyond 1e40",
+        ),
+    ],
+)
+def test_json_validation_messages(mutate, fragment):
+    """The first problem is named by its JSON path, with plain values (numpy scalars and complex included)."""
+    with pytest.raises(InvalidSurfaceError) as err:
+        surface_from_dict(mutate(good_dict()))
+    assert fragment in str(err.value)
+    assert_one_line(str(err.value))
+
+
+# ------------------------------------------------------------------ hostile surface files
+
+
+def _file(tmp_path, text, name="s.json"):
+    path = tmp_path / name
+    path.write_bytes(text if isinstance(text, bytes) else text.encode())
+    return path
+
+
+HOSTILE_FILES = {
+    "5000-digit integer": (
+        '{"type": "bezier", "control_points": [[[' + "9" * 5000 + ", 0, 0]]]}",
+        f"more than {sys.get_int_max_str_digits()} digits",
+    ),
+    "nested 100000 deep": ("[" * 100_000 + "]" * 100_000, "nested too deeply"),
+    "NaN literal": (
+        json.dumps(good_dict()).replace("[1, 1, 1]", "[1, NaN, 1]"),
+        "control_points[1][1][1] is not a finite number: nan",
+    ),
+    "Infinity literal": (
+        json.dumps(good_dict()).replace("[1, 1, 1]", "[1, 1, -Infinity]"),
+        "control_points[1][1][2] is not a finite number: -inf",
+    ),
+    "beyond the float range": (
+        json.dumps(good_dict()).replace("[1, 1, 1]", "[1e400, 1, 1]"),
+        "control_points[1][1][0] is not a finite number: inf",
+    ),
+    "duplicate field": ('{"type": "bezier", "type": "bezier"}', "field 'type' twice"),
+    "malformed": ("{", "malformed JSON at line 1 column 2"),
+    "not UTF-8": (b'{"type": "b\xe9zier"}', "is not UTF-8 text (byte 11"),
+    "empty": ("", "malformed JSON at line 1 column 1"),
+}
+
+
+@pytest.mark.parametrize("case", sorted(HOSTILE_FILES))
+def test_hostile_surface_files(case, tmp_path):
+    text, fragment = HOSTILE_FILES[case]
+    with pytest.raises(InvalidSurfaceError) as err:
+        load_surface(_file(tmp_path, text))
+    assert fragment in str(err.value)
+    assert_one_line(str(err.value))
+
+
+def test_byte_order_mark_is_accepted(tmp_path):
+    path = _file(tmp_path, b"\xef\xbb\xbf" + json.dumps(good_dict()).encode())
+    assert load_surface(path).degree == (1, 1)
+
+
+@pytest.mark.parametrize(
+    "make, fragment",
+    [
+        (lambda d: d / "missing.json", "surface file not found"),
+        (lambda d: d / "surface.txt", "unknown surface file extension '.txt'"),
+        (lambda d: d / "x.json" / "y.json", "surface file not found"),
+        (lambda d: (d / "folder.json").mkdir() or d / "folder.json", "is not a regular file"),
+        (lambda d: fifo(d / "pipe.json"), "is not a regular file"),
+        (lambda d: d / ("a" * 300 + ".json"), "path too long"),
+        (lambda d: d.joinpath(*["a" * 200] * 30, "s.json"), "path too long"),
+    ],
+)
+def test_unreadable_surface_paths(make, fragment, tmp_path):
+    """Every path that is not a readable regular .json file is one line naming the reason (and the known formats)."""
+    with pytest.raises(InvalidSurfaceError) as err:
+        load_surface(make(tmp_path))
+    assert fragment in str(err.value)
+    assert_one_line(str(err.value))
+    assert len(str(err.value)) < 400  # a 6,000-character path is cut in the middle
+
+
+def test_unknown_extension_lists_the_known_ones(tmp_path):
+    with pytest.raises(
+        InvalidSurfaceError, match=r"use one of \['\.3dm', '\.json', '\.obj', '\.ply', '\.stl', '\.vtk', '\.vtu'\]"
+    ):
+        load_surface(tmp_path / "s.igs")

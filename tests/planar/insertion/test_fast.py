@@ -1,0 +1,452 @@
+"""The fast engine (``planar/insertion/fast.py``): its kernels against the reference's geometry and the engine against the reference.
+
+What must hold:
+
+* the circumcircle and the distance to a segment are the reference's (``equimesh._geometry``) bit for bit;
+* the heap pops its entries in the reference's order (largest value, then
+  smallest x, then smallest y), compaction keeps exactly the live entries,
+  and the heap's room grows ahead of the pushes to come;
+* each triangle's candidates are the reference's, also exactly at the
+  thresholds of the rules, and the whole engine inserts the reference's
+  points, its triangles in a fixed (slot) order.
+
+Small inputs, so that the file runs in seconds with the kernels run as
+Python (``NUMBA_DISABLE_JIT=1``, as mutation testing runs them:
+``tools/mutation``).
+"""
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+from insertion_cases import (
+    NEAR_CONSTRAINT,
+    assert_same_insertion,
+    at_exactly,
+    circle_triangle,
+    contains,
+    coordinates,
+    exact_orient,
+    problem1_runs,
+    problem2_runs,
+    square_ring,
+    square_rings,
+)
+from invariants import assert_problem1_invariants
+
+import equimesh
+from equimesh import EquimeshError
+from equimesh._geometry import circumcenters, point_segment_distance
+from equimesh.errors import InternalError
+from equimesh.planar.insertion import Region, fast, insert, reference
+from equimesh.planar.insertion.cdt import adjacency, cavity, locate, walk
+from equimesh.planar.insertion.region import constrained_delaunay
+from equimesh.testing.generators import rectangle, regular_polygon
+from equimesh.tolerance import REL_TOL, SLIVER_GAP
+
+# --------------------------------------------------------------------------- geometry as the reference's
+
+finite = coordinates
+
+
+triangles = st.lists(st.tuples(finite, finite), min_size=3, max_size=3).filter(lambda t: exact_orient(*t)[0] != 0)
+
+
+@given(triangles, st.permutations([0, 1, 2]))
+def test_circumcircle_is_the_reference_bit_for_bit(triangle, order):
+    """Centre and radius are :func:`circumcenters` of the vertices in index order; g is their centroid."""
+    P = np.array(triangle)
+    cx, cy, r, gx, gy = fast.circumcircle(P, *order)
+    centre, radius = circumcenters(P[0], P[1], P[2])
+    assert [cx, cy, r] == [*centre, radius]
+    assert (gx, gy) == tuple((P[0] + P[1] + P[2]) / 3.0)
+
+
+@given(st.tuples(finite, finite), st.tuples(finite, finite), st.tuples(finite, finite))
+def test_point_segment_distance_is_the_reference_bit_for_bit(x, a, b):
+    expected = point_segment_distance(np.array(x), np.array(a), np.array(b))
+    assert fast.point_segment_distance(*x, *a, *b) == expected
+    P = np.array([a, b])
+    assert fast.edge_distance(P, 0, 1, *x) == expected
+
+
+def test_point_segment_distance_by_hand():
+    """Beyond either end the distance is to the end; over the segment, to the line; a point segment is a point."""
+    assert fast.point_segment_distance(5.0, 4.0, 0.0, 0.0, 2.0, 0.0) == 5.0
+    assert fast.point_segment_distance(-3.0, 4.0, 0.0, 0.0, 2.0, 0.0) == 5.0
+    assert fast.point_segment_distance(1.5, -2.0, 0.0, 0.0, 2.0, 0.0) == 2.0
+    assert fast.point_segment_distance(4.0, 5.0, 1.0, 1.0, 1.0, 1.0) == 5.0
+    assert fast.point_segment_distance(0.25, 1.0, 0.0, 0.0, 0.5, 0.0) == 1.0  # a segment shorter than 1
+
+
+# --------------------------------------------------------------------------- the heap
+
+#: Keys with many ties in value, then in x.
+heap_keys = st.lists(
+    st.tuples(st.sampled_from([1.0, 1.5, 2.0]), st.sampled_from([0.0, 1.0]), st.sampled_from([0.0, 1.0])),
+    min_size=1,
+    max_size=12,
+)
+
+
+def _heap(keys):
+    HK, HI = np.empty((len(keys) + 1, 3)), np.empty((len(keys) + 1, 3), dtype=np.int64)
+    n = 0
+    for i, (value, x, y) in enumerate(keys):
+        n = fast.push(HK, HI, n, value, x, y, i, 10 + i, i % 3 - 1)
+    return HK, HI, n
+
+
+def _pop_all(HK, HI, n):
+    out = []
+    while n:
+        n = fast.pop(HK, HI, n)
+        out.append((-HK[n, 0], HK[n, 1], HK[n, 2], *HI[n]))
+    return out
+
+
+@given(heap_keys)
+def test_heap_pops_the_largest_value_then_smallest_x_then_y(keys):
+    HK, HI, n = _heap(keys)
+    assert n == len(keys)
+    expected = sorted(((*k, i, 10 + i, i % 3 - 1) for i, k in enumerate(keys)), key=lambda e: (-e[0], e[1], e[2], e[3]))
+    popped = _pop_all(HK, HI, n)
+    assert [e[:3] for e in popped] == [e[:3] for e in expected]
+    assert all(keys[e[3]] == e[:3] and e[4] == 10 + e[3] and e[5] == e[3] % 3 - 1 for e in popped)
+
+
+def test_before_is_lexicographic():
+    assert fast.before(-2.0, 5.0, 5.0, -1.0, 0.0, 0.0)
+    assert not fast.before(-1.0, 0.0, 0.0, -2.0, 5.0, 5.0)
+    assert fast.before(-1.0, 0.0, 5.0, -1.0, 1.0, 0.0) and not fast.before(-1.0, 1.0, 0.0, -1.0, 0.0, 5.0)
+    assert fast.before(-1.0, 1.0, 0.0, -1.0, 1.0, 1.0) and not fast.before(-1.0, 1.0, 1.0, -1.0, 1.0, 0.0)
+    assert not fast.before(-1.0, 1.0, 1.0, -1.0, 1.0, 1.0)
+
+
+@given(heap_keys, st.data())
+def test_compact_keeps_exactly_the_live_entries_in_heap_order(keys, data):
+    """An entry lives when its slot's version is current and its segment (if any) is alive."""
+    HK, HI, n = _heap(keys)
+    ver = np.array([10 + i + data.draw(st.sampled_from([0, 0, 1])) for i in range(len(keys))], dtype=np.int64)
+    salive = np.array([data.draw(st.booleans()), data.draw(st.booleans())])
+    live = [i for i in range(len(keys)) if ver[i] == 10 + i and (i % 3 - 1 < 0 or salive[i % 3 - 1])]
+    k = fast.compact(HK, HI, n, ver, salive)
+    assert k == len(live)
+    assert sorted(e[3] for e in _pop_all(HK, HI, k)) == live
+    HK, HI, n = _heap(keys)
+    k = fast.compact(HK, HI, n, ver, salive)
+    popped = _pop_all(HK, HI, k)
+    assert [e[:3] for e in popped] == sorted((keys[i] for i in live), key=lambda e: (-e[0], e[1], e[2]))
+
+
+@given(heap_keys, st.integers(0, 40), st.data())
+def test_room_makes_room_and_keeps_the_live_entries_in_heap_order(keys, need, data):
+    """Both arrays, of one length, have room for need more entries; all entries are kept while there is room
+    already, else exactly the live ones."""
+    HK, HI, n = _heap(keys)
+    ver = np.array([10 + i + data.draw(st.sampled_from([0, 0, 1])) for i in range(len(keys))], dtype=np.int64)
+    salive = np.array([data.draw(st.booleans()), data.draw(st.booleans())])
+    live = [i for i in range(len(keys)) if ver[i] == 10 + i and (i % 3 - 1 < 0 or salive[i % 3 - 1])]
+    room = n + need <= len(HK)
+    HK, HI, k = fast.room(HK, HI, n, need, ver, salive)
+    assert len(HK) == len(HI) >= k + need
+    popped = _pop_all(HK, HI, k)
+    assert sorted(e[3] for e in popped) == (list(range(n)) if room else live)
+    assert [e[:3] for e in popped] == sorted((e[:3] for e in popped), key=lambda e: (-e[0], e[1], e[2]))
+
+
+def test_grown_pads_with_zeros():
+    a = np.array([[1, 2], [3, 4]], dtype=np.int64)
+    g = fast.grown(a, 5)
+    assert g.dtype == a.dtype and g.tolist() == [[1, 2], [3, 4], [0, 0], [0, 0], [0, 0]]
+    assert fast.grown(np.array([1.5]), 3).tolist() == [1.5, 0.0, 0.0]
+
+
+@pytest.mark.parametrize("i, j", [(0, 1), (1, 0), (2, 2)])
+def test_swap_exchanges_two_rows(i, j):
+    HK = np.arange(9.0).reshape(3, 3)
+    HI = np.arange(9).reshape(3, 3)
+    fast.swap(HK, HI, i, j)
+    order = list(range(3))
+    order[i], order[j] = order[j], order[i]
+    assert HK.tolist() == np.arange(9.0).reshape(3, 3)[order].tolist()
+    assert HI.tolist() == np.arange(9).reshape(3, 3)[order].tolist()
+
+
+# --------------------------------------------------------------------------- the engine's candidates
+
+
+def _assert_candidates(P, V, SA, SB, l):
+    """Per triangle: the visible circumcentre and the constraint midpoints of value at least (1 - REL_TOL) l the
+    reference lists, same bits, same values; the same circumcentres when the distance search gives up at once (a
+    buffer of one triangle) and measures every constraint."""
+    N, S, _ = adjacency(V, SA, SB, len(P))
+    segments = np.column_stack([SA, SB])
+    salive, alive = np.ones(len(SA), dtype=np.bool_), np.ones(len(V), dtype=np.bool_)
+    lim, seen = fast.limits(l), np.empty(fast.NEAR_TRIANGLES, dtype=np.int64)
+    centres, radii = reference.circle_candidates(P, V, segments, l)
+    listed = {(x, y): r for (x, y), r in zip(centres.tolist(), radii.tolist())}
+    HK, HI = np.empty((4 * len(V), 3)), np.empty((4 * len(V), 3), dtype=np.int64)
+    nh = 0
+    for t in range(len(V)):
+        r, cx, cy, where = fast.visible_circumcentre(P, V, N, S, SA, SB, salive, len(SA), alive, len(V), t, lim, seen)
+        assert (r >= 0.0) == ((cx, cy) in listed)
+        if r >= 0.0:
+            assert r == listed[(cx, cy)] and contains(P, V, where, cx, cy)
+        assert fast.visible_circumcentre(P, V, N, S, SA, SB, salive, len(SA), alive, len(V), t, lim, seen[:1])[0] == r
+        nh = fast.push_candidates(
+            P, V, N, S, SA, SB, salive, len(SA), alive, np.arange(len(V)), len(V), t, lim, seen, HK, HI, nh
+        )
+    mids, values, split = reference.midpoint_candidates(P, V, segments, l)
+    expected = sorted(
+        [(-r, x, y, -1) for (x, y), r in zip(centres.tolist(), radii.tolist())]
+        + [(-v, x, y, s) for (x, y), v, s in zip(mids.tolist(), values.tolist(), split.tolist()) if v >= lim[0]]
+    )
+    pushed = sorted((*HK[i], HI[i, 2]) for i in range(nh))
+    assert pushed == expected
+    assert all(HI[i, 1] == HI[i, 0] for i in range(nh))  # each entry carries its triangle's version
+
+
+@given(square_rings(), st.floats(0.3, 2.0), st.data())
+def test_candidates_are_the_reference_candidates(ring, l, data):
+    """:func:`_assert_candidates`; and ``constraint_gap`` is the distance to the nearest constraint whenever it is at most
+    half the search reach, also when the search gives up (a buffer of one triangle) and measures every constraint.
+    """
+    P, V, SA, SB = ring
+    _assert_candidates(P, V, SA, SB, l)
+    N, S, _ = adjacency(V, SA, SB, len(P))
+    salive, lim, seen = (
+        np.ones(len(SA), dtype=np.bool_),
+        fast.limits(l),
+        np.empty(fast.NEAR_TRIANGLES, dtype=np.int64),
+    )
+    x, y = data.draw(st.tuples(st.floats(0.0, 6.0), st.floats(0.0, 6.0)))
+    t = locate(P, V, N, np.ones(len(V), dtype=np.bool_), len(V), 0, x, y, len(V) + 1)
+    if t >= 0:
+        nearest = min(fast.point_segment_distance(x, y, *P[a], *P[b]) for a, b in zip(SA, SB))
+        for reach, buffer in ((lim[4], seen), (lim[4], seen[:1]), (0.0, seen)):
+            gap = fast.constraint_gap(P, V, N, S, SA, SB, salive, len(SA), t, x, y, reach, buffer)
+            assert gap >= nearest and (gap == nearest or nearest > reach / 2.0)
+
+
+def test_a_circumcentre_the_walks_cannot_reach_is_found_by_the_scan():
+    """A hexagon with a reflex corner at (-1, -2), triangulated by hand (not Delaunay; the rules do not need it):
+    the circumcentre (0, -4) of the first triangle is seen from its centroid along x = 0, through its apex (0, 1),
+    a degenerate walk; locate's walk towards it steps over the boundary edge (-3, 0)-(-1, -2) of the second
+    triangle, out of the region, and the scan finds it, when it is listed and when it surfaces (the first point)."""
+    P = np.array([(0.0, 1.0), (-3.0, 0.0), (-1.0, -2.0), (-1.0, -6.0), (3.0, -6.0), (3.0, 0.0)])
+    V = np.array([[1, 5, 0], [5, 1, 2], [5, 2, 3], [5, 3, 4]], dtype=np.int64)
+    SA = np.arange(6, dtype=np.int64)
+    SB = (SA + 1) % 6
+    N, S, _ = adjacency(V, SA, SB, len(P))
+    assert walk(P, V, N, S, 0, 0.0, 1.0 / 3.0, 0.0, -4.0, len(V) + 1) == (-1, -1)
+    _assert_candidates(P, V, SA, SB, 4.0)
+    status, points, _, _, values = fast.insert_all(P, V, np.column_stack([SA, SB]), fast.limits(4.0))
+    assert status == fast.OK and points[len(P)].tolist() == [0.0, -4.0] and values[0] == 5.0
+
+
+def test_candidates_after_a_short_constraint():
+    """A triangle whose first edge is a constraint too short for a candidate and whose other two are long: their
+    midpoints are candidates all the same."""
+    P = np.array([(0.0, 0.0), (1.0, 0.0), (0.0, 6.0)])
+    _assert_candidates(P, np.array([[0, 1, 2]]), np.array([0, 1, 2]), np.array([1, 2, 0]), 1.0)
+
+
+@pytest.mark.parametrize("hole", [False, True])
+def test_candidates_where_every_boundary_midpoint_counts(hole):
+    """l = 0.45 on a ring of points 1 apart: the midpoint of every constraint edge is a candidate, whichever edge
+    of its triangle it is."""
+    _assert_candidates(*square_ring(6.0, 1.0, hole, [(0.5, 4.3), (5.2, 1.1), (3.1, 5.4), (2.5, 0.6)]), 0.45)
+
+
+@pytest.mark.parametrize("hole", [False, True])
+def test_gap_is_the_nearest_constraint_within_half_its_reach(hole):
+    """From the triangle containing each point of a grid, for reaches from a fraction of a triangle to most of the
+    region: the distance to the nearest constraint, exact whenever it is at most half the reach."""
+    P, V, SA, SB = square_ring(6.0, 1.0, hole, [(0.5, 4.3), (5.2, 1.1), (3.1, 5.4), (2.5, 0.6)])
+    N, S, _ = adjacency(V, SA, SB, len(P))
+    salive, seen = np.ones(len(SA), dtype=np.bool_), np.empty(len(V), dtype=np.int64)
+    for x, y in [(0.25 + 0.7 * i, 0.15 + 0.7 * j) for i in range(9) for j in range(9)]:
+        t = locate(P, V, N, np.ones(len(V), dtype=np.bool_), len(V), 0, x, y, len(V) + 1)
+        if t < 0:
+            continue
+        nearest = min(fast.point_segment_distance(x, y, *P[a], *P[b]) for a, b in zip(SA, SB))
+        for reach in (0.3, 1.0, 2.0, 6.0):
+            gap = fast.constraint_gap(P, V, N, S, SA, SB, salive, len(SA), t, x, y, reach, seen)
+            assert gap >= nearest and (gap == nearest or nearest > reach / 2.0)
+
+
+def test_a_cavity_larger_than_its_buffer():
+    """A regular 70-gon: its vertices are cocircular, so the first point (a circumcentre near the centre) has a
+    cavity of more than ``CAVITY`` (64) triangles: the buffer must grow, and the mesh is Problem 1's."""
+    vertices = regular_polygon(70, 1.5)
+    ring = np.array([(i, (i + 1) % 70) for i in range(70)], dtype=np.int64)
+    V = np.ascontiguousarray(constrained_delaunay(vertices, ring, np.empty((0, 2))), dtype=np.int64)
+    N, S, _ = adjacency(V, ring[:, 0].copy(), ring[:, 1].copy(), 70)
+    point, _, _ = reference.best_candidate(vertices, V, ring, 1.0)
+    start = locate(vertices, V, N, np.ones(len(V), dtype=np.bool_), len(V), 0, *point, len(V) + 1)
+    mark = np.zeros(len(V), dtype=np.int64)
+    assert cavity(vertices, V, N, S, start, *point, mark, 1, np.empty(fast.CAVITY, dtype=np.int64)) == -1
+    assert cavity(vertices, V, N, S, start, *point, mark, 2, np.empty(len(V), dtype=np.int64)) > fast.CAVITY
+    assert_problem1_invariants(equimesh.increment(vertices, 1.0, engine="fast"), vertices, 1.0)
+
+
+@pytest.mark.parametrize(
+    "runs, args",
+    [
+        (problem1_runs, ([(0.0, 0.0), (10.6, 0.8), (12.2, 7.4), (4.4, 11.8), (-1.6, 6.2)], 0.7)),
+        (problem2_runs, ([(0.0, 0.0), (14.2, 0.6), (14.8, 6.4), (6.6, 7.2), (6.2, 14.6), (-0.4, 14.0)], 0.7, 17.0)),
+    ],
+    ids=["problem1", "problem2"],
+)
+def test_the_engine_is_the_reference_on_two_fixed_polygons(runs, args):
+    """The whole engine on a convex pentagon (Problem 1) and an L (Problem 2, lattice at 17 degrees), no four
+    cocircular points: the reference's points, values and triangles bit for bit (``tests/planar/test_engines.py`` does
+    this on generated polygons, compiled)."""
+    assert_same_insertion(runs(np.array(args[0]), *args[1:]))
+
+
+def test_integer_points_and_float_indices_are_converted():
+    """A region given by integer coordinates and float segment indices: the same insertion as from floats and ints."""
+    corners = [[0, 0], [20, 1], [19, 4], [0, 3]]
+    loose = Region(corners, [[0.0, 1.0], [1.0, 2.0], [2.0, 3.0], [3.0, 0.0]], np.empty((0, 2)))
+    exact = Region(np.array(corners, dtype=float), np.array([[0, 1], [1, 2], [2, 3], [3, 0]]), np.empty((0, 2)))
+    a, b = fast.run(loose, 0.6), fast.run(exact, 0.6)
+    assert a.points.tobytes() == b.points.tobytes() and a.segments.tolist() == b.segments.tolist()
+
+
+#: A quadrilateral of four long constraints.
+_QUADRILATERAL = [(0.0, 0.0), (20.3, 0.7), (19.6, 4.1), (0.4, 3.3)]
+
+
+#: A notched heptagon (found by a search): the walk of a circumcentre from its triangle's centroid runs through a
+#: vertex both when it is pushed and when it surfaces, so both times the brute-force test decides.
+_THROUGH_A_VERTEX = [(0.0, 1.0), (-3.0, 0.0), (-5.2, -4.2), (-4.5, -11.3), (-0.3, -3.8), (3.2, -3.8), (3.0, 0.0)]
+
+
+@pytest.mark.parametrize(
+    "corners, l",
+    [(_QUADRILATERAL, 0.6), (_QUADRILATERAL, 30.0), (_THROUGH_A_VERTEX, 2.0)],
+    ids=["quadrilateral", "quadrilateral-nothing", "walk-through-a-vertex"],
+)
+def test_the_corners_alone_give_the_reference_insertion(corners, l):
+    """Only the corners: every point comes from splitting the long constraints or from circumcentres, and the heap
+    is compacted while midpoints are in it; with l = 30 nothing is inserted in the quadrilateral (two triangles).
+    The reference's insertion bit for bit."""
+    region = Region(
+        np.array(corners), np.array([[i, (i + 1) % len(corners)] for i in range(len(corners))]), np.empty((0, 2))
+    )
+    a, b = fast.run(region, l), reference.run(region, l)
+    assert a.points.tobytes() == b.points.tobytes() and a.values.tobytes() == b.values.tobytes()
+    assert a.segments.dtype == b.segments.dtype == np.int64 and a.segments.tolist() == b.segments.tolist()
+    assert sorted(map(sorted, a.triangles.tolist())) == sorted(map(sorted, b.triangles.tolist()))
+
+
+def test_the_triangles_come_out_in_slot_order_the_cavitys_slots_first():
+    """A 2 x 2 square (triangles 3 0 1 and 1 2 3) with l = 1.4: only its centre is inserted, on the diagonal, and its
+    cavity is both triangles.  Its fan of four takes their slots 1 and 0 (the last freed first) and then new
+    slots 2 and 3, and the triangles come out in slot order: fixed, so the same input gives the same arrays."""
+    square = np.array([(0.0, 0.0), (2.0, 0.0), (2.0, 2.0), (0.0, 2.0)])
+    region = Region(square, np.array([[0, 1], [1, 2], [2, 3], [3, 0]]), np.empty((0, 2)))
+    assert constrained_delaunay(square, region.segments, region.holes).tolist() == [[3, 0, 1], [1, 2, 3]]
+    assert fast.run(region, 1.4).triangles.tolist() == [[0, 1, 4], [3, 0, 4], [1, 2, 4], [2, 3, 4]]
+
+
+def test_a_broken_cavity_is_an_internal_error(monkeypatch):
+    """When the compiled loop reports a cavity it could not re-triangulate (a bug), run raises InternalError, never
+    returns the mesh."""
+    monkeypatch.setattr(fast, "insert_all", lambda P0, T0, SEG0, lim: (fast.BROKEN, P0, T0, SEG0, np.empty(0)))
+    with pytest.raises(InternalError) as caught:
+        fast.run(Region(rectangle(2.0, 2.0), np.array([[0, 1], [1, 2], [2, 3], [3, 0]]), np.empty((0, 2))), 1.0)
+    assert str(caught.value) == "fast engine: a Bowyer-Watson cavity did not re-triangulate (broken triangulation)"
+
+
+def test_fast_engine_refuses_an_interior_constraint():
+    """A constraint with triangles on both sides is outside the fast engine's contract: a clear error."""
+    square = rectangle(2.0, 2.0)
+    region = Region(square, np.array([[0, 1], [1, 2], [2, 3], [3, 0], [0, 2]]), np.empty((0, 2)))
+    with pytest.raises(EquimeshError, match="segment 4 is an edge of zero or two triangles"):
+        insert(region, 1.0, engine="fast")
+
+
+def _l_at(value, factor):
+    """The l for which ``factor * l`` is ``value`` exactly."""
+    l = value / factor
+    for _ in range(64):
+        if factor * l == value:
+            return float(l)
+        l = np.nextafter(l, np.inf if factor * l < value else -np.inf)
+    raise AssertionError(f"no l with {factor!r} * l == {value!r}")
+
+
+def _thresholds():
+    """(points, l) of the reference engine's threshold tests (``tests/planar/insertion/test_reference.py``), and a radius
+    at (1 - REL_TOL) l and at (1 + REL_TOL) l (this one within SLIVER_GAP l of a constraint) and a constraint of
+    half-length (1 - REL_TOL) l, each exactly."""
+    cases = [(circle_triangle(gap, radius)[0], 1.0) for gap, radius, _ in NEAR_CONSTRAINT]
+    cases += [(circle_triangle(0.5, 1.5)[0], 1.5 / factor) for factor in (1.0 - 0.5 * REL_TOL, 1.0 - 2.0 * REL_TOL)]
+    for tol, radius in [(REL_TOL, 3.0), (SLIVER_GAP, 1.0)]:
+        points, _, l = at_exactly(tol, radius)
+        cases += [(points, l), (points, np.nextafter(l, 0.0) * (1.0 - 4.0 * REL_TOL))]
+    for gap, radius, factor in [(0.5, 1.5, 1.0 - REL_TOL), (0.5 * SLIVER_GAP, 1.0, 1.0 + REL_TOL)]:
+        points = circle_triangle(gap, radius)[0]
+        cases.append((points, _l_at(fast.circumcircle(points, 0, 1, 2)[2], factor)))
+    cases.append((np.array([[-1.0, 0.0], [1.0, 0.0], [0.0, 5.0]]), _l_at(1.0, 1.0 - REL_TOL)))
+    return cases
+
+
+def test_every_limit_is_a_multiple_of_l():
+    """Scaling l by a power of two scales every threshold and the search reach by it exactly."""
+    for k in (-7, 1, 30):
+        assert fast.limits(math.ldexp(1.3, k)).tolist() == [math.ldexp(x, k) for x in fast.limits(1.3)]
+
+
+@pytest.mark.parametrize("points, l", _thresholds())
+def test_candidates_at_the_thresholds_of_the_rules(points, l):
+    """One triangle bounded by its three constraints at each threshold of the rules: the reference's candidates
+    (:func:`_assert_candidates`)."""
+    _assert_candidates(points, np.array([[0, 1, 2]]), np.array([0, 1, 2]), np.array([1, 2, 0]), l)
+
+
+@pytest.mark.parametrize("points, l", _thresholds())
+def test_the_candidate_rules_at_their_thresholds_are_the_reference(points, l):
+    """One triangle bounded by its three constraints, its circumcentre placed at each threshold of the rules
+    (radius (1 - REL_TOL) l, gap REL_TOL l and SLIVER_GAP l, value l up to REL_TOL), l far from 1 included:
+    the fast engine inserts what the reference engine inserts, bit for bit."""
+    region = Region(points, np.array([[0, 1], [1, 2], [2, 0]]), np.empty((0, 2)))
+    a, b = fast.run(region, l), reference.run(region, l)
+    assert a.points.tobytes() == b.points.tobytes() and a.values.tobytes() == b.values.tobytes()
+
+
+def test_a_circumcentre_refused_when_it_surfaces_is_skipped_and_the_insertion_goes_on():
+    """A circumcentre accepted when pushed and refused when it surfaces: its triangle is passed over, the rest is
+    inserted.  A pentagon a, b, e, x, w, in a frame along ab (6 long, turned by 0.7 rad and moved by (0.1, 0)):
+    the circle of t = (a, x, w) has radius 1 about the point 1 along ab and 7e-10 off it, and l (0.7 up to 1e-7)
+    is the float just below the one for which REL_TOL l is the centre's gap to ab.  Pushed, the centre is accepted (gap over
+    REL_TOL l, radius over l); ab's midpoint (2 from it, outside the circle: t stays) is inserted before it
+    surfaces, and rounded it moves the constraint's half (a, p) 8.5e-17 nearer the centre, now within REL_TOL l:
+    refused, and five more points follow (the reference's insertion, 13 points)."""
+    turn = np.array([[math.cos(0.7), -math.sin(0.7)], [math.sin(0.7), math.cos(0.7)]])
+    centre, radius = np.array([1.0, 7e-10]), math.hypot(1.0, 7e-10)
+    frame = [
+        (0.0, 0.0),
+        (6.0, 0.0),
+        (6.0, 1.5),
+        tuple(centre + radius * np.array([0.8, 0.6])),
+        tuple(centre + radius * np.array([-0.6, 0.8])),
+    ]
+    points = np.array([turn @ np.array(p) + (0.1, 0.0) for p in frame])
+    cx, cy, _, _, _ = fast.circumcircle(points, 0, 3, 4)
+    a, b = points[0], points[1]
+    p = 0.5 * (a + b)
+    before = fast.point_segment_distance(cx, cy, *a, *b)
+    after = min(fast.point_segment_distance(cx, cy, *a, *p), fast.point_segment_distance(cx, cy, *p, *b))
+    l = np.nextafter(_l_at(before, REL_TOL), 0.0)
+    assert after <= REL_TOL * l < before and abs(l - 0.7) < 1e-6
+    region = Region(points, np.array([[i, (i + 1) % 5] for i in range(5)]), np.empty((0, 2)))
+    assert [0, 3, 4] in map(sorted, constrained_delaunay(points, region.segments, region.holes).tolist())
+    got, expected = fast.run(region, l), reference.run(region, l)
+    assert got.points.tobytes() == expected.points.tobytes() and got.values.tobytes() == expected.values.tobytes()
+    assert len(got.points) == 13 and [cx, cy] not in got.points.tolist()
