@@ -162,6 +162,22 @@ def build_parser():
         ).replace("%", "%%"),
     )
     mesh.add_argument(
+        "--surface-tolerance",
+        type=_surface_tolerance,
+        default=0.0,
+        metavar="D",
+        help="with --optimize bounded or classes, let every node leave the surface by at most D (a length, below L) "
+        "along its normal; the summary reports the deviation (default: 0, every node on the surface)",
+    )
+    mesh.add_argument(
+        "--lengths",
+        type=_lengths,
+        default=None,
+        metavar="L1,L2,...",
+        help="with --optimize classes, a catalogue of stock lengths in [L, 2L] (e.g. 5,5.8,7.1): members are cut "
+        "from them within --tolerance where possible, the rest reported in the summary and the classes CSV",
+    )
+    mesh.add_argument(
         "--quiet", "-q", action="store_true", help="print nothing but errors (no progress lines, no summary)"
     )
     mesh.set_defaults(run=_run_mesh)
@@ -231,6 +247,31 @@ def _tolerance(text):
         raise argparse.ArgumentTypeError(str(exc)) from None
 
 
+def _surface_tolerance(text):
+    """``--surface-tolerance``: a length of at least 0 (its bound by L is checked with L)."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a length of at least 0, got {text!r}") from None
+    if not value >= 0:  # also NaN
+        raise argparse.ArgumentTypeError(f"expected a length of at least 0, got {text!r}")
+    return value
+
+
+def _lengths(text):
+    """``--lengths``: comma-separated numbers (each in [L, 2L], checked with L)."""
+    items = [item.strip() for item in text.split(",")]
+    try:
+        values = [float(item) for item in items if item]
+    except ValueError:
+        raise argparse.ArgumentTypeError(
+            f"expected numbers separated by commas, such as 5,5.8,7.1, got {text!r}"
+        ) from None
+    if not values:
+        raise argparse.ArgumentTypeError("expected at least one stock length, such as 5,5.8,7.1")
+    return values
+
+
 def _run_mesh(args):
     from .io import classes_path, load_surface, surface_mesh_writer
     from .surface.pipeline import mesh_surface
@@ -256,9 +297,12 @@ def _run_mesh(args):
             placement=args.placement,
             engine=args.engine,
             progress=progress,
+            tolerance=args.tolerance,
+            lengths=args.lengths,
+            surface_tolerance=args.surface_tolerance,
             **limit,
         )
-    write(mesh, args.tolerance)
+    write(mesh, args.tolerance, args.lengths)
     if not args.quiet:
         n_g1 = int(mesh.g1_mask.sum())
         also = f" and {args.members} (+ {classes_path(args.members)})" if args.members else ""
@@ -267,24 +311,30 @@ def _run_mesh(args):
             f"({n_g1} in the equal-length group G1), {len(mesh.triangles)} triangles",
             file=sys.stderr,
         )
-        print(_summary(mesh.edge_lengths(), mesh.length, args.tolerance))
+        print(_summary(mesh, args.tolerance, args.lengths))
     return 0
 
 
-def _summary(lengths, l, tolerance):
-    """The one-screen summary of a run's members (:func:`equimesh.metrics.fabrication_summary`)."""
+def _summary(mesh, tolerance, catalogue=None):
+    """The one-screen summary of a run (:func:`equimesh.metrics.fabrication_summary`)."""
     from .metrics import fabrication_summary
 
-    s = fabrication_summary(lengths, l, tolerance)
+    l = mesh.length
+    s = fabrication_summary(mesh.edge_lengths(), l, tolerance, mesh.points, mesh.triangles, catalogue)
     tol = f"+-{100 * tolerance:.3g} %"
     rows = [
         ("members", f"{s['members']}"),
         ("length classes", f"{s['classes']} (every member within {tol} of L of its class's nominal length)"),
         ("in the largest class", f"{100 * s['largest_class_share']:.1f} %"),
+        ("in the 10 largest classes", f"{100 * s['top10_share']:.1f} %"),
         ("shortest member", f"{number(s['min_length'])} ({s['min_length'] / l:.4f} L)"),
         ("longest member", f"{number(s['max_length'])} ({s['max_length'] / l:.4f} L)"),
         (f"within {tol} of L", f"{100 * s['within_tolerance']:.1f} %"),
+        ("triangle angles", f"{s['angle_min']:.1f} to {s['angle_max']:.1f} degrees"),
+        ("off the surface", "max {}, mean {}".format(*(number(d) for d in mesh.deviation()))),
     ]
+    if catalogue is not None:
+        rows.append(("off the catalogue", f"{s['off_catalogue']} members"))
     width = max(len(label) for label, _ in rows) + 2
     return "\n".join(f"{label:<{width}}{value}" for label, value in rows)
 

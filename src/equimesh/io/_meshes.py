@@ -20,7 +20,7 @@ import meshio
 import numpy as np
 import pandas as pd
 
-from ..classes import DEFAULT_TOLERANCE, length_classes
+from ..classes import DEFAULT_TOLERANCE, catalogue_classes, length_classes
 from ..errors import OutputPathError
 from ..mesh import G1, edge_lengths
 from ._atomic import atomic_paths, probe_folder
@@ -140,17 +140,20 @@ def surface_mesh_writer(path, members=None):
     """Check every file :func:`write_surface_mesh` writes (:func:`check_output_path`); return the writer.
 
     The checks run now, before a run's expensive part, and only now: the
-    returned ``write(mesh, tolerance=DEFAULT_TOLERANCE)`` writes ``mesh`` as
-    :func:`write_surface_mesh` does, to the paths checked here.
+    returned ``write(mesh, tolerance=DEFAULT_TOLERANCE, catalogue=None)`` writes ``mesh`` as
+    :func:`write_surface_mesh` does, to the paths checked here (with a catalogue of stock lengths the classes are
+    :func:`equimesh.classes.catalogue_classes`).
     """
     fmt = check_output_path(path, MESH_FORMATS)
     if members is not None:
         _check_members_paths(members)
 
-    def write(mesh, tolerance=DEFAULT_TOLERANCE):
+    def write(mesh, tolerance=DEFAULT_TOLERANCE, catalogue=None):
         outputs = [_mesh_output(path, fmt, mesh.points, mesh.triangles)]
         if members is not None:
-            outputs += _members_outputs(members, mesh.points, mesh.edges, mesh.edge_groups, mesh.length, tolerance)
+            outputs += _members_outputs(
+                members, mesh.points, mesh.edges, mesh.edge_groups, mesh.length, tolerance, catalogue
+            )
         _write_all(outputs)
 
     return write
@@ -164,10 +167,15 @@ def _mesh_output(path, fmt, points, triangles):
     return path, lambda tmp: mesh.write(tmp, file_format=fmt)
 
 
-def _members_outputs(path, points, edges, groups, l, tolerance):
+def _members_outputs(path, points, edges, groups, l, tolerance, catalogue=None):
     """The schedule and the classes CSV (paths checked by the caller); floats as the shortest text that reads back to
     the same bits."""
-    classes = length_classes(edge_lengths(points, edges), l, tolerance)
+    lengths = edge_lengths(points, edges)
+    classes = (
+        length_classes(lengths, l, tolerance)
+        if catalogue is None
+        else catalogue_classes(lengths, l, catalogue, tolerance)
+    )
     schedule = member_schedule(points, edges, groups, l, classes)
     return [
         (path, lambda tmp: schedule.to_csv(tmp, index=False)),

@@ -23,6 +23,7 @@ chart (:mod:`equimesh.surface.charts.mesh_chart`) and its boundary loops the out
 Every stage is kept in :class:`SurfaceMesh.stages` for tables and figures.
 """
 
+import math
 import time
 from dataclasses import dataclass, field
 from typing import Callable
@@ -31,13 +32,22 @@ import numpy as np
 
 from .._checks import check_length
 from .._geometry import power_of_two_scale
-from ..errors import EquimeshError, InternalError, InvalidPolygonError, InvalidSurfaceError, number
+from ..classes import DEFAULT_TOLERANCE, check_catalogue, check_tolerance, holds
+from ..errors import (
+    EquimeshError,
+    InternalError,
+    InvalidCatalogueError,
+    InvalidPolygonError,
+    InvalidSurfaceError,
+    InvalidToleranceError,
+    number,
+)
 from ..mesh import G1, edge_lengths
 from ..planar.insertion import DEFAULT_ENGINE, check_engine
 from ..planar.limits import check_max_nodes, check_size, node_estimate
-from ..planar.placement import best_lattice_placement
+from ..planar.placement import best_lattice_placement, fewest_classes_placement
 from ..planar.strip import BOUNDARY_SPACING, check_spacing, uniform_triangulation
-from ..tolerance import at_least, at_most
+from ..tolerance import REL_TOL, at_least, at_most
 from .auxiliary import auxiliary_grid, check_grid_size
 from .charts.chart import domain_of
 from .charts.mesh_chart import MeshChart, flatten_mesh
@@ -48,6 +58,8 @@ from .mesh_outline import boundary_uv, mesh_outline, restate_mesh_error
 from .messages import restate_polygon_error
 from .optimize import OBJECTIVES, optimize_uv
 from .optimize.jacobian import signed_areas
+from .optimize.joints import joint_bounds, surface_angles
+from .optimize.problem import offset_points
 from .outline import resample_outline
 from .regularity import check_regular, evaluate
 from .remap import remap
@@ -70,8 +82,10 @@ MAX_GRID_CELLS = 40_000
 #: The final optimisation when none is named (a key of :data:`~equimesh.surface.optimize.OBJECTIVES`, or "none").
 DEFAULT_OPTIMIZE = "bounded"
 
-#: Lattice placements: "best" searches (beyond the paper), "default" is angle 0, offset (0, 0).
-PLACEMENTS = ("best", "default")
+#: Lattice placements: "best" searches the most lattice edges (beyond the paper), "default" is angle 0, offset
+#: (0, 0), "classes" searches from "best" the fewest length classes
+#: (:func:`~equimesh.planar.placement.fewest_classes_placement`).
+PLACEMENTS = ("best", "default", "classes")
 
 
 @dataclass(frozen=True)
@@ -118,6 +132,8 @@ class SurfaceMesh:
     n_boundary : the first ``n_boundary`` nodes lie on the surface boundary (the
         outer boundary, then each opening's, ``stages.plane.info["boundary_rings"]``).
     stages : Stages.
+    offsets : (N,) float, each node's distance from the surface along its unit normal
+        (``points = X^s(uv) + offsets N(uv)``; zero unless ``surface_tolerance`` > 0).
     """
 
     points: np.ndarray
@@ -128,6 +144,7 @@ class SurfaceMesh:
     length: float
     n_boundary: int
     stages: Stages
+    offsets: np.ndarray = None
 
     def edge_lengths(self):
         return edge_lengths(self.points, self.edges)
@@ -135,6 +152,11 @@ class SurfaceMesh:
     @property
     def g1_mask(self):
         return self.edge_groups == G1
+
+    def deviation(self):
+        """``(max, mean)`` distance of the nodes from the surface (``|offsets|``; 0 on the surface)."""
+        d = np.abs(self.offsets) if self.offsets is not None and len(self.offsets) else np.zeros(1)
+        return float(d.max()), float(d.mean())
 
 
 def mesh_surface(
@@ -149,6 +171,9 @@ def mesh_surface(
     max_nodes="default",
     progress=None,
     engine=DEFAULT_ENGINE,
+    tolerance=DEFAULT_TOLERANCE,
+    lengths=None,
+    surface_tolerance=0.0,
 ):
     """Mesh a surface with members as equal as possible (Section 4).
 
@@ -175,12 +200,16 @@ def mesh_surface(
     grid : (int, int)
         Auxiliary grid n_u x n_v (step 1), at most :data:`MAX_GRID_CELLS`
         cells; not used for a triangle mesh.
-    optimize : "bounded", "paper" or "none"
+    optimize : "bounded", "classes", "paper" or "none"
         Final optimisation of the nodes' (u, v) (see
         :data:`equimesh.surface.optimize.OBJECTIVES`), or none.  "bounded"
         (beyond the paper, the default) keeps every member in [l, 2l] with as
         many as possible at one length, boundary nodes sliding along their
-        side, loop or hole edge; "paper" is the paper's (G1 members only, boundary fixed).
+        side, loop or hole edge; "classes" (beyond the paper) starts there and
+        seeks the fewest length classes at ``tolerance``; both keep every
+        triangle angle on the surface at least 30 degrees
+        (:mod:`equimesh.surface.optimize.joints`); "paper" is the paper's (G1
+        members only, boundary fixed, angles not bounded).
     placement : "best" or "default"
         Lattice placement of Problem 2.
     boundary_spacing : float
@@ -197,6 +226,18 @@ def mesh_surface(
         Called as ``progress(stage, seconds)`` after each stage.
     engine : str
         Insertion engine of Problem 2 (:data:`equimesh.planar.insertion.ENGINES`).
+    tolerance : float or str
+        Fabrication tolerance of a length class, relative to l
+        (:func:`equimesh.classes.check_tolerance`): what "classes" counts.
+    lengths : sequence of float or str, optional
+        A catalogue of stock lengths in [l, 2l] (``optimize="classes"`` only,
+        :func:`equimesh.classes.check_catalogue`): members are cut from them
+        within ``tolerance`` where possible.  Refused before the optimisation
+        if no count of them adds up to a side of the outline on the surface.
+    surface_tolerance : float
+        ``D`` in [0, l): under "bounded" or "classes" every node that moves
+        may leave the surface by at most ``D`` along its unit normal
+        (:attr:`SurfaceMesh.offsets`); 0 keeps every node on the surface.
 
     Returns
     -------
@@ -210,14 +251,29 @@ def mesh_surface(
         this ``l``; the message names the side, corner or (u, v) at fault.
     MeshTooLargeError
         The estimated node count exceeds ``max_nodes``.
+    InvalidCatalogueError
+        ``lengths`` is empty, not numbers, has a length outside [l, 2l], or
+        cannot hold a side of the outline.
     InternalError
-        A returned "bounded" mesh would have a member outside [l, 2l].
+        A returned "bounded" or "classes" mesh would have a member outside
+        [l, 2l], an angle below its bound, or a node farther than
+        ``surface_tolerance`` from the surface.
     """
     l = check_length(l)
+    tolerance = check_tolerance(tolerance)
+    catalogue = None if lengths is None else check_catalogue(lengths, l)
+    surface_tolerance = _check_surface_tolerance(surface_tolerance, l)
     if not (isinstance(optimize, str) and (optimize == "none" or optimize in OBJECTIVES)):
         raise EquimeshError(f"optimize must be 'none' or one of {sorted(OBJECTIVES)}, got {optimize!r}")
     if placement not in PLACEMENTS:
         raise EquimeshError(f"placement must be one of {PLACEMENTS}, got {placement!r}")
+    if catalogue is not None and optimize != "classes":
+        raise EquimeshError(f"lengths= is a catalogue for optimize='classes', got optimize={optimize!r}")
+    if surface_tolerance > 0 and not (optimize in OBJECTIVES and OBJECTIVES[optimize].slides):
+        raise EquimeshError(
+            f"surface_tolerance= lets the optimisation move nodes off the surface: use optimize='bounded' or "
+            f"'classes', got optimize={optimize!r}"
+        )
     boundary_spacing = check_spacing(boundary_spacing)  # Problem 2's own check, needed by step 3 already
     limit = _node_limit(max_nodes, optimize)
     engine = check_engine(engine)
@@ -239,9 +295,19 @@ def mesh_surface(
         holes = steps.holes
         chosen = (
             best_lattice_placement(steps.outline.vertices, l, holes=holes, max_nodes=None)
-            if placement == "best"
+            if placement != "default"
             else None
         )
+        if placement == "classes":
+            chosen = fewest_classes_placement(
+                steps.outline.vertices,
+                l,
+                holes=holes,
+                boundary_spacing=boundary_spacing,
+                tolerance=tolerance,
+                engine=engine,
+                start=chosen,
+            )
         angle, offset = (chosen.angle, chosen.offset) if chosen else (0.0, (0.0, 0.0))
         plane = uniform_triangulation(
             steps.outline.vertices,
@@ -263,10 +329,12 @@ def mesh_surface(
 
     result = None
     chart = steps.chart
-    final_uv, final_points = mapped_uv, mapped_points
+    final_uv, final_points, offsets = mapped_uv, mapped_points, np.zeros(len(mapped_uv))
     if optimize != "none":
         record = OBJECTIVES[optimize]
         slides, fixed = steps.outline.slides(plane, mapped_uv) if record.slides else ((), np.arange(plane.n_boundary))
+        if catalogue is not None:
+            _check_catalogue_holds(catalogue, mapped_points, plane, fixed, l, tolerance)
         result = optimize_uv(
             chart,
             mapped_uv,
@@ -277,12 +345,18 @@ def mesh_surface(
             slides=slides,
             triangles=plane.triangles,
             objective=optimize,
+            surface_tolerance=surface_tolerance,
+            tolerance=tolerance,
+            catalogue=catalogue,
         )
-        final_uv = result.uv
+        final_uv, offsets = result.uv, result.offsets
         _check_orientation(final_uv, plane.triangles, "the optimisation")
-        final_points = evaluate(chart, final_uv)
+        final_points = offset_points(chart, final_uv, offsets if surface_tolerance > 0 else None)
+        _check_deviation(final_points, evaluate(chart, final_uv), surface_tolerance)
         if record.bounds_members:
             _check_members(final_points, plane.edges, l)
+        if record.sound_joints:
+            _check_joints(final_points, plane.triangles, joint_bounds(chart, mapped_uv, plane.triangles))
         clock("optimisation of inner nodes")
 
     stages = Stages(
@@ -306,6 +380,7 @@ def mesh_surface(
         l,
         plane.n_boundary,
         stages,
+        offsets,
     )
 
 
@@ -457,6 +532,70 @@ def _check_members(points, edges, l):
         raise InternalError(
             f"the bounded optimisation returned {bad.size} of {len(edges)} members outside [l, 2l] "
             f"(lengths from {number(ratio.min(), 10)} l to {number(ratio.max(), 10)} l); please report this surface"
+        )
+
+
+def _check_surface_tolerance(value, l):
+    """``surface_tolerance`` as a float in [0, l): how far a node may leave the surface."""
+    try:
+        d = float(value)
+    except (TypeError, ValueError, OverflowError):
+        raise InvalidToleranceError(f"surface_tolerance must be a number, got {value!r}") from None
+    if not (math.isfinite(d) and 0.0 <= d < l):
+        shown = number(d) if math.isfinite(d) else str(d)
+        raise InvalidToleranceError(f"surface_tolerance must be at least 0 and below l = {number(l)}, got {shown}")
+    return d
+
+
+def _check_catalogue_holds(catalogue, points, plane, corners, l, tolerance):
+    """Refuse a catalogue from which no members can run along a side of the outline.
+
+    A side is a run of boundary members between two boundary nodes that stay
+    put (the corners; a ring without one is one side); its length is the sum
+    of its members on the surface after remapping, which the sliding nodes
+    keep nearly so.  The members along it must be stock lengths within the
+    tolerance: some count of them must add up to it (:func:`equimesh.classes.holds`).
+    """
+    fixed = np.zeros(plane.n_boundary, dtype=bool)
+    fixed[np.asarray(corners, dtype=np.int64)] = True
+    start = 0
+    for ring, size in enumerate(plane.info["boundary_rings"]):
+        nodes = np.arange(start, start + size)
+        start += size
+        chords = np.linalg.norm(points[np.roll(nodes, -1)] - points[nodes], axis=1)
+        ends = np.flatnonzero(fixed[nodes])
+        cuts = np.split(np.roll(chords, -ends[0]), (ends - ends[0])[1:]) if len(ends) else [chords]
+        for side, part in enumerate(cuts):
+            if not holds(float(part.sum()), catalogue, l, tolerance):
+                where = "the outer boundary" if ring == 0 else f"opening {ring - 1}"
+                raise InvalidCatalogueError(
+                    f"lengths: no count of the stock lengths {', '.join(number(c) for c in catalogue)} within "
+                    f"{tolerance:.3g} l of each adds up to side {side} of {where}, {number(part.sum())} long on the "
+                    "surface; add a length or choose another l"
+                )
+
+
+def _check_deviation(points, on_surface, surface_tolerance):
+    """Every node within ``surface_tolerance`` of the surface (exactly on it at 0), or the optimisation broke it."""
+    distance = np.linalg.norm(points - on_surface, axis=1)
+    allowed = surface_tolerance * (1.0 + REL_TOL)
+    if not np.all(distance <= allowed):
+        raise InternalError(
+            f"the optimisation put {int(np.count_nonzero(distance > allowed))} nodes farther than the surface "
+            f"tolerance {number(surface_tolerance)} from the surface (up to {number(distance.max(), 10)}); "
+            "please report this surface"
+        )
+
+
+def _check_joints(points, triangles, bounds):
+    """Every triangle angle on the surface at least its bound (:mod:`~equimesh.surface.optimize.joints`), or the
+    optimisation broke its guarantee."""
+    angles = surface_angles(points, triangles)
+    low = np.any(angles < bounds, axis=1)
+    if np.any(low):
+        raise InternalError(
+            f"the optimisation returned {int(np.count_nonzero(low))} of {len(triangles)} triangles with an angle "
+            f"below its bound (smallest {np.degrees(angles.min()):.10g} degrees); please report this surface"
         )
 
 
