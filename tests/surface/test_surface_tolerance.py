@@ -71,7 +71,7 @@ def test_a_node_beyond_the_tolerance_is_never_returned(surface, monkeypatch):
         return replace(result, offsets=offsets)
 
     monkeypatch.setattr(pipeline, "optimize_uv", drifting)
-    monkeypatch.setattr(pipeline, "_check_members", lambda *args: None)
-    monkeypatch.setattr(pipeline, "_check_joints", lambda *args: None)
+    monkeypatch.setattr(pipeline, "check_members", lambda *args: None)
+    monkeypatch.setattr(pipeline, "check_joints", lambda *args: None)
     with pytest.raises(InternalError, match="farther than the surface tolerance"):
         equimesh.mesh_surface(surface, L, surface_tolerance=0.01 * L, grid=(8, 8))

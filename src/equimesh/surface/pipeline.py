@@ -23,7 +23,6 @@ chart (:mod:`equimesh.surface.charts.mesh_chart`) and its boundary loops the out
 Every stage is kept in :class:`SurfaceMesh.stages` for tables and figures.
 """
 
-import math
 import time
 from dataclasses import dataclass, field
 from typing import Callable
@@ -32,14 +31,11 @@ import numpy as np
 
 from .._checks import check_length
 from .._geometry import power_of_two_scale
-from ..classes import DEFAULT_TOLERANCE, check_catalogue, check_tolerance, holds
+from ..classes import DEFAULT_TOLERANCE, check_tolerance
 from ..errors import (
     EquimeshError,
-    InternalError,
-    InvalidCatalogueError,
     InvalidPolygonError,
     InvalidSurfaceError,
-    InvalidToleranceError,
     number,
 )
 from ..mesh import G1, edge_lengths
@@ -47,7 +43,6 @@ from ..planar.insertion import DEFAULT_ENGINE, check_engine
 from ..planar.limits import check_max_nodes, check_size, node_estimate
 from ..planar.placement import best_lattice_placement, fewest_classes_placement
 from ..planar.strip import BOUNDARY_SPACING, check_spacing, uniform_triangulation
-from ..tolerance import REL_TOL, at_least, at_most
 from .auxiliary import auxiliary_grid, check_grid_size
 from .charts.chart import domain_of
 from .charts.mesh_chart import MeshChart, flatten_mesh
@@ -57,10 +52,17 @@ from .flatten import flatten
 from .mesh_outline import boundary_uv, mesh_outline, restate_mesh_error
 from .messages import restate_polygon_error
 from .optimize import OBJECTIVES, optimize_uv
-from .optimize.jacobian import signed_areas
-from .optimize.joints import joint_bounds, surface_angles
+from .optimize.joints import joint_bounds
 from .optimize.problem import offset_points
 from .outline import resample_outline
+from .output_checks import (
+    check_catalogue_holds,
+    check_deviation,
+    check_fabrication_options,
+    check_joints,
+    check_members,
+    check_orientation,
+)
 from .regularity import check_regular, evaluate
 from .remap import remap
 
@@ -205,13 +207,11 @@ def mesh_surface(
         :data:`equimesh.surface.optimize.OBJECTIVES`), or none.  "bounded"
         (beyond the paper, the default) keeps every member in [l, 2l] with as
         many as possible at one length, boundary nodes sliding along their
-        side, loop or hole edge; "classes" (beyond the paper) starts there and
-        seeks the fewest length classes at ``tolerance``; both keep every
-        triangle angle on the surface at least 30 degrees
-        (:mod:`equimesh.surface.optimize.joints`); "paper" is the paper's (G1
-        members only, boundary fixed, angles not bounded).
-    placement : "best" or "default"
-        Lattice placement of Problem 2.
+        side, loop or hole edge; "classes" (beyond) seeks the fewest length
+        classes at ``tolerance``; both keep every angle at least 30 degrees
+        (:mod:`~equimesh.surface.optimize.joints`); "paper" is the paper's.
+    placement : "best", "default" or "classes"
+        Lattice placement of Problem 2 (:data:`PLACEMENTS`).
     boundary_spacing : float
         Step 2 spacing of the boundary, in units of l.
     max_nodes : int, None or "default"
@@ -227,17 +227,12 @@ def mesh_surface(
     engine : str
         Insertion engine of Problem 2 (:data:`equimesh.planar.insertion.ENGINES`).
     tolerance : float or str
-        Fabrication tolerance of a length class, relative to l
-        (:func:`equimesh.classes.check_tolerance`): what "classes" counts.
+        Fabrication tolerance of a length class, relative to l: what "classes" counts.
     lengths : sequence of float or str, optional
-        A catalogue of stock lengths in [l, 2l] (``optimize="classes"`` only,
-        :func:`equimesh.classes.check_catalogue`): members are cut from them
-        within ``tolerance`` where possible.  Refused before the optimisation
-        if no count of them adds up to a side of the outline on the surface.
+        Stock lengths in [l, 2l] ("classes" only, :func:`equimesh.classes.check_catalogue`).
     surface_tolerance : float
-        ``D`` in [0, l): under "bounded" or "classes" every node that moves
-        may leave the surface by at most ``D`` along its unit normal
-        (:attr:`SurfaceMesh.offsets`); 0 keeps every node on the surface.
+        ``D`` in [0, l): how far a moving node may leave the surface along its
+        normal (:attr:`SurfaceMesh.offsets`; "bounded" and "classes").
 
     Returns
     -------
@@ -252,28 +247,17 @@ def mesh_surface(
     MeshTooLargeError
         The estimated node count exceeds ``max_nodes``.
     InvalidCatalogueError
-        ``lengths`` is empty, not numbers, has a length outside [l, 2l], or
-        cannot hold a side of the outline.
+        A bad ``lengths``, or one that cannot hold a side of the outline.
     InternalError
-        A returned "bounded" or "classes" mesh would have a member outside
-        [l, 2l], an angle below its bound, or a node farther than
-        ``surface_tolerance`` from the surface.
+        A returned mesh would break a check of :mod:`~equimesh.surface.output_checks`.
     """
     l = check_length(l)
     tolerance = check_tolerance(tolerance)
-    catalogue = None if lengths is None else check_catalogue(lengths, l)
-    surface_tolerance = _check_surface_tolerance(surface_tolerance, l)
     if not (isinstance(optimize, str) and (optimize == "none" or optimize in OBJECTIVES)):
         raise EquimeshError(f"optimize must be 'none' or one of {sorted(OBJECTIVES)}, got {optimize!r}")
     if placement not in PLACEMENTS:
         raise EquimeshError(f"placement must be one of {PLACEMENTS}, got {placement!r}")
-    if catalogue is not None and optimize != "classes":
-        raise EquimeshError(f"lengths= is a catalogue for optimize='classes', got optimize={optimize!r}")
-    if surface_tolerance > 0 and not (optimize in OBJECTIVES and OBJECTIVES[optimize].slides):
-        raise EquimeshError(
-            f"surface_tolerance= lets the optimisation move nodes off the surface: use optimize='bounded' or "
-            f"'classes', got optimize={optimize!r}"
-        )
+    catalogue, surface_tolerance = check_fabrication_options(optimize, lengths, surface_tolerance, l)
     boundary_spacing = check_spacing(boundary_spacing)  # Problem 2's own check, needed by step 3 already
     limit = _node_limit(max_nodes, optimize)
     engine = check_engine(engine)
@@ -292,25 +276,14 @@ def mesh_surface(
 
     try:
         # The surface's own guard (_check_size, measured end to end) bounds the planar stage too.
-        holes = steps.holes
-        chosen = (
-            best_lattice_placement(steps.outline.vertices, l, holes=holes, max_nodes=None)
-            if placement != "default"
-            else None
-        )
+        holes, vertices = steps.holes, steps.outline.vertices
+        chosen = None if placement == "default" else best_lattice_placement(vertices, l, holes=holes, max_nodes=None)
         if placement == "classes":
-            chosen = fewest_classes_placement(
-                steps.outline.vertices,
-                l,
-                holes=holes,
-                boundary_spacing=boundary_spacing,
-                tolerance=tolerance,
-                engine=engine,
-                start=chosen,
-            )
+            options = dict(holes=holes, boundary_spacing=boundary_spacing, tolerance=tolerance, engine=engine)
+            chosen = fewest_classes_placement(vertices, l, start=chosen, **options)
         angle, offset = (chosen.angle, chosen.offset) if chosen else (0.0, (0.0, 0.0))
         plane = uniform_triangulation(
-            steps.outline.vertices,
+            vertices,
             l,
             holes=holes,
             angle=angle,
@@ -324,7 +297,7 @@ def mesh_surface(
     clock("planar triangulation (Problem 2)")
 
     mapped_uv, mapped_points = steps.place(plane)
-    _check_orientation(mapped_uv, plane.triangles, "remapping (eqs. 2-3)")
+    check_orientation(mapped_uv, plane.triangles, "remapping (eqs. 2-3)")
     clock("remapping (eqs. 2-3)")
 
     result = None
@@ -334,7 +307,7 @@ def mesh_surface(
         record = OBJECTIVES[optimize]
         slides, fixed = steps.outline.slides(plane, mapped_uv) if record.slides else ((), np.arange(plane.n_boundary))
         if catalogue is not None:
-            _check_catalogue_holds(catalogue, mapped_points, plane, fixed, l, tolerance)
+            check_catalogue_holds(catalogue, mapped_points, plane, fixed, l, tolerance)
         result = optimize_uv(
             chart,
             mapped_uv,
@@ -350,13 +323,13 @@ def mesh_surface(
             catalogue=catalogue,
         )
         final_uv, offsets = result.uv, result.offsets
-        _check_orientation(final_uv, plane.triangles, "the optimisation")
+        check_orientation(final_uv, plane.triangles, "the optimisation")
         final_points = offset_points(chart, final_uv, offsets if surface_tolerance > 0 else None)
-        _check_deviation(final_points, evaluate(chart, final_uv), surface_tolerance)
+        check_deviation(final_points, evaluate(chart, final_uv), surface_tolerance)
         if record.bounds_members:
-            _check_members(final_points, plane.edges, l)
+            check_members(final_points, plane.edges, l)
         if record.sound_joints:
-            _check_joints(final_points, plane.triangles, joint_bounds(chart, mapped_uv, plane.triangles))
+            check_joints(final_points, plane.triangles, joint_bounds(chart, mapped_uv, plane.triangles))
         clock("optimisation of inner nodes")
 
     stages = Stages(
@@ -522,89 +495,3 @@ def _check_size(surface_points, triangles, l, max_nodes):
     with np.errstate(over="ignore", under="ignore", divide="ignore"):
         estimate = node_estimate(area, 0.0, np.float64(l * scale))  # Oler's bound, the lattice density
     check_size(f"this surface (area {number(area / scale / scale)})", estimate, max_nodes, l)
-
-
-def _check_members(points, edges, l):
-    """Every member of the surface mesh in [l, 2l] (up to REL_TOL), or the bounded optimisation broke its guarantee."""
-    ratio = edge_lengths(points, edges) / l
-    bad = np.flatnonzero(~(at_least(ratio, 1.0) & at_most(ratio, 2.0)))
-    if bad.size:
-        raise InternalError(
-            f"the bounded optimisation returned {bad.size} of {len(edges)} members outside [l, 2l] "
-            f"(lengths from {number(ratio.min(), 10)} l to {number(ratio.max(), 10)} l); please report this surface"
-        )
-
-
-def _check_surface_tolerance(value, l):
-    """``surface_tolerance`` as a float in [0, l): how far a node may leave the surface."""
-    try:
-        d = float(value)
-    except (TypeError, ValueError, OverflowError):
-        raise InvalidToleranceError(f"surface_tolerance must be a number, got {value!r}") from None
-    if not (math.isfinite(d) and 0.0 <= d < l):
-        shown = number(d) if math.isfinite(d) else str(d)
-        raise InvalidToleranceError(f"surface_tolerance must be at least 0 and below l = {number(l)}, got {shown}")
-    return d
-
-
-def _check_catalogue_holds(catalogue, points, plane, corners, l, tolerance):
-    """Refuse a catalogue from which no members can run along a side of the outline.
-
-    A side is a run of boundary members between two boundary nodes that stay
-    put (the corners; a ring without one is one side); its length is the sum
-    of its members on the surface after remapping, which the sliding nodes
-    keep nearly so.  The members along it must be stock lengths within the
-    tolerance: some count of them must add up to it (:func:`equimesh.classes.holds`).
-    """
-    fixed = np.zeros(plane.n_boundary, dtype=bool)
-    fixed[np.asarray(corners, dtype=np.int64)] = True
-    start = 0
-    for ring, size in enumerate(plane.info["boundary_rings"]):
-        nodes = np.arange(start, start + size)
-        start += size
-        chords = np.linalg.norm(points[np.roll(nodes, -1)] - points[nodes], axis=1)
-        ends = np.flatnonzero(fixed[nodes])
-        cuts = np.split(np.roll(chords, -ends[0]), (ends - ends[0])[1:]) if len(ends) else [chords]
-        for side, part in enumerate(cuts):
-            if not holds(float(part.sum()), catalogue, l, tolerance):
-                where = "the outer boundary" if ring == 0 else f"opening {ring - 1}"
-                raise InvalidCatalogueError(
-                    f"lengths: no count of the stock lengths {', '.join(number(c) for c in catalogue)} within "
-                    f"{tolerance:.3g} l of each adds up to side {side} of {where}, {number(part.sum())} long on the "
-                    "surface; add a length or choose another l"
-                )
-
-
-def _check_deviation(points, on_surface, surface_tolerance):
-    """Every node within ``surface_tolerance`` of the surface (exactly on it at 0), or the optimisation broke it."""
-    distance = np.linalg.norm(points - on_surface, axis=1)
-    allowed = surface_tolerance * (1.0 + REL_TOL)
-    if not np.all(distance <= allowed):
-        raise InternalError(
-            f"the optimisation put {int(np.count_nonzero(distance > allowed))} nodes farther than the surface "
-            f"tolerance {number(surface_tolerance)} from the surface (up to {number(distance.max(), 10)}); "
-            "please report this surface"
-        )
-
-
-def _check_joints(points, triangles, bounds):
-    """Every triangle angle on the surface at least its bound (:mod:`~equimesh.surface.optimize.joints`), or the
-    optimisation broke its guarantee."""
-    angles = surface_angles(points, triangles)
-    low = np.any(angles < bounds, axis=1)
-    if np.any(low):
-        raise InternalError(
-            f"the optimisation returned {int(np.count_nonzero(low))} of {len(triangles)} triangles with an angle "
-            f"below its bound (smallest {np.degrees(angles.min()):.10g} degrees); please report this surface"
-        )
-
-
-def _check_orientation(uv, triangles, stage):
-    """Every triangle counter-clockwise with positive area in (u, v), or our ``stage`` broke it."""
-    bad = np.flatnonzero(~(signed_areas(uv, triangles) > 0))
-    if bad.size:
-        k = int(bad[0])
-        raise InternalError(
-            f"{stage} inverted {bad.size} of {len(triangles)} triangles in (u, v) "
-            f"(first: {triangles[k].tolist()}); please report this surface"
-        )

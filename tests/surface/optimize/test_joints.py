@@ -121,8 +121,8 @@ def test_a_mesh_with_an_unsound_joint_is_never_returned(monkeypatch):
         return replace(result, uv=uv)
 
     monkeypatch.setattr(pipeline, "optimize_uv", squeezing)
-    monkeypatch.setattr(pipeline, "_check_orientation", lambda *args: None)
-    monkeypatch.setattr(pipeline, "_check_members", lambda *args: None)
+    monkeypatch.setattr(pipeline, "check_orientation", lambda *args: None)
+    monkeypatch.setattr(pipeline, "check_members", lambda *args: None)
     surface, l = saddle()
     with pytest.raises(InternalError, match="angle below its bound"):
         equimesh.mesh_surface(surface, l, grid=(8, 8))
