@@ -32,6 +32,7 @@ import importlib
 from .errors import EquimeshError as EquimeshError
 from .errors import InternalError as InternalError
 from .errors import InvalidLengthError as InvalidLengthError
+from .errors import InvalidMethodError as InvalidMethodError
 from .errors import InvalidPolygonError as InvalidPolygonError
 from .errors import InvalidSurfaceError as InvalidSurfaceError
 from .errors import InvalidToleranceError as InvalidToleranceError
@@ -104,6 +105,7 @@ __all__ = sorted(
         "EquimeshError",
         "InternalError",
         "InvalidLengthError",
+        "InvalidMethodError",
         "InvalidPolygonError",
         "InvalidSurfaceError",
         "InvalidToleranceError",

@@ -6,20 +6,12 @@ import pytest
 from hostile_paths import unwritable_folder
 from matplotlib.figure import Figure
 from repository import SURFACES
+from test_cli import run
 
-from equimesh._cli import main
 from equimesh.surface import pipeline
 
 SADDLE = SURFACES / "saddle.json"
 QUICK = ["--length", "6", "--grid", "6", "6", "--optimize", "none"]
-
-
-def run(args, capsys):
-    try:
-        code = main([str(a) for a in args])
-    except SystemExit as exc:  # argparse usage errors
-        code = exc.code
-    return code, capsys.readouterr()
 
 
 def test_report_and_plot_are_written_with_the_mesh_and_the_schedule(tmp_path, capsys):

@@ -2,12 +2,16 @@
 
 import numpy as np
 import pytest
+import report_meshes
 from matplotlib.image import imread
 
 from equimesh import OutputPathError
 from equimesh.io import PLOT_FORMATS, write_plot
 from equimesh.io._plot import PLOT_DPI, PLOT_SIZE
 from equimesh.io._view import PALETTE
+
+large_mesh = report_meshes.large_mesh  # the shared fixture
+roof_mesh = report_meshes.roof_mesh  # the shared fixture
 
 
 def colour_share(pixels, colour, distance=40):

@@ -6,10 +6,13 @@ import sys
 
 import numpy as np
 import pytest
+import report_meshes
 
 import equimesh
 from equimesh import MissingDependencyError, OutputPathError, length_classes
 from equimesh.io import REPORT_FORMATS, write_report
+
+roof_mesh = report_meshes.roof_mesh  # the shared fixture
 
 pytest.importorskip("plotly", reason="the report needs plotly: pip install 'equimesh[report]'")
 

@@ -17,10 +17,14 @@ import subprocess
 
 import numpy as np
 import pytest
+import report_meshes
 from matplotlib.image import imread
 
 from equimesh.io import write_report
 from equimesh.io._view import PALETTE
+
+large_mesh = report_meshes.large_mesh  # the shared fixture
+roof_mesh = report_meshes.roof_mesh  # the shared fixture
 
 pytest.importorskip("plotly", reason="the report needs plotly: pip install 'equimesh[report]'")
 CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")

@@ -1,11 +1,15 @@
 """What the report and the plot draw (equimesh.io._view): every member in one group, the bins, the outline."""
 
 import numpy as np
+import report_meshes
 from hypothesis import given
 from hypothesis import strategies as st
 
 from equimesh import length_classes
 from equimesh.io._view import MAX_BINS, PALETTE, REST_COLOUR, class_groups, length_bins, mesh_view
+
+large_mesh = report_meshes.large_mesh  # the shared fixture
+roof_mesh = report_meshes.roof_mesh  # the shared fixture
 
 lengths_st = st.lists(st.floats(0.5, 3.0, allow_nan=False), min_size=1, max_size=300)
 tolerances = st.sampled_from([1e-6, 0.001, 0.005, 0.05, 0.3])

@@ -161,17 +161,14 @@ def _view_figure(view):
     fig = go.Figure()
     deviation = view.deviation
     for group in view.groups:
-        x, y, z = _line_set(view.points, view.edges[group.members])
-        dev = np.repeat(deviation[group.members], 3).astype(np.float32)
         fig.add_trace(
-            go.Scatter3d(
-                x=x,
-                y=y,
-                z=z,
-                mode="lines",
+            _line_set(
+                go,
+                view.points,
+                view.edges[group.members],
                 name=group.label,
                 line={"color": group.colour, "width": MEMBER_WIDTH},
-                customdata=dev,
+                customdata=np.repeat(deviation[group.members], 3).astype(np.float32),
                 hovertemplate="deviation from l: %{customdata:+.3%}<extra>%{fullData.name}</extra>",
                 legendgroup="classes",
                 legendgrouptitle={"text": "classes: nominal (members)"},
@@ -179,20 +176,9 @@ def _view_figure(view):
         )
     for name, edges, dash in (("boundary", view.boundary, "solid"), ("openings", view.openings, "dash")):
         if len(edges):
-            x, y, z = _line_set(view.points, edges)
-            fig.add_trace(
-                go.Scatter3d(
-                    x=x,
-                    y=y,
-                    z=z,
-                    mode="lines",
-                    name=name,
-                    line={"color": BOUNDARY_COLOUR, "width": BOUNDARY_WIDTH, "dash": dash},
-                    hoverinfo="skip",
-                    legendgroup="outline",
-                    legendgrouptitle={"text": "outline"},
-                )
-            )
+            outline = {"legendgroup": "outline", "legendgrouptitle": {"text": "outline"}, "hoverinfo": "skip"}
+            line = {"color": BOUNDARY_COLOUR, "width": BOUNDARY_WIDTH, "dash": dash}
+            fig.add_trace(_line_set(go, view.points, edges, name=name, line=line, **outline))
     fig.update_layout(
         template="plotly_white",
         margin={"l": 0, "r": 0, "t": 36, "b": 0},
@@ -217,12 +203,13 @@ def _aspect(points):
     return dict(zip("xyz", np.maximum(ratio, MIN_ASPECT).tolist()))
 
 
-def _line_set(points, edges):
-    """``x, y, z`` of one line set: each edge's two ends and a NaN break (float32, as WebGL draws them)."""
+def _line_set(go, points, edges, **style):
+    """One line set of ``edges``: a Scatter3d through each edge's two ends and a NaN break (float32, as WebGL draws
+    them), with ``style``."""
     p = np.full((len(edges), 3, 3), np.nan, dtype=np.float32)
     p[:, 0], p[:, 1] = points[edges[:, 0]], points[edges[:, 1]]
     flat = p.reshape(-1, 3)
-    return flat[:, 0], flat[:, 1], flat[:, 2]
+    return go.Scatter3d(x=flat[:, 0], y=flat[:, 1], z=flat[:, 2], mode="lines", **style)
 
 
 def _length_figure(view):
