@@ -28,7 +28,7 @@ import sys
 import warnings
 from pathlib import Path
 
-from .errors import EquimeshError, SurfaceWarning, number
+from .errors import EquimeshError, SurfaceWarning
 
 EXIT_USAGE = 2
 EXIT_INTERNAL = 3
@@ -151,6 +151,18 @@ def build_parser():
         "nominal, min and max length); all files written together or none",
     )
     mesh.add_argument(
+        "--report",
+        metavar="HTML",
+        help="also write a report: one self-contained HTML page (opens offline) with the mesh in 3-D coloured by "
+        "length class or deviation from L, the length histogram, the classes, the angles, the run's summary and "
+        "provenance (needs the extra [report]: plotly)",
+    )
+    mesh.add_argument(
+        "--plot",
+        metavar="PNG",
+        help="also draw the mesh coloured by length class with the length histogram beside it (.png, .svg or .pdf)",
+    )
+    mesh.add_argument(
         "--tolerance",
         type=_tolerance,
         default=DEFAULT_TOLERANCE,
@@ -235,7 +247,7 @@ def _run_mesh(args):
     from .io import classes_path, load_surface, surface_mesh_writer
     from .surface.pipeline import mesh_surface
 
-    write = surface_mesh_writer(args.output, args.members)
+    write = surface_mesh_writer(args.output, args.members, also=_outputs_beside(args))
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", SurfaceWarning)
         surface = load_surface(args.surface, **({"object": args.object} if args.object is not None else {}))
@@ -262,6 +274,7 @@ def _run_mesh(args):
     if not args.quiet:
         n_g1 = int(mesh.g1_mask.sum())
         also = f" and {args.members} (+ {classes_path(args.members)})" if args.members else ""
+        also += "".join(f" and {path}" for path in (args.report, args.plot) if path)
         print(
             f"wrote {args.output}{also}: {len(mesh.points)} nodes, {len(mesh.edges)} members "
             f"({n_g1} in the equal-length group G1), {len(mesh.triangles)} triangles",
@@ -271,20 +284,25 @@ def _run_mesh(args):
     return 0
 
 
-def _summary(lengths, l, tolerance):
-    """The one-screen summary of a run's members (:func:`equimesh.metrics.fabrication_summary`)."""
-    from .metrics import fabrication_summary
+def _outputs_beside(args):
+    """The report and the plot of ``--report`` and ``--plot``, their paths checked now (``(path, fill)`` pairs)."""
+    from .io import plot_output, report_output
 
-    s = fabrication_summary(lengths, l, tolerance)
-    tol = f"+-{100 * tolerance:.3g} %"
-    rows = [
-        ("members", f"{s['members']}"),
-        ("length classes", f"{s['classes']} (every member within {tol} of L of its class's nominal length)"),
-        ("in the largest class", f"{100 * s['largest_class_share']:.1f} %"),
-        ("shortest member", f"{number(s['min_length'])} ({s['min_length'] / l:.4f} L)"),
-        ("longest member", f"{number(s['max_length'])} ({s['max_length'] / l:.4f} L)"),
-        (f"within {tol} of L", f"{100 * s['within_tolerance']:.1f} %"),
-    ]
+    outputs = []
+    if args.report:
+        keys = ("surface", "object", "length", "grid", "optimize", "placement", "engine", "max_nodes", "tolerance")
+        given = {("input" if k == "surface" else k): getattr(args, k) for k in keys if getattr(args, k, None)}
+        outputs.append(report_output(args.report, given))
+    if args.plot:
+        outputs.append(plot_output(args.plot))
+    return outputs
+
+
+def _summary(lengths, l, tolerance):
+    """The one-screen summary of a run's members (:func:`equimesh.metrics.summary_rows`)."""
+    from .metrics import summary_rows
+
+    rows = summary_rows(lengths, l, tolerance)
     width = max(len(label) for label, _ in rows) + 2
     return "\n".join(f"{label:<{width}}{value}" for label, value in rows)
 

@@ -13,7 +13,8 @@ tolerance (:func:`distinct_lengths`) and the range of triangle angles
 tables from :func:`table1_row` and :func:`fabrication_figures`.
 
 :func:`fabrication_summary` is what ``equimesh mesh`` prints after meshing
-(length classes at the chosen tolerance, :mod:`equimesh.classes`), and
+(length classes at the chosen tolerance, :mod:`equimesh.classes`; the lines
+are :func:`summary_rows`, also in its ``--report``), and
 :func:`comparison_figures` the one measure of ``experiments/compare_peers.py``,
 applied alike to equimesh and to other meshers.
 """
@@ -21,6 +22,7 @@ applied alike to equimesh and to other meshers.
 import numpy as np
 
 from .classes import DEFAULT_TOLERANCE, length_classes
+from .errors import number
 from .mesh import G1, edge_lengths, unique_edges
 from .tolerance import at_least, at_most
 
@@ -115,6 +117,21 @@ def fabrication_summary(lengths, l, tolerance=DEFAULT_TOLERANCE):
         "max_length": float(x.max()) if x.size else np.nan,
         "within_tolerance": share_within(x, l, classes.tolerance),
     }
+
+
+def summary_rows(lengths, l, tolerance=DEFAULT_TOLERANCE):
+    """:func:`fabrication_summary` as ``(label, text)`` pairs: the summary ``equimesh mesh`` prints and its report
+    shows."""
+    s = fabrication_summary(lengths, l, tolerance)
+    tol = f"+-{100 * tolerance:.3g} %"
+    return [
+        ("members", f"{s['members']}"),
+        ("length classes", f"{s['classes']} (every member within {tol} of L of its class's nominal length)"),
+        ("in the largest class", f"{100 * s['largest_class_share']:.1f} %"),
+        ("shortest member", f"{number(s['min_length'])} ({s['min_length'] / l:.4f} L)"),
+        ("longest member", f"{number(s['max_length'])} ({s['max_length'] / l:.4f} L)"),
+        (f"within {tol} of L", f"{100 * s['within_tolerance']:.1f} %"),
+    ]
 
 
 #: Keys of :func:`comparison_figures`: the one set of figures every mesher is measured by

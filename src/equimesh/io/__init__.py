@@ -7,6 +7,9 @@
 * :mod:`._trimesh`    triangle meshes (.obj, .stl, .ply, .vtk, .vtu via meshio) as the auxiliary triangulation;
 * :mod:`._schema`     checks shared by the schemas, plain text for messages;
 * :mod:`._meshes`     writing meshes (meshio) and member schedules, checks of output paths;
+* :mod:`._report`     the report of a run: one self-contained HTML page (plotly, optional);
+* :mod:`._plot`       the plot of a run: the mesh by length class and the length histogram (matplotlib);
+* :mod:`._view`       what the report and the plot draw: members by class, colours, bins, boundary;
 * :mod:`._atomic`     atomic writes (temporary files, then renames), one file or a set;
 * :mod:`.provenance`  git commit, date, versions and parameters beside every result.
 """
@@ -22,6 +25,8 @@ from ._meshes import (
     write_mesh,
     write_surface_mesh,
 )
+from ._plot import PLOT_FORMATS, plot_output, write_plot
+from ._report import REPORT_FORMATS, report_output, write_report
 from ._rhino import to_rhino_surface
 from ._surfaces import INPUT_FORMATS, SURFACE_TYPES, load_surface, surface_from_dict, surface_to_dict
 
@@ -29,16 +34,22 @@ __all__ = [
     "INPUT_FORMATS",
     "MEMBER_FORMATS",
     "MESH_FORMATS",
+    "PLOT_FORMATS",
+    "REPORT_FORMATS",
     "SURFACE_TYPES",
     "check_output_path",
     "classes_path",
     "load_surface",
     "member_schedule",
+    "plot_output",
+    "report_output",
     "surface_from_dict",
     "surface_mesh_writer",
     "surface_to_dict",
     "to_rhino_surface",
     "write_members",
     "write_mesh",
+    "write_plot",
+    "write_report",
     "write_surface_mesh",
 ]

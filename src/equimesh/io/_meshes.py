@@ -136,12 +136,16 @@ def write_surface_mesh(mesh, path, members=None, tolerance=DEFAULT_TOLERANCE):
     surface_mesh_writer(path, members)(mesh, tolerance)
 
 
-def surface_mesh_writer(path, members=None):
+def surface_mesh_writer(path, members=None, also=()):
     """Check every file :func:`write_surface_mesh` writes (:func:`check_output_path`); return the writer.
 
     The checks run now, before a run's expensive part, and only now: the
     returned ``write(mesh, tolerance=DEFAULT_TOLERANCE)`` writes ``mesh`` as
-    :func:`write_surface_mesh` does, to the paths checked here.
+    :func:`write_surface_mesh` does, to the paths checked here.  ``also``
+    holds further outputs of the run, ``(path, fill)`` pairs whose path the
+    caller checked (``equimesh.io.report_output``, ``equimesh.io.plot_output``):
+    ``fill(tmp, mesh, tolerance)`` writes one to a temporary file, renamed
+    together with the others.
     """
     fmt = check_output_path(path, MESH_FORMATS)
     if members is not None:
@@ -151,6 +155,7 @@ def surface_mesh_writer(path, members=None):
         outputs = [_mesh_output(path, fmt, mesh.points, mesh.triangles)]
         if members is not None:
             outputs += _members_outputs(members, mesh.points, mesh.edges, mesh.edge_groups, mesh.length, tolerance)
+        outputs += [(out, lambda tmp, fill=fill: fill(tmp, mesh, tolerance)) for out, fill in also]
         _write_all(outputs)
 
     return write
