@@ -18,6 +18,7 @@ the same examples again (one is drawn when none is given; under
 pytest-xdist the controller draws it and the workers inherit it).
 
 Fixture ``load_experiment``: import ``experiments/<name>.py`` for a smoke test.
+Fixture ``saddle_mesh``: one mesh of a real surface, made once, for the writers of ``equimesh.io``.
 
 Conditional properties.  A property that only says something when a
 condition holds (``assume(c)``, or ``if c: check(...)``) passes vacuously if
@@ -114,6 +115,14 @@ def load_experiment():
     sys.path.insert(0, folder)
     yield importlib.import_module
     sys.path.remove(folder)
+
+
+@pytest.fixture(scope="session")
+def saddle_mesh():
+    """The saddle of experiments/surfaces at l = 6 on an 8 x 8 grid, optimised ("bounded"): about a hundred nodes."""
+    from equimesh import load_surface, mesh_surface
+
+    return mesh_surface(load_surface(EXPERIMENTS / "surfaces" / "saddle.json"), 6.0, grid=(8, 8))
 
 
 # --------------------------------------------------------------------------- conditional properties

@@ -47,7 +47,7 @@ def build_parser():
     # The library (numpy, scipy, shapely: seconds on a busy machine) is imported here and in
     # _run_mesh, inside main's handlers, so that a Ctrl-C during the import is one line too.
     from .classes import DEFAULT_TOLERANCE, MAX_TOLERANCE
-    from .io import INPUT_FORMATS, MESH_FORMATS
+    from .io import INPUT_FORMATS, OUTPUT_SLOTS
     from .planar.insertion import DEFAULT_ENGINE, ENGINES
     from .surface.optimize import OBJECTIVES
     from .surface.pipeline import DEFAULT_OPTIMIZE, MAX_GRID_CELLS, PLACEMENTS, UNOPTIMIZED_MAX_NODES
@@ -136,31 +136,18 @@ def build_parser():
         + ") keep a run to about two minutes on a 2-core machine (docs/performance.md); beyond them time grows "
         "faster than the node count",
     )
+    for slot, record in OUTPUT_SLOTS.items():
+        mesh.add_argument(
+            *(("-o", "--output") if slot == "mesh" else (f"--{slot}",)),
+            dest=_output_dest(slot),
+            required=record.required,
+            metavar=record.metavar,
+            help=_output_help(slot, record),
+        )
     mesh.add_argument(
-        "-o",
-        "--output",
-        required=True,
-        metavar="OUT",
-        help=f"mesh file; format from the extension: {', '.join(sorted(MESH_FORMATS))}",
-    )
-    mesh.add_argument(
-        "--members",
-        metavar="CSV",
-        help="also write a member schedule (member id, node ids, length, group, length class, "
-        "deviation from L) and its length classes to CSV's stem + '.classes.csv' (class id, count, "
-        "nominal, min and max length); all files written together or none",
-    )
-    mesh.add_argument(
-        "--report",
-        metavar="HTML",
-        help="also write a report: one self-contained HTML page (opens offline) with the mesh in 3-D coloured by "
-        "length class or deviation from L, the length histogram, the classes, the angles, the run's summary and "
-        "provenance (needs the extra [report]: plotly)",
-    )
-    mesh.add_argument(
-        "--plot",
-        metavar="PNG",
-        help="also draw the mesh coloured by length class with the length histogram beside it (.png, .svg or .pdf)",
+        "--dxf-labels",
+        action="store_true",
+        help="in a .dxf mesh file, also write each member's length class as text at its midpoint (layer labels)",
     )
     mesh.add_argument(
         "--tolerance",
@@ -221,6 +208,22 @@ def _fail(code, message):
     return code
 
 
+def _output_dest(slot):
+    """The attribute of an output option: ``args.output`` for the mesh (``-o``), ``args.<slot>`` for the others."""
+    return "output" if slot == "mesh" else slot
+
+
+def _output_help(slot, record):
+    """The help of an output option: what it writes, then every format of the registry, with the extra it needs."""
+    from .io import output_formats
+
+    formats = "; ".join(
+        f"{ext} ({fmt.name}" + (f", extra [{fmt.extra}]" if fmt.extra else "") + f": {fmt.holds})"
+        for ext, fmt in output_formats(slot).items()
+    )
+    return f"{record.help}; format from the extension: {formats}; all outputs are written together or none"
+
+
 def _max_nodes(text):
     """``--max-nodes``: a positive whole number, or 'none' for no limit."""
     if text.strip().lower() == "none":
@@ -244,10 +247,13 @@ def _tolerance(text):
 
 
 def _run_mesh(args):
-    from .io import classes_path, load_surface, surface_mesh_writer
+    from .io import OUTPUT_SLOTS, load_surface, surface_mesh_writer
     from .surface.pipeline import mesh_surface
 
-    write = surface_mesh_writer(args.output, args.members, also=_outputs_beside(args))
+    outputs = {slot: getattr(args, _output_dest(slot)) for slot in OUTPUT_SLOTS}
+    write = surface_mesh_writer(
+        outputs, inputs=[args.surface], dxf_labels=args.dxf_labels, parameters=_parameters(args)
+    )
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", SurfaceWarning)
         surface = load_surface(args.surface, **({"object": args.object} if args.object is not None else {}))
@@ -273,10 +279,8 @@ def _run_mesh(args):
     write(mesh, args.tolerance)
     if not args.quiet:
         n_g1 = int(mesh.g1_mask.sum())
-        also = f" and {args.members} (+ {classes_path(args.members)})" if args.members else ""
-        also += "".join(f" and {path}" for path in (args.report, args.plot) if path)
         print(
-            f"wrote {args.output}{also}: {len(mesh.points)} nodes, {len(mesh.edges)} members "
+            f"wrote {', '.join(map(str, write.paths))}: {len(mesh.points)} nodes, {len(mesh.edges)} members "
             f"({n_g1} in the equal-length group G1), {len(mesh.triangles)} triangles",
             file=sys.stderr,
         )
@@ -284,18 +288,10 @@ def _run_mesh(args):
     return 0
 
 
-def _outputs_beside(args):
-    """The report and the plot of ``--report`` and ``--plot``, their paths checked now (``(path, fill)`` pairs)."""
-    from .io import plot_output, report_output
-
-    outputs = []
-    if args.report:
-        keys = ("surface", "object", "length", "grid", "optimize", "placement", "engine", "max_nodes", "tolerance")
-        given = {("input" if k == "surface" else k): getattr(args, k) for k in keys if getattr(args, k, None)}
-        outputs.append(report_output(args.report, given))
-    if args.plot:
-        outputs.append(plot_output(args.plot))
-    return outputs
+def _parameters(args):
+    """What the run was given, for the report's provenance: the input file and every option set."""
+    keys = ("surface", "object", "length", "grid", "optimize", "placement", "engine", "max_nodes", "tolerance")
+    return {("input" if k == "surface" else k): getattr(args, k) for k in keys if getattr(args, k, None)}
 
 
 def _summary(lengths, l, tolerance):

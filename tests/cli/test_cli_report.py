@@ -21,7 +21,7 @@ def test_report_and_plot_are_written_with_the_mesh_and_the_schedule(tmp_path, ca
     code, captured = run(["mesh", SADDLE, *QUICK, "--tolerance", "1%", *args], capsys)
     assert code == 0, captured.err
     assert sorted(p.name for p in tmp_path.iterdir()) == ["m.classes.csv", "m.csv", "m.obj", "p.png", "r.html"]
-    assert f"and {out['r.html']} and {out['p.png']}:" in captured.err
+    assert f"{out['r.html']}, {out['p.png']}:" in captured.err
     report = out["r.html"].read_text(encoding="utf-8")
     for shown in (f"parameter: input</th><td>{SADDLE}", "parameter: tolerance</th><td>0.01", "parameter: grid"):
         assert shown in report
@@ -57,8 +57,10 @@ def test_without_plotly_the_report_is_refused_in_one_line(tmp_path, capsys, monk
     code, captured = run(
         ["mesh", SADDLE, "--length", 5, "-o", tmp_path / "m.obj", "--report", tmp_path / "r.html"], capsys
     )
-    assert code == 2 and captured.err.strip() == (
-        "equimesh: error: the report (--report) needs plotly: pip install 'equimesh[report]'"
+    message = captured.err.strip()
+    assert code == 2 and message.startswith("equimesh: error: ") and "\n" not in message
+    assert message.endswith(
+        "r.html: writing HTML files (.html) needs plotly, which is not installed: pip install 'equimesh[report]'"
     )
     assert list(tmp_path.iterdir()) == []
 

@@ -1,4 +1,5 @@
-"""All-or-nothing writes (``io/_atomic.py``): a failed or interrupted write leaves the old file or no file, and no temporary."""
+"""All-or-nothing writes (``io/_atomic.py``): a failed or interrupted write leaves the old file or no file, and no
+temporary."""
 
 import subprocess
 import sys

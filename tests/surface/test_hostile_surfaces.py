@@ -1,4 +1,5 @@
-"""Hostile surfaces through the whole pipeline: every one meshed within the pipeline's invariants or refused in one line."""
+"""Hostile surfaces through the whole pipeline: every one meshed within the pipeline's invariants or refused in one
+line."""
 
 import numpy as np
 from hypothesis import given, settings

@@ -14,7 +14,8 @@ from equimesh.surface.mesh_outline import CORNER_TURN, FIRM_TURN, loop_corners
     side=st.floats(0.3, 3.0),
 )
 def test_loop_corners(turns, side):
-    """Corners turn by at least CORNER_TURN and are at least l apart around the loop, at least one; or two firm corners are too close."""
+    """Corners turn by at least CORNER_TURN and are at least l apart around the loop, at least one; or two firm corners
+    are too close."""
     # An open polyline from turning angles; the loop closes it with one more segment (the function reads only xy).
     heading = np.cumsum(np.radians(turns))
     xy = np.cumsum(side * np.column_stack([np.cos(heading), np.sin(heading)]), axis=0)

@@ -1,6 +1,6 @@
 """The plot of a run: the mesh coloured by length class and the histogram of member lengths beside it (matplotlib).
 
-:func:`write_plot` draws, headless (a :class:`matplotlib.figure.Figure`, no
+:func:`equimesh.io.write_plot` draws, headless (a :class:`matplotlib.figure.Figure`, no
 pyplot), the same :class:`~equimesh.io._view.MeshView` as the report: on the
 left the mesh in 3-D, each member in its class's colour, the outer boundary
 solid and the openings dashed; on the right the member lengths stacked by class
@@ -13,12 +13,9 @@ import numpy as np
 
 from ..classes import DEFAULT_TOLERANCE
 from ..errors import number
-from ._atomic import atomic_path
-from ._meshes import check_output_path
 from ._view import BOUNDARY_COLOUR, mesh_view
 
 #: Plot formats by extension, and the metadata that would make two writes of one mesh differ (left out).
-PLOT_FORMATS = {".png": "png", ".svg": "svg", ".pdf": "pdf"}
 _NO_DATE = {"png": {"Software": None}, "svg": {"Date": None}, "pdf": {"CreationDate": None}}
 
 #: Size of the picture in inches, and its resolution.
@@ -26,34 +23,18 @@ PLOT_SIZE = (12.0, 5.2)
 PLOT_DPI = 100
 
 
-def write_plot(mesh, path, *, tolerance=DEFAULT_TOLERANCE):
-    """Draw ``mesh`` (a :class:`equimesh.SurfaceMesh` or :class:`equimesh.PlanarMesh`) to ``path``, atomically.
+def plot_writer(fmt):
+    """The plot's writer in matplotlib's format ``fmt`` (``png``, ``svg``, ``pdf``; a row of
+    :data:`~equimesh.io._outputs.OUTPUT_FORMATS` each): :func:`plot_figure` of ``products.mesh``, with no date."""
 
-    The format comes from the extension (:data:`PLOT_FORMATS`); the classes
-    are those of :func:`equimesh.length_classes` at ``tolerance``.
-
-    Raises
-    ------
-    OutputPathError
-        ``path`` cannot be written (:func:`equimesh.io.check_output_path`).
-    """
-    out, fill = plot_output(path)
-    with atomic_path(out) as tmp:
-        fill(tmp, mesh, tolerance)
-
-
-def plot_output(path):
-    """Check ``path`` now; return ``(path, fill)``, ``fill(tmp, mesh, tolerance)`` drawing the plot (see
-    :func:`equimesh.io._report.report_output`)."""
-    fmt = check_output_path(path, PLOT_FORMATS)
-
-    def fill(tmp, mesh, tolerance=DEFAULT_TOLERANCE):
+    def write(tmp, products):
         import matplotlib
 
         with matplotlib.rc_context({"svg.hashsalt": "equimesh"}):  # SVG ids from a fixed salt, not a random one
-            plot_figure(mesh, tolerance).savefig(tmp, format=fmt, dpi=PLOT_DPI, metadata=_NO_DATE[fmt])
+            figure = plot_figure(products.mesh, products.tolerance)
+            figure.savefig(tmp, format=fmt, dpi=PLOT_DPI, metadata=_NO_DATE[fmt])
 
-    return path, fill
+    return write
 
 
 def plot_figure(mesh, tolerance=DEFAULT_TOLERANCE):

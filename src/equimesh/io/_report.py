@@ -1,6 +1,6 @@
 """The report of a run: one self-contained HTML file with the mesh in 3-D, its member lengths, classes and angles.
 
-:func:`write_report` writes a page that opens offline in any browser: plotly's
+:func:`equimesh.io.write_report` writes a page that opens offline in any browser: plotly's
 JavaScript bundle (the optional extra ``report``) is inlined, so the page needs
 no network (docs/decisions.md, "The report is one HTML file with plotly
 inlined").  It shows, from one :class:`~equimesh.io._view.MeshView`:
@@ -26,17 +26,12 @@ import json
 
 import numpy as np
 
-from ..classes import DEFAULT_TOLERANCE
 from ..errors import MissingDependencyError, number
 from ..metrics import angle_range, summary_rows
-from ._atomic import atomic_path
-from ._meshes import check_output_path
 from ._view import BOUNDARY_COLOUR, mesh_view
 from .provenance import provenance
 
 #: Report formats by extension.
-REPORT_FORMATS = {".html": "html"}
-
 #: Colour scale of the deviation from l (blue: short, green: l, red: long), from -m to +m, m the largest deviation.
 DEVIATION_SCALE = [[0.0, "#2166ac"], [0.5, "#1a9850"], [1.0, "#b2182b"]]
 
@@ -52,50 +47,17 @@ CAMERA_EYE = {"x": 0.85, "y": -0.85, "z": 0.65}
 MIN_ASPECT = 0.05
 
 
-def write_report(mesh, path, *, tolerance=DEFAULT_TOLERANCE, parameters=None, record=None):
-    """Write the report of ``mesh`` (a :class:`equimesh.SurfaceMesh` or :class:`equimesh.PlanarMesh`) to ``path``.
-
-    Parameters
-    ----------
-    mesh : SurfaceMesh or PlanarMesh
-    path : str or Path, an ``.html`` file, written atomically.
-    tolerance : float or str
-        Fabrication tolerance of a length class, relative to l (:func:`equimesh.length_classes`).
-    parameters : dict, optional
-        What the run was given (input file, options), shown under provenance; default: l and the tolerance.
-    record : dict, optional
-        The provenance record to show (:func:`equimesh.io.provenance.provenance`); default: made now from
-        ``parameters``.
-
-    Raises
-    ------
-    OutputPathError
-        ``path`` cannot be written (:func:`equimesh.io.check_output_path`).
-    MissingDependencyError
-        plotly is not installed (``pip install 'equimesh[report]'``).
-    """
-    out, fill = report_output(path, parameters, record)
-    with atomic_path(out) as tmp:
-        fill(tmp, mesh, tolerance)
-
-
-def report_output(path, parameters=None, record=None):
-    """Check ``path`` and plotly now; return ``(path, fill)``, ``fill(tmp, mesh, tolerance)`` writing the report.
-
-    For a run that writes several files together (the command line's
-    ``--report``): the checks come before the run's expensive part, the write
-    after it (:func:`equimesh.io.surface_mesh_writer`).
-    """
-    check_output_path(path, REPORT_FORMATS)
-    _plotly()
-
-    def fill(tmp, mesh, tolerance=DEFAULT_TOLERANCE):
-        given = {"length": float(mesh.length), "tolerance": tolerance} if parameters is None else parameters
-        shown = provenance(given) if record is None else record
-        with open(tmp, "w", encoding="utf-8", newline="\n") as f:
-            f.write(report_html(mesh, tolerance, shown))
-
-    return path, fill
+def write_report_html(tmp, products):
+    """The report's writer (a row of :data:`~equimesh.io._outputs.OUTPUT_FORMATS`): the page of
+    ``products.mesh`` at ``products.tolerance``, with the run's provenance ``products.record`` (made now from
+    ``products.parameters`` when the caller gave none; by default l and the tolerance)."""
+    mesh, tolerance = products.mesh, products.tolerance
+    given = (
+        {"length": float(mesh.length), "tolerance": tolerance} if products.parameters is None else products.parameters
+    )
+    record = provenance(given) if products.record is None else products.record
+    with open(tmp, "w", encoding="utf-8", newline="\n") as f:
+        f.write(report_html(mesh, tolerance, record))
 
 
 def report_html(mesh, tolerance, record):

@@ -146,7 +146,8 @@ def test_infeasible_mesh_refusal_suggests_what_refines_a_mesh():
     l=st.floats(1.2, 1.8),
 )
 def test_generated_vaults_with_an_opening(rise, corner, size, l):
-    """Vaults of any rise with an opening anywhere at least 3 cells (6) from the border, sides at least 2 > l: every invariant."""
+    """Vaults of any rise with an opening anywhere at least 3 cells (6) from the border, sides at least 2 > l: every
+    invariant."""
     (i, j), (a, b) = corner, size
     v, t = roof_mesh(24.0, 16.0, (12, 8), rise, opening=(i, i + a, j, j + b))
     surface = TriangulatedSurface(v, t)
@@ -222,7 +223,8 @@ def test_example_roof_with_a_skylight():
         (
             (4, 5, 3, 4),
             2.5,
-            r"hole 0 .* has corners at \(8, 8, 2\.78163\) and \(10, 8, 2\.92478\) only 1\.95073 apart .* use l <= 1\.95$",
+            r"hole 0 .* has corners at \(8, 8, 2\.78163\) and \(10, 8, 2\.92478\) only 1\.95073 apart .* use l <= "
+            r"1\.95$",
         ),
         ((3, 4, 4, 5), 2.0, r"hole 0 .* has corners at .* only 1\.99.* apart .* closer than l = 2; use l <= 1\.99"),
         (
@@ -233,7 +235,8 @@ def test_example_roof_with_a_skylight():
     ],
 )
 def test_openings_and_boundaries_too_small_for_l(opening, l, match):
-    """Problem 2's refusals and the rings' own, in one line, the opening located in space; the suggested l is accepted."""
+    """Problem 2's refusals and the rings' own, in one line, the opening located in space; the suggested l is
+    accepted."""
     surface = TriangulatedSurface(*roof_mesh(20.0, 14.0, (10, 7), 3.0, opening=opening))
     with pytest.raises(InvalidSurfaceError, match=match) as info:
         mesh_surface(surface, l, optimize="none")
