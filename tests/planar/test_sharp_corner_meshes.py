@@ -172,6 +172,7 @@ def _refusal_kind(error):
     return found[0]
 
 
+@pytest.mark.exercised("a short-sided sharp corner is meshed", share=0.5)
 @given(sss.sharp_cases())
 def test_short_sided_sharp_corners_are_meshed_within_every_theorem_or_refused_by_kind(case):
     """Corners of 10 to 60 degrees with sides from l to past the proven limit (thin triangles, short wedges,

@@ -40,7 +40,7 @@ def atomic_paths(*paths):
             path.parent.mkdir(parents=True, exist_ok=True)
             tmps.append(_temporary(path.parent, path.suffix))
         yield tmps
-        with _interrupts_held():
+        with interrupts_held():
             for tmp, path in zip(tmps, paths):
                 os.replace(tmp, path)
     except BaseException:
@@ -85,7 +85,7 @@ def _temporary(folder, suffix):
 
 
 @contextlib.contextmanager
-def _interrupts_held():
+def interrupts_held():
     """Hold SIGINT back for the duration of the block and deliver it afterwards.
 
     Only the main thread can set signal handlers, and only a handler installed
