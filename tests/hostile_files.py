@@ -158,21 +158,34 @@ def mutated_text(draw, text):
 HOSTILE_VALUES = [True, None, 10**400, -1, 0, 400, 1e308, -1e308, "x", [], {}, [[[]]], [0.5], [[1, 2]], float("nan")]
 
 
+def _numbers_in(node, path=()):
+    """The paths to every number in the JSON value ``node``."""
+    if isinstance(node, dict):
+        return [p for key in sorted(node) for p in _numbers_in(node[key], (*path, key))]
+    if isinstance(node, list):
+        return [p for k, x in enumerate(node) for p in _numbers_in(x, (*path, k))]
+    return [path] if isinstance(node, (int, float)) and not isinstance(node, bool) else []
+
+
 @st.composite
 def mutated_description(draw, d):
     """The JSON description ``d`` with one entry somewhere in it (a field, a row, a point, a number) replaced by a
-    hostile value, as JSON text (NaN written as JSON's ``NaN``)."""
+    hostile value, or one of its numbers moved by up to 10 %, as JSON text (NaN written as JSON's ``NaN``)."""
     d = json.loads(json.dumps(d))
-    path, node = [], d
-    while isinstance(node, (dict, list)) and node and draw(st.booleans()):
-        key = draw(st.sampled_from(sorted(node) if isinstance(node, dict) else range(len(node))))
-        path.append(key)
-        node = node[key]
-    if not path:
-        key = draw(st.sampled_from(sorted(d)))
-        path = [key]
+    moved = draw(st.booleans())
+    if moved:
+        path = draw(st.sampled_from(_numbers_in(d)))
+    else:
+        path, node = [], d
+        while isinstance(node, (dict, list)) and node and (not path or draw(st.booleans())):
+            key = draw(st.sampled_from(sorted(node) if isinstance(node, dict) else range(len(node))))
+            path.append(key)
+            node = node[key]
     parent = d
     for key in path[:-1]:
         parent = parent[key]
-    parent[path[-1]] = draw(st.sampled_from(HOSTILE_VALUES))
+    if moved:
+        parent[path[-1]] = parent[path[-1]] * draw(st.floats(0.9, 1.1)) + draw(st.floats(-0.1, 0.1))
+    else:
+        parent[path[-1]] = draw(st.sampled_from(HOSTILE_VALUES))
     return json.dumps(d)

@@ -27,7 +27,7 @@ from equimesh import (
     InvalidLengthError,
 )
 from equimesh._cli import main
-from equimesh.io import _meshes as io_meshes
+from equimesh.io import _paths as io_paths
 from equimesh.surface import pipeline
 
 SADDLE = SURFACES / "saddle.json"
@@ -217,7 +217,14 @@ def test_bad_input_exits_2_without_output(case, tmp_path, capsys):
     assert list(out.parent.iterdir()) == []
 
 
-@pytest.mark.parametrize("target, match", [("missing/mesh.obj", "does not exist"), ("mesh.xyz", "extension")])
+@pytest.mark.parametrize(
+    "target, match",
+    [
+        ("missing/mesh.obj", "does not exist"),
+        ("mesh.xyz", "unknown extension '.xyz' for the mesh"),
+        ("mesh.json", "use one of .obj, .vtk, .vtu, .stl, .ply, .msh, .3dm, .compas.json, .dxf"),
+    ],
+)
 def test_bad_output_path(target, match, tmp_path, capsys):
     code, captured = run(["mesh", SADDLE, "--length", 5, "-o", tmp_path / target], capsys)
     assert code == 2 and match in captured.err
@@ -249,6 +256,19 @@ BAD_OUTPUTS = {
     "members folder unwritable": lambda d: ["-o", d / "m.obj", "--members", unwritable_folder(d) / "m.csv"],
     "members extension": lambda d: ["-o", d / "m.obj", "--members", d / "m.txt"],
     "classes CSV is a folder": lambda d: ["-o", d / "m.obj", "--members", (d / "m.classes.csv").mkdir() or d / "m.csv"],
+    "nodes folder unwritable": lambda d: ["-o", d / "m.obj", "--nodes", unwritable_folder(d) / "n.csv"],
+    "nodes folder missing": lambda d: ["-o", d / "m.obj", "--nodes", d / "missing" / "n.csv"],
+    "nodes extension": lambda d: ["-o", d / "m.obj", "--nodes", d / "n.obj"],
+    "members and nodes one file": lambda d: ["-o", d / "m.obj", "--members", d / "a.csv", "--nodes", d / "a.csv"],
+    "nodes are the classes CSV": lambda d: [
+        "-o",
+        d / "m.obj",
+        "--members",
+        d / "a.csv",
+        "--nodes",
+        d / "a.classes.csv",
+    ],
+    "plain JSON mesh": lambda d: ["-o", d / "m.json"],
 }
 
 
@@ -304,7 +324,7 @@ def test_members_write_failure_leaves_no_mesh(tmp_path, capsys, monkeypatch):
 def test_each_output_is_probed_once(tmp_path, capsys, monkeypatch):
     """The outputs are checked before meshing and not again: one probe per file (mesh, schedule, classes)."""
     probed = []
-    monkeypatch.setattr(io_meshes, "probe_folder", lambda folder, suffix="": probed.append(suffix))
+    monkeypatch.setattr(io_paths, "probe_folder", lambda folder, suffix="": probed.append(suffix))
     code, captured = run(
         [
             "mesh",

@@ -14,6 +14,8 @@ import json
 import tempfile
 from pathlib import Path
 
+import pytest
+from conftest import exercised
 from hostile_files import (
     MODELLER_OBJ,
     degree_399,
@@ -47,9 +49,15 @@ def run_cli(name, content, length=1.0):
         return code, err.getvalue(), sorted(p.name for p in out.iterdir())
 
 
+#: The condition of the fuzz tests: the command wrote a mesh.  In random runs of 60 and 80 examples, 45 of the OBJ
+#: files (half of them mutated, and a mutated file is often still a mesh) and 49 of the mutated descriptions (half
+#: of them a number moved) were meshed: the shares required are below those.
+MESHED = "the command wrote a mesh"
+
+
 def assert_written_or_refused(code, err, written):
     assert "Traceback" not in err, err
-    if code == 0:
+    if exercised(MESHED, code == 0):
         assert written == ["m.classes.csv", "m.csv", "m.obj"]
     else:
         assert code == 2, err
@@ -68,6 +76,7 @@ def test_modellers_files_are_meshed_and_degree_399_refused_in_one_line():
     assert_written_or_refused(code, err, written)
 
 
+@pytest.mark.exercised(MESHED, share=0.5)
 @given(st.data())
 def test_odd_and_mutated_obj_files_never_exit_3(data):
     points, faces = roof_grid()
@@ -77,8 +86,10 @@ def test_odd_and_mutated_obj_files_never_exit_3(data):
     assert_written_or_refused(*run_cli("m.obj", text))
 
 
+@pytest.mark.exercised(MESHED, share=0.3)
 @given(st.data())
 def test_mutated_descriptions_never_exit_3(data):
+    """Valid descriptions with one entry replaced by a hostile value or a number moved a little: the moves mostly
+    still describe a surface, the hostile values mostly do not."""
     description = data.draw(st.sampled_from([small_nurbs, small_bezier]))()
-    text = data.draw(mutated_description(description)) if data.draw(st.booleans()) else json.dumps(description)
-    assert_written_or_refused(*run_cli("s.json", text, length=0.5))
+    assert_written_or_refused(*run_cli("s.json", data.draw(mutated_description(description)), length=0.5))

@@ -28,15 +28,18 @@ def test_scaling_writes_data_report_figure_and_provenance(load_experiment, tmp_p
 def test_reference_skipped_when_predicted_over_the_limit(load_experiment, monkeypatch):
     """The reference engine stops once its predicted time passes the limit; the other methods go on."""
     scaling = load_experiment("scaling")
-    fake = lambda method, n, like=None: {
-        "method": method,
-        "n_target": n,
-        "n_points": n,
-        "seconds": 1e-3 * n,
-        "us_per_point": 1e3,
-        "peak_mb": 0.0,
-        "first_call_s": 0.0,
-    }
+
+    def fake(method, n, like=None):
+        return {
+            "method": method,
+            "n_target": n,
+            "n_points": n,
+            "seconds": 1e-3 * n,
+            "us_per_point": 1e3,
+            "peak_mb": 0.0,
+            "first_call_s": 0.0,
+        }
+
     monkeypatch.setattr(scaling, "_run", fake)
     frame = scaling.sweep([10, 100, 1000], reference_limit=5.0, progress=lambda _: None)
     assert list(frame[frame["method"] == "reference"]["n_target"]) == [10, 100]

@@ -1,5 +1,5 @@
-"""Surface descriptions in (``io/_surfaces.py``, ``io/_bezier.py``): the surface-type registry, JSON validation,
-hostile files.
+"""Surface descriptions in (``io/_surfaces.py``, ``io/_bezier.py``): the surface-type registry, JSON validation, hostile
+files.
 
 Every refusal is one line of our own (an :class:`equimesh.EquimeshError`) that
 names the problem in the caller's terms, with plain numbers.
