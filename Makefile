@@ -18,12 +18,12 @@ EXTRAS_STAMP := $(VENV)/.equimesh-extras-installed
 # Optional extras `make reproduce` and `make test` install when they can
 # (pyproject.toml [project.optional-dependencies]): peers = gmsh and pymeshlab
 # for experiments/compare_peers.py, rhino = rhino3dm for .3dm input, dask for
-# sweeps on a cluster, fast = pypardiso (MKL PARDISO) for the optimisation's
-# factorisations.  An extra that cannot be installed (no wheel for this
+# sweeps on a cluster, fast = cvxopt (CHOLMOD) and mkl = pypardiso (MKL PARDISO)
+# for the optimisation's factorisations.  An extra that cannot be installed (no wheel for this
 # platform, no network) is reported and skipped: the experiments then compare
 # what they can and the tests that need it are skipped with the reason, so CI
 # tests every extra that is installable.
-OPTIONAL_EXTRAS ?= peers rhino dask fast
+OPTIONAL_EXTRAS ?= peers rhino dask fast mkl
 
 # Every experiment script, in the order `make reproduce` runs them.  Each one
 # has `main(argv)`, prints its progress and writes results/ (and, for figure
