@@ -3,8 +3,9 @@
 Runs :func:`equimesh.mesh_surface` on ``experiments/surfaces/reference_dome.json``
 (15 x 15 grid, default lattice placement, no size limit) and prints, for each
 objective, the members, the solver's Jacobian evaluations (one per iteration) and final cost, the share of
-members within 0.5 % of l, the factorisation used (PARDISO where the extra ``fast`` is
-installed, else SuperLU) and the wall time of each stage.  It writes no file:
+members within 0.5 % of l, the factorisation used (the first installed of PARDISO, CHOLMOD
+and SuperLU, or the one named by the environment variable ``EQUIMESH_FACTORISATION``) and
+the wall time of each stage.  It writes no file:
 it is the command behind the optimisation timings of docs/performance.md.  To compare two checkouts in the same
 run, start it once per checkout, side by side::
 

@@ -94,8 +94,8 @@ class UVProblem:
         whatever the values: the product with the matrix ``d uv / d x``
         dropped the sums that came out exactly zero, a new structure whenever
         a barrier triangle woke or slept, and the normal equations were
-        analysed anew at nearly every iteration (docs/decisions.md, "One
-        pattern for the normal matrix, three factorisations").
+        analysed anew at nearly every iteration
+        (docs/decisions.md, "One pattern for the normal matrix, three factorisations").
         """
         if not self.slides:
             return jacobian

@@ -411,9 +411,9 @@ def _one_blas_thread(module):
 
     A supernodal factorisation calls the BLAS on dense blocks; with two
     threads the blocks' sums could be split, tying the last bits to the core
-    count (docs/decisions.md, "One pattern for the normal matrix, four factorisations").  Found by
-    its file name beside the package (``cvxopt.libs``, ``cvxopt/.libs``, ``cvxopt/.dylibs``); a BLAS
-    not bundled so is the platform's (Accelerate on macOS), left as it is.
+    count (docs/decisions.md, "One pattern for the normal matrix, three factorisations").
+    Found by its file name beside the package (``cvxopt.libs``, ``cvxopt/.libs``, ``cvxopt/.dylibs``);
+    a BLAS not bundled so is the platform's (Accelerate on macOS), left as it is.
     """
     package = Path(module.__file__).resolve().parent
     for folder in (package.parent / f"{package.name}.libs", package / ".libs", package / ".dylibs"):
