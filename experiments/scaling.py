@@ -46,7 +46,8 @@ members at ``L = 0.5``, about ``1 / L^2``); beside it gmsh's Frontal-Delaunay on
 the same Bezier patch at the same size (``experiments/compare_peers.py``'s call,
 when gmsh is installed).  A run records the wall time of the command in its
 process (``seconds``, the call of ``equimesh._cli.main``: reading, every stage,
-writing the mesh), each stage's time from the command's progress lines, and
+writing the mesh; ``cpu_seconds``, the CPU time of its process, less sensitive to
+other jobs on a shared machine), each stage's time from the command's progress lines, and
 the process's peak resident memory (``peak_mb``, not above a baseline: what the
 machine must have).  A run predicted (from the last size, as ``n^PIPELINE_EXPONENT``)
 above ``--pipeline-limit`` seconds is skipped.  Exponents are fitted as above.
@@ -63,6 +64,7 @@ Usage::
     python experiments/scaling.py --plot-only
     python experiments/scaling.py --pipeline         # 2,500 .. 10^4 members, under a minute
     python experiments/scaling.py --pipeline --full  # 10^4, 10^5, 10^6 members (an hour or more)
+    python experiments/scaling.py --pipeline --sizes 1000000 --methods "equimesh cholmod" "gmsh Frontal-Delaunay"
 """
 
 import json
@@ -103,7 +105,7 @@ PIPELINE_SIZES = (2500, 5000, 10000)
 PIPELINE_FULL_SIZES = (10_000, 100_000, 1_000_000)
 #: Exponent that predicts a pipeline run's time from the last size's (measured: about 1.3 with CHOLMOD).
 PIPELINE_EXPONENT = 1.5
-PIPELINE_COLUMNS = ["method", "n_target", "length", "nodes", "members", "seconds", "peak_mb", "stages"]
+PIPELINE_COLUMNS = ["method", "n_target", "length", "nodes", "members", "seconds", "cpu_seconds", "peak_mb", "stages"]
 GMSH = "gmsh Frontal-Delaunay"
 
 
@@ -188,7 +190,7 @@ def measure_pipeline(method, members):
         import equimesh
 
         surface = equimesh.load_surface(DOME)
-        (points, triangles), seconds = _common.timed(
+        (points, triangles), seconds, cpu = _clocked(
             compare_peers._gmsh(compare_peers.GMSH_ALGORITHMS["Frontal-Delaunay"]), surface, l
         )
         from equimesh.mesh import unique_edges
@@ -204,7 +206,7 @@ def measure_pipeline(method, members):
             err = io.StringIO()
             argv = ["mesh", str(DOME), "--length", repr(l), "--max-nodes", "none", "-o", str(Path(folder) / "m.vtu")]
             with redirect_stderr(err), redirect_stdout(io.StringIO()):
-                code, seconds = _common.timed(cli, argv)
+                code, seconds, cpu = _clocked(cli, argv)
         text = err.getvalue()
         if code != 0:
             raise RuntimeError(f"equimesh mesh exited {code}: {text.strip()}")
@@ -217,6 +219,7 @@ def measure_pipeline(method, members):
         "nodes": nodes,
         "members": count,
         "seconds": seconds,
+        "cpu_seconds": cpu,
         "peak_mb": _peak_mb(),
         "stages": json.dumps(stages),
     }
@@ -245,11 +248,12 @@ def _run_pipeline(method, members):
     return json.loads(proc.stdout.strip().splitlines()[-1])
 
 
-def pipeline_sweep(sizes, limit, progress=print):
-    """Rows for every pipeline method and size, smallest size first; a run predicted above ``limit`` s is skipped."""
+def pipeline_sweep(sizes, limit, methods=None, progress=print):
+    """Rows for every pipeline method (of ``methods``, all by default) and size, smallest size first; a run predicted
+    above ``limit`` s is skipped."""
     rows, last = [], {}
     for n in sizes:
-        for method in pipeline_methods():
+        for method in [m for m in pipeline_methods() if methods is None or m in methods]:
             if method in last and last[method]["seconds"] * (n / last[method]["n_target"]) ** PIPELINE_EXPONENT > limit:
                 continue
             last[method] = _run_pipeline(method, n)
@@ -276,17 +280,21 @@ def pipeline_report(frame, record):
     ]
     body += [f"| {m} | {k:.3f} | {c} |" for m, (k, c) in fits.items()]
     body += ["", "## Each run against gmsh Frontal-Delaunay at the same size", ""]
-    body += ["| members (target) | method | members | nodes | seconds | ratio to gmsh | peak MB | optimisation (s) |"]
-    body += ["|---:|---|---:|---:|---:|---:|---:|---:|"]
+    body += [
+        "| members (target) | method | members | nodes | seconds | CPU seconds | ratio to gmsh | ratio of CPU time | "
+        "peak MB | optimisation (s) |"
+    ]
+    body += ["|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|"]
     for n, group in frame.groupby("n_target"):
         peer = group[group["method"] == GMSH]
-        reference = float(peer["seconds"].iloc[0]) if len(peer) else float("nan")
+        wall, cpu = (float(peer[c].iloc[0]) if len(peer) else float("nan") for c in ("seconds", "cpu_seconds"))
         for row in group.itertuples(index=False):
             stages = json.loads(row.stages)
             optimisation = stages.get("optimisation of inner nodes", float("nan"))
             body.append(
                 f"| {n:,} | {row.method} | {row.members:,} | {row.nodes:,} | {row.seconds:.3g} | "
-                f"{row.seconds / reference:.2f} | {row.peak_mb:.0f} | {optimisation:.3g} |"
+                f"{row.cpu_seconds:.3g} | {row.seconds / wall:.2f} | {row.cpu_seconds / cpu:.2f} | "
+                f"{row.peak_mb:.0f} | {optimisation:.3g} |"
             )
     body += ["", "## Stage times (s)", "", "| members (target) | method | stages |", "|---:|---|---|"]
     body += [
@@ -424,6 +432,7 @@ def main(argv=None):
         default=3600.0,
         help="skip a pipeline run predicted above this many seconds (default 3600)",
     )
+    p.add_argument("--methods", nargs="+", help="the pipeline methods to run, e.g. 'equimesh cholmod' (default: all)")
     args = p.parse_args(argv)
     if args.pipeline:
         return pipeline_main(args)
@@ -448,11 +457,16 @@ def pipeline_main(args):
     """``--pipeline``: the sweep of ``equimesh mesh``, its report and figure."""
     csv = args.out_dir / f"{PIPELINE_NAME}.csv"
     sizes = args.sizes or (PIPELINE_FULL_SIZES if args.full else PIPELINE_SIZES)
-    parameters = {"sizes": list(sizes), "pipeline_limit": args.pipeline_limit, "surface": DOME.name}
+    parameters = {
+        "sizes": list(sizes),
+        "pipeline_limit": args.pipeline_limit,
+        "methods": args.methods,
+        "surface": DOME.name,
+    }
     if args.plot_only:
         frame = pd.read_csv(csv)
     else:
-        frame = pipeline_sweep(sizes, args.pipeline_limit)
+        frame = pipeline_sweep(sizes, args.pipeline_limit, args.methods)
         args.out_dir.mkdir(parents=True, exist_ok=True)
         _common.write_results(csv, frame, parameters, lambda record: pipeline_report(frame, record))
     args.fig_dir.mkdir(parents=True, exist_ok=True)
