@@ -27,7 +27,8 @@ OPTIONAL_EXTRAS ?= peers rhino dask fast mkl
 
 # Every experiment script, in the order `make reproduce` runs them.  Each one
 # has `main(argv)`, prints its progress and writes results/ (and, for figure
-# scripts, paper_figs/).  Add a new experiment by appending it here.
+# scripts, paper_figs/).  Add a new experiment by appending it here; arguments
+# follow the script after a colon (`script.py:--option`).
 EXPERIMENTS := \
 	experiments/ratio_sweep.py \
 	experiments/problem2.py \
@@ -37,6 +38,7 @@ EXPERIMENTS := \
 	experiments/figures.py \
 	experiments/compare_peers.py \
 	experiments/scaling.py \
+	experiments/scaling.py:--pipeline \
 	experiments/bounded.py \
 	experiments/bounded_sweep.py \
 	experiments/inputs.py
@@ -79,10 +81,11 @@ test-thorough: $(STAMP) $(EXTRAS_STAMP)
 	EQUIMESH_HYPOTHESIS_PROFILE=thorough $(PY) -m pytest $(PYTEST_ARGS)
 
 reproduce: $(STAMP) $(EXTRAS_STAMP)
-	@set -e; for script in $(EXPERIMENTS); do \
+	@set -e; for entry in $(EXPERIMENTS); do \
+		script=$${entry%%:*}; args=$${entry#"$$script"}; args=$${args//:/ }; \
 		if [ ! -f "$$script" ]; then echo "make reproduce: $$script is missing" >&2; exit 1; fi; \
-		echo "==> $(PY) $$script"; \
-		$(PY) "$$script"; \
+		echo "==> $(PY) $$script$$args"; \
+		$(PY) "$$script" $$args; \
 	done; \
 	echo "==> make reproduce: all experiments done"
 
