@@ -273,14 +273,7 @@ def pipeline_exponents(frame):
 
 
 def pipeline_report(frame, record):
-    fits = pipeline_exponents(frame)
-    body = [
-        "## Fitted exponents (CPU time ~ members^k, least squares on the logs)",
-        "",
-        "| method | k | sizes fitted |",
-        "|---|---|---|",
-    ]
-    body += [f"| {m} | {k:.3f} | {c} |" for m, (k, c) in fits.items()]
+    body = _exponent_table("CPU time ~ members^k", pipeline_exponents(frame))
     body += ["", "## Each run against gmsh Frontal-Delaunay at the same size", ""]
     body += [
         "| members (target) | method | members | nodes | seconds | CPU seconds | ratio to gmsh | ratio of CPU time | "
@@ -315,20 +308,33 @@ def pipeline_report(frame, record):
 
 
 def pipeline_plot(frame, fig_dir, parameters):
+    _plot(
+        frame,
+        ("members", "cpu_seconds", "CPU seconds", "equimesh mesh against gmsh"),
+        "peak resident memory (MB)",
+        Path(fig_dir) / PIPELINE_NAME,
+        parameters,
+    )
+
+
+def _plot(frame, axes, memory, path, parameters):
+    """Log-log time and peak memory against size per method; ``axes`` = (size column, time column, its label,
+    title), ``memory`` the memory axis's label."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
+    size, time_column, time_label, title = axes
     fig, (ax_t, ax_m) = plt.subplots(1, 2, figsize=(10, 4))
     for method, group in frame.groupby("method", sort=False):
-        ax_t.loglog(group["members"], group["cpu_seconds"], "o-", label=method)
-        ax_m.loglog(group["members"], group["peak_mb"], "o-", label=method)
-    ax_t.set(xlabel="members", ylabel="CPU seconds", title="equimesh mesh against gmsh")
-    ax_m.set(xlabel="members", ylabel="peak resident memory (MB)", title="memory")
+        ax_t.loglog(group[size], group[time_column], "o-", label=method)
+        ax_m.loglog(group[size], np.maximum(group["peak_mb"], 0.1), "o-", label=method)
+    ax_t.set(xlabel=size, ylabel=time_label, title=title)
+    ax_m.set(xlabel=size, ylabel=memory, title="memory")
     ax_t.legend()
     fig.tight_layout()
-    _common.save_figure(fig, Path(fig_dir) / PIPELINE_NAME, parameters, dpi=120)
+    _common.save_figure(fig, path, parameters, dpi=120)
     plt.close(fig)
 
 
@@ -357,15 +363,19 @@ def exponents(frame, floor):
     return out
 
 
-def report(frame, floor, record):
-    fits = exponents(frame, floor)
-    body = [
-        "## Fitted exponents (time ~ n^k, least squares on the logs)",
+def _exponent_table(law, fits):
+    """The Markdown lines of the fitted exponents ``fits`` (:func:`exponents`) of the power ``law``."""
+    lines = [
+        f"## Fitted exponents ({law}, least squares on the logs)",
         "",
         "| method | k | sizes fitted |",
         "|---|---|---|",
     ]
-    body += [f"| {m} | {k:.3f} | {c} |" for m, (k, c) in fits.items()]
+    return lines + [f"| {m} | {k:.3f} | {c} |" for m, (k, c) in fits.items()]
+
+
+def report(frame, floor, record):
+    body = _exponent_table("time ~ n^k", exponents(frame, floor))
     body += [
         "",
         "## Fast engine against Triangle's quality refinement (time per output point)",
@@ -393,21 +403,13 @@ def report(frame, floor, record):
 
 
 def plot(frame, fig_dir, parameters):
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    fig, (ax_t, ax_m) = plt.subplots(1, 2, figsize=(10, 4))
-    for method, group in frame.groupby("method", sort=False):
-        ax_t.loglog(group["n_points"], group["seconds"], "o-", label=method)
-        ax_m.loglog(group["n_points"], np.maximum(group["peak_mb"], 0.1), "o-", label=method)
-    ax_t.set(xlabel="points n", ylabel="seconds", title="time")
-    ax_m.set(xlabel="points n", ylabel="peak memory above baseline (MB)", title="memory")
-    ax_t.legend()
-    fig.tight_layout()
-    _common.save_figure(fig, Path(fig_dir) / NAME, parameters, dpi=120)
-    plt.close(fig)
+    _plot(
+        frame,
+        ("n_points", "seconds", "seconds", "time"),
+        "peak memory above baseline (MB)",
+        Path(fig_dir) / NAME,
+        parameters,
+    )
 
 
 def main(argv=None):

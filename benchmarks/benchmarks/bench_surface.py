@@ -52,6 +52,16 @@ def _quietly(function, *args):
         return function(*args)
 
 
+def _remapped(lengths):
+    """The reference surface and its remapped meshes (``optimize="none"``, default placement) at each of ``lengths``:
+    the inputs of the optimisation suites."""
+    surface = _surface()
+    return surface, {
+        l: equimesh.mesh_surface(surface, l, grid=SURFACE_GRID, optimize="none", placement="default", max_nodes=None)
+        for l in lengths
+    }
+
+
 def _optimise(cache, objective, l, factorisation=None, **boundary):
     """``equimesh.optimize_uv`` of the remapped mesh at ``l`` in ``cache`` (surface, meshes by l), its boundary as
     ``mesh_surface`` sets it up for ``objective`` unless ``boundary`` gives ``fixed`` and ``slides``."""
@@ -139,13 +149,7 @@ class Optimisation:
     timeout = 600
 
     def setup_cache(self):
-        surface = _surface()
-        return surface, {
-            l: equimesh.mesh_surface(
-                surface, l, grid=SURFACE_GRID, optimize="none", placement="default", max_nodes=None
-            )
-            for l in self.params[1]
-        }
+        return _remapped(self.params[1])
 
     def _run(self, cache, objective, l):
         surface, meshes = cache
@@ -207,13 +211,7 @@ class Factorisations:
     timeout = 900
 
     def setup_cache(self):
-        surface = _surface()
-        return surface, {
-            l: equimesh.mesh_surface(
-                surface, l, grid=SURFACE_GRID, optimize="none", placement="default", max_nodes=None
-            )
-            for l in self.params[1]
-        }
+        return _remapped(self.params[1])
 
     def setup(self, cache, factorisation, l):
         nodes = len(cache[1][l].uv)

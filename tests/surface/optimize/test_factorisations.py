@@ -10,12 +10,11 @@ one BLAS thread and with two.
 """
 
 import os
-import subprocess
-import sys
 import textwrap
 
 import numpy as np
 import pytest
+from blas_threads import outputs_with_one_and_two_threads
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -74,19 +73,5 @@ _MESH = textwrap.dedent("""
 @pytest.mark.parametrize("factorisation", solver.INSTALLED)
 def test_the_same_bytes_with_one_and_two_blas_threads(factorisation):
     """The same mesh, bit for bit, from two runs, with ``OPENBLAS_NUM_THREADS`` 1 and 2 (about 4,000 members)."""
-    outputs = [
-        subprocess.run(
-            [sys.executable, "-c", _MESH],
-            env={
-                **os.environ,
-                "OPENBLAS_NUM_THREADS": threads,
-                "OMP_NUM_THREADS": threads,
-                solver.FACTORISATION_VARIABLE: factorisation,
-            },
-            capture_output=True,
-            text=True,
-            check=True,
-        ).stdout
-        for threads in ("1", "2")
-    ]
+    outputs = outputs_with_one_and_two_threads(_MESH, factorisation)
     assert outputs[0] == outputs[1] and int(outputs[0].split()[0]) > 0

@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 import scipy.optimize
 import scipy.sparse
+from blas_threads import outputs_with_one_and_two_threads
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -227,21 +228,7 @@ def test_the_same_bits_whatever_the_blas_thread_count(factorisation):
     long vector in parts, one per thread, and the same solve ended at other bits with 2 threads than with 1; and every
     factorisation runs in one thread.  (On a one-core machine OpenBLAS runs one thread either way and this cannot
     fail.)"""
-    outputs = [
-        subprocess.run(
-            [sys.executable, "-c", _CHAIN_SOLVE],
-            env={
-                **os.environ,
-                "OPENBLAS_NUM_THREADS": threads,
-                "OMP_NUM_THREADS": threads,
-                _solver.FACTORISATION_VARIABLE: factorisation,
-            },
-            capture_output=True,
-            text=True,
-            check=True,
-        ).stdout
-        for threads in ("1", "2")
-    ]
+    outputs = outputs_with_one_and_two_threads(_CHAIN_SOLVE, factorisation)
     assert outputs[0] == outputs[1] and outputs[0].split()[0] != "0"
 
 
@@ -274,3 +261,13 @@ def test_a_factorisation_not_installed_or_unknown_is_refused_by_name(monkeypatch
         check=True,
     )
     assert chosen.stdout.split() == ["superlu"]
+
+
+@pytest.mark.skipif("cholmod" not in INSTALLED, reason="extra fast: cvxopt not installed")
+def test_cholmod_refuses_a_matrix_that_is_not_positive_definite():
+    """CHOLMOD's failure on an indefinite matrix is the solver's failed factorisation (a rejected step), and the same
+    pattern factorises again once the matrix is positive definite."""
+    factorisation = FACTORISATIONS["cholmod"](np.array([0, 0, 1]), np.array([0, 1, 1]), 2)
+    with pytest.raises(_solver._FactorisationError):
+        factorisation.factorise(np.array([1.0, 2.0, 1.0]))
+    np.testing.assert_allclose(factorisation.factorise(np.array([2.0, 1.0, 2.0]))(np.array([3.0, 3.0])), [1.0, 1.0])

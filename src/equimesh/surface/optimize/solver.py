@@ -19,7 +19,8 @@ on surface meshes) instead of an inner iterative solve:
   into it through an index map computed once, and the factorisation's
   symbolic analysis (the fill-reducing order) is done once
   (:data:`FACTORISATIONS`: MKL PARDISO's supernodal Cholesky when the optional
-  ``pypardiso`` is installed, else SuperLU in symmetric mode);
+  ``pypardiso`` is installed, else CHOLMOD's, through the optional ``cvxopt``,
+  else SuperLU in symmetric mode; :data:`INSTALLED`);
 * a rejected step is first shortened along the same direction, halving it
   up to :data:`~equimesh.tolerance.LM_BACKTRACKS` times with the same factor
   (a line search, Nocedal and Wright 10.3), and only then retried with a
@@ -41,8 +42,8 @@ on surface meshes) instead of an inner iterative solve:
 Deterministic: no randomness, a fixed ordering, single-threaded
 factorisations and inner products that do not depend on the BLAS's threads
 (:func:`inner`), so the same input gives the same bits on one installation
-(the two factorisations round differently, so a result's last bits depend on
-whether ``pypardiso`` is installed).
+(the factorisations round differently, so a result's last bits depend on
+which one is used).
 """
 
 import ctypes
