@@ -19,16 +19,18 @@ EXTRAS_STAMP := $(VENV)/.equimesh-extras-installed
 # (pyproject.toml [project.optional-dependencies]): peers = gmsh and pymeshlab
 # for experiments/compare_peers.py, rhino = rhino3dm for .3dm input and output,
 # compas and dxf (ezdxf) for COMPAS and DXF output, report = plotly for the
-# HTML report, dask for sweeps on a cluster, fast = pypardiso (MKL PARDISO) for
-# the optimisation's factorisations.  An extra that cannot be installed (no wheel
-# for this platform, no network) is reported and skipped: the experiments then
-# compare what they can and the tests that need it are skipped with the reason,
-# so CI tests every extra that is installable.
-OPTIONAL_EXTRAS ?= peers rhino compas dxf report dask fast
+# HTML report, dask for sweeps on a cluster, fast = cvxopt (CHOLMOD) and
+# mkl = pypardiso (MKL PARDISO) for the optimisation's factorisations.  An
+# extra that cannot be installed (no wheel for this platform, no network) is
+# reported and skipped: the experiments then compare what they can and the
+# tests that need it are skipped with the reason, so CI tests every extra that
+# is installable.
+OPTIONAL_EXTRAS ?= peers rhino compas dxf report dask fast mkl
 
 # Every experiment script, in the order `make reproduce` runs them.  Each one
 # has `main(argv)`, prints its progress and writes results/ (and, for figure
-# scripts, paper_figs/).  Add a new experiment by appending it here.
+# scripts, paper_figs/).  Add a new experiment by appending it here; arguments
+# follow the script after a colon (`script.py:--option`).
 EXPERIMENTS := \
 	experiments/ratio_sweep.py \
 	experiments/problem2.py \
@@ -38,6 +40,7 @@ EXPERIMENTS := \
 	experiments/figures.py \
 	experiments/compare_peers.py \
 	experiments/scaling.py \
+	experiments/scaling.py:--pipeline \
 	experiments/bounded.py \
 	experiments/bounded_sweep.py \
 	experiments/inputs.py
@@ -80,10 +83,11 @@ test-thorough: $(STAMP) $(EXTRAS_STAMP) browser
 	EQUIMESH_HYPOTHESIS_PROFILE=thorough $(PY) -m pytest $(PYTEST_ARGS)
 
 reproduce: $(STAMP) $(EXTRAS_STAMP)
-	@set -e; for script in $(EXPERIMENTS); do \
+	@set -e; for entry in $(EXPERIMENTS); do \
+		script=$${entry%%:*}; args=$${entry#"$$script"}; args=$${args//:/ }; \
 		if [ ! -f "$$script" ]; then echo "make reproduce: $$script is missing" >&2; exit 1; fi; \
-		echo "==> $(PY) $$script"; \
-		$(PY) "$$script"; \
+		echo "==> $(PY) $$script$$args"; \
+		$(PY) "$$script" $$args; \
 	done; \
 	echo "==> make reproduce: all experiments done"
 
