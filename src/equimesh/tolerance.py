@@ -121,8 +121,8 @@ BOUNDED_LOSS_TOL = 1e-3
 BOUNDED_STEP = 0.1
 PAPER_FTOL = 1e-8
 
-#: Beyond the paper (docs/decisions.md, "Sound joints"): every objective but
-#: ``"paper"`` keeps every triangle angle on the surface at least ``JOINT_ANGLE``
+#: Beyond the paper (docs/decisions.md, "Sound joints"): an objective with
+#: ``sound_joints`` (``"classes"``) keeps every triangle angle on the surface at least ``JOINT_ANGLE``
 #: degrees (hence at most ``180 - 2 JOINT_ANGLE = 120``), Chew's bound for
 #: edges in [h, 2h] and circumradii below h, which Problem 2 meets on the plane
 #: (docs/decisions.md, "Angles of Problems 1 and 2").  The optimisation's barrier is

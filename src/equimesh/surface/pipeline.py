@@ -208,7 +208,7 @@ def mesh_surface(
         (beyond the paper, the default) keeps every member in [l, 2l] with as
         many as possible at one length, boundary nodes sliding along their
         side, loop or hole edge; "classes" (beyond) seeks the fewest length
-        classes at ``tolerance``; both keep every angle at least 30 degrees
+        classes at ``tolerance`` with every angle at least 30 degrees
         (:mod:`~equimesh.surface.optimize.joints`); "paper" is the paper's.
     placement : "best", "default" or "classes"
         Lattice placement of Problem 2 (:data:`PLACEMENTS`).

@@ -93,6 +93,7 @@ def optimize_uv(
     surface_tolerance=0.0,
     tolerance=DEFAULT_TOLERANCE,
     catalogue=None,
+    factorisation=None,
 ):
     """Optimise the (u, v) of the free nodes (Section 4, final step).
 
@@ -132,6 +133,10 @@ def optimize_uv(
         The fabrication tolerance of a length class, relative to ``length`` (the ``"classes"`` objective).
     catalogue : (k,) float array or None
         Stock lengths (absolute, in [l, 2l]) the ``"classes"`` objective cuts members from.
+    factorisation : str, optional
+        The factorisation of the normal equations, one of
+        :data:`~equimesh.surface.optimize.solver.INSTALLED` (checked before any
+        work); by default :data:`~equimesh.surface.optimize.solver.DEFAULT_FACTORISATION`.
 
     Returns
     -------
@@ -149,6 +154,7 @@ def optimize_uv(
         record = OBJECTIVES[objective]
     except (KeyError, TypeError):
         raise EquimeshError(f"unknown objective {objective!r}; choose from {sorted(OBJECTIVES)}") from None
+    normal_equations = NormalEquations(factorisation)  # one pattern for every stage: analysed once
     lower, upper = parameter_box(surface)
     uv = np.clip(np.array(uv, dtype=float).reshape(-1, 2), lower, upper)
     slides = tuple(slides)
@@ -175,7 +181,6 @@ def optimize_uv(
         cost0 = _cost(stage, x0)
         return UVOptimization(uv, np.zeros(len(uv)), cost0, cost0, 0, 0, True, "no free nodes", objective)
     x, nfev, njev, damping = x0, 0, 0, LM_INITIAL_DAMPING
-    normal_equations = NormalEquations()  # one pattern for every stage: analysed once
     barrier = None if tri is None or area_floor <= 0 else _fold_over_barrier(problem, tri, area_floor)
     while True:
         if stage.start is not None:  # a restart is a fresh solve: its own start and the initial damping
