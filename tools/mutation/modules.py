@@ -81,6 +81,7 @@ MODULES.update(KERNEL_MODULES)
 #: normal matrix are compiled by a call as the kernels are, so their tests run them as Python too.
 OPTIMIZE_MODULES = {
     "src/equimesh/surface/optimize/slide.py": ["tests/surface/optimize/test_slide.py"],
+    "src/equimesh/surface/optimize/jacobian.py": ["tests/surface/optimize/test_jacobian.py"],
     "src/equimesh/surface/optimize/solver.py": ["tests/surface/optimize/test_solver.py"],
 }
 MODULES.update(OPTIMIZE_MODULES)
