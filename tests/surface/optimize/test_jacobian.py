@@ -60,9 +60,10 @@ def test_signed_areas_are_positive_counter_clockwise():
     np.testing.assert_array_equal(signed_areas(points, [[0, 1, 2], [0, 2, 1], [1, 3, 2]]), [3.0, -3.0, 9.5])
 
 
-#: Two counter-clockwise triangles of areas 2 and 1, a degenerate one and a clockwise one, over five points.
+#: Two counter-clockwise triangles of area 2, a degenerate one, a clockwise one and a counter-clockwise one of area 1,
+#: over five points.
 START = np.array([[0.0, 0.0], [2.0, 0.0], [0.0, 2.0], [2.0, 2.0], [1.0, 1.0]])
-TRIANGLES = [[0, 1, 2], [1, 3, 2], [0, 4, 3], [0, 2, 1]]
+TRIANGLES = [[0, 1, 2], [1, 3, 2], [0, 4, 3], [0, 2, 1], [0, 1, 4]]
 
 
 def finite_difference(fun, x, h=1e-7):
@@ -75,9 +76,11 @@ def finite_difference(fun, x, h=1e-7):
 
 
 def test_barrier_ignores_triangles_without_area_at_the_start():
+    """Degenerate and clockwise triangles are dropped; by default the residuals are linear in the depth (``p = 1``)."""
     barrier = AreaBarrier(TRIANGLES, START.astype(int).tolist(), 0.5, 3.0)
-    np.testing.assert_array_equal(barrier.triangles, [[0, 1, 2], [1, 3, 2]])
-    np.testing.assert_array_equal(barrier.residuals(START), [0.0, 0.0])
+    np.testing.assert_array_equal(barrier.triangles, [[0, 1, 2], [1, 3, 2], [0, 1, 4]])
+    np.testing.assert_array_equal(barrier.residuals(START), [0.0, 0.0, 0.0])
+    np.testing.assert_array_equal(barrier.residuals(0.25 * START), [3.0 * 0.875] * 3)  # 1/16 of the area, floor 1/2
 
 
 @pytest.mark.parametrize("power", [1, 2])
@@ -101,11 +104,11 @@ def test_barrier_jacobian_matches_finite_differences(power):
     x = START.copy()
     x[3] = [1.2, 1.5]  # the second triangle below its floor, the first above
     jac = barrier.jacobian(x.tolist())
-    assert jac.shape == (2, free.sum())
-    assert np.all(jac.toarray()[0] == 0.0) and np.any(jac.toarray()[1] != 0.0)
+    assert jac.shape == (3, free.sum())
+    assert np.all(jac.toarray()[[0, 2]] == 0.0) and np.any(jac.toarray()[1] != 0.0)
     np.testing.assert_allclose(jac.toarray(), finite_difference(barrier.residuals, x)[:, free], atol=1e-6)
     at_floor = AreaBarrier(TRIANGLES, START, 0.25, 2.5, free, power=power).jacobian(0.5 * START)
-    assert at_floor.shape == (2, free.sum()) and at_floor.nnz == 9 and np.all(at_floor.toarray() == 0.0)
+    assert at_floor.shape == (3, free.sum()) and at_floor.nnz == 14 and np.all(at_floor.toarray() == 0.0)
 
 
 def test_barrier_jacobian_of_every_corner():
