@@ -24,6 +24,7 @@ import argparse
 import contextlib
 import importlib.util
 import os
+import re
 import sys
 import warnings
 from pathlib import Path
@@ -37,7 +38,16 @@ EXPERIMENTS = Path(__file__).resolve().parents[2] / "experiments"
 
 
 class _Parser(argparse.ArgumentParser):
-    """argparse with one-line errors (no usage dump) and exit code 2."""
+    """argparse with one-line errors (no usage dump) and exit code 2, and values that start with a minus sign.
+
+    argparse takes ``-1%`` or ``-1e3`` for an unknown option (its pattern of negative numbers is ``-5`` and ``-.5``),
+    so ``--tolerance -1%`` would fail with "expected one argument" instead of saying what is wrong with the value.
+    Here a word that starts with ``-`` and a digit (or ``-.`` and a digit) is a value: no option of ours looks so.
+    """
+
+    def __init__(self, *args, **kwargs):
+        super().__init__(*args, **kwargs)
+        self._negative_number_matcher = re.compile(r"-\.?\d")
 
     def error(self, message):
         self.exit(EXIT_USAGE, f"{self.prog}: error: {message}\n")
@@ -92,10 +102,10 @@ def build_parser():
         metavar="NAME|INDEX",
         help="which object of a Rhino file to mesh, by name or index (needed when it holds several)",
     )
-    mesh.add_argument("--length", "-l", type=float, required=True, metavar="L", help="target member length")
+    mesh.add_argument("--length", "-l", type=_number, required=True, metavar="L", help="target member length")
     mesh.add_argument(
         "--grid",
-        type=int,
+        type=_whole_number,
         nargs=2,
         default=(15, 15),
         metavar=("NU", "NV"),
@@ -196,9 +206,11 @@ def main(argv=None):
     except Exception as exc:  # InternalError, or any other bug: one line, not a traceback
         if show_traceback:
             raise
+        asks = "report" in str(exc)  # the library's own message may ask already (InternalError does)
         return _fail(
             EXIT_INTERNAL,
-            f"internal error: {type(exc).__name__}: {exc} (please report this; --traceback shows the details)",
+            f"internal error: {type(exc).__name__}: {exc} ({'' if asks else 'please report this; '}"
+            "--traceback shows the details)",
         )
 
 
@@ -224,6 +236,17 @@ def _output_help(slot, record):
     return f"{record.help}; format from the extension: {formats}; all outputs are written together or none"
 
 
+def _number(text, whole=False):
+    """A number as a person types it (:func:`equimesh._checks.number_text`: ``1_0`` is refused, not read as 10)."""
+    from ._checks import number_text
+
+    return number_text(text, "the value", argparse.ArgumentTypeError, whole=whole)
+
+
+def _whole_number(text):
+    return _number(text, whole=True)
+
+
 def _max_nodes(text):
     """``--max-nodes``: a positive whole number, or 'none' for no limit."""
     if text.strip().lower() == "none":
@@ -231,8 +254,8 @@ def _max_nodes(text):
     from ._checks import check_count
 
     try:
-        return check_count(int(text), "--max-nodes")
-    except ValueError:  # not a whole number, or below 1 (EquimeshError is a ValueError)
+        return check_count(_whole_number(text), "--max-nodes")
+    except (ValueError, argparse.ArgumentTypeError):  # not a whole number, or below 1 (EquimeshError is a ValueError)
         raise argparse.ArgumentTypeError(f"expected a positive whole number or 'none', got {text!r}") from None
 
 

@@ -195,6 +195,12 @@ BAD = {
     "tolerance 0.7": lambda d: (["mesh", SADDLE, "--length", 5, "--tolerance", "0.7"], "below 50%"),
     "tolerance nan": lambda d: (["mesh", SADDLE, "--length", 5, "--tolerance", "nan"], "above 0"),
     "tolerance not a number": lambda d: (["mesh", SADDLE, "--length", 5, "--tolerance", "tight"], "--tolerance"),
+    "tolerance -1% as its own word": lambda d: (["mesh", SADDLE, "--length", 5, "--tolerance", "-1%"], "above 0"),
+    "tolerance 1_0%": lambda d: (["mesh", SADDLE, "--length", 5, "--tolerance", "1_0%"], "got '1_0%'"),
+    "L -1e3": lambda d: (["mesh", SADDLE, "--length", "-1e3"], "positive"),
+    "L 1_0": lambda d: (["mesh", SADDLE, "--length", "1_0"], "--length/-l: the value must be a number, got '1_0'"),
+    "grid 1_5": lambda d: (["mesh", SADDLE, "--length", 5, "--grid", "1_5", 4], "must be a whole number, got '1_5'"),
+    "max-nodes 1_000": lambda d: (["mesh", SADDLE, "--length", 5, "--max-nodes", "1_000"], "whole number"),
 }
 
 
@@ -388,6 +394,14 @@ def test_every_failure_is_one_line_with_its_exit_code(exc, code, message, tmp_pa
     assert list(tmp_path.iterdir()) == []
 
 
+def test_an_internal_error_asks_for_a_report_once(tmp_path, capsys, monkeypatch):
+    """The library's InternalError asks for a report itself; the command line does not ask again."""
+    error = InternalError("Triangle failed on a validated input: a bug in equimesh, please report it")
+    monkeypatch.setattr(pipeline, "mesh_surface", _raising(error))
+    code, captured = run(["mesh", SADDLE, "--length", 5, "-o", tmp_path / "m.obj", "-q"], capsys)
+    assert code == 3 and captured.err.count("report") == 1 and "--traceback shows the details" in captured.err
+
+
 def test_library_noise_does_not_reach_the_terminal(tmp_path, capfd, monkeypatch):
     """Triangle's C-level stdout and numpy's RuntimeWarnings are not printed: the one error line is."""
 
@@ -537,8 +551,11 @@ def test_command_line_meshes_an_obj(tmp_path, capsys):
 
 @pytest.mark.parametrize("case", sorted(bad_meshes()))
 def test_command_line_refuses_bad_meshes(tmp_path, capsys, case):
-    """Every malformed mesh, written as a .vtu file: one line, exit 2, nothing written."""
+    """Every malformed mesh, written as a .vtu file: one line, exit 2, nothing written; an index out of range is
+    named as the file writes it."""
     (v, t), match = bad_meshes()[case]
+    if case == "index out of range":
+        match = r"bad\.vtu: cell 0 \(a triangle\) refers to point 4, but the file has 4 points \(0 \.\. 3\)"
     source = tmp_path / "bad.vtu"
     # meshio cannot read back an empty triangle block: a mesh of lines only has no triangles either.
     cells = [("line", np.array([[0, 1]]))] if case == "no triangles" else [("triangle", np.asarray(t, dtype=np.int64))]

@@ -4,7 +4,8 @@
 * :mod:`._bezier`      the JSON schema of a Bezier surface (one row of the type table);
 * :mod:`._nurbs`       the JSON schema of a NURBS surface (another row);
 * :mod:`._rhino`       Rhino ``.3dm`` files in (rhino3dm, optional): a NURBS surface or a single-face Brep;
-* :mod:`._trimesh`     triangle meshes (.obj, .stl, .ply, .vtk, .vtu via meshio) as the auxiliary triangulation;
+* :mod:`._trimesh`     triangle meshes (.obj, .stl, .ply, .vtk, .vtu) as the auxiliary triangulation;
+* :mod:`._obj`         Wavefront OBJ files: positions and faces, whatever else a modeller writes beside them;
 * :mod:`._schema`      checks shared by the schemas, plain text for messages;
 * :mod:`._outputs`     every output of a run: slots, formats by extension (one table), checks, all-or-nothing writes;
 * :mod:`._schedules`   the tables outputs are written from: member schedule, length classes, node schedule;

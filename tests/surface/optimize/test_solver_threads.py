@@ -1,5 +1,5 @@
-"""The solver's bits do not depend on the BLAS's thread count (docs/decisions.md, "Inner products that do not
-depend on the BLAS"): a long solve run in fresh processes with one and with two threads."""
+"""The solver's bits do not depend on the BLAS's thread count (docs/decisions.md, "A sparse Levenberg-Marquardt
+solver"): a long solve run in fresh processes with one and with two threads."""
 
 import os
 import textwrap
