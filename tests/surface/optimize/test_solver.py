@@ -441,3 +441,77 @@ def test_an_endless_descent_stops_at_max_iterations():
     assert solution.iterations == 500 and solution.evaluations == 501
     np.testing.assert_allclose(solution.x, [0.5], rtol=1e-9)
     assert solution.cost == 0.5 * (solution.x[0] - 1e6) ** 2 and isinstance(solution.damping, float)
+
+
+@pytest.mark.parametrize("factorisation", BOTH)
+def test_normal_equations_follow_a_new_structure(factorisation):
+    """One ``NormalEquations`` for Jacobians of different structures (other columns in the same rows, then other rows):
+    each is analysed anew and solved as its own dense system."""
+    system = NormalEquations(factorisation)
+    held = np.zeros(3, dtype=bool)
+    rhs = np.array([1.0, 2.0, 3.0])
+    for dense in (
+        [[2.0, 1.0, 0.0], [0.0, 1.0, 3.0]],
+        [[2.0, 0.0, 1.0], [1.0, 3.0, 0.0]],
+        [[1.0, 1.0, 1.0], [0.0, 2.0, 0.0], [4.0, 0.0, 0.0]],
+    ):
+        jac = scipy.sparse.csr_matrix(np.array(dense))
+        system.assemble(jac, held)
+        normal = jac.toarray().T @ jac.toarray()
+        expected = np.linalg.solve(normal + 0.5 * np.diag(np.diag(normal)), rhs)
+        np.testing.assert_allclose(system.solve(0.5, rhs), expected, rtol=1e-10)
+
+
+def test_a_variable_no_residual_sees_is_damped_by_the_floor():
+    """Marquardt's diagonal of a column without entries is ``LM_DIAGONAL_FLOOR`` times the largest diagonal entry (9
+    here), so its step is ``rhs / (lam 9 LM_DIAGONAL_FLOOR)``."""
+    system = NormalEquations("superlu")
+    system.assemble(scipy.sparse.csr_matrix(np.array([[3.0, 0.0]])), np.zeros(2, dtype=bool))
+    step = system.solve(1.0, np.array([1.0, 1.0]))
+    np.testing.assert_allclose(step, [1.0 / 18.0, 1.0 / (9.0 * _solver.LM_DIAGONAL_FLOOR)], rtol=1e-9)
+
+
+@pytest.mark.parametrize("rejection", ["refused", "failed"])
+def test_a_step_after_a_rejection_does_not_end_the_solve(monkeypatch, rejection):
+    """With ``xtol = 1`` every step is small, but the step taken after a refused trial or a failed factorisation does
+    not end the solve: the next, taken at once, does (2 iterations)."""
+
+    class FailingFirst(FACTORISATIONS["superlu"]):
+        calls = 0
+
+        def factorise(self, values):
+            FailingFirst.calls += 1
+            if rejection == "failed" and FailingFirst.calls == 1:
+                raise _solver._FactorisationError("zero pivot")
+            return super().factorise(values)
+
+    monkeypatch.setitem(FACTORISATIONS, "failing first", FailingFirst)
+    trials = []
+    residuals, jacobian = _linear([[1.0]], np.array([1.0]))
+    solution = least_squares(
+        residuals,
+        jacobian,
+        np.zeros(1),
+        np.array([-10.0]),
+        np.array([10.0]),
+        gtol=0.0,
+        ftol=0.0,
+        xtol=1.0,
+        accept=lambda x: trials.append(x) or rejection != "refused" or len(trials) > 1,
+        normal_equations=NormalEquations("failing first"),
+    )
+    assert solution.message == "step below xtol" and solution.iterations == 2, solution.message
+
+
+def test_a_step_that_does_not_lower_the_cost_is_not_taken():
+    """A Jacobian that promises a reduction the residuals never give (they are constant): every trial is refused, and
+    the solve ends where it started."""
+    solution = least_squares(
+        lambda x: np.ones(1),
+        lambda x: scipy.sparse.csr_matrix(np.ones((1, 1))),
+        np.array([0.5]),
+        np.array([-10.0]),
+        np.array([10.0]),
+        xtol=1e-3,
+    )
+    assert solution.x.tolist() == [0.5] and solution.message == "no further reduction: step below xtol"
