@@ -148,8 +148,9 @@ def test_a_failed_factorisation_is_damped_more(monkeypatch, failure):
 
     monkeypatch.setitem(FACTORISATIONS, "failing", FailingTwice)
     a, b = scipy.sparse.csr_matrix(np.array([[2.0, 0.0], [1.0, 1.0], [0.0, 3.0]])), np.array([1.0, 2.0, 3.0])
+    seen = []
     solution = least_squares(
-        lambda x: a @ x - b,
+        lambda x: seen.append(x) or a @ x - b,
         lambda x: a,
         np.zeros(2),
         np.full(2, -10.0),
@@ -159,6 +160,7 @@ def test_a_failed_factorisation_is_damped_more(monkeypatch, failure):
     )
     assert solution.converged and len(calls) > solution.iterations, solution.message
     np.testing.assert_allclose(solution.x, np.linalg.lstsq(a.toarray(), b, rcond=None)[0], atol=1e-8)
+    assert np.all(np.isfinite(seen))  # no step of a failed factorisation is tried
     damping = [values[0] / 5.0 - 1.0 for values in calls[:3]]  # (J^T J)_00 = D_00 = 5, first of the pattern
     np.testing.assert_allclose(damping, [1e-3, 2e-3, 8e-3], rtol=1e-9)
 
@@ -226,6 +228,11 @@ def test_a_factorisation_not_installed_or_unknown_is_refused_by_name(monkeypatch
     with pytest.raises(EquimeshError, match="factorisation 'cholmod' is not installed; installed: superlu"):
         NormalEquations("cholmod")
     with pytest.raises(EquimeshError, match="unknown factorisation 'lu'; choose from superlu"):
+        NormalEquations("lu")
+    monkeypatch.setattr(_solver, "INSTALLED", ("superlu", "cholmod"))
+    with pytest.raises(EquimeshError, match="'pardiso' is not installed; installed: superlu, cholmod$"):
+        NormalEquations("pardiso")
+    with pytest.raises(EquimeshError, match="unknown factorisation 'lu'; choose from superlu, cholmod$"):
         NormalEquations("lu")
     chosen = subprocess.run(
         [sys.executable, "-c", "from equimesh.surface.optimize import solver; print(solver.DEFAULT_FACTORISATION)"],
@@ -445,17 +452,19 @@ def test_an_endless_descent_stops_at_max_iterations():
 
 @pytest.mark.parametrize("factorisation", BOTH)
 def test_normal_equations_follow_a_new_structure(factorisation):
-    """One ``NormalEquations`` for Jacobians of different structures (other columns in the same rows, then other rows):
-    each is analysed anew and solved as its own dense system."""
+    """One ``NormalEquations`` for Jacobians of different structures (a column twice in a row, its entries summed;
+    other columns in the same rows; other rows): each is analysed anew and solved as its own dense system."""
     system = NormalEquations(factorisation)
     held = np.zeros(3, dtype=bool)
     rhs = np.array([1.0, 2.0, 3.0])
+    duplicates = scipy.sparse.csr_matrix((np.array([1.0, 2.0, 1.0, 3.0]), np.array([0, 0, 1, 2]), np.array([0, 2, 4])))
     for dense in (
+        duplicates,
         [[2.0, 1.0, 0.0], [0.0, 1.0, 3.0]],
         [[2.0, 0.0, 1.0], [1.0, 3.0, 0.0]],
         [[1.0, 1.0, 1.0], [0.0, 2.0, 0.0], [4.0, 0.0, 0.0]],
     ):
-        jac = scipy.sparse.csr_matrix(np.array(dense))
+        jac = dense if scipy.sparse.issparse(dense) else scipy.sparse.csr_matrix(np.array(dense))
         system.assemble(jac, held)
         normal = jac.toarray().T @ jac.toarray()
         expected = np.linalg.solve(normal + 0.5 * np.diag(np.diag(normal)), rhs)
