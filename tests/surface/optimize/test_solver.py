@@ -384,13 +384,19 @@ def test_nielsens_rule_follows_the_gain_ratio():
 
 def test_a_large_constant_residual_stops_on_the_relative_reduction():
     """Behind a residual of 10^10 no step can lower the cost by more than ``ftol`` of it: the first step, taken in full
-    (gain ratio about 1, so lambda / 3), ends the solve."""
+    (gain ratio about 1, so lambda / 3), ends the solve; a step taken after a refused trial does not."""
     a = scipy.sparse.csr_matrix(np.array([[1e6], [0.0]]))
 
     def residuals(x):
         return np.array([1e6 * (x[0] - 1.0), 1e10])
 
-    solution = least_squares(residuals, lambda x: a, np.array([1.001]), np.array([-10.0]), np.array([10.0]))
+    def solve(**kwargs):
+        return least_squares(residuals, lambda x: a, np.array([1.001]), np.array([-10.0]), np.array([10.0]), **kwargs)
+
+    trials = []
+    after_refusal = solve(accept=lambda x: trials.append(x) or len(trials) > 1)
+    assert after_refusal.message == "relative reduction below ftol" and after_refusal.iterations == 2
+    solution = solve()
     assert solution.converged is True and solution.message == "relative reduction below ftol", solution.message
     assert (solution.iterations, solution.evaluations) == (1, 2)
     lam = _solver.LM_INITIAL_DAMPING  # the step is the Gauss-Newton one divided by 1 + lambda
@@ -482,8 +488,9 @@ def test_a_variable_no_residual_sees_is_damped_by_the_floor():
 
 @pytest.mark.parametrize("rejection", ["refused", "failed"])
 def test_a_step_after_a_rejection_does_not_end_the_solve(monkeypatch, rejection):
-    """With ``xtol = 1`` every step is small, but the step taken after a refused trial or a failed factorisation does
-    not end the solve: the next, taken at once, does (2 iterations)."""
+    """A small step taken after a refused trial (``xtol = 0.85``: the full step 0.999 from 0 is not small, its half
+    is) or after a failed factorisation (``xtol = 1``: every step is small) does not end the solve: the next, taken
+    at once, does (2 iterations)."""
 
     class FailingFirst(FACTORISATIONS["superlu"]):
         calls = 0
@@ -505,7 +512,7 @@ def test_a_step_after_a_rejection_does_not_end_the_solve(monkeypatch, rejection)
         np.array([10.0]),
         gtol=0.0,
         ftol=0.0,
-        xtol=1.0,
+        xtol=0.85 if rejection == "refused" else 1.0,
         accept=lambda x: trials.append(x) or rejection != "refused" or len(trials) > 1,
         normal_equations=NormalEquations("failing first"),
     )
