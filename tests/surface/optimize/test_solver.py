@@ -260,6 +260,12 @@ def _linear(a, b):
     return (lambda x: a @ x - b), (lambda x: a)
 
 
+def _unit_solve(x0=0.0, **kwargs):
+    """``min (x - 1)^2 / 2`` over [-10, 10] from ``x0``."""
+    residuals, jacobian = _linear([[1.0]], np.array([1.0]))
+    return least_squares(residuals, jacobian, np.array([x0]), np.array([-10.0]), np.array([10.0]), **kwargs)
+
+
 def test_at_a_minimum_the_solver_stops_at_once():
     """Started at the least-squares optimum of an inconsistent system (integer coordinates): no iteration, one
     evaluation, the cost ``|r|^2 / 2`` there, the damping as given and a float point."""
@@ -341,13 +347,7 @@ def test_damping_rises_by_nu_after_a_rejected_step_and_falls_after_a_full_one(mo
         trials.append(float(x[0]))
         return len(trials) == 2 * series + 1 or len(trials) > 3 * series + 1
 
-    residuals, jacobian = _linear([[1.0]], np.array([1.0]))
-    solution = least_squares(
-        residuals,
-        jacobian,
-        np.zeros(1),
-        np.array([-10.0]),
-        np.array([10.0]),
+    solution = _unit_solve(
         damping=1.0,
         accept=accept,
         normal_equations=NormalEquations("recording"),
@@ -407,10 +407,7 @@ def test_a_large_constant_residual_stops_on_the_relative_reduction():
 
 def test_a_step_below_xtol_ends_the_solve():
     """``xtol = 10^-3`` and the minimum 10^-4 away: the first step is taken and is below ``xtol (xtol + |x|)``."""
-    residuals, jacobian = _linear([[1.0]], np.array([1.0]))
-    solution = least_squares(
-        residuals, jacobian, np.array([1.0001]), np.array([-10.0]), np.array([10.0]), gtol=0.0, ftol=0.0, xtol=1e-3
-    )
+    solution = _unit_solve(1.0001, gtol=0.0, ftol=0.0, xtol=1e-3)
     assert solution.converged is True and solution.message == "step below xtol", solution.message
     assert (solution.iterations, solution.evaluations) == (1, 2)
     lam = _solver.LM_INITIAL_DAMPING  # the step is the Gauss-Newton one divided by 1 + lambda
@@ -424,13 +421,8 @@ def test_no_acceptable_step_ends_when_damping_is_at_its_limit(damping):
     """Every trial refused: the damping rises until a step is below ``xtol`` with ``lambda >= 1 / LM_DIAGONAL_FLOOR``,
     and the solve ends where it started, converged, after one iteration; started at that limit it ends at once."""
     trials = []
-    residuals, jacobian = _linear([[1.0]], np.array([1.0]))
-    solution = least_squares(
-        residuals,
-        jacobian,
-        np.array([0.5]),
-        np.array([-10.0]),
-        np.array([10.0]),
+    solution = _unit_solve(
+        0.5,
         xtol=1e-3,
         damping=damping,
         accept=lambda x: trials.append(x) and False,
@@ -503,13 +495,7 @@ def test_a_step_after_a_rejection_does_not_end_the_solve(monkeypatch, rejection)
 
     monkeypatch.setitem(FACTORISATIONS, "failing first", FailingFirst)
     trials = []
-    residuals, jacobian = _linear([[1.0]], np.array([1.0]))
-    solution = least_squares(
-        residuals,
-        jacobian,
-        np.zeros(1),
-        np.array([-10.0]),
-        np.array([10.0]),
+    solution = _unit_solve(
         gtol=0.0,
         ftol=0.0,
         xtol=0.85 if rejection == "refused" else 1.0,
