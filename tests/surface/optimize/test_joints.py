@@ -19,6 +19,7 @@ from equimesh.surface import pipeline
 from equimesh.surface.optimize import OBJECTIVES, Objective, Stage, joints, optimize_uv
 from equimesh.surface.optimize.joints import Joints, joint_bounds, surface_angles
 from equimesh.surface.optimize.objectives import edge_length_terms
+from equimesh.surface.optimize.solver import FACTORISATIONS
 from equimesh.testing.surfaces import dome
 
 
@@ -91,7 +92,15 @@ def test_bounds_out_of_reach_are_refused(monkeypatch):
         x = yield stage
         return x, stage
 
-    record = Objective("idle", idle, "nothing", slides=False, bounds_members=False, sound_joints=True, max_nodes=100)
+    record = Objective(
+        "idle",
+        idle,
+        "nothing",
+        slides=False,
+        bounds_members=False,
+        sound_joints=True,
+        max_nodes=dict.fromkeys(FACTORISATIONS, 100),
+    )
     monkeypatch.setitem(OBJECTIVES, "idle", record)
     monkeypatch.setattr(joints, "JOINT_ANGLE", 59.0)  # the stand-in's strip has angles below 59 degrees
     mesh, r, _ = run(dome(), 8.0, objective="paper")

@@ -14,6 +14,7 @@ from equimesh.surface.optimize.driver import _fold_over_barrier, _with_barriers
 from equimesh.surface.optimize.jacobian import signed_areas
 from equimesh.surface.optimize.objectives import bounded_stages, edge_length_terms, paper_stage
 from equimesh.surface.optimize.slide import along_polygon
+from equimesh.surface.optimize.solver import FACTORISATIONS
 from equimesh.surface.regularity import derivatives
 from equimesh.testing.surfaces import dome
 
@@ -199,8 +200,9 @@ def test_objective_table_is_the_seam(monkeypatch):
         x = yield stage
         return x, stage
 
+    limits = dict.fromkeys(FACTORISATIONS, 100)
     record = Objective(
-        "all", all_edges, "every member to l", slides=False, bounds_members=False, sound_joints=False, max_nodes=100
+        "all", all_edges, "every member to l", slides=False, bounds_members=False, sound_joints=False, max_nodes=limits
     )
     monkeypatch.setitem(OBJECTIVES, "all", record)
     mesh, r, opt = run(dome(), 8.0, objective="all")
