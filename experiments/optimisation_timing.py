@@ -32,7 +32,7 @@ from pathlib import Path
 import numpy as np
 
 import equimesh
-from equimesh.surface.optimize import OBJECTIVES, driver, objectives
+from equimesh.surface.optimize import OBJECTIVES, driver, members
 from equimesh.surface.optimize import solver as _solver
 
 DOME = Path(__file__).resolve().parent / "surfaces" / "reference_dome.json"
@@ -66,7 +66,7 @@ def measure(length, objective):
 def traced(length):
     """Print a JSON line after every solve of :func:`equimesh.surface.optimize.optimize_uv` while inside."""
     every = {}
-    terms, solver = objectives.edge_length_terms, driver.least_squares
+    terms, solver = members.edge_length_terms, driver.least_squares
 
     def edge_length_terms(problem, edges):
         lengths, jacobian = terms(problem, edges)
@@ -92,11 +92,11 @@ def traced(length):
         print(json.dumps(record), flush=True)
         return solution
 
-    objectives.edge_length_terms, driver.least_squares = edge_length_terms, least_squares
+    members.edge_length_terms, driver.least_squares = edge_length_terms, least_squares
     try:
         yield
     finally:
-        objectives.edge_length_terms, driver.least_squares = terms, solver
+        members.edge_length_terms, driver.least_squares = terms, solver
 
 
 def main(argv=None):

@@ -7,7 +7,15 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from equimesh import G1, OTHER, EquimeshError, InvalidToleranceError, LengthClasses, length_classes
-from equimesh.classes import CLASS_COLUMNS, DEFAULT_TOLERANCE, check_tolerance
+from equimesh.classes import (
+    CLASS_COLUMNS,
+    DEFAULT_TOLERANCE,
+    catalogue_classes,
+    check_catalogue,
+    check_tolerance,
+    holds,
+)
+from equimesh.errors import InvalidCatalogueError
 from equimesh.io import classes_path, member_schedule, write_members
 
 
@@ -146,3 +154,44 @@ def test_schedule_and_classes_round_trip(tmp_path):
 
 def test_default_tolerance_is_valid():
     assert check_tolerance(DEFAULT_TOLERANCE) == DEFAULT_TOLERANCE
+
+
+def test_catalogue_classes_of_known_lengths():
+    """Stock lengths 5 and 6 at +-1 % of l = 5 (+-0.05): 5.0, 5.04 to 5; 6.03 to 6; 5.5 and 5.52 are off the catalogue,
+    one class of their own."""
+    c = catalogue_classes([5.0, 5.5, 6.03, 5.04, 5.52], 5.0, [6.0, 5.0], 0.01)
+    assert c.count.tolist() == [2, 1, 2] and c.stock.tolist() == [True, True, False]
+    assert c.member_class.tolist() == [0, 2, 1, 0, 2]
+    np.testing.assert_allclose(c.nominal, [5.0, 6.0, 5.51], rtol=0, atol=1e-15)
+    assert c.off_catalogue() == 2 and c.table()["stock"].tolist() == ["yes", "yes", "no"]
+    assert length_classes([5.0], 5.0).off_catalogue() == 0
+
+
+@pytest.mark.parametrize(
+    "catalogue, match",
+    [
+        ([], "empty"),
+        ("", "numbers"),
+        ("5,x", "numbers"),
+        ([4.9], "outside"),
+        ([10.2], "outside"),
+        ([np.nan], "outside"),
+    ],
+)
+def test_bad_catalogues_are_refused(catalogue, match):
+    with pytest.raises(InvalidCatalogueError, match=match):
+        check_catalogue(catalogue, 5.0)
+
+
+def test_catalogue_is_sorted_once():
+    assert check_catalogue("6, 5,6", 5.0).tolist() == [5.0, 6.0]
+
+
+@pytest.mark.parametrize(
+    "total, expected",
+    [(0.0, True), (5.05, True), (10.0, True), (11.1, True), (16.1, True), (16.2, False), (9.0, False), (4.0, False)],
+)
+def test_holds_sums_of_stock_lengths(total, expected):
+    """Stock 5 and 6 at +-1 % of l = 5: one member in [4.95, 5.05] or [5.95, 6.05]; two in [9.9, 10.1], [10.9, 11.1]
+    or [11.9, 12.1]; three in [14.85, 15.15], [15.85, 16.15], ...: 16.2 and 9.0 fall between, 4.0 below all."""
+    assert holds(total, [5.0, 6.0], 5.0, 0.01) is expected

@@ -72,10 +72,20 @@ def test_fabrication_summary():
         "members": 5,
         "classes": 3,
         "largest_class_share": 0.6,
+        "top10_share": 1.0,
         "min_length": 5.0,
         "max_length": 9.0,
         "within_tolerance": 0.6,
+        "angle_min": pytest.approx(np.nan, nan_ok=True),
+        "angle_max": pytest.approx(np.nan, nan_ok=True),
+        "off_catalogue": 0,
     }
+    # With a catalogue: 5.0 and 5.02 (within 0.5 % of 5 of 5.0) and 9.0 are stock, 5.3 is off it.
+    c = fabrication_summary([5.0, 5.0, 5.02, 5.3, 9.0], 5.0, 0.005, catalogue=[5.0, 9.0])
+    assert (c["classes"], c["off_catalogue"], c["largest_class_share"]) == (3, 1, 0.6)
+    # With triangles: the angle range.
+    t = fabrication_summary([1.0] * 3, 1.0, 0.005, [[0, 0, 0], [1, 0, 0], [0.5, 0.75**0.5, 0]], [[0, 1, 2]])
+    assert (t["angle_min"], t["angle_max"]) == (pytest.approx(60.0), pytest.approx(60.0))
 
 
 def test_comparison_figures_of_two_triangles():

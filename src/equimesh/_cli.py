@@ -172,6 +172,22 @@ def build_parser():
         ).replace("%", "%%"),
     )
     mesh.add_argument(
+        "--surface-tolerance",
+        type=_surface_tolerance,
+        default=0.0,
+        metavar="D",
+        help="with --optimize bounded or classes, let every node leave the surface by at most D (a length, below L) "
+        "along its normal; the summary reports the deviation (default: 0, every node on the surface)",
+    )
+    mesh.add_argument(
+        "--lengths",
+        type=_lengths,
+        default=None,
+        metavar="L1,L2,...",
+        help="with --optimize classes, a catalogue of stock lengths in [L, 2L] (e.g. 5,5.8,7.1): members are cut "
+        "from them within --tolerance where possible, the rest reported in the summary and the classes CSV",
+    )
+    mesh.add_argument(
         "--quiet", "-q", action="store_true", help="print nothing but errors (no progress lines, no summary)"
     )
     mesh.set_defaults(run=_run_mesh)
@@ -270,6 +286,31 @@ def _tolerance(text):
         raise argparse.ArgumentTypeError(str(exc)) from None
 
 
+def _surface_tolerance(text):
+    """``--surface-tolerance``: a length of at least 0 (its bound by L is checked with L)."""
+    try:
+        value = _number(text)
+    except argparse.ArgumentTypeError:
+        raise argparse.ArgumentTypeError(f"expected a length of at least 0, got {text!r}") from None
+    if not value >= 0:  # also NaN
+        raise argparse.ArgumentTypeError(f"expected a length of at least 0, got {text!r}")
+    return value
+
+
+def _lengths(text):
+    """``--lengths``: comma-separated numbers (each in [L, 2L], checked with L)."""
+    items = [item.strip() for item in text.split(",")]
+    try:
+        values = [_number(item) for item in items if item]
+    except argparse.ArgumentTypeError:
+        raise argparse.ArgumentTypeError(
+            f"expected numbers separated by commas, such as 5,5.8,7.1, got {text!r}"
+        ) from None
+    if not values:
+        raise argparse.ArgumentTypeError("expected at least one stock length, such as 5,5.8,7.1")
+    return values
+
+
 def _run_mesh(args):
     from .io import OUTPUT_SLOTS, load_surface, surface_mesh_writer
     from .surface.pipeline import mesh_surface
@@ -298,6 +339,9 @@ def _run_mesh(args):
             placement=args.placement,
             engine=args.engine,
             progress=progress,
+            tolerance=args.tolerance,
+            lengths=args.lengths,
+            surface_tolerance=args.surface_tolerance,
             **limit,
         )
     write(mesh, args.tolerance)
@@ -308,21 +352,24 @@ def _run_mesh(args):
             f"({n_g1} in the equal-length group G1), {len(mesh.triangles)} triangles",
             file=sys.stderr,
         )
-        print(_summary(mesh.edge_lengths(), mesh.length, args.tolerance))
+        print(_summary(mesh, args.tolerance, args.lengths))
     return 0
 
 
 def _parameters(args):
     """What the run was given, for the report's provenance: the input file and every option set."""
     keys = ("surface", "object", "length", "grid", "optimize", "placement", "engine", "max_nodes", "tolerance")
+    keys += ("surface_tolerance", "lengths")
     return {("input" if k == "surface" else k): getattr(args, k) for k in keys if getattr(args, k, None)}
 
 
-def _summary(lengths, l, tolerance):
-    """The one-screen summary of a run's members (:func:`equimesh.metrics.summary_rows`)."""
+def _summary(mesh, tolerance, catalogue=None):
+    """The one-screen summary of a run (:func:`equimesh.metrics.summary_rows`)."""
     from .metrics import summary_rows
 
-    rows = summary_rows(lengths, l, tolerance)
+    rows = summary_rows(
+        mesh.edge_lengths(), mesh.length, tolerance, mesh.points, mesh.triangles, mesh.deviation(), catalogue
+    )
     width = max(len(label) for label, _ in rows) + 2
     return "\n".join(f"{label:<{width}}{value}" for label, value in rows)
 

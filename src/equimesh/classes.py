@@ -11,6 +11,11 @@ into the fewest such classes (the proof of optimality is in its docstring);
 
 The tolerance is given as a fraction of l, or as a string with a percent sign
 (:func:`check_tolerance`); it must lie in ``(0, MAX_TOLERANCE)``.
+
+A *catalogue* is a caller's list of stock lengths in [l, 2l] (:func:`check_catalogue`):
+:func:`catalogue_classes` puts every member within the tolerance of a stock
+length into that stock length's class and groups the rest (off the
+catalogue) by :func:`length_classes`.
 """
 
 import math
@@ -20,7 +25,8 @@ import numpy as np
 import pandas as pd
 
 from ._checks import check_length, number_text, real_array, real_number
-from .errors import EquimeshError, InvalidToleranceError, number
+from .errors import EquimeshError, InvalidCatalogueError, InvalidToleranceError, number
+from .tolerance import at_least, at_most
 
 #: Upper limit (exclusive) of the relative tolerance: at 50 % of l a class of
 #: width ``2 tol l = l`` would hold every member of [l, 2l] (Theorems 1 and 3)
@@ -33,6 +39,10 @@ DEFAULT_TOLERANCE = 0.005
 
 #: Columns of :meth:`LengthClasses.table`, the classes CSV.
 CLASS_COLUMNS = ("class", "count", "nominal_length", "min_length", "max_length")
+
+#: How many of the largest classes the "top-10 share" counts (the members a fabricator cuts from the few
+#: lengths stocked in bulk).
+TOP_CLASSES = 10
 
 
 def check_tolerance(tolerance):
@@ -86,6 +96,9 @@ class LengthClasses:
         The target length l.
     tolerance : float
         The relative tolerance.
+    stock : (k,) bool or None
+        With a catalogue (:func:`catalogue_classes`): whether each class is a
+        stock length (its nominal the catalogue's); None without one.
     """
 
     member_class: np.ndarray
@@ -95,15 +108,29 @@ class LengthClasses:
     max: np.ndarray
     length: float
     tolerance: float
+    stock: np.ndarray = None
 
     def __len__(self):
         return len(self.count)
 
+    def top_share(self, k=TOP_CLASSES):
+        """The share of the members in the ``k`` largest classes (``nan`` without members)."""
+        total = int(self.count.sum())
+        return float(np.sort(self.count)[::-1][:k].sum() / total) if total else float("nan")
+
+    def off_catalogue(self):
+        """Members in no stock length's class (0 without a catalogue)."""
+        return 0 if self.stock is None else int(self.count[~self.stock].sum())
+
     def table(self):
-        """The classes as a DataFrame with :data:`CLASS_COLUMNS`, one row per class."""
-        return pd.DataFrame(
+        """The classes as a DataFrame with :data:`CLASS_COLUMNS`, one row per class, and with a catalogue a column
+        ``stock`` (``yes`` for a stock length's class, ``no`` for one off the catalogue)."""
+        table = pd.DataFrame(
             dict(zip(CLASS_COLUMNS, (np.arange(len(self)), self.count, self.nominal, self.min, self.max)))
         )
+        if self.stock is not None:
+            table["stock"] = np.where(self.stock, "yes", "no")
+        return table
 
 
 def length_classes(lengths, l, tolerance=DEFAULT_TOLERANCE):
@@ -169,3 +196,131 @@ def length_classes(lengths, l, tolerance=DEFAULT_TOLERANCE):
         length=l,
         tolerance=tolerance,
     )
+
+
+def check_catalogue(catalogue, l):
+    """Return the stock lengths as a sorted float array, each in [l, 2l] (up to ``REL_TOL``).
+
+    ``catalogue`` is a sequence of numbers or a comma-separated string
+    (``"5,5.8,7.1"``); repeated lengths count once.
+
+    Raises
+    ------
+    InvalidCatalogueError
+        empty, not numbers, not finite, or a length outside [l, 2l].
+    """
+    l = check_length(l)
+    items = catalogue.split(",") if isinstance(catalogue, str) else catalogue
+    try:
+        values = np.array(
+            [
+                number_text(item, "lengths", InvalidCatalogueError)
+                if isinstance(item, str)
+                else real_number(item, "lengths", InvalidCatalogueError)
+                for item in items
+            ],
+            dtype=float,
+        )
+    except (TypeError, InvalidCatalogueError):
+        raise InvalidCatalogueError(
+            f"lengths must be numbers separated by commas, such as 5,5.8,7.1, got {catalogue!r}"
+        ) from None
+    if values.size == 0:
+        raise InvalidCatalogueError("lengths: the catalogue is empty; give at least one stock length in [l, 2l]")
+    bad = ~(np.isfinite(values) & at_least(values, l) & at_most(values, 2.0 * l))
+    if np.any(bad):
+        raise InvalidCatalogueError(
+            f"lengths: {number(values[bad][0])} is outside [l, 2l] = [{number(l)}, {number(2 * l)}]; "
+            "every stock length must be a member length the mesh may have"
+        )
+    return np.unique(values)
+
+
+def on_catalogue(lengths, l, catalogue, tolerance):
+    """(E,) bool: each member within ``tolerance * l`` of a stock length of ``catalogue`` (all lengths absolute)."""
+    x = np.asarray(lengths, dtype=float).ravel()
+    stock = np.asarray(catalogue, dtype=float).ravel()
+    return np.min(np.abs(x[:, None] - stock[None, :]), axis=1, initial=np.inf) <= tolerance * l
+
+
+def catalogue_classes(lengths, l, catalogue, tolerance=DEFAULT_TOLERANCE):
+    """Members grouped by a catalogue of stock lengths: a class per stock length, then the fewest classes of the rest.
+
+    A member within ``tolerance * l`` of a stock length goes to the nearest
+    such one (its class's nominal length is the stock length, ``stock``
+    True); the members off the catalogue are grouped by :func:`length_classes`
+    (``stock`` False).  Stock lengths that no member uses have no class.
+    Class ids run over the stock classes by length, then the others by length.
+    """
+    l = check_length(l)
+    tolerance = check_tolerance(tolerance)
+    stock = check_catalogue(catalogue, l)
+    x = np.asarray(lengths, dtype=float).ravel()
+    nearest = np.argmin(np.abs(x[:, None] - stock[None, :]), axis=1) if x.size else np.zeros(0, dtype=np.int64)
+    on = on_catalogue(x, l, stock, tolerance)
+    used = np.unique(nearest[on])
+    rest = length_classes(x[~on], l, tolerance)
+    member_class = np.empty(x.size, dtype=np.int64)
+    member_class[on] = np.searchsorted(used, nearest[on])
+    member_class[~on] = rest.member_class + len(used)
+    count = np.concatenate([np.bincount(member_class[on], minlength=len(used)), rest.count]).astype(np.int64)
+    lo = np.array([x[on][member_class[on] == k].min() for k in range(len(used))])
+    hi = np.array([x[on][member_class[on] == k].max() for k in range(len(used))])
+    return LengthClasses(
+        member_class=member_class,
+        count=count,
+        nominal=np.concatenate([stock[used], rest.nominal]),
+        min=np.concatenate([lo, rest.min]),
+        max=np.concatenate([hi, rest.max]),
+        length=l,
+        tolerance=tolerance,
+        stock=np.concatenate([np.ones(len(used), dtype=bool), np.zeros(len(rest), dtype=bool)]),
+    )
+
+
+#: Beyond the paper (docs/decisions.md, "A catalogue of stock lengths"): :func:`holds`
+#: merges the sums it can reach into at most this many intervals per count of
+#: members, a bound on its work (a side of 10^4 l is then decided in a second).
+MAX_SUM_INTERVALS = 4096
+
+
+def holds(total, catalogue, l, tolerance):
+    """Whether some members, each within ``tolerance * l`` of a stock length, add up to ``total``.
+
+    The sums of ``m`` such members form a union of intervals (each stock
+    length widened by ``tolerance * l``, added ``m`` times); ``m`` runs from
+    ``ceil(total / max)`` to ``floor(total / min)`` of the widened lengths,
+    the intervals of one count merged where they overlap (at most
+    :data:`MAX_SUM_INTERVALS`, the widest kept first: beyond that the answer
+    errs towards "holds").
+    """
+    stock = np.asarray(catalogue, dtype=float).ravel()
+    low, high = stock - tolerance * l, stock + tolerance * l
+    if total <= 0:
+        return total == 0
+    reach = np.array([[0.0, 0.0]])
+    for _ in range(int(math.floor(total / low.min())) + 1):
+        if np.any((reach[:, 0] <= total) & (total <= reach[:, 1])):
+            return True
+        sums = (reach[:, None, :] + np.stack([low, high], axis=1)[None, :, :]).reshape(-1, 2)
+        sums = sums[sums[:, 0] <= total]
+        if not len(sums):
+            return False
+        reach = _merge(sums)
+    return False
+
+
+def _merge(intervals):
+    """The union of ``intervals`` (rows ``[a, b]``) as sorted disjoint rows, at most :data:`MAX_SUM_INTERVALS` (the
+    widest)."""
+    intervals = intervals[np.argsort(intervals[:, 0], kind="stable")]
+    merged = [intervals[0].copy()]
+    for a, b in intervals[1:]:
+        if a <= merged[-1][1]:
+            merged[-1][1] = max(merged[-1][1], b)
+        else:
+            merged.append(np.array([a, b]))
+    merged = np.array(merged)
+    if len(merged) > MAX_SUM_INTERVALS:
+        merged = merged[np.sort(np.argsort(merged[:, 0] - merged[:, 1], kind="stable")[:MAX_SUM_INTERVALS])]
+    return merged

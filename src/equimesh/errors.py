@@ -71,7 +71,12 @@ class MeshTooLargeError(EquimeshError):
 
 
 class InvalidToleranceError(EquimeshError):
-    """A length-class tolerance is not a number, or outside (0, 50 %) of l."""
+    """A tolerance is not a number or out of range: a length class's outside (0, 50 %) of l, the surface's outside
+    [0, l)."""
+
+
+class InvalidCatalogueError(EquimeshError):
+    """A catalogue of stock lengths is empty, not numbers, has a length outside [l, 2l], or cannot hold the outline."""
 
 
 class OutputPathError(EquimeshError):

@@ -23,7 +23,7 @@ meet there and the smallest and largest angle between two of them.
 
 import numpy as np
 
-from .classes import DEFAULT_TOLERANCE, length_classes
+from .classes import DEFAULT_TOLERANCE, TOP_CLASSES, catalogue_classes, length_classes
 from .errors import number
 from .mesh import G1, edge_keys, edge_lengths, half_edges, unique_edges
 from .tolerance import at_least, at_most
@@ -99,41 +99,70 @@ def share_in_bounds(lengths, l):
 
 
 #: Keys of :func:`fabrication_summary`, in the order the command line prints them.
-SUMMARY_KEYS = ("members", "classes", "largest_class_share", "min_length", "max_length", "within_tolerance")
+SUMMARY_KEYS = (
+    "members",
+    "classes",
+    "largest_class_share",
+    "top10_share",
+    "min_length",
+    "max_length",
+    "within_tolerance",
+    "angle_min",
+    "angle_max",
+    "off_catalogue",
+)
 
 
-def fabrication_summary(lengths, l, tolerance=DEFAULT_TOLERANCE):
+def fabrication_summary(lengths, l, tolerance=DEFAULT_TOLERANCE, points=None, triangles=None, catalogue=None):
     """What a fabricator asks of a member schedule at a tolerance (beyond the paper), keyed by :data:`SUMMARY_KEYS`.
 
-    Members; length classes (:func:`equimesh.classes.length_classes`); the
-    share of members in the largest class; the shortest and longest member
-    (``nan`` without members); the share within ``tolerance * l`` of l.
+    Members; length classes (:func:`equimesh.classes.length_classes`, or with
+    a catalogue of stock lengths :func:`equimesh.classes.catalogue_classes`);
+    the share of members in the largest class and in the
+    :data:`~equimesh.classes.TOP_CLASSES` largest; the shortest and longest
+    member (``nan`` without members); the share within ``tolerance * l`` of l;
+    the smallest and largest triangle angle in degrees (``nan`` without
+    ``triangles``); the members off the catalogue (0 without one).
     """
     x = np.asarray(lengths, dtype=float).ravel()
-    classes = length_classes(x, l, tolerance)
+    classes = length_classes(x, l, tolerance) if catalogue is None else catalogue_classes(x, l, catalogue, tolerance)
+    lo, hi = (np.nan, np.nan) if triangles is None else angle_range(points, triangles)
     return {
         "members": int(x.size),
         "classes": len(classes),
         "largest_class_share": float(classes.count.max() / x.size) if x.size else np.nan,
+        "top10_share": classes.top_share(TOP_CLASSES),
         "min_length": float(x.min()) if x.size else np.nan,
         "max_length": float(x.max()) if x.size else np.nan,
         "within_tolerance": share_within(x, l, classes.tolerance),
+        "angle_min": lo,
+        "angle_max": hi,
+        "off_catalogue": classes.off_catalogue(),
     }
 
 
-def summary_rows(lengths, l, tolerance=DEFAULT_TOLERANCE):
+def summary_rows(lengths, l, tolerance=DEFAULT_TOLERANCE, points=None, triangles=None, deviation=None, catalogue=None):
     """:func:`fabrication_summary` as ``(label, text)`` pairs: the summary ``equimesh mesh`` prints and its report
-    shows."""
-    s = fabrication_summary(lengths, l, tolerance)
+    shows; with ``triangles`` the angle range, with ``deviation`` (max, mean) the nodes' distance from the surface,
+    with a ``catalogue`` the members off it."""
+    s = fabrication_summary(lengths, l, tolerance, points, triangles, catalogue)
     tol = f"+-{100 * tolerance:.3g} %"
-    return [
+    rows = [
         ("members", f"{s['members']}"),
         ("length classes", f"{s['classes']} (every member within {tol} of L of its class's nominal length)"),
         ("in the largest class", f"{100 * s['largest_class_share']:.1f} %"),
+        ("in the 10 largest classes", f"{100 * s['top10_share']:.1f} %"),
         ("shortest member", f"{number(s['min_length'])} ({s['min_length'] / l:.4f} L)"),
         ("longest member", f"{number(s['max_length'])} ({s['max_length'] / l:.4f} L)"),
         (f"within {tol} of L", f"{100 * s['within_tolerance']:.1f} %"),
     ]
+    if triangles is not None:
+        rows.append(("triangle angles", f"{s['angle_min']:.1f} to {s['angle_max']:.1f} degrees"))
+    if deviation is not None:
+        rows.append(("off the surface", "max {}, mean {}".format(*(number(d) for d in deviation))))
+    if catalogue is not None:
+        rows.append(("off the catalogue", f"{s['off_catalogue']} members"))
+    return rows
 
 
 #: Keys of :func:`comparison_figures`: the one set of figures every mesher is measured by
@@ -146,32 +175,43 @@ COMPARISON_COLUMNS = (
     "in_l_2l",
     "classes_0.5pct",
     "classes_1pct",
+    "largest_0.5pct",
+    "top10_0.5pct",
     "length_std",
     "angle_min",
     "angle_max",
+    "below_30deg",
 )
 
 
 def comparison_figures(points, triangles, l):
     """Member-length and angle figures of any triangle mesh at target length ``l``, keyed by :data:`COMPARISON_COLUMNS`.
 
-    The members are the unique edges of ``triangles``; ``length_std`` is
-    relative to l (population standard deviation over l).
+    The members are the unique edges of ``triangles``; ``largest_0.5pct`` and
+    ``top10_0.5pct`` are the shares of members in the largest and the
+    :data:`~equimesh.classes.TOP_CLASSES` largest classes at +-0.5 %;
+    ``length_std`` is relative to l (population standard deviation over l);
+    ``below_30deg`` the share of triangles with an angle below 30 degrees (a
+    joint that cannot be built, :mod:`equimesh.surface.optimize.joints`).
     """
     triangles = np.asarray(triangles, dtype=np.int64).reshape(-1, 3)
     lengths = edge_lengths(points, unique_edges(triangles))
-    lo, hi = angle_range(points, triangles)
+    angles = triangle_angles(points, triangles)
+    classes = length_classes(lengths, l, 0.005)
     return {
         "members": int(lengths.size),
         "within_0.5pct": share_within(lengths, l, 0.005),
         "within_1pct": share_within(lengths, l, 0.01),
         "within_5pct": share_within(lengths, l, 0.05),
         "in_l_2l": share_in_bounds(lengths, l),
-        "classes_0.5pct": distinct_lengths(lengths, l, 0.005),
+        "classes_0.5pct": len(classes),
         "classes_1pct": distinct_lengths(lengths, l, 0.01),
+        "largest_0.5pct": float(classes.count.max() / lengths.size),
+        "top10_0.5pct": classes.top_share(TOP_CLASSES),
         "length_std": float(np.std(lengths) / l),
-        "angle_min": lo,
-        "angle_max": hi,
+        "angle_min": float(angles.min()),
+        "angle_max": float(angles.max()),
+        "below_30deg": float(np.mean(angles.min(axis=1) < 30.0)),
     }
 
 

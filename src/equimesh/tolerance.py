@@ -120,3 +120,23 @@ BOUNDED_LOSS_TOL = 1e-3
 #: steps instead of the whole step (docs/decisions.md, "A trust region per node").
 BOUNDED_STEP = 0.1
 PAPER_FTOL = 1e-8
+
+#: Beyond the paper (docs/decisions.md, "Sound joints"): an objective with
+#: ``sound_joints`` (``"classes"``) keeps every triangle angle on the surface at least ``JOINT_ANGLE``
+#: degrees (hence at most ``180 - 2 JOINT_ANGLE = 120``), Chew's bound for
+#: edges in [h, 2h] and circumradii below h, which Problem 2 meets on the plane
+#: (docs/decisions.md, "Angles of Problems 1 and 2").  The optimisation's barrier is
+#: zero while an angle is ``JOINT_MARGIN`` radians (one degree) above its bound.
+#: Tests: tests/surface/optimize/test_joints.py.
+JOINT_ANGLE = 30.0
+JOINT_MARGIN = 0.017453292519943295
+
+#: Beyond the paper (docs/decisions.md, "The classes objective"): the ``"classes"``
+#: optimisation (:func:`equimesh.surface.optimize.objectives.classes_stages`) starts
+#: from the ``CLASSES_START`` largest length classes of ``"bounded"``'s result as its
+#: nominal lengths, runs ``CLASSES_ROUNDS`` rounds of assignment and solve, and drops
+#: the nominal length holding the fewest members every ``CLASSES_MERGE_EVERY`` rounds.
+#: Tests: tests/surface/optimize/test_classes_objective.py.
+CLASSES_START = 30
+CLASSES_ROUNDS = 60
+CLASSES_MERGE_EVERY = 3

@@ -28,6 +28,7 @@ from equimesh import (
 )
 from equimesh._cli import main
 from equimesh.io import _paths as io_paths
+from equimesh.metrics import triangle_angles
 from equimesh.surface import pipeline
 
 SADDLE = SURFACES / "saddle.json"
@@ -109,6 +110,12 @@ def test_members_schedule_classes_and_summary(tmp_path, capsys):
     assert summary["in the largest class"].strip() == f"{share:.1f} %"
     within = 100 * np.mean(np.abs(table["length"] - 6.0) <= 0.06)
     assert summary["within +-1 % of L"].strip() == f"{within:.1f} %"
+    top = 100 * np.sort(classes["count"].to_numpy())[::-1][:10].sum() / len(table)
+    assert summary["in the 10 largest classes"].strip() == f"{top:.1f} %"
+    written = meshio.read(tmp_path / "m.obj")
+    angles = triangle_angles(written.points, written.cells_dict["triangle"])
+    assert summary["triangle angles"].strip() == f"{angles.min():.1f} to {angles.max():.1f} degrees"
+    assert summary["off the surface"].strip() == "max 0, mean 0"
 
 
 def test_optimize_default_is_the_library_default():
@@ -195,6 +202,31 @@ BAD = {
     "tolerance 0.7": lambda d: (["mesh", SADDLE, "--length", 5, "--tolerance", "0.7"], "below 50%"),
     "tolerance nan": lambda d: (["mesh", SADDLE, "--length", 5, "--tolerance", "nan"], "above 0"),
     "tolerance not a number": lambda d: (["mesh", SADDLE, "--length", 5, "--tolerance", "tight"], "--tolerance"),
+    "surface tolerance negative": lambda d: (["mesh", SADDLE, "--length", 5, "--surface-tolerance=-1"], "at least 0"),
+    "surface tolerance nan": lambda d: (["mesh", SADDLE, "--length", 5, "--surface-tolerance", "nan"], "at least 0"),
+    "surface tolerance not a number": lambda d: (
+        ["mesh", SADDLE, "--length", 5, "--surface-tolerance", "wide"],
+        "--surface-tolerance",
+    ),
+    "surface tolerance at least L": lambda d: (["mesh", SADDLE, "--length", 5, "--surface-tolerance", 5], "below l"),
+    "surface tolerance with paper": lambda d: (
+        ["mesh", SADDLE, "--length", 5, "--surface-tolerance", 0.1, "--optimize", "paper"],
+        "surface_tolerance",
+    ),
+    "lengths empty": lambda d: (["mesh", SADDLE, "--length", 5, "--optimize", "classes", "--lengths", ","], "at least"),
+    "lengths not numbers": lambda d: (
+        ["mesh", SADDLE, "--length", 5, "--optimize", "classes", "--lengths", "5,six"],
+        "--lengths",
+    ),
+    "length outside [L, 2L]": lambda d: (
+        ["mesh", SADDLE, "--length", 5, "--optimize", "classes", "--lengths", "5,10.5"],
+        "outside [l, 2l]",
+    ),
+    "lengths without classes": lambda d: (["mesh", SADDLE, "--length", 5, "--lengths", "5"], "optimize='classes'"),
+    "catalogue cannot hold the outline": lambda d: (
+        ["mesh", SADDLE, "--length", 6, "--optimize", "classes", "--lengths", "7.7"],
+        "adds up to side",
+    ),
     "tolerance -1% as its own word": lambda d: (["mesh", SADDLE, "--length", 5, "--tolerance", "-1%"], "above 0"),
     "tolerance 1_0%": lambda d: (["mesh", SADDLE, "--length", 5, "--tolerance", "1_0%"], "got '1_0%'"),
     "L -1e3": lambda d: (["mesh", SADDLE, "--length", "-1e3"], "positive"),

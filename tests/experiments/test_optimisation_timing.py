@@ -30,9 +30,9 @@ def test_optimisation_timing_traces_every_solve(load_experiment, capsys):
 
 def optimize_is_restored(timing):
     """After a traced run the optimisation's functions are the library's again."""
-    from equimesh.surface.optimize import driver, objectives, solver
+    from equimesh.surface.optimize import driver, members, solver
 
     return (
         driver.least_squares is solver.least_squares
-        and timing.objectives.edge_length_terms.__module__ == objectives.__name__
+        and timing.members.edge_length_terms.__module__ == members.__name__
     )

@@ -29,7 +29,7 @@ import equimesh
 from equimesh import G1
 from equimesh.errors import EquimeshError, InvalidPolygonError, MeshTooLargeError
 from equimesh.planar import lattice, placement
-from equimesh.planar.placement import Placement, best_lattice_placement, lattice_edge_count
+from equimesh.planar.placement import Placement, best_lattice_placement, fewest_classes_placement, lattice_edge_count
 from equimesh.planar.polygon import as_polygon
 from equimesh.testing.generators import rectangle, regular_polygon
 
@@ -353,3 +353,15 @@ def test_search_builds_the_region_once(monkeypatch):
     monkeypatch.setattr(shapely, "Polygon", lambda *a: built.append(a) or shapely.geometry.Polygon(*a))
     equimesh.best_lattice_placement(regular_polygon(6, 6.0), 1.0, n_angles=2, n_offsets=2, refine=1)
     assert len(built) == 1
+
+
+def test_fewest_classes_placement_is_never_worse_than_its_start():
+    """The search tries its start first and keeps it on ties: the winner's classes are at most the start's, and
+    the lattice lines of the winner run along a side of the rectangle (angle 0 or 30 modulo 60)."""
+    box = [[0.0, 0.0], [13.7, 0.0], [13.7, 9.3], [0.0, 9.3]]
+    start = best_lattice_placement(box, 1.0)
+    found = fewest_classes_placement(box, 1.0, start=start)
+    assert found.lattice_edges <= found.default_lattice_edges and found.evaluations == 1 + 2 * 9
+    mesh = equimesh.uniform_triangulation(box, 1.0, angle=found.angle, offset=found.offset)
+    assert len(equimesh.length_classes(mesh.edge_lengths(), 1.0)) == found.lattice_edges
+    assert found == fewest_classes_placement(box, 1.0, start=start)  # deterministic

@@ -3,10 +3,16 @@
 Theorem 1 (Problem 1) and Theorem 3 (Problem 2) prove that every edge lies in
 ``[l, 2l]``; with the tolerance of :mod:`equimesh.tolerance` the output
 satisfies ``(1 - REL_TOL) l <= |e| <= 2 (1 + REL_TOL) l``.  Step 5 and
-Section 3 output a triangulation of P.  :func:`verify_planar` checks both on
-the local points (O(n), vectorised) and raises
-:class:`~equimesh.errors.InternalError` instead of returning a mesh that
-breaks them: that would be a bug in equimesh, never a fault of the input.
+Section 3 output a triangulation of P.  The same proofs bound the angles
+(docs/decisions.md, "Angles of Problems 1 and 2"): a triangle whose
+circumcentre is seen from its vertices has circumradius below l and edges at
+least l, so its smallest angle is at least 30 degrees (Chew's bound), and
+one whose circumcentre is hidden behind a constraint of length c lies in
+the cap that constraint cuts off, so its smallest angle is at least
+``arccos(c / 2l)``.  :func:`verify_planar` checks all three on the local
+points (O(n), vectorised) and raises :class:`~equimesh.errors.InternalError`
+instead of returning a mesh that breaks them: that would be a bug in
+equimesh, never a fault of the input.
 """
 
 import numpy as np
@@ -30,7 +36,9 @@ def verify_planar(mesh):
     * the triangle areas sum to the area enclosed by the outer ring minus the
       holes' rings (to REL_TOL); the rings are the first ``n_boundary``
       points, ``info["boundary_rings"]`` points each (one ring without it);
-    * every edge in ``[(1 - REL_TOL) l, 2 (1 + REL_TOL) l]``.
+    * every edge in ``[(1 - REL_TOL) l, 2 (1 + REL_TOL) l]``;
+    * every angle at least :func:`angle_bound` of the longest edge of the
+      boundary rings (the constraints; the lattice part's are l long).
     """
     points, scale = mesh.local
     l, lp = mesh.length, mesh.length * scale
@@ -68,4 +76,38 @@ def verify_planar(mesh):
             f"edge ({i}, {j}) has length {lengths[k] / scale!r}, outside [l, 2l] for l = {l!r} "
             f"(Theorems 1 and 3): {_REPORT}"
         )
+    if t.size:
+        ring = np.concatenate([np.roll(np.arange(end - size, end), -1) for end, size in zip(ends, sizes)])
+        start = np.concatenate([np.arange(end - size, end) for end, size in zip(ends, sizes)])
+        bound = angle_bound(float(np.max(np.linalg.norm(points[ring] - points[start], axis=1))) / lp)
+        smallest = np.degrees(np.min(_angles(points, t), axis=1))
+        low = np.flatnonzero(smallest < bound - ANGLE_ROUNDING)
+        if low.size:
+            k = int(low[0])
+            raise InternalError(
+                f"triangle {k} {tuple(map(int, t[k]))} has an angle of {smallest[k]!r} degrees, below the "
+                f"{bound!r} its boundary parts allow: {_REPORT}"
+            )
     return mesh
+
+
+#: Degrees by which an angle may fall below :func:`angle_bound` in rounding: the
+#: bound holds for edges at least ``(1 - REL_TOL) l`` and circumradii at most
+#: ``(1 + REL_TOL) l``, which move it by about ``2 REL_TOL`` radians.
+ANGLE_ROUNDING = 1e-6
+
+
+def angle_bound(longest_constraint):
+    """The smallest angle Problems 1 and 2 guarantee, in degrees, when the longest constraint is
+    ``longest_constraint`` l: ``min(30, arccos(c / 2))`` (30 degrees for constraints up to ``sqrt(3) l``)."""
+    return float(min(30.0, np.degrees(np.arccos(min(1.0, 0.5 * longest_constraint)))))
+
+
+def _angles(points, triangles):
+    """Interior angles in radians, (M, 3), of plane triangles."""
+    p = points[triangles]
+    out = np.empty(triangles.shape)
+    for k in range(3):
+        u, v = p[:, (k + 1) % 3] - p[:, k], p[:, (k + 2) % 3] - p[:, k]
+        out[:, k] = np.arctan2(np.abs(u[:, 0] * v[:, 1] - u[:, 1] * v[:, 0]), np.sum(u * v, axis=1))
+    return out

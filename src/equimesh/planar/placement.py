@@ -33,12 +33,13 @@ from dataclasses import dataclass
 import numpy as np
 
 from .._checks import check_count, check_length
+from ..classes import DEFAULT_TOLERANCE, TOP_CLASSES, length_classes
 from ..errors import EquimeshError
 from .insertion import DEFAULT_ENGINE
 from .lattice import kept_vertices, lattice_basis, lattice_triangle_masks
 from .limits import MAX_NODES, check_max_nodes, check_size, planar_estimate
 from .polygon import as_polygon
-from .strip import check_clearance, strip_estimate
+from .strip import check_clearance, strip_estimate, uniform_triangulation
 
 #: Beyond the paper (docs/decisions.md, "The lattice placement search"): the most
 #: placements one search may evaluate,
@@ -162,3 +163,94 @@ def best_lattice_placement(
     s, angle, frac = best
     offset = tuple(float(x) for x in np.asarray(frac) @ lattice_basis(l, angle))
     return Placement(angle, offset, s, default, evaluations)
+
+
+#: Beyond the paper (docs/decisions.md, "The placement with the fewest classes"): offsets per lattice vector
+#: tried at each candidate angle of :func:`fewest_classes_placement` (a grid of ``CLASS_OFFSETS^2``), and
+#: the degrees within which two sides' directions count as one candidate angle.
+CLASS_OFFSETS = 3
+CLASS_ANGLE = 1.0
+#: A vertex where the polygon turns by at least this many degrees is a corner of
+#: :func:`fewest_classes_placement`'s sides (the corners of a roof, not the small
+#: turns of a resampled curve).
+CLASS_CORNER_TURN = 30.0
+
+
+def fewest_classes_placement(
+    vertices,
+    l,
+    *,
+    holes=None,
+    boundary_spacing=1.5,
+    tolerance=DEFAULT_TOLERANCE,
+    engine=DEFAULT_ENGINE,
+    start=None,
+):
+    """The lattice placement whose Problem 2 mesh has the fewest length classes (beyond the paper).
+
+    A lattice line parallel to a side makes the strip along it periodic, so
+    its members repeat (and a lattice line at 90 degrees to a side is one at
+    30 degrees to its own, every two rows).  The candidates are the
+    directions of the polygon's sides from corner to corner (the vertices
+    where it turns by at least :data:`CLASS_CORNER_TURN` degrees: a curved
+    side resampled into many short edges is one side), each modulo 60 and
+    counted once within :data:`CLASS_ANGLE` degrees, each with
+    ``CLASS_OFFSETS^2`` offsets, after ``start`` (a :class:`Placement`, e.g.
+    :func:`best_lattice_placement`'s; angle 0 at the origin by default).  Each
+    is meshed by :func:`equimesh.uniform_triangulation` and scored by its
+    length classes at ``tolerance`` (:func:`equimesh.classes.length_classes`),
+    then by the share of its members in the
+    :data:`~equimesh.classes.TOP_CLASSES` largest; ties keep the first.  A
+    candidate that Problem 2 refuses is skipped, ``start``'s refusal raised.
+
+    Returns
+    -------
+    Placement
+        ``lattice_edges`` is the winner's class count, ``default_lattice_edges``
+        the start's, ``evaluations`` the placements meshed.
+    """
+    l = check_length(l)
+    ring = np.asarray(vertices, dtype=float)
+    before, after = ring - np.roll(ring, 1, axis=0), np.roll(ring, -1, axis=0) - ring
+    turn = np.degrees(
+        np.abs(np.arctan2(before[:, 0] * after[:, 1] - before[:, 1] * after[:, 0], np.sum(before * after, axis=1)))
+    )
+    corner = np.flatnonzero(turn >= CLASS_CORNER_TURN)
+    sides = np.roll(ring[corner], -1, axis=0) - ring[corner] if len(corner) > 1 else np.zeros((0, 2))
+    angles = []
+    for a in np.degrees(np.arctan2(sides[:, 1], sides[:, 0])) % 60.0:
+        a = 0.0 if a >= 60.0 - CLASS_ANGLE else a  # within a degree of 60 is 0 (the lattice's symmetry)
+        if all(min(abs(a - b), 60.0 - abs(a - b)) > CLASS_ANGLE for b in angles):
+            angles.append(float(a))
+    start = start or Placement(0.0, (0.0, 0.0), 0, 0, 0)
+    tried = [(start.angle, tuple(start.offset))]
+    fracs = np.arange(CLASS_OFFSETS) / CLASS_OFFSETS
+    for angle in angles:
+        basis = lattice_basis(l, angle)
+        tried += [(angle, tuple(float(v) for v in np.array([fi, fj]) @ basis)) for fi in fracs for fj in fracs]
+    best, evaluations = None, 0
+    for k, (angle, offset) in enumerate(tried):
+        try:
+            mesh = uniform_triangulation(
+                vertices,
+                l,
+                holes=holes,
+                angle=angle,
+                offset=offset,
+                boundary_spacing=boundary_spacing,
+                engine=engine,
+                max_nodes=None,
+            )
+        except EquimeshError:
+            if k == 0:
+                raise
+            continue
+        evaluations += 1
+        classes = length_classes(mesh.edge_lengths(), l, tolerance)
+        key = (len(classes), -classes.top_share(TOP_CLASSES))
+        if best is None or key < best[0]:
+            best = (key, angle, offset)
+        if k == 0:
+            first = len(classes)
+    (count, _), angle, offset = best
+    return Placement(angle, offset, count, first, evaluations)

@@ -31,13 +31,18 @@ import numpy as np
 
 from .._checks import check_length
 from .._geometry import power_of_two_scale
-from ..errors import EquimeshError, InternalError, InvalidPolygonError, InvalidSurfaceError, number
+from ..classes import DEFAULT_TOLERANCE, check_tolerance
+from ..errors import (
+    EquimeshError,
+    InvalidPolygonError,
+    InvalidSurfaceError,
+    number,
+)
 from ..mesh import G1, edge_lengths
 from ..planar.insertion import DEFAULT_ENGINE, check_engine
 from ..planar.limits import check_max_nodes, check_size, node_estimate
-from ..planar.placement import best_lattice_placement
+from ..planar.placement import best_lattice_placement, fewest_classes_placement
 from ..planar.strip import BOUNDARY_SPACING, check_spacing, uniform_triangulation
-from ..tolerance import at_least, at_most
 from .auxiliary import auxiliary_grid, check_grid_size
 from .charts.chart import domain_of
 from .charts.mesh_chart import MeshChart, flatten_mesh
@@ -47,8 +52,17 @@ from .flatten import flatten
 from .mesh_outline import boundary_uv, mesh_outline, restate_mesh_error
 from .messages import restate_polygon_error
 from .optimize import OBJECTIVES, optimize_uv
-from .optimize.jacobian import signed_areas
+from .optimize.joints import joint_bounds
+from .optimize.problem import offset_points
 from .outline import resample_outline
+from .output_checks import (
+    check_catalogue_holds,
+    check_deviation,
+    check_fabrication_options,
+    check_joints,
+    check_members,
+    check_orientation,
+)
 from .regularity import check_regular, evaluate
 from .remap import remap
 
@@ -70,8 +84,10 @@ MAX_GRID_CELLS = 40_000
 #: The final optimisation when none is named (a key of :data:`~equimesh.surface.optimize.OBJECTIVES`, or "none").
 DEFAULT_OPTIMIZE = "bounded"
 
-#: Lattice placements: "best" searches (beyond the paper), "default" is angle 0, offset (0, 0).
-PLACEMENTS = ("best", "default")
+#: Lattice placements: "best" searches the most lattice edges (beyond the paper), "default" is angle 0, offset
+#: (0, 0), "classes" searches from "best" the fewest length classes
+#: (:func:`~equimesh.planar.placement.fewest_classes_placement`).
+PLACEMENTS = ("best", "default", "classes")
 
 
 @dataclass(frozen=True)
@@ -118,6 +134,8 @@ class SurfaceMesh:
     n_boundary : the first ``n_boundary`` nodes lie on the surface boundary (the
         outer boundary, then each opening's, ``stages.plane.info["boundary_rings"]``).
     stages : Stages.
+    offsets : (N,) float, each node's distance from the surface along its unit normal
+        (``points = X^s(uv) + offsets N(uv)``; zero unless ``surface_tolerance`` > 0).
     """
 
     points: np.ndarray
@@ -128,6 +146,7 @@ class SurfaceMesh:
     length: float
     n_boundary: int
     stages: Stages
+    offsets: np.ndarray = None
 
     def edge_lengths(self):
         return edge_lengths(self.points, self.edges)
@@ -135,6 +154,11 @@ class SurfaceMesh:
     @property
     def g1_mask(self):
         return self.edge_groups == G1
+
+    def deviation(self):
+        """``(max, mean)`` distance of the nodes from the surface (``|offsets|``; 0 on the surface)."""
+        d = np.abs(self.offsets) if self.offsets is not None and len(self.offsets) else np.zeros(1)
+        return float(d.max()), float(d.mean())
 
 
 def mesh_surface(
@@ -149,6 +173,9 @@ def mesh_surface(
     max_nodes="default",
     progress=None,
     engine=DEFAULT_ENGINE,
+    tolerance=DEFAULT_TOLERANCE,
+    lengths=None,
+    surface_tolerance=0.0,
 ):
     """Mesh a surface with members as equal as possible (Section 4).
 
@@ -175,14 +202,16 @@ def mesh_surface(
     grid : (int, int)
         Auxiliary grid n_u x n_v (step 1), at most :data:`MAX_GRID_CELLS`
         cells; not used for a triangle mesh.
-    optimize : "bounded", "paper" or "none"
+    optimize : "bounded", "classes", "paper" or "none"
         Final optimisation of the nodes' (u, v) (see
         :data:`equimesh.surface.optimize.OBJECTIVES`), or none.  "bounded"
         (beyond the paper, the default) keeps every member in [l, 2l] with as
         many as possible at one length, boundary nodes sliding along their
-        side, loop or hole edge; "paper" is the paper's (G1 members only, boundary fixed).
-    placement : "best" or "default"
-        Lattice placement of Problem 2.
+        side, loop or hole edge; "classes" (beyond) seeks the fewest length
+        classes at ``tolerance`` with every angle at least 30 degrees
+        (:mod:`~equimesh.surface.optimize.joints`); "paper" is the paper's.
+    placement : "best", "default" or "classes"
+        Lattice placement of Problem 2 (:data:`PLACEMENTS`).
     boundary_spacing : float
         Step 2 spacing of the boundary, in units of l.
     max_nodes : int, None or "default"
@@ -197,6 +226,13 @@ def mesh_surface(
         Called as ``progress(stage, seconds)`` after each stage.
     engine : str
         Insertion engine of Problem 2 (:data:`equimesh.planar.insertion.ENGINES`).
+    tolerance : float or str
+        Fabrication tolerance of a length class, relative to l: what "classes" counts.
+    lengths : sequence of float or str, optional
+        Stock lengths in [l, 2l] ("classes" only, :func:`equimesh.classes.check_catalogue`).
+    surface_tolerance : float
+        ``D`` in [0, l): how far a moving node may leave the surface along its
+        normal (:attr:`SurfaceMesh.offsets`; "bounded" and "classes").
 
     Returns
     -------
@@ -210,14 +246,18 @@ def mesh_surface(
         this ``l``; the message names the side, corner or (u, v) at fault.
     MeshTooLargeError
         The estimated node count exceeds ``max_nodes``.
+    InvalidCatalogueError
+        A bad ``lengths``, or one that cannot hold a side of the outline.
     InternalError
-        A returned "bounded" mesh would have a member outside [l, 2l].
+        A returned mesh would break a check of :mod:`~equimesh.surface.output_checks`.
     """
     l = check_length(l)
+    tolerance = check_tolerance(tolerance)
     if not (isinstance(optimize, str) and (optimize == "none" or optimize in OBJECTIVES)):
         raise EquimeshError(f"optimize must be 'none' or one of {sorted(OBJECTIVES)}, got {optimize!r}")
     if placement not in PLACEMENTS:
         raise EquimeshError(f"placement must be one of {PLACEMENTS}, got {placement!r}")
+    catalogue, surface_tolerance = check_fabrication_options(optimize, lengths, surface_tolerance, l)
     boundary_spacing = check_spacing(boundary_spacing)  # Problem 2's own check, needed by step 3 already
     limit = _node_limit(max_nodes, optimize)
     engine = check_engine(engine)
@@ -236,15 +276,14 @@ def mesh_surface(
 
     try:
         # The surface's own guard (_check_size, measured end to end) bounds the planar stage too.
-        holes = steps.holes
-        chosen = (
-            best_lattice_placement(steps.outline.vertices, l, holes=holes, max_nodes=None)
-            if placement == "best"
-            else None
-        )
+        holes, vertices = steps.holes, steps.outline.vertices
+        chosen = None if placement == "default" else best_lattice_placement(vertices, l, holes=holes, max_nodes=None)
+        if placement == "classes":
+            options = dict(holes=holes, boundary_spacing=boundary_spacing, tolerance=tolerance, engine=engine)
+            chosen = fewest_classes_placement(vertices, l, start=chosen, **options)
         angle, offset = (chosen.angle, chosen.offset) if chosen else (0.0, (0.0, 0.0))
         plane = uniform_triangulation(
-            steps.outline.vertices,
+            vertices,
             l,
             holes=holes,
             angle=angle,
@@ -258,15 +297,17 @@ def mesh_surface(
     clock("planar triangulation (Problem 2)")
 
     mapped_uv, mapped_points = steps.place(plane)
-    _check_orientation(mapped_uv, plane.triangles, "remapping (eqs. 2-3)")
+    check_orientation(mapped_uv, plane.triangles, "remapping (eqs. 2-3)")
     clock("remapping (eqs. 2-3)")
 
     result = None
     chart = steps.chart
-    final_uv, final_points = mapped_uv, mapped_points
+    final_uv, final_points, offsets = mapped_uv, mapped_points, np.zeros(len(mapped_uv))
     if optimize != "none":
         record = OBJECTIVES[optimize]
         slides, fixed = steps.outline.slides(plane, mapped_uv) if record.slides else ((), np.arange(plane.n_boundary))
+        if catalogue is not None:
+            check_catalogue_holds(catalogue, mapped_points, plane, fixed, l, tolerance)
         result = optimize_uv(
             chart,
             mapped_uv,
@@ -277,12 +318,18 @@ def mesh_surface(
             slides=slides,
             triangles=plane.triangles,
             objective=optimize,
+            surface_tolerance=surface_tolerance,
+            tolerance=tolerance,
+            catalogue=catalogue,
         )
-        final_uv = result.uv
-        _check_orientation(final_uv, plane.triangles, "the optimisation")
-        final_points = evaluate(chart, final_uv)
+        final_uv, offsets = result.uv, result.offsets
+        check_orientation(final_uv, plane.triangles, "the optimisation")
+        final_points = offset_points(chart, final_uv, offsets if surface_tolerance > 0 else None)
+        check_deviation(final_points, evaluate(chart, final_uv), surface_tolerance)
         if record.bounds_members:
-            _check_members(final_points, plane.edges, l)
+            check_members(final_points, plane.edges, l)
+        if record.sound_joints:
+            check_joints(final_points, plane.triangles, joint_bounds(chart, mapped_uv, plane.triangles))
         clock("optimisation of inner nodes")
 
     stages = Stages(
@@ -306,6 +353,7 @@ def mesh_surface(
         l,
         plane.n_boundary,
         stages,
+        offsets,
     )
 
 
@@ -449,25 +497,3 @@ def _check_size(surface_points, triangles, l, max_nodes):
     with np.errstate(over="ignore", under="ignore", divide="ignore"):
         estimate = node_estimate(area, 0.0, np.float64(l * scale))  # Oler's bound, the lattice density
     check_size(f"this surface (area {number(area / scale / scale)})", estimate, max_nodes, l)
-
-
-def _check_members(points, edges, l):
-    """Every member of the surface mesh in [l, 2l] (up to REL_TOL), or the bounded optimisation broke its guarantee."""
-    ratio = edge_lengths(points, edges) / l
-    bad = np.flatnonzero(~(at_least(ratio, 1.0) & at_most(ratio, 2.0)))
-    if bad.size:
-        raise InternalError(
-            f"the bounded optimisation returned {bad.size} of {len(edges)} members outside [l, 2l] "
-            f"(lengths from {number(ratio.min(), 10)} l to {number(ratio.max(), 10)} l); please report this surface"
-        )
-
-
-def _check_orientation(uv, triangles, stage):
-    """Every triangle counter-clockwise with positive area in (u, v), or our ``stage`` broke it."""
-    bad = np.flatnonzero(~(signed_areas(uv, triangles) > 0))
-    if bad.size:
-        k = int(bad[0])
-        raise InternalError(
-            f"{stage} inverted {bad.size} of {len(triangles)} triangles in (u, v) "
-            f"(first: {triangles[k].tolist()}); please report this surface"
-        )

@@ -10,11 +10,12 @@ from equimesh import EquimeshError
 from equimesh._geometry import nearest_segment as nearest_segment
 from equimesh.mesh import edge_lengths
 from equimesh.surface.optimize import OBJECTIVES, Objective, Stage, UVProblem, objectives, optimize_uv
-from equimesh.surface.optimize.driver import _fold_over_barrier, _with_barrier
+from equimesh.surface.optimize.driver import _fold_over_barrier, _with_barriers
 from equimesh.surface.optimize.jacobian import signed_areas
 from equimesh.surface.optimize.objectives import bounded_stages, edge_length_terms, paper_stage
 from equimesh.surface.optimize.slide import along_polygon
 from equimesh.surface.optimize.solver import FACTORISATIONS
+from equimesh.surface.regularity import derivatives
 from equimesh.testing.surfaces import dome
 
 
@@ -60,7 +61,7 @@ def test_paper_objective_and_barrier_jacobians_match_finite_differences():
     obj = paper_stage(problem)
     x = problem.x0
     np.testing.assert_allclose(obj.jacobian(x).toarray(), finite_difference(obj.residuals, x), atol=1e-6)
-    barrier = _with_barrier(problem, obj, _fold_over_barrier(problem, mesh.triangles, 0.9), x)
+    barrier = _with_barriers(problem, obj, _fold_over_barrier(problem, mesh.triangles, 0.9), None, x)
     squeezed = x + 0.03 * np.random.default_rng(2).standard_normal(x.shape)  # some triangles below the floor
     assert np.any(barrier.residuals(squeezed)[len(obj.residuals(x)) :] > 0)
     np.testing.assert_allclose(
@@ -91,7 +92,7 @@ def test_sliding_nodes_jacobians_match_finite_differences():
     obj = paper_stage(problem)
     lengths, jacobian = edge_length_terms(problem, mesh.edges)
     np.testing.assert_allclose(jacobian(x)[1].toarray(), finite_difference(lengths, x), atol=1e-5 * lengths(x).max())
-    barrier = _with_barrier(problem, obj, _fold_over_barrier(problem, mesh.triangles, 0.9), x)
+    barrier = _with_barriers(problem, obj, _fold_over_barrier(problem, mesh.triangles, 0.9), None, x)
     squeezed = x + 0.03 * np.random.default_rng(2).standard_normal(x.shape)
     assert np.any(barrier.residuals(squeezed)[len(obj.residuals(x)) :] > 0)
     expected = finite_difference(barrier.residuals, squeezed)
@@ -200,7 +201,9 @@ def test_objective_table_is_the_seam(monkeypatch):
         return x, stage
 
     limits = dict.fromkeys(FACTORISATIONS, 100)
-    record = Objective("all", all_edges, "every member to l", slides=False, bounds_members=False, max_nodes=limits)
+    record = Objective(
+        "all", all_edges, "every member to l", slides=False, bounds_members=False, sound_joints=False, max_nodes=limits
+    )
     monkeypatch.setitem(OBJECTIVES, "all", record)
     mesh, r, opt = run(dome(), 8.0, objective="all")
     assert calls and opt.objective == "all"
@@ -227,7 +230,7 @@ def test_step_limit_is_a_trust_region_per_node(seed, radius):
     _, _, problem, slide = sliding_problem()
     direction = np.random.default_rng(seed).standard_normal(len(problem.x0)) * 0.05
     step = problem.step_limit(radius)(direction)
-    su, sv = objectives.derivatives(problem.surface, problem.uv)
+    su, sv = derivatives(problem.surface, problem.uv)
     tangent = np.column_stack([np.linalg.norm(su, axis=1), np.linalg.norm(sv, axis=1)])
 
     def moves(d):

@@ -35,9 +35,11 @@ import numpy as np
 import scipy.optimize
 import scipy.sparse
 
+from ...classes import DEFAULT_TOLERANCE
 from ...errors import EquimeshError, InvalidSurfaceError
-from ...tolerance import LM_INITIAL_DAMPING, PAPER_FTOL
+from ...tolerance import JOINT_ANGLE, LM_INITIAL_DAMPING, PAPER_FTOL
 from .jacobian import AreaBarrier, signed_areas
+from .joints import Joints, joint_bounds
 from .objectives import OBJECTIVES, Stage
 from .problem import UVProblem, free_nodes, parameter_box
 from .solver import NormalEquations, inner, least_squares
@@ -51,6 +53,8 @@ class UVOptimization:
     ----------
     uv : (N, 2) float array
         Optimised parameters; fixed nodes bit-identical to the start.
+    offsets : (N,) float array
+        Each node's offset along the surface's unit normal (zero without a surface tolerance).
     cost_before, cost_after : float
         ``|r|^2 / 2`` of the last objective (the one whose solve ended at ``uv``) at the start and at ``uv``.
     nfev, njev : int
@@ -61,6 +65,7 @@ class UVOptimization:
     """
 
     uv: np.ndarray
+    offsets: np.ndarray
     cost_before: float
     cost_after: float
     nfev: int
@@ -85,6 +90,9 @@ def optimize_uv(
     ftol=None,
     xtol=1e-10,
     gtol=1e-10,
+    surface_tolerance=0.0,
+    tolerance=DEFAULT_TOLERANCE,
+    catalogue=None,
     factorisation=None,
 ):
     """Optimise the (u, v) of the free nodes (Section 4, final step).
@@ -118,6 +126,13 @@ def optimize_uv(
     ftol, xtol, gtol
         Convergence tolerances of :func:`equimesh.surface.optimize.solver.least_squares`;
         ``ftol=None`` takes each stage's (:attr:`~equimesh.surface.optimize.objectives.Stage.ftol`).
+    surface_tolerance : float
+        ``D >= 0``: every moving node may leave the surface by at most ``D``
+        along its unit normal (:class:`~equimesh.surface.optimize.problem.UVProblem`).
+    tolerance : float
+        The fabrication tolerance of a length class, relative to ``length`` (the ``"classes"`` objective).
+    catalogue : (k,) float array or None
+        Stock lengths (absolute, in [l, 2l]) the ``"classes"`` objective cuts members from.
     factorisation : str, optional
         The factorisation of the normal equations, one of
         :data:`~equimesh.surface.optimize.solver.INSTALLED` (checked before any
@@ -145,15 +160,26 @@ def optimize_uv(
     slides = tuple(slides)
     free = free_nodes(len(uv), fixed, slides)
     problem = UVProblem(
-        surface, uv, np.asarray(edges, dtype=np.int64), np.asarray(edge_groups), float(length), free, slides
+        surface,
+        uv,
+        np.asarray(edges, dtype=np.int64),
+        np.asarray(edge_groups),
+        float(length),
+        free,
+        slides,
+        surface_tolerance=float(surface_tolerance),
+        tolerance=float(tolerance),
+        catalogue=None if catalogue is None else np.asarray(catalogue, dtype=float) / float(length),
     )
+    tri = None if triangles is None else np.asarray(triangles, dtype=np.int64).reshape(-1, 3)
+    if record.sound_joints and tri is not None:
+        problem = replace(problem, joints=Joints(problem, tri, joint_bounds(surface, uv, tri)))
     stages = record.stages(problem)
     stage = next(stages)
     x0 = problem.x0
     if len(x0) == 0:
         cost0 = _cost(stage, x0)
-        return UVOptimization(uv, cost0, cost0, 0, 0, True, "no free nodes", objective)
-    tri = None if triangles is None else np.asarray(triangles, dtype=np.int64).reshape(-1, 3)
+        return UVOptimization(uv, np.zeros(len(uv)), cost0, cost0, 0, 0, True, "no free nodes", objective)
     x, nfev, njev, damping = x0, 0, 0, LM_INITIAL_DAMPING
     barrier = None if tri is None or area_floor <= 0 else _fold_over_barrier(problem, tri, area_floor)
     while True:
@@ -173,16 +199,31 @@ def optimize_uv(
             f"use a smaller l, {getattr(surface, 'finer', 'a finer auxiliary grid')}, or optimize='paper' "
             "(which does not bound the members on the surface)"
         )
+    if not problem.sound(x):
+        raise InvalidSurfaceError(
+            f"optimisation ({objective}): no mesh with every triangle angle at least {JOINT_ANGLE:g} degrees found, "
+            f"{problem.joints.violation(x)}; use a smaller l, {getattr(surface, 'finer', 'a finer auxiliary grid')}, "
+            "or optimize='paper' (which does not bound the angles)"
+        )
     return UVOptimization(
-        problem.uv_of(x), _cost(stage, x0), _cost(stage, x), nfev, njev, solution.converged, solution.message, objective
+        problem.uv_of(x),
+        problem.offsets_of(x),
+        _cost(stage, x0),
+        _cost(stage, x),
+        nfev,
+        njev,
+        solution.converged,
+        solution.message,
+        objective,
     )
 
 
 def _solve(problem, stage, x, damping, triangles, barrier, normal_equations, ftol, xtol, gtol):
     """One stage solved from ``x`` with the fold-over guards; a stage with a hard constraint that ends outside it is
     solved on at ``PAPER_FTOL``.  The solution's ``iterations`` count every Jacobian evaluated."""
-    guard = _Guard(problem, triangles, stage.feasible, x)
-    solve = stage if barrier is None else _with_barrier(problem, stage, barrier, x)
+    joints = problem.joints if stage.joints else None
+    guard = _Guard(problem, triangles, (stage.feasible, None if joints is None else joints.sound), x)
+    solve = _with_barriers(problem, stage, barrier, joints, x)
     tol = stage.ftol if ftol is None else ftol
     box = problem.bounds if stage.hold is None else tuple(np.where(stage.hold, x, bound) for bound in problem.bounds)
     evaluations = iterations = 0
@@ -214,26 +255,26 @@ def _cost(obj, x):
 
 
 class _Guard:
-    """The solver's acceptance test: no fold-over in (u, v), and a reached hard constraint kept.
+    """The solver's acceptance test: no fold-over in (u, v), and every reached hard constraint kept.
 
     :func:`~equimesh.surface.optimize.solver.least_squares` calls it only on
     cost-reducing steps and takes the step exactly when it returns True, so
-    it tracks whether the current iterate is feasible.
+    it tracks which hard constraints (a stage's ``feasible``, the sound
+    joints) the current iterate meets; each one met stays met.
     """
 
-    def __init__(self, problem, triangles, feasible, x):
-        self.problem, self.triangles, self.feasible = problem, triangles, feasible
-        self.inside = feasible is not None and feasible(x)
+    def __init__(self, problem, triangles, constraints, x):
+        self.problem, self.triangles = problem, triangles
+        self.constraints = [constraint for constraint in constraints if constraint is not None]
+        self.inside = [constraint(x) for constraint in self.constraints]
         if triangles is not None:  # the triangles counter-clockwise at the start, which must stay so
             self.triangles = triangles[signed_areas(problem.uv, triangles) > 0]
 
     def __call__(self, x):
         if self.triangles is not None and np.any(signed_areas(self.problem.uv_of(x), self.triangles) <= 0):
             return False
-        if self.feasible is None:
-            return True
-        now = self.feasible(x)
-        if self.inside and not now:
+        now = [constraint(x) for constraint in self.constraints]
+        if any(was and not met for was, met in zip(self.inside, now)):
             return False
         self.inside = now
         return True
@@ -245,20 +286,29 @@ def _fold_over_barrier(problem, triangles, fraction):
     return AreaBarrier(triangles, problem.uv, fraction, 1.0, problem.moving, power=2)
 
 
-def _with_barrier(problem, obj, barrier, x):
-    """Append the fold-over ``barrier`` (:func:`_fold_over_barrier`) to ``obj``.
+def _with_barriers(problem, obj, barrier, joints, x):
+    """Append the fold-over ``barrier`` (:func:`_fold_over_barrier`, if any) and the joints' angle barrier
+    (:meth:`~equimesh.surface.optimize.joints.Joints.barrier`, if the problem has joints) to ``obj``.
 
-    Its weight ``w`` has ``w^2 / 2`` above the objective's cost at ``x``: a
-    folded triangle alone costs more than the start of the solve.
+    Their weight ``w`` has ``w^2 / 2`` above the objective's cost at ``x``: a
+    folded triangle, or an angle at its bound, alone costs more than the start of the solve.
     """
-    barrier = barrier.weighted(1.0 + 2.0 * np.sqrt(_cost(obj, x)))
+    weight = 1.0 + 2.0 * np.sqrt(_cost(obj, x))
+    terms = [(obj.residuals, obj.jacobian)]
+    if barrier is not None:
+        folds = barrier.weighted(weight)
+        terms.append(
+            (lambda y: folds.residuals(problem.uv_of(y)), lambda y: problem.chain(folds.jacobian(problem.uv_of(y)), y))
+        )
+    if joints is not None:
+        terms.append(joints.barrier(weight))
+    if len(terms) == 1:
+        return obj
 
     def residuals(y):
-        return np.concatenate([obj.residuals(y), barrier.residuals(problem.uv_of(y))])
+        return np.concatenate([r(y) for r, _ in terms])
 
     def jacobian(y):
-        return scipy.sparse.vstack(
-            [obj.jacobian(y), problem.chain(barrier.jacobian(problem.uv_of(y)), y)], format="csr"
-        )
+        return scipy.sparse.vstack([j(y) for _, j in terms], format="csr")
 
-    return Stage(residuals, jacobian, obj.description + " + fold-over barrier")
+    return Stage(residuals, jacobian, obj.description + " + barriers")

@@ -3,17 +3,21 @@
 A free node's two parameters are variables, kept in the chart's domain by
 bounds (:func:`parameter_box`); a node sliding along a closed polyline in
 (u, v) has one variable, its arc position (:mod:`~equimesh.surface.optimize.slide`),
-its Jacobian column the chain rule through ``d uv / d s``.
+its Jacobian column the chain rule through ``d uv / d s``.  With a surface
+tolerance ``D > 0`` every node that moves also has an offset ``h`` in
+``[-D, D]`` along the surface's unit normal: its point is
+``X^s(u, v) + h N(u, v)`` (docs/decisions.md, "Nodes off the surface within a tolerance").
 """
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 import scipy.optimize
 import scipy.sparse
 
 from ..charts.chart import domain_of
-from ..regularity import derivatives
+from ..regularity import derivatives, evaluate
 
 
 @dataclass(frozen=True)
@@ -35,6 +39,14 @@ class UVProblem:
     slides : tuple of :class:`~equimesh.surface.optimize.slide.Slide`
         Nodes that slide along a closed polyline by their arc position (their
         ``free`` entries False): one variable each, after the free parameters.
+    joints : :class:`~equimesh.surface.optimize.joints.Joints` or None
+        The angle bounds the optimisation keeps (objectives with sound joints), or None.
+    surface_tolerance : float
+        ``D``: how far a node may leave the surface along its normal (0: on the surface).
+    tolerance : float
+        The fabrication tolerance of a length class, relative to l (:mod:`equimesh.classes`).
+    catalogue : (k,) float array or None
+        Stock lengths in units of l, in [1, 2]: the only nominal lengths of the classes, or None.
     """
 
     surface: object
@@ -44,6 +56,14 @@ class UVProblem:
     length: float
     free: np.ndarray
     slides: tuple = ()
+    joints: object = None
+    surface_tolerance: float = 0.0
+    tolerance: float = 0.005
+    catalogue: np.ndarray = None
+
+    def sound(self, x):
+        """Every triangle angle at ``x`` at least its bound (:attr:`joints`; True without bounds)."""
+        return self.joints is None or self.joints.sound(x)
 
     @property
     def variables(self):
@@ -58,18 +78,33 @@ class UVProblem:
             moving[2 * slide.nodes] = moving[2 * slide.nodes + 1] = True
         return moving
 
+    @cached_property
+    def offset_nodes(self):
+        """The nodes with an offset along the normal: every node that moves, if :attr:`surface_tolerance` > 0."""
+        if self.surface_tolerance <= 0:
+            return np.zeros(0, dtype=np.int64)
+        sliding = [np.asarray(slide.nodes, dtype=np.int64) for slide in self.slides]
+        return np.union1d(np.flatnonzero(self.free), np.concatenate([np.zeros(0, dtype=np.int64), *sliding]))
+
     @property
     def sliding_variables(self):
         """Bool mask of the variables that move boundary nodes: the arc positions."""
         n = int(np.count_nonzero(self.free))
         return np.concatenate(
-            [np.zeros(2 * n, dtype=bool), *(np.ones(len(slide.nodes), dtype=bool) for slide in self.slides)]
+            [
+                np.zeros(2 * n, dtype=bool),
+                *(np.ones(len(slide.nodes), dtype=bool) for slide in self.slides),
+                np.zeros(len(self.offset_nodes), dtype=bool),
+            ]
         )
 
     @property
     def x0(self):
-        """The start as a variable vector: ``(u_0, v_0, u_1, v_1, ...)`` over free nodes, then the arc positions."""
-        return np.concatenate([self.uv.ravel()[self.variables], *(slide.s for slide in self.slides)])
+        """The start as a variable vector: ``(u_0, v_0, u_1, v_1, ...)`` over free nodes, then the arc positions,
+        then the offsets (zero)."""
+        return np.concatenate(
+            [self.uv.ravel()[self.variables], *(slide.s for slide in self.slides), np.zeros(len(self.offset_nodes))]
+        )
 
     def uv_of(self, x):
         """All nodes' (u, v) with the free ones taken from the variable vector ``x``."""
@@ -82,6 +117,54 @@ class UVProblem:
             full[slide.nodes] = slide.uv(x[n : n + len(slide.nodes)])
             n += len(slide.nodes)
         return full
+
+    def offsets_of(self, x):
+        """(N,) every node's offset along the normal (zero for the nodes without one)."""
+        offsets = np.zeros(len(self.uv))
+        k = len(self.offset_nodes)
+        if k:
+            offsets[self.offset_nodes] = x[len(x) - k :]
+        return offsets
+
+    def points_of(self, x):
+        """(N, 3) the nodes' points: ``X^s(u, v)``, plus ``h N(u, v)`` with a surface tolerance."""
+        return offset_points(self.surface, self.uv_of(x), self.offsets_of(x) if len(self.offset_nodes) else None)
+
+    def tangents(self, x):
+        """``(d p / du, d p / dv)`` of every node's point at ``x``, each (N, 3): ``X^s_u + h N_u`` and likewise in v.
+
+        ``N_u = (n_u - N (N . n_u)) / |n|`` for ``n = X^s_u x X^s_v``,
+        ``n_u = X^s_uu x X^s_v + X^s_u x X^s_uv``; a chart without
+        ``second_derivatives`` (a triangle mesh's, piecewise linear) has ``N_u = 0``.
+        """
+        uv = self.uv_of(x)
+        su, sv = derivatives(self.surface, uv)
+        if not len(self.offset_nodes) or not hasattr(self.surface, "second_derivatives"):
+            return su, sv
+        normal, size = unit_normals(self.surface, uv)
+        suu, suv, svv = (np.asarray(d, dtype=float).reshape(-1, 3) for d in self.surface.second_derivatives(*uv.T))
+        h = self.offsets_of(x)[:, None]
+        out = []
+        for tangent, dn in ((su, np.cross(suu, sv) + np.cross(su, suv)), (sv, np.cross(suv, sv) + np.cross(su, svv))):
+            dn = (dn - normal * np.sum(normal * dn, axis=1, keepdims=True)) / size[:, None]
+            out.append(tangent + h * dn)
+        return tuple(out)
+
+    def offset_columns(self, elements, grads, x):
+        """A Jacobian over the variables whose only entries are the offsets' columns: ``grads[j, c] . N`` for the
+        node ``elements[j, c]`` (``grads`` (E, k, 3): the derivatives of residual j by the points of its nodes)."""
+        elements = np.asarray(elements, dtype=np.int64)
+        n, k = len(x), len(self.offset_nodes)
+        if not k:
+            return scipy.sparse.csr_matrix((len(elements), n))
+        column = np.full(len(self.uv), -1, dtype=np.int64)
+        column[self.offset_nodes] = np.arange(n - k, n)
+        normal = unit_normals(self.surface, self.uv_of(x))[0]
+        values = np.einsum("jcd,jcd->jc", grads, normal[elements])
+        cols = column[elements]
+        keep = cols >= 0
+        rows = np.repeat(np.arange(len(elements)), elements.shape[1]).reshape(elements.shape)
+        return scipy.sparse.csr_matrix((values[keep], (rows[keep], cols[keep])), shape=(len(elements), n))
 
     def chain(self, jacobian, x):
         """``jacobian`` over the :attr:`moving` entries as one over the variables ``x`` (chain rule), on its structure.
@@ -97,8 +180,11 @@ class UVProblem:
         analysed anew at nearly every iteration
         (docs/decisions.md, "One pattern for the normal matrix, three factorisations").
         """
+        offsets = len(self.offset_nodes)  # their columns come last, zero here
         if not self.slides:
-            return jacobian
+            if not offsets:
+                return jacobian
+            return scipy.sparse.hstack([jacobian, scipy.sparse.csr_matrix((jacobian.shape[0], offsets))], format="csr")
         moving, variables = self.moving, self.variables
         n = int(variables.sum())
         entry = np.cumsum(moving) - 1  # column of each moving entry in ``jacobian``
@@ -114,7 +200,7 @@ class UVProblem:
         jacobian = jacobian.tocsr()
         return scipy.sparse.csr_matrix(
             (jacobian.data * factor[jacobian.indices], column[jacobian.indices], jacobian.indptr),
-            shape=(jacobian.shape[0], n),
+            shape=(jacobian.shape[0], n + offsets),
         )
 
     def step_limit(self, radius):
@@ -129,8 +215,17 @@ class UVProblem:
         su, sv = derivatives(self.surface, self.uv)
         tangent = np.column_stack([np.linalg.norm(su, axis=1), np.linalg.norm(sv, axis=1)])
         variables = self.variables
-        node = np.concatenate([np.repeat(np.arange(len(self.uv)), 2)[variables], *(s.nodes for s in self.slides)])
-        scale = np.concatenate([tangent.ravel()[variables], *(tangent[s.nodes].max(axis=1) for s in self.slides)])
+        offsets = self.offset_nodes
+        node = np.concatenate(
+            [np.repeat(np.arange(len(self.uv)), 2)[variables], *(s.nodes for s in self.slides), offsets]
+        )
+        scale = np.concatenate(
+            [
+                tangent.ravel()[variables],
+                *(tangent[s.nodes].max(axis=1) for s in self.slides),
+                np.ones(len(offsets)),
+            ]
+        )
 
         def limit(direction):
             move = np.sqrt(np.bincount(node, (scale * direction) ** 2, len(self.uv)))
@@ -146,10 +241,28 @@ class UVProblem:
         """``(lower, upper)`` of the variables: the parameter domain, and each sliding node's range of arc positions."""
         lower, upper = parameter_box(self.surface)
         variables = self.variables
+        d = np.full(len(self.offset_nodes), float(self.surface_tolerance))
         return (
-            np.concatenate([np.tile(lower, len(self.uv))[variables], *(slide.lower for slide in self.slides)]),
-            np.concatenate([np.tile(upper, len(self.uv))[variables], *(slide.upper for slide in self.slides)]),
+            np.concatenate([np.tile(lower, len(self.uv))[variables], *(slide.lower for slide in self.slides), -d]),
+            np.concatenate([np.tile(upper, len(self.uv))[variables], *(slide.upper for slide in self.slides), d]),
         )
+
+
+def offset_points(surface, uv, offsets=None):
+    """(N, 3) ``X^s(u, v) + h N(u, v)`` at the rows of ``uv`` with the offsets ``h`` along the unit normal (none:
+    the surface's points)."""
+    points = evaluate(surface, uv)
+    if offsets is None:
+        return points
+    return points + np.asarray(offsets, dtype=float)[:, None] * unit_normals(surface, uv)[0]
+
+
+def unit_normals(surface, uv):
+    """``(N, |n|)`` at the rows of ``uv``: the unit normals ``n / |n|`` of ``n = X^s_u x X^s_v`` and their lengths."""
+    su, sv = derivatives(surface, uv)
+    n = np.cross(su, sv)
+    size = np.linalg.norm(n, axis=1)
+    return n / size[:, None], size
 
 
 def parameter_box(surface):
