@@ -13,7 +13,7 @@ from equimesh._geometry import orient
 from equimesh.mesh import edge_lengths
 from equimesh.surface.auxiliary import auxiliary_grid
 from equimesh.surface.charts.bezier import BezierSurface
-from equimesh.surface.flatten import _Preconditioner, energy_terms, flatten
+from equimesh.surface.flatten import energy_terms, flatten
 from equimesh.surface.optimize.jacobian import AreaBarrier
 from equimesh.testing.surfaces import dome
 
@@ -107,21 +107,6 @@ def test_analytic_jacobian_matches_finite_differences(seed):
         d[k] = h
         fd[:, col] = (residuals(p + d.reshape(p.shape)) - residuals(p - d.reshape(p.shape))) / (2 * h)
     np.testing.assert_allclose(jac, fd, atol=1e-8)
-
-
-def test_preconditioner_is_a_right_inverse_factor():
-    """``T = R^{-1}`` with ``R^T R = J0^T J0``: ``J0 T`` has orthonormal columns."""
-    g, x, f = run(dome(), 6, 5)
-    free = np.ones(2 * len(x), dtype=bool)
-    free[[2 * f.gauge[0], 2 * f.gauge[0] + 1, 2 * f.gauge[1] + 1]] = False
-    _, jacobian = energy_terms(f.edges, f.surface_lengths, len(x), free)
-    j0 = jacobian(f.points)
-    pre = _Preconditioner(j0)
-    t = np.column_stack([pre.apply(c) for c in np.eye(j0.shape[1])])
-    jt = j0 @ t
-    np.testing.assert_allclose(jt.T @ jt, np.eye(j0.shape[1]), atol=1e-9)
-    tt = np.column_stack([pre.apply_transpose(c) for c in np.eye(j0.shape[1])])
-    np.testing.assert_allclose(tt, t.T, atol=1e-12)
 
 
 def test_folded_start_is_detected_and_recovered():
