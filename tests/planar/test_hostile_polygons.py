@@ -41,6 +41,13 @@ EXAMPLES = {"thorough": 2000}.get(os.environ.get("EQUIMESH_HYPOTHESIS_PROFILE", 
 
 fuzz = settings(max_examples=EXAMPLES)
 
+#: The conditions of the fuzz tests: a generated polygon is meshed (not refused).  The share of meshed inputs
+#: each test asks for is a lower bound the code meets with room on both hypothesis profiles: refusing everything
+#: fails.
+PROBLEM2_MESHED = "Problem 2 meshed a hostile polygon"
+PROBLEM1_MESHED = "Problem 1 meshed a convex hull"
+STAR_MESHED = "Problem 2 meshed a reported star"
+
 
 @st.composite
 def stars(draw):
@@ -104,7 +111,14 @@ def _mesh_or_refusal(function, vertices, l):
         return None
 
 
-@pytest.mark.parametrize("family", [stars(), necks(), spikes()], ids=["stars", "necks", "spikes"])
+@pytest.mark.parametrize(
+    "family",
+    [
+        pytest.param(stars(), marks=pytest.mark.exercised(PROBLEM2_MESHED, share=0.5), id="stars"),
+        pytest.param(necks(), marks=pytest.mark.exercised(PROBLEM2_MESHED, share=0.01), id="necks"),
+        pytest.param(spikes(), marks=pytest.mark.exercised(PROBLEM2_MESHED, share=0.3), id="spikes"),
+    ],
+)
 def test_problem2_accepts_only_what_it_can_mesh(family):
     """Every accepted hostile polygon gives a mesh with every Problem 2 guarantee; the rest are refused cleanly."""
 
@@ -113,7 +127,7 @@ def test_problem2_accepts_only_what_it_can_mesh(family):
     def check(problem):
         vertices, l = problem
         mesh = _mesh_or_refusal(equimesh.uniform_triangulation, vertices, l)
-        if exercised("fuzz: Problem 2 accepted a hostile polygon", mesh is not None):
+        if exercised(PROBLEM2_MESHED, mesh is not None):
             inv2.assert_problem2_invariants(mesh, vertices, l)
 
     check()
@@ -129,13 +143,14 @@ def convex_hulls(draw):
     return radius * np.column_stack([np.cos(theta), np.sin(theta)])
 
 
+@pytest.mark.exercised(PROBLEM1_MESHED, share=0.05)
 @fuzz
 @given(placed(convex_hulls()))
 def test_problem1_accepts_only_what_it_can_mesh(problem):
     """Problem 1 on convex polygons that may break its preconditions: a valid mesh or a clean refusal."""
     vertices, l = problem
     mesh = _mesh_or_refusal(equimesh.increment, vertices, l)
-    if exercised("fuzz: Problem 1 accepted a convex hull", mesh is not None):
+    if exercised(PROBLEM1_MESHED, mesh is not None):
         inv1.assert_problem1_invariants(mesh, vertices, l)
 
 
@@ -172,15 +187,13 @@ def reported_stars(draw):
     return np.column_stack([radii * np.cos(angles), radii * np.sin(angles)])
 
 
+@pytest.mark.exercised(STAR_MESHED, share=0.5)
 @given(reported_stars())
 def test_random_stars_are_meshed_within_theorem3_or_refused(vertices):
     """Every accepted star polygon gives edges in [l, 2l]; every refused one a one-line error of ours."""
-    try:
-        mesh = equimesh.uniform_triangulation(vertices, 1.0)
-    except EquimeshError as error:
-        assert "\n" not in str(error)
-        return
-    check_edge_lengths(mesh, 1.0)
+    mesh = _mesh_or_refusal(equimesh.uniform_triangulation, vertices, 1.0)
+    if exercised(STAR_MESHED, mesh is not None):
+        check_edge_lengths(mesh, 1.0)
 
 
 #: Polygons with a corner that rounds to (nearly) 0 degrees, and the lattice placement they were meshed at.
@@ -220,34 +233,30 @@ def test_corners_that_round_to_degenerate_are_refused(case, engine):
 
 @st.composite
 def near_zero_corners(draw):
-    """A triangle or a quadrilateral with a corner of 1e-17 to 1e-4 degrees at the origin, sides 3.5 to 11 (l = 1).
+    """A triangle or a quadrilateral with a corner of 1e-17 to 1e-4 degrees at the origin, whole sides 3 to 12 (l = 1).
 
-    The triangle's far side is 1.5 to 3 beyond its bottom side, the quadrilateral's tip 1.5 or more short of it:
-    shapes that Problem 2 meshes at corners of 1e-4 degrees and refuses at the sharper ones.
+    The triangle's far side is 1 to 3 longer than its bottom side, the quadrilateral's tip 2 or more short of it:
+    whole lengths, on which the staggering fits, so that Problem 2 meshes most corners of 1e-4 degrees.
     """
-    angle = math.radians(10.0 ** (-draw(st.integers(40, 170)) / 10.0))
-    far = draw(st.floats(5.0, 8.0))
+    angle = math.radians(10.0 ** -draw(st.sampled_from((4.0, 4.5, 5.0, 5.5, 6.5, 8.0, 10.0, 12.0, 14.0, 17.0))))
+    far = draw(st.integers(5, 9))
     if draw(st.booleans()):
-        side = far + draw(st.floats(1.5, 3.0))
+        side = far + draw(st.integers(1, 3))
         corners = [[0.0, 0.0], [far, 0.0]]
     else:
-        side = draw(st.floats(3.5, far - 1.5))
-        corners = [[0.0, 0.0], [far, 0.0], [far, draw(st.floats(2.5, 4.0))]]
-    return np.array([*corners, [side * math.cos(angle), side * math.sin(angle)]])
+        side = draw(st.integers(3, far - 2))
+        corners = [[0.0, 0.0], [far, 0.0], [far, draw(st.integers(2, 4))]]
+    return np.array([*corners, [side * math.cos(angle), side * math.sin(angle)]], dtype=float)
 
 
+@pytest.mark.exercised("fuzz: Problem 2 accepted a near-zero corner", share=0.2)
 @fuzz
-@given(placed(near_zero_corners()))
-def test_near_zero_corners_are_refused_or_meshed_without_a_degenerate_triangle(problem):
-    """Refused in one line (always below MIN_CORNER_ANGLE), or a mesh with every guarantee and the quality floor.
-
-    Placed at random, these are nearly all refused; the accepted side is
-    :func:`test_a_corner_of_1e_5_degrees_is_meshed_without_a_degenerate_triangle`.
-    """
-    vertices, l = problem
-    mesh = _mesh_or_refusal(equimesh.uniform_triangulation, vertices, l)
-    if mesh is not None:
-        inv2.assert_problem2_invariants(mesh, vertices, l)
+@given(near_zero_corners())
+def test_near_zero_corners_are_refused_or_meshed_without_a_degenerate_triangle(vertices):
+    """Refused in one line (always below MIN_CORNER_ANGLE), or a mesh with every guarantee and the quality floor."""
+    mesh = _mesh_or_refusal(equimesh.uniform_triangulation, vertices, 1.0)
+    if exercised("fuzz: Problem 2 accepted a near-zero corner", mesh is not None):
+        inv2.assert_problem2_invariants(mesh, vertices, 1.0)
 
 
 @pytest.mark.parametrize("degrees", [1e-4, 1e-5])

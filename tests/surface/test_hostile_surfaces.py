@@ -1,7 +1,8 @@
-"""Hostile surfaces through the whole pipeline: every one meshed within the pipeline's invariants or refused in one line."""
+"""Hostile surfaces through the whole pipeline: each meshed within the pipeline's invariants or refused in one line."""
 
 import numpy as np
 import pytest
+from conftest import exercised
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from invariants import check_edge_lengths
@@ -12,6 +13,10 @@ from triangle_meshes import assert_on_input_surface, closed_tube, spherical_cap
 import equimesh
 from equimesh.surface.charts.bezier import BezierSurface
 from equimesh.surface.optimize.jacobian import signed_areas
+
+#: The condition of the fuzz test: the input is accepted.
+MESHED = "a jittered net is meshed"
+STEEP_MESHED = "a steep net is meshed"
 
 
 @st.composite
@@ -26,6 +31,7 @@ def jittered_nets(draw):
     return BezierSurface(net)
 
 
+@pytest.mark.exercised(MESHED, share=0.5)
 @settings(max_examples=8, deadline=None)
 @given(jittered_nets())
 def test_jittered_nets_are_meshed_correctly_or_refused_cleanly(surface):
@@ -33,7 +39,9 @@ def test_jittered_nets_are_meshed_correctly_or_refused_cleanly(surface):
         mesh = equimesh.mesh_surface(surface, 6.0, grid=(8, 8), optimize="none")
     except equimesh.EquimeshError as exc:
         assert "\n" not in str(exc) and "edge (" not in str(exc)
+        exercised(MESHED, False)
         return
+    exercised(MESHED, True)
     assert_valid_surface_mesh(mesh, surface)
     check_edge_lengths(mesh.stages.plane, 6.0)
 
@@ -111,9 +119,10 @@ def steep_nets(draw):
     return BezierSurface(net)
 
 
+@pytest.mark.exercised(STEEP_MESHED, share=0.1)
 @settings(max_examples=6, deadline=None)
 @given(steep_nets(), st.sampled_from([2.5, 3.0]))
 def test_steep_random_nets_are_meshed_or_refused_in_one_line(surface, l):
     mesh = _mesh_or_refusal(surface, l, optimize="none")
-    if mesh is not None:
+    if exercised(STEEP_MESHED, mesh is not None):
         assert_valid_surface_mesh(mesh, surface)

@@ -332,7 +332,7 @@ def _metric_start(uv, edges, ls):
     uv = np.asarray(uv, dtype=float)
     du = uv[edges[:, 1]] - uv[edges[:, 0]]
     a = np.column_stack([du[:, 0] ** 2, 2.0 * du[:, 0] * du[:, 1], du[:, 1] ** 2]) / (ls**2)[:, None]
-    # the normal equations, summed in one order (docs/decisions.md, "Inner products that do not depend on the BLAS")
+    # the normal equations, summed in one order (docs/decisions.md, "Step 2 by the solver of the final optimisation")
     try:
         m11, m12, m22 = np.linalg.solve(np.sum(a[:, :, None] * a[:, None, :], axis=0), np.sum(a, axis=0))
         r = np.linalg.cholesky(np.array([[m11, m12], [m12, m22]])).T

@@ -510,8 +510,8 @@ def _check_remapped(uv, plane):
     image bends: where it bends within a few l, Problem 2 joins three nodes of
     one straight stretch in a triangle (an ear of the strip), flat in (u, v).
     Either is the surface's shape at this l and grid, not a fault of a stage,
-    and is refused naming where (docs/decisions.md, "Refusals in the
-    surface's terms").
+    and is refused naming where (docs/decisions.md, "A remapped triangle that
+    folds is refused").
     """
     triangles = plane.triangles
     bad = ~(signed_areas(uv, triangles) > 0)

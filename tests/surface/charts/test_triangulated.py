@@ -146,7 +146,8 @@ def test_infeasible_mesh_refusal_suggests_what_refines_a_mesh():
     l=st.floats(1.2, 1.8),
 )
 def test_generated_vaults_with_an_opening(rise, corner, size, l):
-    """Vaults of any rise with an opening anywhere at least 3 cells (6) from the border, sides at least 2 > l: every invariant."""
+    """Vaults of any rise with an opening anywhere at least 3 cells (6) from the border, sides at least 2 > l: every
+    invariant."""
     (i, j), (a, b) = corner, size
     v, t = roof_mesh(24.0, 16.0, (12, 8), rise, opening=(i, i + a, j, j + b))
     surface = TriangulatedSurface(v, t)
@@ -222,7 +223,8 @@ def test_example_roof_with_a_skylight():
         (
             (4, 5, 3, 4),
             2.5,
-            r"hole 0 .* has corners at \(8, 8, 2\.78163\) and \(10, 8, 2\.92478\) only 1\.95073 apart .* use l <= 1\.95$",
+            r"hole 0 .* has corners at \(8, 8, 2\.78163\) and \(10, 8, 2\.92478\) only 1\.95073 apart .* use l <= "
+            r"1\.95$",
         ),
         ((3, 4, 4, 5), 2.0, r"hole 0 .* has corners at .* only 1\.99.* apart .* closer than l = 2; use l <= 1\.99"),
         (
@@ -233,7 +235,8 @@ def test_example_roof_with_a_skylight():
     ],
 )
 def test_openings_and_boundaries_too_small_for_l(opening, l, match):
-    """Problem 2's refusals and the rings' own, in one line, the opening located in space; the suggested l is accepted."""
+    """Problem 2's refusals and the rings' own, in one line, the opening located in space; the suggested l is
+    accepted."""
     surface = TriangulatedSurface(*roof_mesh(20.0, 14.0, (10, 7), 3.0, opening=opening))
     with pytest.raises(InvalidSurfaceError, match=match) as info:
         mesh_surface(surface, l, optimize="none")
@@ -294,3 +297,12 @@ def test_bad_meshes_are_refused_in_one_line(case):
     with pytest.raises(InvalidSurfaceError, match=match) as info:
         TriangulatedSurface(v, t)
     assert_one_line(str(info.value))
+
+
+def test_an_unsigned_index_out_of_range_is_shown_as_given():
+    """A uint64 index of 2**64 - 1 is named as such, not as the -1 it wraps to in int64."""
+    square = [[0.0, 0, 0], [1, 0, 0], [1, 1, 0]]
+    with pytest.raises(
+        InvalidSurfaceError, match=r"refers to a vertex outside 0 \.\. 2: \[0, 1, 18446744073709551615\]"
+    ):
+        TriangulatedSurface(square, np.array([[0, 1, 2**64 - 1]], dtype=np.uint64))
