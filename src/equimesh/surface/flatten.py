@@ -123,9 +123,9 @@ def flatten(
     x0=None,
     edges=None,
     area_floor=0.1,
-    ftol=1e-10,
-    xtol=1e-10,
-    gtol=1e-12,
+    ftol=1e-15,
+    xtol=1e-15,
+    gtol=1e-14,
     max_iterations=FLATTEN_ITERATIONS,
 ):
     """Map a triangulated surface patch to the plane minimising E of eq. (1).
@@ -332,10 +332,15 @@ def _metric_start(uv, edges, ls):
     uv = np.asarray(uv, dtype=float)
     du = uv[edges[:, 1]] - uv[edges[:, 0]]
     a = np.column_stack([du[:, 0] ** 2, 2.0 * du[:, 0] * du[:, 1], du[:, 1] ** 2]) / (ls**2)[:, None]
-    # the normal equations, summed in one order (docs/decisions.md, "Step 2 by the solver of the final optimisation")
+    # The normal equations, summed in one order (docs/decisions.md, "Step 2 by the solver of the final
+    # optimisation"), of the rows scaled by a power of two c into [1, 2) at most: M = M(a / c) / c.
+    c = power_of_two_scale(float(np.max(np.abs(a))))
+    a = a * c
     try:
-        m11, m12, m22 = np.linalg.solve(np.sum(a[:, :, None] * a[:, None, :], axis=0), np.sum(a, axis=0))
+        m11, m12, m22 = np.linalg.solve(np.sum(a[:, :, None] * a[:, None, :], axis=0), np.sum(a, axis=0)) * c
         r = np.linalg.cholesky(np.array([[m11, m12], [m12, m22]])).T
+        if not np.all(np.isfinite(r)):
+            raise np.linalg.LinAlgError("metric out of range")
     except np.linalg.LinAlgError:
         r = np.median(ls / np.linalg.norm(du, axis=1)) * np.eye(2)
     return _rows_times(uv, r)

@@ -31,7 +31,7 @@ import numpy as np
 
 from .._checks import check_length
 from .._geometry import power_of_two_scale, signed_area
-from ..errors import EquimeshError, InternalError, InvalidPolygonError, InvalidSurfaceError, at, number
+from ..errors import EquimeshError, InternalError, InvalidPolygonError, InvalidSurfaceError, number
 from ..mesh import G1, edge_lengths
 from ..planar.insertion import DEFAULT_ENGINE, check_engine
 from ..planar.limits import check_max_nodes, check_size, node_estimate
@@ -50,7 +50,7 @@ from .optimize import OBJECTIVES, optimize_uv
 from .optimize.jacobian import signed_areas
 from .outline import resample_outline
 from .regularity import check_regular, evaluate
-from .remap import remap
+from .remap import check_remapped, remap
 
 #: Default limit on the node count of a surface mesh without the final
 #: optimisation (``optimize="none"``); :func:`mesh_surface` refuses, before any
@@ -259,7 +259,7 @@ def mesh_surface(
     clock("planar triangulation (Problem 2)")
 
     mapped_uv, mapped_points = steps.place(plane)
-    _check_remapped(mapped_uv, plane)
+    check_remapped(mapped_uv, plane)
     clock("remapping (eqs. 2-3)")
 
     result = None
@@ -447,16 +447,8 @@ def _check_size(surface_points, triangles, l, max_nodes):
 
 
 def _check_plane_size(steps, l, max_nodes):
-    """The estimate of :func:`_check_size` again, on the flattened outline Problem 2 will triangulate.
-
-    Eq. (1) keeps lengths only on average: a strongly curved surface (a
-    closed-ended tube, a nearly closed sphere) can flatten to many times its
-    own area, and Problem 2 places its nodes on the plane.  The outline's
-    area (the outer ring minus the openings, in units of its extent like
-    the surface's) is estimated at the same lattice density before any
-    planar work, and the refusal says how much the flattening stretched the
-    surface (docs/decisions.md, "Size limits of mesh_surface").
-    """
+    """:func:`_check_size` again on the flattened outline (minus openings), which eq. (1) can make many times the
+    surface's area (docs/decisions.md, "Size limits of mesh_surface"); the refusal says how much."""
     if max_nodes is None:
         return
     rings = [np.asarray(ring, dtype=float) for ring in (steps.outline.vertices, *steps.holes)]
@@ -464,14 +456,10 @@ def _check_plane_size(steps, l, max_nodes):
     area = abs(signed_area(rings[0] * scale)) - sum(abs(signed_area(ring * scale)) for ring in rings[1:])
     estimate = _estimate(area, scale, l)
     if not estimate <= max_nodes:
-        plane = area / scale / scale
-        surface, surface_scale = _surface_area(steps.points, steps.grid.triangles)
+        plane, (surface, surface_scale) = area / scale / scale, _surface_area(steps.points, steps.grid.triangles)
         surface = surface / surface_scale / surface_scale
-        what = (
-            f"the flattened surface (area {number(plane)}, {number(plane / surface, 3)} times the surface's "
-            f"{number(surface)}: eq. (1) stretches it that much)"
-        )
-        check_size(what, estimate, max_nodes, l)
+        what = f"the flattened surface (area {number(plane)}, {number(plane / surface, 3)} times the surface's "
+        check_size(f"{what}{number(surface)}: eq. (1) stretches it that much)", estimate, max_nodes, l)
 
 
 def _surface_area(points, triangles):
@@ -495,39 +483,6 @@ def _check_members(points, edges, l):
         raise InternalError(
             f"the bounded optimisation returned {bad.size} of {len(edges)} members outside [l, 2l] "
             f"(lengths from {number(ratio.min(), 10)} l to {number(ratio.max(), 10)} l); please report this surface"
-        )
-
-
-def _check_remapped(uv, plane):
-    """Refuse a plane triangle that eqs. (2)-(3) map to a flat or inverted triangle in (u, v).
-
-    Eqs. (2)-(3) map each node through the flattening's piecewise-linear
-    inverse, which keeps every auxiliary triangle's orientation, but a mesh
-    triangle spans several auxiliary ones: where the flattening's distortion
-    turns within about l, its straight image in (u, v) can fold.  Boundary
-    nodes are remapped onto the boundary, which is straight in (u, v) along a
-    chart's side (and along each edge of a mesh's loop) while its flattened
-    image bends: where it bends within a few l, Problem 2 joins three nodes of
-    one straight stretch in a triangle (an ear of the strip), flat in (u, v).
-    Either is the surface's shape at this l and grid, not a fault of a stage,
-    and is refused naming where (docs/decisions.md, "A remapped triangle that
-    folds is refused").
-    """
-    triangles = plane.triangles
-    bad = ~(signed_areas(uv, triangles) > 0)
-    ears = np.flatnonzero(bad & np.all(triangles < plane.n_boundary, axis=1))
-    if ears.size:
-        raise InvalidSurfaceError(
-            f"the flattened boundary bends so sharply near {at(uv[triangles[ears[0]]].mean(axis=0))} that Problem 2 "
-            f"joins three boundary nodes there in a triangle ({ears.size} such in all), flat in (u, v), where the "
-            "boundary is straight; use a finer auxiliary grid or another l"
-        )
-    bad = np.flatnonzero(bad)
-    if bad.size:
-        raise InvalidSurfaceError(
-            f"mapping the plane mesh back onto the surface (eqs. 2-3) folds {bad.size} of {len(triangles)} triangles, "
-            f"first near {at(uv[triangles[bad[0]]].mean(axis=0))}: the flattening's distortion turns there within a "
-            "member's length; use a smaller l or a finer auxiliary grid"
         )
 
 
