@@ -49,7 +49,9 @@ def test_tubes_and_caps_are_meshed_or_refused_in_one_line(surface, l, tmp_path, 
 
 
 def test_a_tube_the_flattening_stretches_is_refused_on_its_flattened_area(tmp_path, capsys):
-    code, err = mesh(capsys, tmp_path, write_obj(tmp_path / "tube.obj", closed_tube(1.0, 16.0)), "-l", 0.25)
+    code, err = mesh(
+        capsys, tmp_path, write_obj(tmp_path / "tube.obj", closed_tube(1.0, 16.0)), "-l", 0.25, "--max-nodes", 6000
+    )
     assert code == 2 and "flattened surface" in err
 
 

@@ -428,8 +428,10 @@ def _grid_pair(grid):
 
 def _node_limit(max_nodes, optimize):
     """The node limit: a positive int, None (no limit) or "default" (:data:`UNOPTIMIZED_MAX_NODES` or the
-    objective's)."""
-    return check_max_nodes(max_nodes, UNOPTIMIZED_MAX_NODES if optimize == "none" else OBJECTIVES[optimize].max_nodes)
+    objective's with the factorisation in use)."""
+    return check_max_nodes(
+        max_nodes, UNOPTIMIZED_MAX_NODES if optimize == "none" else OBJECTIVES[optimize].node_limit()
+    )
 
 
 def _check_size(surface_points, triangles, l, max_nodes):
