@@ -31,6 +31,18 @@ REL_TOL = 1e-9
 SLIVER_GAP = 1e-3
 
 
+#: Beyond the paper (docs/decisions.md, "A triangle-quality floor"): the
+#: smallest area of an output triangle, relative to ``l^2``.  In the local
+#: frame (l in [1, 2), coordinates below 2^17) a triangle's area is computed to
+#: about 2^-35 l^2 = 3e-11 l^2; a triangle below 300 times that is degenerate in
+#: floating point, e.g. sides (l, l, 2l) from a corner that rounds to 0 degrees.
+#: Every mesh is checked against it (:func:`equimesh.planar.guarantees.verify_planar`),
+#: and a polygon corner too sharp for any triangle at it to reach it is refused
+#: (:func:`equimesh.planar.polygon.as_polygon`; tests: tests/planar/test_guarantees.py,
+#: tests/planar/test_polygon.py).
+MIN_TRIANGLE_AREA = 1e-8
+
+
 def at_least(value, l):
     """``value >= l`` up to :data:`REL_TOL` (vectorised)."""
     return value >= (1.0 - REL_TOL) * l
@@ -61,6 +73,25 @@ MAX_EXTENT = 2.0**16
 #: about 2e-4 degrees of parallel) is singular and refused
 #: (:mod:`equimesh.surface.regularity`; test: tests/surface/test_regularity.py).
 SINGULAR_SIN = 1e-6
+
+#: Beyond the paper (docs/decisions.md, "Step 2 by the solver of the final
+#: optimisation"): the auxiliary edges' lengths on the surface may differ by at
+#: most this factor.  Eq. (1) is relative to each edge, so an edge ``ratio``
+#: times shorter weighs ``ratio^2`` times more in the normal equations; past
+#: ``2^26`` (``ratio^2 > 1 / eps = 2^52``) the longer edges are lost in the
+#: rounding of the shorter ones (:func:`equimesh.surface.flatten.check_edge_lengths`;
+#: test: tests/surface/test_flatten.py).
+MAX_EDGE_RATIO = 2.0**26
+
+#: Beyond the paper (docs/decisions.md, "Regular surfaces only"): the width of
+#: each parameter range of a chart.  The mesh is remapped and optimised in
+#: (u, v), and not every tolerance there is relative to the range: within
+#: these bounds a chart gives the same mesh as on [0, 1] (measured: a range of
+#: 1e-10 inverts a remapped triangle, one of 1e-15 folds the flattening's start)
+#: (:func:`equimesh.surface.regularity.check_regular`; test:
+#: tests/surface/test_hostile_surfaces.py).
+MIN_PARAMETER_RANGE = 1e-6
+MAX_PARAMETER_RANGE = 1e6
 
 #: Beyond the paper (docs/decisions.md, "Regular surfaces only"): a surface whose
 #: normal turns by this many degrees or more between an auxiliary triangle's

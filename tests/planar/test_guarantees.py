@@ -56,6 +56,16 @@ def test_verify_planar_fires_on_a_corrupted_mesh(corrupt, message):
         verify_planar(_with(mesh, **corrupt(mesh)))
 
 
+def test_verify_planar_fires_on_a_degenerate_triangle():
+    """A counter-clockwise triangle of sides (l, l, 2l) up to 1e-9 l is below the quality floor: InternalError."""
+    mesh = _mesh()
+    points = mesh.local_points.copy()
+    lp = mesh.length * mesh.frame.scale
+    points[:3] = [[0.0, 0.0], [2.0 * lp, 0.0], [lp, 1e-9 * lp]]
+    with pytest.raises(InternalError, match=r"triangle 0 \(0, 1, 2\) has area .* below the floor 1e-08 l\^2"):
+        verify_planar(_with(mesh, local_points=points, triangles=np.array([[0, 1, 2]])))
+
+
 @pytest.mark.parametrize("verb", [equimesh.increment, equimesh.uniform_triangulation])
 def test_a_broken_engine_is_never_returned(verb, monkeypatch):
     """An engine that moves an inserted point makes the verb raise InternalError instead of returning."""

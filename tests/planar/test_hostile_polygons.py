@@ -194,3 +194,78 @@ def test_random_stars_are_meshed_within_theorem3_or_refused(vertices):
     mesh = _mesh_or_refusal(equimesh.uniform_triangulation, vertices, 1.0)
     if exercised(STAR_MESHED, mesh is not None):
         check_edge_lengths(mesh, 1.0)
+
+
+#: Polygons with a corner that rounds to (nearly) 0 degrees, and the lattice placement they were meshed at.
+NEAR_ZERO_CORNERS = {
+    "corner rounding to exactly 0 degrees": (
+        [
+            [-4.752209060842619, -5.879333958263281],
+            [-8.146644104301632, -11.758667916526562],
+            [-6.109983078226224, -8.231067541568594],
+            [-2.0366610260754086, -5.879333958263281],
+        ],
+        0.5,
+        {},
+    ),
+    "corner of 2.5e-11 degrees": ([[-1.0, 3**0.5], [1e-12, 0.0], [0.5, 0.3], [1.0, -(3**0.5)]], 0.2, {}),
+    "vertex within 2e-16 of the line of its neighbours": (
+        [
+            [-2.1341976277594195, 1.2321795748907614],
+            [-2.220446049250313e-16, -2.4643591497815227],
+            [0.7113992092531395, -2.0536326248179355],
+            [2.134197627759419, -6.160897874453807],
+        ],
+        0.4742661395020932,
+        {"angle": 0.0, "offset": (0.0, 0.0)},
+    ),
+}
+
+
+@pytest.mark.parametrize("engine", ["fast", "reference"])
+@pytest.mark.parametrize("case", list(NEAR_ZERO_CORNERS.values()), ids=list(NEAR_ZERO_CORNERS))
+def test_corners_that_round_to_degenerate_are_refused(case, engine):
+    """Each used to raise ZeroDivisionError, fail inside Triangle, or return triangles of sides (l, l, 2l)."""
+    vertices, l, placement = case
+    with pytest.raises(equimesh.InvalidPolygonError, match=r"^the corner at vertex \d .* sharper than [^\n]*$"):
+        equimesh.uniform_triangulation(vertices, l, engine=engine, **placement)
+
+
+@st.composite
+def near_zero_corners(draw):
+    """A triangle or a quadrilateral with a corner of 1e-17 to 1e-4 degrees at the origin, whole sides 3 to 12 (l = 1).
+
+    The triangle's far side is 1 to 3 longer than its bottom side, the quadrilateral's tip 2 or more short of it:
+    whole lengths, on which the staggering fits, so that Problem 2 meshes most corners of 1e-4 degrees.
+    """
+    angle = math.radians(10.0 ** -draw(st.sampled_from((4.0, 4.5, 5.0, 5.5, 6.5, 8.0, 10.0, 12.0, 14.0, 17.0))))
+    far = draw(st.integers(5, 9))
+    if draw(st.booleans()):
+        side = far + draw(st.integers(1, 3))
+        corners = [[0.0, 0.0], [far, 0.0]]
+    else:
+        side = draw(st.integers(3, far - 2))
+        corners = [[0.0, 0.0], [far, 0.0], [far, draw(st.integers(2, 4))]]
+    return np.array([*corners, [side * math.cos(angle), side * math.sin(angle)]], dtype=float)
+
+
+@pytest.mark.exercised("fuzz: Problem 2 accepted a near-zero corner", share=0.2)
+@fuzz
+@given(near_zero_corners())
+def test_near_zero_corners_are_refused_or_meshed_without_a_degenerate_triangle(vertices):
+    """Refused in one line (always below MIN_CORNER_ANGLE), or a mesh with every guarantee and the quality floor."""
+    mesh = _mesh_or_refusal(equimesh.uniform_triangulation, vertices, 1.0)
+    if exercised("fuzz: Problem 2 accepted a near-zero corner", mesh is not None):
+        inv2.assert_problem2_invariants(mesh, vertices, 1.0)
+
+
+@pytest.mark.parametrize("degrees", [1e-4, 1e-5])
+@pytest.mark.parametrize("shape", ["triangle", "quadrilateral"])
+def test_a_corner_of_1e_5_degrees_is_meshed_without_a_degenerate_triangle(shape, degrees):
+    """Above MIN_CORNER_ANGLE a near-zero corner is meshed, with every guarantee (verify_planar's floor included)."""
+    a = math.radians(degrees)
+    if shape == "triangle":
+        vertices = np.array([[0.0, 0.0], [6.0, 0.0], [8.0 * math.cos(a), 8.0 * math.sin(a)]])
+    else:
+        vertices = np.array([[0.0, 0.0], [6.0, 0.0], [6.0, 3.0], [4.0 * math.cos(a), 4.0 * math.sin(a)]])
+    inv2.assert_problem2_invariants(equimesh.uniform_triangulation(vertices, 1.0), vertices, 1.0)

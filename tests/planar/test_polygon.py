@@ -25,7 +25,7 @@ from strategies import problems
 import equimesh
 from equimesh import InvalidLengthError, InvalidPolygonError
 from equimesh.planar.increment import validate_problem1
-from equimesh.planar.polygon import as_polygon, check_edges_at_least
+from equimesh.planar.polygon import MIN_CORNER_ANGLE, as_polygon, check_edges_at_least
 from equimesh.testing.generators import rectangle, regular_polygon
 from equimesh.tolerance import MAX_EXTENT
 
@@ -435,3 +435,25 @@ def test_messages_name_the_problem_in_plain_numbers(vertices, l, error, message)
         with pytest.raises(error, match=message) as info:
             verb(vertices, l)
         assert "np." not in str(info.value) and "\n" not in str(info.value)
+
+
+@pytest.mark.parametrize("factor, refused", [(0.99, True), (1.01, False)])
+def test_corner_sharper_than_the_quality_floor_allows_is_refused(factor, refused):
+    """A corner just below MIN_CORNER_ANGLE is refused with l given, one just above passes validation."""
+    angle = math.radians(MIN_CORNER_ANGLE * factor)
+    spike = np.array([[0.0, 0.0], [6.0, 0.0], [6.0, 3.0], [4.0 * math.cos(angle), 4.0 * math.sin(angle)]])
+    if refused:
+        with pytest.raises(InvalidPolygonError, match=r"corner at vertex 0 at \(0, 0\) is .* degrees, sharper than"):
+            as_polygon(spike, 1.0)
+    else:
+        as_polygon(spike, 1.0)
+    as_polygon(spike)  # without l the corner is only a shape
+
+
+def test_a_corner_that_rounds_to_zero_degrees_is_refused_in_a_hole():
+    """A slit into a hole, its tip within rounding of 0 degrees for the region: refused naming the hole's corner."""
+    outer = np.array([[0.0, 0.0], [40.0, 0.0], [40.0, 40.0], [0.0, 40.0]])
+    hole = np.array([[10.0, 10.0], [30.0, 10.0], [30.0, 30.0], [10.0, 30.0], [10.0, 20.0 + 1e-14], [25.0, 20.0]])
+    hole = np.vstack([hole, [[10.0, 20.0]]])
+    with pytest.raises(InvalidPolygonError, match=r"corner at vertex 5 of hole 0 at \(25, 20\) is .* sharper than"):
+        as_polygon(outer, 1.0, holes=[hole])

@@ -3,13 +3,14 @@
 Theorem 1 (Problem 1) and Theorem 3 (Problem 2) prove that every edge lies in
 ``[l, 2l]``; with the tolerance of :mod:`equimesh.tolerance` the output
 satisfies ``(1 - REL_TOL) l <= |e| <= 2 (1 + REL_TOL) l``.  Step 5 and
-Section 3 output a triangulation of P.  The same proofs bound the angles
-(docs/decisions.md, "Angles of Problems 1 and 2"): a triangle whose
+Section 3 output a triangulation of P, none of whose triangles is degenerate
+(docs/decisions.md, "A triangle-quality floor").  The same proofs bound the
+angles (docs/decisions.md, "Angles of Problems 1 and 2"): a triangle whose
 circumcentre is seen from its vertices has circumradius below l and edges at
 least l, so its smallest angle is at least 30 degrees (Chew's bound), and
 one whose circumcentre is hidden behind a constraint of length c lies in
 the cap that constraint cuts off, so its smallest angle is at least
-``arccos(c / 2l)``.  :func:`verify_planar` checks all three on the local
+``arccos(c / 2l)``.  :func:`verify_planar` checks all of these on the local
 points (O(n), vectorised) and raises :class:`~equimesh.errors.InternalError`
 instead of returning a mesh that breaks them: that would be a bug in
 equimesh, never a fault of the input.
@@ -20,7 +21,7 @@ import numpy as np
 from .._geometry import signed_area
 from ..errors import InternalError
 from ..mesh import edge_lengths, triangle_orient
-from ..tolerance import REL_TOL, at_least, at_most
+from ..tolerance import MIN_TRIANGLE_AREA, REL_TOL, at_least, at_most
 
 _REPORT = "a bug in equimesh, please report it with the input"
 
@@ -28,8 +29,9 @@ _REPORT = "a bug in equimesh, please report it with the input"
 def verify_planar(mesh):
     """Check Theorem 1/3 and the triangulation of ``mesh``; raise InternalError naming the first violation.
 
-    * every triangle index in range, every triangle counter-clockwise with
-      positive area;
+    * every triangle index in range, every triangle counter-clockwise with an
+      area of at least ``MIN_TRIANGLE_AREA l^2`` (:mod:`equimesh.tolerance`:
+      below it a triangle is degenerate in floating point);
     * Euler's formula for a triangulated disc with ``k`` holes:
       ``2 n - h - 2 + 2 k`` triangles for ``n`` points of which ``h`` on the
       boundary rings (``V - E + T = 1 - k`` and ``3 T = 2 E - h``);
@@ -52,6 +54,13 @@ def verify_planar(mesh):
         k = int(flat[0])
         raise InternalError(
             f"triangle {k} {tuple(map(int, t[k]))} is not counter-clockwise with positive area: {_REPORT}"
+        )
+    thin = np.flatnonzero(~(area >= MIN_TRIANGLE_AREA * lp * lp))
+    if thin.size:
+        k = int(thin[0])
+        raise InternalError(
+            f"triangle {k} {tuple(map(int, t[k]))} has area {area[k] / scale**2!r}, below the floor "
+            f"{MIN_TRIANGLE_AREA!r} l^2 of a non-degenerate triangle for l = {l!r}: {_REPORT}"
         )
     sizes = mesh.info.get("boundary_rings", (h,))
     holes = len(sizes) - 1

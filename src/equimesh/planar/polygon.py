@@ -14,6 +14,7 @@ origin is validated as precisely as the same polygon near it.  Validation is
 O(n log n) in the number of vertices.
 """
 
+import math
 from dataclasses import dataclass, replace
 from functools import cached_property
 
@@ -23,7 +24,7 @@ import shapely
 from .._checks import real_array
 from .._geometry import Frame, cross, inner_angle, orient_sign, power_of_two_scale, segments_intersect, signed_area
 from ..errors import InvalidPolygonError, number
-from ..tolerance import MAX_EXTENT, REL_TOL, at_least
+from ..tolerance import MAX_EXTENT, MIN_TRIANGLE_AREA, REL_TOL, at_least
 
 
 @dataclass(frozen=True)
@@ -151,10 +152,13 @@ def as_polygon(vertices, l=None, holes=None):
     ``l`` is given, an extent of at most ``MAX_EXTENT * l``.  The local frame
     scales ``l`` (or, without ``l``, the extent) into ``[1, 2)``.  Each hole
     passes the same checks and :func:`_check_holes` (inside the polygon, apart
-    from its boundary and from each other).
+    from its boundary and from each other); with ``l``, no corner of any ring
+    is too sharp for a non-degenerate triangle (:func:`check_corners_resolvable`).
     """
     v = _ring_vertices(_parse_vertices(vertices), "")
     outer = _ring(v, _local_frame(v, l), "")
+    if l is not None:
+        check_corners_resolvable(outer)
     if holes is None:
         return outer
     return replace(outer, holes=_check_holes(outer, holes, l))
@@ -205,6 +209,8 @@ def _check_holes(outer, holes, l):
                 "outside"
             )
         rings.append(_ring(_ring_vertices(v, label), outer.frame, label))
+        if l is not None:
+            check_corners_resolvable(rings[-1])
     if not rings:
         return ()
     region = shapely.Polygon(outer.local)
@@ -247,6 +253,38 @@ def _check_holes_apart(outer, rings, shapes, tree, l):
         raise InvalidPolygonError(
             f"hole {i[k]} and hole {j[k]} are {d} apart, closer than l = {number(l, None)} (Lemma 3 (1)); "
             f"move them apart or use l <= {d}"
+        )
+
+
+#: The sharpest corner Problem 2 meshes, in degrees: ``sin`` of it is
+#: ``2 MIN_TRIANGLE_AREA`` (docs/decisions.md, "A triangle-quality floor").
+MIN_CORNER_ANGLE = math.degrees(math.asin(2.0 * MIN_TRIANGLE_AREA))
+
+
+def check_corners_resolvable(ring):
+    """Refuse a corner of ``ring`` sharper than :data:`MIN_CORNER_ANGLE`, as computed in the local frame.
+
+    At a corner of inner angle ``a`` this sharp the corner's two neighbours in
+    any mesh with edges in [l, 2l] are its neighbours along the two sides
+    (the corner is far narrower than l within 2l of it, and nodes are l
+    apart), so one triangle holds it, with sides of l to 2l at the angle
+    ``a``: its area is between ``l^2 sin(a) / 2`` and ``2 l^2 sin(a)``, and
+    below :data:`MIN_CORNER_ANGLE` it can be (below ``asin(MIN_TRIANGLE_AREA /
+    2)`` it must be) below the floor ``MIN_TRIANGLE_AREA l^2`` of a
+    non-degenerate triangle.  This includes a corner that rounds to 0 degrees
+    (a vertex within rounding of the line of its neighbours).
+    """
+    v = ring.local
+    u, w = np.roll(v, 1, axis=0) - v, np.roll(v, -1, axis=0) - v
+    angle = np.degrees(np.arctan2(cross(w, u), np.sum(w * u, axis=1))) % 360.0
+    sharp = np.flatnonzero(angle < MIN_CORNER_ANGLE)
+    if sharp.size:
+        i = int(sharp[0])
+        raise InvalidPolygonError(
+            f"the corner at {ring.vertex_name(i)} is {number(float(angle[i]))} degrees, sharper than the "
+            f"{number(MIN_CORNER_ANGLE)} degrees Problem 2 meshes: the one triangle at it, with sides of l to 2l, has "
+            f"an area down to l^2 sin(angle) / 2, below the {number(MIN_TRIANGLE_AREA)} l^2 of a non-degenerate "
+            "triangle; widen the corner"
         )
 
 

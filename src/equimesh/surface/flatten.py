@@ -5,12 +5,23 @@ points X_i^p0 minimising the distortion energy
 
     E = 1/2 sum_j ((L_j^p0 - L_j^s0) / L_j^s0)^2                       (1)
 
-over all edges j, with :func:`scipy.optimize.least_squares` (trust region
-reflective, LSMR sub-problem solver) and an analytic sparse Jacobian.  On fine
-grids eq. (1) is as ill-conditioned as a graph Laplacian; the variables are
-therefore right-preconditioned by the Cholesky factor of the Gauss-Newton
-matrix at the start (see :class:`_Preconditioner`), which keeps a 100 x 100
-grid to about a second.
+over all edges j, with an analytic sparse Jacobian, by the sparse
+Levenberg-Marquardt solver of the final optimisation
+(:func:`equimesh.surface.optimize.solver.least_squares`): one sparse
+factorisation of the damped normal equations per iteration, Marquardt's
+scaling (eq. (1) on a fine grid is as ill-conditioned as a graph Laplacian,
+and its rows scale with ``1 / L_j^s0``), a damping that takes a singular
+Gauss-Newton matrix in its stride, and inner products that do not depend on
+the BLAS's thread count, so that the flattening, and every mesh built on it,
+is the same bits on any number of cores (docs/decisions.md, "Step 2 by the
+solver of the final optimisation").
+
+Lengths.  Each residual is relative to its edge, so an edge ``ratio`` times
+shorter than another weighs ``ratio^2`` times more in the normal equations;
+past :data:`~equimesh.tolerance.MAX_EDGE_RATIO` the longer edges are below the
+rounding of the shorter ones and eq. (1) cannot be solved in floating point.
+Such a surface is refused before any work (:func:`check_edge_lengths`), naming
+its shortest and longest auxiliary edges.
 
 Rigid motion.  E is invariant under translations and rotations of the plane
 (3 degrees of freedom).  They are removed by fixing both coordinates of a
@@ -42,16 +53,27 @@ its rim than a plane disk, and eq. (1) alone then wrinkles it.  Two guards:
 Speed: docs/performance.md, "Flattening and the grid size".
 """
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
-import scipy.optimize
 import scipy.sparse
-import scipy.sparse.linalg
 
-from ..errors import InvalidSurfaceError, at
+from .._geometry import power_of_two_scale
+from ..errors import InvalidSurfaceError, at, coordinates, number
 from ..mesh import edge_lengths, triangle_orient, unique_edges
+from ..tolerance import MAX_EDGE_RATIO
 from .optimize.jacobian import AreaBarrier, ElementJacobian
+from .optimize.solver import inner, least_squares
+
+#: Iterations of the flattening's solve before it stops unconverged: a bound
+#: on the work (one sparse factorisation each), not a tolerance.  Eq. (1) on
+#: the reference dome converges well within it on every grid up to
+#: :data:`~equimesh.surface.pipeline.MAX_GRID_CELLS` (docs/performance.md,
+#: "Flattening and the grid size"); a surface pressing against the fold-over
+#: barrier (a near-hemisphere) stops here, flattened as far as it got
+#: (docs/decisions.md, "Step 2 by the solver of the final optimisation").
+FLATTEN_ITERATIONS = 100
 
 
 @dataclass(frozen=True)
@@ -101,10 +123,10 @@ def flatten(
     x0=None,
     edges=None,
     area_floor=0.1,
-    ftol=1e-10,
-    xtol=1e-10,
-    gtol=1e-10,
-    max_nfev=100,
+    ftol=1e-15,
+    xtol=1e-15,
+    gtol=1e-14,
+    max_iterations=FLATTEN_ITERATIONS,
 ):
     """Map a triangulated surface patch to the plane minimising E of eq. (1).
 
@@ -127,12 +149,22 @@ def flatten(
     area_floor : float
         Fold-over barrier threshold in [0, 1): the fraction of its start area
         below which a triangle is penalised; 0 disables the barrier.
-    ftol, xtol, gtol, max_nfev
-        Passed to :func:`scipy.optimize.least_squares`.
+    ftol, xtol, gtol, max_iterations
+        Passed to :func:`~equimesh.surface.optimize.solver.least_squares`
+        (``gtol`` bounds the gradient in units where the median edge is
+        about 1, :func:`_solve`); ``max_iterations`` (one sparse
+        factorisation each) bounds the work.
 
     Returns
     -------
     Flattening
+
+    Raises
+    ------
+    InvalidSurfaceError
+        Two auxiliary nodes coincide on the surface, the auxiliary edges'
+        lengths are too far apart for eq. (1) (:func:`check_edge_lengths`),
+        or the result folds over.
     """
     x3 = np.asarray(points3d, dtype=float)
     tri = np.asarray(triangles, dtype=np.int64)
@@ -142,8 +174,9 @@ def flatten(
         a, b = e[int(np.flatnonzero(~(ls > 0))[0])]
         where = f"at {at(uv[a])} and {at(uv[b])}" if uv is not None else f"of auxiliary nodes {a} and {b}"
         raise InvalidSurfaceError(f"the surface points {where} coincide (a collapsed side or cell)")
+    check_edge_lengths(ls, e, x3, uv)
     g0, g1 = int(e[0, 0]), int(e[0, 1])
-    options = dict(ftol=ftol, xtol=xtol, gtol=gtol, max_nfev=max_nfev)
+    options = dict(ftol=ftol, xtol=xtol, gtol=gtol, max_iterations=max_iterations)
     floor = float(area_floor)
     default = _metric_start(uv, e, ls) if uv is not None else plane_start(x3, tri)
 
@@ -151,19 +184,13 @@ def flatten(
     for start, guess in (("given", x0), ("metric" if uv is not None else "plane", default)):
         if guess is None:
             continue
-        try:
-            points, n = _solve(np.asarray(guess, dtype=float), tri, e, ls, (g0, g1), floor, options)
-        except RuntimeError:  # singular start (degenerate triangles): try the next start
-            points = None
-            continue
+        points, n = _solve(np.asarray(guess, dtype=float), tri, e, ls, (g0, g1), floor, options)
         nfev += n
         if np.all(triangle_orient(points, tri) > 0):
             lp = edge_lengths(points, e)
-            energy = 0.5 * float(np.sum(((lp - ls) / ls) ** 2))
+            energy = 0.5 * inner((lp - ls) / ls, (lp - ls) / ls)
             return Flattening(points, energy, ls, lp, e, np.array([g0, g1]), nfev, start)
-    if points is None:
-        raise InvalidSurfaceError("flattening failed: the auxiliary triangulation is degenerate on the surface")
-    bad = np.flatnonzero(triangle_orient(points, tri) <= 0)
+    bad = np.flatnonzero(~(triangle_orient(points, tri) > 0))
     near = "" if uv is None else f", first near {at(np.asarray(uv, dtype=float)[tri[bad[0]]].mean(axis=0))}"
     raise InvalidSurfaceError(
         f"flattening folds {bad.size} of {len(tri)} auxiliary triangles over{near}; "
@@ -172,90 +199,76 @@ def flatten(
 
 
 def _solve(guess, tri, e, ls, gauge, area_floor, options):
-    """Minimise eq. (1) (plus the fold-over barrier) from ``guess`` with the gauge g0 = origin, y(g1) = 0."""
+    """Minimise eq. (1) (plus the fold-over barrier) from ``guess`` with the gauge g0 = origin, y(g1) = 0.
+
+    The solve runs in units scaled by the power of two that brings the median
+    edge into [1, 2): the residuals are the same numbers, and the solver's
+    gradient test (absolute) means the same in every unit of length.
+    Returns the points and the residual evaluations.
+    """
     g0, g1 = gauge
-    start = _gauge(guess, g0, g1)
+    scale = power_of_two_scale(float(np.median(ls)))
+    start = _gauge(guess * scale, g0, g1)
     n = len(start)
     free = np.ones(2 * n, dtype=bool)
     free[[2 * g0, 2 * g0 + 1, 2 * g1 + 1]] = False
-    residuals, jacobian = energy_terms(e, ls, n, free)
+    residuals, jacobian = energy_terms(e, ls * scale, n, free)
+    terms = [(residuals, jacobian)]
     if area_floor > 0:
         r0 = residuals(start)
         # weight^2 / 2 > E(start): a folded triangle alone costs more than the start
-        barrier = AreaBarrier(tri, start, area_floor, 1.0 + 2.0 * np.sqrt(0.5 * r0 @ r0), free)
-
-        def stacked_residuals(x):
-            return np.concatenate([residuals(x), barrier.residuals(x)])
-
-        def stacked_jacobian(x):
-            return scipy.sparse.vstack([jacobian(x), barrier.jacobian(x)], format="csr")
-
-    else:
-        stacked_residuals, stacked_jacobian = residuals, jacobian
+        barrier = AreaBarrier(tri, start, area_floor, 1.0 + 2.0 * math.sqrt(0.5 * inner(r0, r0)), free)
+        terms.append((barrier.residuals, barrier.jacobian))
     full = start.ravel().copy()
-    z0 = full[free].copy()
-    precond = _Preconditioner(jacobian(start))
 
-    def unpack(y):
-        full[free] = z0 + precond.apply(y)
+    def unpack(z):
+        full[free] = z
         return full.reshape(n, 2)
 
-    def jac(y):
-        j = stacked_jacobian(unpack(y))
-        return scipy.sparse.linalg.LinearOperator(
-            j.shape,
-            matvec=lambda w: j @ precond.apply(np.ravel(w)),
-            rmatvec=lambda q: precond.apply_transpose(j.T @ np.ravel(q)),
-            dtype=float,
-        )
+    def stacked_residuals(z):
+        x = unpack(z)
+        return np.concatenate([r(x) for r, _ in terms])
 
-    result = scipy.optimize.least_squares(
-        lambda y: stacked_residuals(unpack(y)),
-        np.zeros(len(z0)),
-        jac=jac,
-        method="trf",
-        tr_solver="lsmr",
-        x_scale=1.0,
-        tr_options={"atol": 1e-10, "btol": 1e-10},
-        **options,
-    )
-    return unpack(result.x).copy(), int(result.nfev)
+    def stacked_jacobian(z):
+        x = unpack(z)
+        return scipy.sparse.vstack([j(x) for _, j in terms], format="csr")
+
+    z0 = full[free].copy()
+    unbounded = np.full(len(z0), np.inf)
+    solution = least_squares(stacked_residuals, stacked_jacobian, z0, -unbounded, unbounded, **options)
+    return unpack(solution.x) / scale, solution.evaluations
 
 
-class _Preconditioner:
-    """Right preconditioner ``T = R^{-1}`` with ``R^T R = J0^T J0`` (J0: Jacobian at the start).
+def check_edge_lengths(surface_lengths, edges, points3d, uv=None):
+    """Refuse auxiliary edges whose lengths on the surface span more than :data:`~equimesh.tolerance.MAX_EDGE_RATIO`.
 
-    Eq. (1) on a fine grid is as ill-conditioned as a graph Laplacian, which
-    makes the LSMR sub-problems of ``trf`` slow.  Optimising over ``y`` with
-    ``z = z0 + T y`` gives the Jacobian ``J T``, equal to an orthonormal matrix
-    at the start, so LSMR converges in a few iterations.  ``J0^T J0`` is
-    positive definite once the rigid motion is removed (a triangulated disk is
-    infinitesimally rigid); its Cholesky factor comes from SuperLU with
-    symmetric ordering and diagonal pivots: ``Pc^T A Pc = L U``, ``U = D L^T``,
-    hence ``R = D^{-1/2} U Pc^T``.
+    Each residual of eq. (1) is relative to its edge, so its Jacobian row
+    scales with ``1 / L_j^s0``: an edge ``ratio`` times shorter than another
+    weighs ``ratio^2`` times more in the normal equations, and past
+    ``MAX_EDGE_RATIO = 2^26`` (``ratio^2`` beyond ``1 / eps``) the longer
+    edges vanish in the rounding of the shorter ones.  The auxiliary grid
+    then samples the surface far too unevenly to flatten (a parametrisation
+    that is nearly stationary somewhere, such as a NURBS whose weights differ
+    by orders of magnitude); the message names both edges.
     """
-
-    def __init__(self, j0):
-        a = (j0.T @ j0).tocsc()
-        lu = scipy.sparse.linalg.splu(
-            a, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0, options={"SymmetricMode": True}
+    shortest, longest = int(np.argmin(surface_lengths)), int(np.argmax(surface_lengths))
+    ratio = surface_lengths[longest] / surface_lengths[shortest]
+    if ratio > MAX_EDGE_RATIO:
+        raise InvalidSurfaceError(
+            f"the auxiliary triangulation samples the surface too unevenly to flatten by eq. (1): its edge "
+            f"{_edge(uv, points3d, *edges[shortest])} is {number(surface_lengths[shortest])} long on the surface, "
+            f"{number(ratio, 2)} times shorter than the one {_edge(uv, points3d, *edges[longest])} "
+            f"({number(surface_lengths[longest])}), beyond the {number(MAX_EDGE_RATIO, 2)} that floating point "
+            "resolves; the parametrisation is nearly stationary there (reparametrise the surface, or give a mesh "
+            "of it)"
         )
-        if not np.array_equal(lu.perm_r, lu.perm_c):  # pragma: no cover - SuperLU kept the diagonal
-            raise RuntimeError("symmetric factorisation of the flattening preconditioner failed")
-        u = lu.U.tocsc()
-        self._perm = lu.perm_c
-        self._sqrt_d = np.sqrt(u.diagonal())
-        self._u = scipy.sparse.linalg.splu(u, permc_spec="NATURAL", diag_pivot_thresh=0.0)
 
-    def apply(self, y):
-        """``T y = Pc U^{-1} D^{1/2} y``."""
-        return self._u.solve(self._sqrt_d * y)[self._perm]
 
-    def apply_transpose(self, q):
-        """``T^T q = D^{1/2} U^{-T} Pc^T q``."""
-        s = np.empty_like(q)
-        s[self._perm] = q
-        return self._sqrt_d * self._u.solve(s, trans="T")
+def _edge(uv, points3d, a, b):
+    """Where the auxiliary edge from node ``a`` to node ``b`` runs: by (u, v), or without ``uv`` by node and point."""
+    if uv is not None:
+        return f"from {at(uv[a])} to {at(uv[b])}"
+    return f"from node {a} at {coordinates(points3d[a])} to node {b} at {coordinates(points3d[b])}"
 
 
 def energy_terms(edges, surface_lengths, n_nodes, free=None):
@@ -301,7 +314,7 @@ def _gauge(x, g0, g1):
     """Move and rotate ``x`` so that node g0 is at the origin and g0 -> g1 points along +x."""
     y = x - x[g0]
     c, s = y[g1] / np.linalg.norm(y[g1])
-    y = y @ np.array([[c, -s], [s, c]])
+    y = _rows_times(y, np.array([[c, s], [-s, c]]))
     y[g0] = 0.0
     y[g1, 1] = 0.0  # exactly, not up to the rounding of the rotation
     return y
@@ -319,20 +332,30 @@ def _metric_start(uv, edges, ls):
     uv = np.asarray(uv, dtype=float)
     du = uv[edges[:, 1]] - uv[edges[:, 0]]
     a = np.column_stack([du[:, 0] ** 2, 2.0 * du[:, 0] * du[:, 1], du[:, 1] ** 2]) / (ls**2)[:, None]
-    m11, m12, m22 = np.linalg.lstsq(a, np.ones(len(ls)), rcond=None)[0]
-    metric = np.array([[m11, m12], [m12, m22]])
+    # The normal equations, summed in one order (docs/decisions.md, "Step 2 by the solver of the final
+    # optimisation"), of the rows scaled by a power of two c into [1, 2) at most: M = M(a / c) / c.
+    c = power_of_two_scale(float(np.max(np.abs(a))))
+    a = a * c
     try:
-        r = np.linalg.cholesky(metric).T
+        m11, m12, m22 = np.linalg.solve(np.sum(a[:, :, None] * a[:, None, :], axis=0), np.sum(a, axis=0)) * c
+        r = np.linalg.cholesky(np.array([[m11, m12], [m12, m22]])).T
+        if not np.all(np.isfinite(r)):
+            raise np.linalg.LinAlgError("metric out of range")
     except np.linalg.LinAlgError:
         r = np.median(ls / np.linalg.norm(du, axis=1)) * np.eye(2)
-    return uv @ r.T
+    return _rows_times(uv, r)
 
 
 def plane_start(x3, tri):
     """Orthogonal projection on the best-fit plane, axes chosen to keep triangles counter-clockwise."""
     c = x3 - x3.mean(axis=0)
-    axes = np.linalg.svd(c, full_matrices=False)[2][:2]
-    x = c @ axes.T
+    axes = np.linalg.eigh(np.sum(c[:, :, None] * c[:, None, :], axis=0))[1][:, :0:-1].T  # the two largest
+    x = _rows_times(c, axes)
     if np.sum(triangle_orient(x, tri)) < 0:
         x[:, 1] = -x[:, 1]
     return x
+
+
+def _rows_times(x, m):
+    """``x @ m.T`` summed in one order, not by the BLAS, whose blocking depends on its thread count."""
+    return sum(x[:, k, None] * m[:, k] for k in range(x.shape[1]))

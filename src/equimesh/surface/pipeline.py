@@ -30,17 +30,11 @@ from typing import Callable
 import numpy as np
 
 from .._checks import check_length
-from .._geometry import power_of_two_scale
 from ..classes import DEFAULT_TOLERANCE, check_tolerance
-from ..errors import (
-    EquimeshError,
-    InvalidPolygonError,
-    InvalidSurfaceError,
-    number,
-)
+from ..errors import EquimeshError, InvalidPolygonError, InvalidSurfaceError
 from ..mesh import G1, edge_lengths
 from ..planar.insertion import DEFAULT_ENGINE, check_engine
-from ..planar.limits import check_max_nodes, check_size, node_estimate
+from ..planar.limits import check_max_nodes
 from ..planar.placement import best_lattice_placement, fewest_classes_placement
 from ..planar.strip import BOUNDARY_SPACING, check_spacing, uniform_triangulation
 from .auxiliary import auxiliary_grid, check_grid_size
@@ -64,7 +58,8 @@ from .output_checks import (
     check_orientation,
 )
 from .regularity import check_regular, evaluate
-from .remap import remap
+from .remap import check_remapped, remap
+from .size import check_plane_size, check_surface_size
 
 #: Default limit on the node count of a surface mesh without the final
 #: optimisation (``optimize="none"``); :func:`mesh_surface` refuses, before any
@@ -273,9 +268,10 @@ def mesh_surface(
     clock = _Clock(seconds, progress)
     front = _mesh_front if isinstance(surface, TriangulatedSurface) else _chart_front
     steps = front(surface, grid, l, limit, boundary_spacing, clock)
+    check_plane_size(steps, l, limit)
 
     try:
-        # The surface's own guard (_check_size, measured end to end) bounds the planar stage too.
+        # The size guard (check_surface_size, again on the plane: check_plane_size) bounds the planar stage too.
         holes, vertices = steps.holes, steps.outline.vertices
         chosen = None if placement == "default" else best_lattice_placement(vertices, l, holes=holes, max_nodes=None)
         if placement == "classes":
@@ -297,7 +293,7 @@ def mesh_surface(
     clock("planar triangulation (Problem 2)")
 
     mapped_uv, mapped_points = steps.place(plane)
-    check_orientation(mapped_uv, plane.triangles, "remapping (eqs. 2-3)")
+    check_remapped(mapped_uv, plane)
     clock("remapping (eqs. 2-3)")
 
     result = None
@@ -389,7 +385,7 @@ def _chart_front(surface, grid, l, limit, spacing, clock):
     aux = auxiliary_grid(n_u, n_v, domain_of(surface))
     x_s0 = evaluate(surface, aux.uv)
     check_regular(surface, aux)
-    _check_size(x_s0, aux.triangles, l, limit)
+    check_surface_size(x_s0, aux.triangles, l, limit)
     clock("auxiliary triangulation")
 
     flat = flatten(x_s0, aux.triangles, uv=aux.uv)
@@ -424,7 +420,7 @@ def _mesh_front(surface, grid, l, limit, spacing, clock):
             f"(those of a {MAX_GRID_CELLS}-cell auxiliary grid: flattening time and memory grow with them); "
             "coarsen it first"
         )
-    _check_size(surface.vertices, surface.triangles, l, limit)
+    check_surface_size(surface.vertices, surface.triangles, l, limit)
     clock("auxiliary triangulation")
 
     flat = flatten_mesh(surface)
@@ -479,21 +475,3 @@ def _node_limit(max_nodes, optimize):
     return check_max_nodes(
         max_nodes, UNOPTIMIZED_MAX_NODES if optimize == "none" else OBJECTIVES[optimize].node_limit()
     )
-
-
-def _check_size(surface_points, triangles, l, max_nodes):
-    """Estimate the node count (surface area at the lattice density) and refuse it above ``max_nodes``.
-
-    The area is computed in units of the surface's extent (the points scaled
-    by a power of two, which is exact), so neither a surface given in units of
-    1e-100 nor one in units of 1e100 overflows or underflows; a tiny ``l``
-    gives an estimate of ``inf`` rather than an overflow.
-    """
-    if max_nodes is None:
-        return
-    scale = power_of_two_scale(float(np.max(np.ptp(surface_points, axis=0))))
-    p = surface_points[triangles] * scale
-    area = 0.5 * float(np.linalg.norm(np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]), axis=1).sum())
-    with np.errstate(over="ignore", under="ignore", divide="ignore"):
-        estimate = node_estimate(area, 0.0, np.float64(l * scale))  # Oler's bound, the lattice density
-    check_size(f"this surface (area {number(area / scale / scale)})", estimate, max_nodes, l)

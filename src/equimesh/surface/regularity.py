@@ -22,12 +22,18 @@ at every triangle centroid, and the surface is refused
 Non-finite values of X^s or its derivatives are refused by :func:`evaluate`
 and :func:`derivatives`, naming the (u, v) at fault; every stage of Section 4
 reads the surface through them.
+
+The mesh is remapped and optimised in (u, v), where not every tolerance is
+relative to the parameter ranges, so each range is at least
+:data:`~equimesh.tolerance.MIN_PARAMETER_RANGE` and at most
+:data:`~equimesh.tolerance.MAX_PARAMETER_RANGE` wide, within which a chart
+gives the same mesh as on [0, 1] (:func:`check_regular`).
 """
 
 import numpy as np
 
-from ..errors import InvalidSurfaceError, at
-from ..tolerance import MAX_NORMAL_TURN, SINGULAR_SIN
+from ..errors import InvalidSurfaceError, at, number
+from ..tolerance import MAX_NORMAL_TURN, MAX_PARAMETER_RANGE, MIN_PARAMETER_RANGE, SINGULAR_SIN
 
 
 def evaluate(surface, uv):
@@ -52,7 +58,7 @@ def derivatives(surface, uv):
 
 
 def check_regular(surface, grid):
-    """Refuse a singular or folding surface (see the module docstring); returns None.
+    """Refuse a parameter range out of range, or a singular or folding surface (see the module docstring).
 
     Parameters
     ----------
@@ -61,6 +67,16 @@ def check_regular(surface, grid):
         The auxiliary triangulation of step 1; its nodes and triangle
         centroids are the samples.
     """
+    for name, (lo, hi) in (("u", grid.domain.u), ("v", grid.domain.v)):
+        with np.errstate(over="ignore"):
+            width = hi - lo
+        if not MIN_PARAMETER_RANGE <= width <= MAX_PARAMETER_RANGE:
+            raise InvalidSurfaceError(
+                f"the parameter range of {name}, [{number(lo)}, {number(hi)}], is {number(width)} wide, outside the "
+                f"supported [{number(MIN_PARAMETER_RANGE)}, {number(MAX_PARAMETER_RANGE)}] within which the mesh, "
+                "made in (u, v), does not depend on the parametrisation's scale; reparametrise the surface (scale "
+                "its knots)"
+            )
     centroids = grid.uv[grid.triangles].mean(axis=1)
     uv = np.vstack([grid.uv, centroids])
     su, sv = derivatives(surface, uv)

@@ -35,8 +35,9 @@ import matplotlib.tri
 import numpy as np
 
 from .._geometry import between, nearest_segment
-from ..errors import InternalError
+from ..errors import InternalError, InvalidSurfaceError, at
 from .charts.chart import Domain
+from .optimize.jacobian import signed_areas
 from .regularity import evaluate
 
 
@@ -244,3 +245,36 @@ def barycentric(x, corners):
 
 
 __all__ = ["Loop", "Remap", "barycentric", "locate", "remap", "to_plane"]
+
+
+def check_remapped(uv, plane):
+    """Refuse a plane triangle that eqs. (2)-(3) map to a flat or inverted triangle in (u, v).
+
+    Eqs. (2)-(3) map each node through the flattening's piecewise-linear
+    inverse, which keeps every auxiliary triangle's orientation, but a mesh
+    triangle spans several auxiliary ones: where the flattening's distortion
+    turns within about l, its straight image in (u, v) can fold.  Boundary
+    nodes are remapped onto the boundary, which is straight in (u, v) along a
+    chart's side (and along each edge of a mesh's loop) while its flattened
+    image bends: where it bends within a few l, Problem 2 joins three nodes of
+    one straight stretch in a triangle (an ear of the strip), flat in (u, v).
+    Either is the surface's shape at this l and grid, not a fault of a stage,
+    and is refused naming where (docs/decisions.md, "A remapped triangle that
+    folds is refused").
+    """
+    triangles = plane.triangles
+    bad = ~(signed_areas(uv, triangles) > 0)
+    ears = np.flatnonzero(bad & np.all(triangles < plane.n_boundary, axis=1))
+    if ears.size:
+        raise InvalidSurfaceError(
+            f"the flattened boundary bends so sharply near {at(uv[triangles[ears[0]]].mean(axis=0))} that Problem 2 "
+            f"joins three boundary nodes there in a triangle ({ears.size} such in all), flat in (u, v), where the "
+            "boundary is straight; use a finer auxiliary grid or another l"
+        )
+    bad = np.flatnonzero(bad)
+    if bad.size:
+        raise InvalidSurfaceError(
+            f"mapping the plane mesh back onto the surface (eqs. 2-3) folds {bad.size} of {len(triangles)} triangles, "
+            f"first near {at(uv[triangles[bad[0]]].mean(axis=0))}: the flattening's distortion turns there within a "
+            "member's length; use a smaller l or a finer auxiliary grid"
+        )

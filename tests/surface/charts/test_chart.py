@@ -68,7 +68,8 @@ def test_mesh_on_a_shifted_rectangle_equals_the_unit_chart():
     assert_valid_surface_mesh(b, shifted)
     assert np.array_equal(a.triangles, b.triangles) and a.n_boundary == b.n_boundary
     np.testing.assert_allclose(b.points, a.points, rtol=0, atol=1e-9)
-    np.testing.assert_allclose((b.uv - SHIFTED.lower) / (SHIFTED.upper - SHIFTED.lower), a.uv, rtol=0, atol=1e-12)
+    # the two flattenings start from different metric starts and agree to their convergence tolerance
+    np.testing.assert_allclose((b.uv - SHIFTED.lower) / (SHIFTED.upper - SHIFTED.lower), a.uv, rtol=0, atol=1e-10)
 
 
 @pytest.mark.parametrize("objective", ["paper", "bounded"])

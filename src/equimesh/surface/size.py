@@ -1,0 +1,56 @@
+"""The size guard of :func:`~equimesh.surface.pipeline.mesh_surface`: the node count estimated before heavy work.
+
+The estimate is Oler's bound at the lattice density (:func:`~equimesh.planar.limits.node_estimate`) on the
+surface's area, before the flattening, and again on the flattened outline before Problem 2, because eq. (1) can
+stretch a surface many times (docs/decisions.md, "Size limits of mesh_surface").  Areas are computed in units of
+the points' extent (scaled by a power of two, which is exact), so that no unit overflows or underflows.
+"""
+
+import numpy as np
+
+from .._geometry import power_of_two_scale, signed_area
+from ..errors import number
+from ..planar.limits import check_size, node_estimate
+
+
+def check_surface_size(surface_points, triangles, l, max_nodes):
+    """Estimate the node count (surface area at the lattice density) and refuse it above ``max_nodes``.
+
+    The area is computed in units of the surface's extent (the points scaled
+    by a power of two, which is exact), so neither a surface given in units of
+    1e-100 nor one in units of 1e100 overflows or underflows; a tiny ``l``
+    gives an estimate of ``inf`` rather than an overflow.
+    """
+    if max_nodes is None:
+        return
+    area, scale = surface_area(surface_points, triangles)
+    check_size(f"this surface (area {number(area / scale / scale)})", node_count_estimate(area, scale, l), max_nodes, l)
+
+
+def check_plane_size(steps, l, max_nodes):
+    """:func:`check_surface_size` again on the flattened outline (minus openings), which eq. (1) can make many times the
+    surface's area (docs/decisions.md, "Size limits of mesh_surface"); the refusal says how much."""
+    if max_nodes is None:
+        return
+    rings = [np.asarray(ring, dtype=float) for ring in (steps.outline.vertices, *steps.holes)]
+    scale = power_of_two_scale(float(np.max(np.ptp(rings[0], axis=0))))
+    area = abs(signed_area(rings[0] * scale)) - sum(abs(signed_area(ring * scale)) for ring in rings[1:])
+    estimate = node_count_estimate(area, scale, l)
+    if not estimate <= max_nodes:
+        plane, (surface, surface_scale) = area / scale / scale, surface_area(steps.points, steps.grid.triangles)
+        surface = surface / surface_scale / surface_scale
+        what = f"the flattened surface (area {number(plane)}, {number(plane / surface, 3)} times the surface's "
+        check_size(f"{what}{number(surface)}: eq. (1) stretches it that much)", estimate, max_nodes, l)
+
+
+def surface_area(points, triangles):
+    """``(area, scale)``: the area of the triangles in space in units of the points' extent, and that power of two."""
+    scale = power_of_two_scale(float(np.max(np.ptp(points, axis=0))))
+    p = points[triangles] * scale
+    return 0.5 * float(np.linalg.norm(np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]), axis=1).sum()), scale
+
+
+def node_count_estimate(area, scale, l):
+    """Oler's bound at the lattice density for an ``area`` in units scaled by ``scale``: a float, inf for a tiny l."""
+    with np.errstate(over="ignore", under="ignore", divide="ignore"):
+        return node_estimate(area, 0.0, np.float64(l * scale))
