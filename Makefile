@@ -39,6 +39,7 @@ EXPERIMENTS := \
 	experiments/scaling.py \
 	experiments/bounded.py \
 	experiments/bounded_sweep.py \
+	experiments/feature_angle.py \
 	experiments/inputs.py
 
 # The hypothesis profile comes from EQUIMESH_HYPOTHESIS_PROFILE (tests/conftest.py;

@@ -49,6 +49,7 @@ def build_parser():
     from .classes import DEFAULT_TOLERANCE, MAX_TOLERANCE
     from .io import INPUT_FORMATS, MESH_FORMATS
     from .planar.insertion import DEFAULT_ENGINE, ENGINES
+    from .surface.mesh_outline import DEFAULT_FEATURE_ANGLE
     from .surface.optimize import OBJECTIVES
     from .surface.pipeline import DEFAULT_OPTIMIZE, MAX_GRID_CELLS, PLACEMENTS, UNOPTIMIZED_MAX_NODES
 
@@ -135,6 +136,15 @@ def build_parser():
         )
         + ") keep a run to about two minutes on a 2-core machine (docs/performance.md); beyond them time grows "
         "faster than the node count",
+    )
+    mesh.add_argument(
+        "--feature-angle",
+        type=_feature_angle,
+        default=argparse.SUPPRESS,
+        metavar="DEGREES",
+        help="triangle meshes only: a boundary vertex is a corner, a node that stays put, where the boundary turns "
+        "by more than DEGREES over a stretch of about L; the rest of each boundary loop is resampled as a curve "
+        f"(default: {DEFAULT_FEATURE_ANGLE:g}, at least 0 and below 180)",
     )
     mesh.add_argument(
         "-o",
@@ -231,6 +241,16 @@ def _tolerance(text):
         raise argparse.ArgumentTypeError(str(exc)) from None
 
 
+def _feature_angle(text):
+    """``--feature-angle``: degrees, at least 0 and below 180 (``mesh_outline.check_feature_angle``)."""
+    from .surface.mesh_outline import check_feature_angle
+
+    try:
+        return check_feature_angle(float(text))
+    except ValueError:  # not a number, or out of range (EquimeshError is a ValueError)
+        raise argparse.ArgumentTypeError(f"expected degrees, at least 0 and below 180, got {text!r}") from None
+
+
 def _run_mesh(args):
     from .io import classes_path, load_surface, surface_mesh_writer
     from .surface.pipeline import mesh_surface
@@ -246,7 +266,7 @@ def _run_mesh(args):
         if not args.quiet:
             print(f"  {stage}: {seconds:.2f} s", file=sys.stderr)
 
-    limit = {"max_nodes": args.max_nodes} if "max_nodes" in args else {}
+    given = {name: getattr(args, name) for name in ("max_nodes", "feature_angle") if name in args}
     with _library_quiet():
         mesh = mesh_surface(
             surface,
@@ -256,7 +276,7 @@ def _run_mesh(args):
             placement=args.placement,
             engine=args.engine,
             progress=progress,
-            **limit,
+            **given,
         )
     write(mesh, args.tolerance)
     if not args.quiet:

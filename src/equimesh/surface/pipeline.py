@@ -44,7 +44,14 @@ from .charts.mesh_chart import MeshChart, flatten_mesh
 from .charts.openings import Perforated, holes_of
 from .charts.triangulated import TriangulatedSurface
 from .flatten import flatten
-from .mesh_outline import boundary_uv, mesh_outline, restate_mesh_error
+from .mesh_outline import (
+    DEFAULT_FEATURE_ANGLE,
+    boundary_uv,
+    check_feature_angle,
+    check_open,
+    mesh_outline,
+    restate_mesh_error,
+)
 from .messages import restate_polygon_error
 from .optimize import OBJECTIVES, optimize_uv
 from .optimize.jacobian import signed_areas
@@ -149,6 +156,7 @@ def mesh_surface(
     max_nodes="default",
     progress=None,
     engine=DEFAULT_ENGINE,
+    feature_angle=None,
 ):
     """Mesh a surface with members as equal as possible (Section 4).
 
@@ -197,6 +205,12 @@ def mesh_surface(
         Called as ``progress(stage, seconds)`` after each stage.
     engine : str
         Insertion engine of Problem 2 (:data:`equimesh.planar.insertion.ENGINES`).
+    feature_angle : float, optional
+        For a triangle mesh only: a vertex of a boundary loop is a corner, a
+        node of the mesh that stays put, when the loop turns there by more
+        than this many degrees at the scale of l; the rest of each loop is
+        resampled as a curve (:func:`~equimesh.surface.mesh_outline.loop_corners`).
+        None: :data:`~equimesh.surface.mesh_outline.DEFAULT_FEATURE_ANGLE`.
 
     Returns
     -------
@@ -231,8 +245,16 @@ def mesh_surface(
         surface = Perforated(surface, holes)
     seconds = {}
     clock = _Clock(seconds, progress)
-    front = _mesh_front if isinstance(surface, TriangulatedSurface) else _chart_front
-    steps = front(surface, grid, l, limit, boundary_spacing, clock)
+    if isinstance(surface, TriangulatedSurface):
+        angle = check_feature_angle(DEFAULT_FEATURE_ANGLE if feature_angle is None else feature_angle)
+        steps = _mesh_front(surface, grid, l, limit, boundary_spacing, clock, angle)
+    elif feature_angle is not None:
+        raise EquimeshError(
+            "a feature angle finds the corners of a triangle mesh's boundary loops; a parametric surface's corners "
+            "are those of its parameter rectangle and the vertices of its holes"
+        )
+    else:
+        steps = _chart_front(surface, grid, l, limit, boundary_spacing, clock)
 
     try:
         # The surface's own guard (_check_size, measured end to end) bounds the planar stage too.
@@ -361,14 +383,17 @@ def _chart_front(surface, grid, l, limit, spacing, clock):
     return _Front(surface, aux, x_s0, flat, outline, place, restate, [hole.points for hole in outline.holes])
 
 
-def _mesh_front(surface, grid, l, limit, spacing, clock):
+def _mesh_front(surface, grid, l, limit, spacing, clock, feature_angle):
     """Steps 1-3 for a triangle mesh (:mod:`equimesh.surface.charts.triangulated`): it is the auxiliary triangulation.
 
-    ``grid`` is not used.  The flattening starts from the projection onto the
-    best-fit plane, or a conformal map or Tutte's embedding if that folds, with
-    the openings capped (:func:`~equimesh.surface.charts.mesh_chart.flatten_mesh`); the flattened
-    mesh is the chart (:class:`~equimesh.surface.charts.mesh_chart.MeshChart`) and
-    its loops the outline (:mod:`equimesh.surface.mesh_outline`).
+    ``grid`` is not used; ``feature_angle`` decides the loops' corners.  The
+    flattening starts from the projection onto the best-fit plane, or a
+    conformal map or Tutte's embedding if that folds, with the openings capped
+    (:func:`~equimesh.surface.charts.mesh_chart.flatten_mesh`); the size is
+    estimated again on the flattened area, which Problem 2 meshes
+    (:func:`_check_size`); the flattened mesh is the chart
+    (:class:`~equimesh.surface.charts.mesh_chart.MeshChart`) and its loops the
+    outline (:mod:`equimesh.surface.mesh_outline`).
     """
     if len(surface.triangles) > 2 * MAX_GRID_CELLS:
         raise EquimeshError(
@@ -380,10 +405,12 @@ def _mesh_front(surface, grid, l, limit, spacing, clock):
     clock("auxiliary triangulation")
 
     flat = flatten_mesh(surface)
+    check_open(surface, flat.points)
+    _check_size(surface.vertices, surface.triangles, l, limit, flattened=flat.points)
     chart = MeshChart(surface, flat.points)
     clock("flattening (eq. 1)")
 
-    outline = mesh_outline(chart, l, spacing)
+    outline = mesh_outline(chart, l, spacing, feature_angle)
 
     def place(plane):
         uv = plane.points.copy()
@@ -431,22 +458,44 @@ def _node_limit(max_nodes, optimize):
     return check_max_nodes(max_nodes, UNOPTIMIZED_MAX_NODES if optimize == "none" else OBJECTIVES[optimize].max_nodes)
 
 
-def _check_size(surface_points, triangles, l, max_nodes):
+def _check_size(surface_points, triangles, l, max_nodes, flattened=None):
     """Estimate the node count (surface area at the lattice density) and refuse it above ``max_nodes``.
 
     The area is computed in units of the surface's extent (the points scaled
     by a power of two, which is exact), so neither a surface given in units of
     1e-100 nor one in units of 1e100 overflows or underflows; a tiny ``l``
-    gives an estimate of ``inf`` rather than an overflow.
+    gives an estimate of ``inf`` rather than an overflow.  With ``flattened``
+    (the plane points of the same triangles, step 2) the estimate is that of
+    the flattened area, which Problem 2 meshes: eq. (1) keeps edge lengths
+    only in the least-squares sense, and a surface that wraps around, as a
+    tube or a nearly closed sphere, flattens to many times its area
+    (docs/decisions.md, "Size limits of mesh_surface").
     """
     if max_nodes is None:
         return
-    scale = power_of_two_scale(float(np.max(np.ptp(surface_points, axis=0))))
-    p = surface_points[triangles] * scale
-    area = 0.5 * float(np.linalg.norm(np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]), axis=1).sum())
+    area, scale = _scaled_area(surface_points, triangles)
+    what = f"this surface (area {number(area / scale / scale)})"
+    if flattened is not None:
+        plane, plane_scale = _scaled_area(flattened, triangles)
+        ratio = (plane / plane_scale / plane_scale) / (area / scale / scale)
+        what = (
+            f"the flattened surface (area {number(plane / plane_scale / plane_scale)}, {number(ratio, 3)} times the "
+            f"surface's {number(area / scale / scale)}: eq. (1) stretches it)"
+        )
+        area, scale = plane, plane_scale
     with np.errstate(over="ignore", under="ignore", divide="ignore"):
         estimate = node_estimate(area, 0.0, np.float64(l * scale))  # Oler's bound, the lattice density
-    check_size(f"this surface (area {number(area / scale / scale)})", estimate, max_nodes, l)
+    check_size(what, estimate, max_nodes, l)
+
+
+def _scaled_area(points, triangles):
+    """The area of ``triangles`` on ``points`` (2-D or 3-D) times ``scale**2``, and ``scale``: a power of two that
+    brings the points' extent near 1."""
+    scale = power_of_two_scale(float(np.max(np.ptp(points, axis=0))))
+    p = points[triangles] * scale
+    if p.shape[-1] == 2:
+        p = np.concatenate([p, np.zeros(p.shape[:-1] + (1,))], axis=-1)
+    return 0.5 * float(np.linalg.norm(np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]), axis=1).sum()), scale
 
 
 def _check_members(points, edges, l):
