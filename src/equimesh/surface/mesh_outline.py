@@ -47,7 +47,7 @@ from .ring import reach, resample_ring
 #: are kept, while a round opening's staircase of mesh edges is resampled as
 #: a curve (docs/decisions.md, "Corners of a mesh's loops", measured by
 #: ``python experiments/feature_angle.py``).
-DEFAULT_FEATURE_ANGLE = 30.0
+DEFAULT_FEATURE_ANGLE = 40.0
 
 #: A loop vertex turning by ``FIRM_TURN`` degrees or more at the scale of l
 #: must lie within ``CORNER_DETAIL l`` of the loop's ring: a corner that the
