@@ -17,17 +17,20 @@ EXTRAS_STAMP := $(VENV)/.equimesh-extras-installed
 
 # Optional extras `make reproduce` and `make test` install when they can
 # (pyproject.toml [project.optional-dependencies]): peers = gmsh and pymeshlab
-# for experiments/compare_peers.py, rhino = rhino3dm for .3dm input, dask for
-# sweeps on a cluster, fast = pypardiso (MKL PARDISO) for the optimisation's
-# factorisations.  An extra that cannot be installed (no wheel for this
-# platform, no network) is reported and skipped: the experiments then compare
-# what they can and the tests that need it are skipped with the reason, so CI
-# tests every extra that is installable.
-OPTIONAL_EXTRAS ?= peers rhino dask fast
+# for experiments/compare_peers.py, rhino = rhino3dm for .3dm input and output,
+# compas and dxf (ezdxf) for COMPAS and DXF output, report = plotly for the
+# HTML report, dask for sweeps on a cluster, fast = cvxopt (CHOLMOD) and
+# mkl = pypardiso (MKL PARDISO) for the optimisation's factorisations.  An
+# extra that cannot be installed (no wheel for this platform, no network) is
+# reported and skipped: the experiments then compare what they can and the
+# tests that need it are skipped with the reason, so CI tests every extra that
+# is installable.
+OPTIONAL_EXTRAS ?= peers rhino compas dxf report dask fast mkl
 
 # Every experiment script, in the order `make reproduce` runs them.  Each one
 # has `main(argv)`, prints its progress and writes results/ (and, for figure
-# scripts, paper_figs/).  Add a new experiment by appending it here.
+# scripts, paper_figs/).  Add a new experiment by appending it here; arguments
+# follow the script after a colon (`script.py:--option`).
 EXPERIMENTS := \
 	experiments/ratio_sweep.py \
 	experiments/problem2.py \
@@ -37,6 +40,7 @@ EXPERIMENTS := \
 	experiments/figures.py \
 	experiments/compare_peers.py \
 	experiments/scaling.py \
+	experiments/scaling.py:--pipeline \
 	experiments/bounded.py \
 	experiments/bounded_sweep.py \
 	experiments/feature_angle.py \
@@ -66,24 +70,25 @@ MODULES ?=
 MUTATION_ARGS ?=
 MUTATION_STAMP := $(VENV)/.equimesh-mutation-installed
 
-.PHONY: test test-thorough reproduce bench bench-history bench-compare bench-publish mutation venv clean-venv
+.PHONY: test test-thorough reproduce bench bench-history bench-compare bench-publish mutation venv clean-venv browser
 
 # Lint and format check first (ruff, configured in pyproject.toml), then the tests.
 LINTED := src tests experiments benchmarks tools
 
-test: $(STAMP) $(EXTRAS_STAMP)
+test: $(STAMP) $(EXTRAS_STAMP) browser
 	$(VENV)/bin/ruff check $(wildcard $(LINTED))
 	$(VENV)/bin/ruff format --check $(wildcard $(LINTED))
 	$(PY) -m pytest $(PYTEST_ARGS)
 
-test-thorough: $(STAMP) $(EXTRAS_STAMP)
+test-thorough: $(STAMP) $(EXTRAS_STAMP) browser
 	EQUIMESH_HYPOTHESIS_PROFILE=thorough $(PY) -m pytest $(PYTEST_ARGS)
 
 reproduce: $(STAMP) $(EXTRAS_STAMP)
-	@set -e; for script in $(EXPERIMENTS); do \
+	@set -e; for entry in $(EXPERIMENTS); do \
+		script=$${entry%%:*}; args=$${entry#"$$script"}; args=$${args//:/ }; \
 		if [ ! -f "$$script" ]; then echo "make reproduce: $$script is missing" >&2; exit 1; fi; \
-		echo "==> $(PY) $$script"; \
-		$(PY) "$$script"; \
+		echo "==> $(PY) $$script$$args"; \
+		$(PY) "$$script" $$args; \
 	done; \
 	echo "==> make reproduce: all experiments done"
 
@@ -135,6 +140,16 @@ $(MUTATION_STAMP): $(STAMP)
 	touch $(MUTATION_STAMP)
 
 venv: $(STAMP)
+
+# Headless Chromium for the report's browser tests (tests/io/test_report_browser.py): installed with
+# apt-get only when it is missing and apt-get is usable (as root); otherwise nothing, and those tests
+# are skipped with the reason.
+browser:
+	@if ! command -v chromium >/dev/null 2>&1 && [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then \
+		echo "==> installing chromium (apt-get) for the report's browser tests"; \
+		{ apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium; } \
+			|| echo "make: chromium not installed; the browser tests will be skipped" >&2; \
+	fi
 
 # Install (again) only when pyproject.toml changed since the last install.
 $(STAMP): pyproject.toml | $(PY)

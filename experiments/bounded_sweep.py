@@ -18,8 +18,9 @@ shortest and longest member over l and the solver's Jacobian evaluations
 (``njev``).  A surface refused with an error of ours is recorded with its
 message.  The CSV is identical bit for bit whatever ``--jobs`` and
 ``--scheduler`` are; the optimisation times, which are not, go to their own
-CSV.  The provenance names the factorisation of the solver (PARDISO with the
-extra ``fast``, else SuperLU): the two round differently in the last bits.
+CSV.  The provenance names the factorisation of the solver (the first installed
+of PARDISO, CHOLMOD and SuperLU, or ``EQUIMESH_FACTORISATION``): they round
+differently in the last bits.
 
 Writes::
 

@@ -1,7 +1,9 @@
 """Side by side with other surface meshers: how many members are (nearly) exactly l, and in [l, 2l].
 
-The same five surfaces (80 x 80 in plan, bicubic Bezier nets) are meshed at the
-same target length l (default 5 = span / 16) by
+The benchmark set (:data:`equimesh.testing.benchmark.BENCHMARK`: five 80 x 80
+bicubic Bezier surfaces, each with its target length l = 5 = span / 16) is
+meshed by every method of one table (:func:`methods`), each a function
+``(surface, l) -> (points, triangles)``:
 
 * equimesh, ``optimize="paper"`` and every other objective of
   :data:`equimesh.surface.optimize.OBJECTIVES` (``"bounded"`` when present);
@@ -11,13 +13,17 @@ same target length l (default 5 = span / 16) by
   to l (``Mesh.MeshSizeMin = Mesh.MeshSizeMax = l``) and curvature sizing off;
 * pymeshlab's isotropic explicit remeshing with target length l, started from a
   fine triangulation of the same surface (``FINE_GRID`` cells, re-projected on it);
+* every function of an ``equimesh.methods`` entry point, and every
+  ``--method package.module:function`` (docs/benchmark.md);
 
 and every mesh is measured by the one function
 :func:`equimesh.metrics.comparison_figures` (shares within 0.5 %, 1 %, 5 % of l,
 share in [l, 2l], length classes at 0.5 % and 1 %, length std, angle range),
 plus the wall time of the meshing call.  gmsh and pymeshlab are optional (the
 ``[peers]`` extra); a mesher that cannot be imported is listed as skipped and
-the rest is compared.
+the rest is compared.  A method that fails on a surface is a row with its
+reason; a ``--method`` that cannot be imported, or a method that returns no
+triangle mesh, ends the run with one line and exit code 2, nothing written.
 
 Writes::
 
@@ -29,10 +35,13 @@ Writes::
 
 Usage::
 
-    python experiments/compare_peers.py [--length 5] [--surfaces dome barrel ...] [--jobs 2]
+    python experiments/compare_peers.py [--length L] [--surfaces NAME ...] [--methods NAME ...]
+                                        [--method package.module:function ...] [--jobs 2]
                                         [--out-dir results] [--fig-dir paper_figs] [--plot-only]
 """
 
+import os
+import re
 import sys
 from importlib import metadata
 from pathlib import Path
@@ -41,22 +50,19 @@ import numpy as np
 import pandas as pd
 from matplotlib.figure import Figure
 
-from equimesh import BezierSurface
-from equimesh.io import load_surface
+from equimesh.errors import InvalidMethodError
 from equimesh.mesh import edge_lengths, unique_edges
 from equimesh.metrics import COMPARISON_COLUMNS, comparison_figures
 from equimesh.surface.auxiliary import auxiliary_grid
 from equimesh.surface.optimize import OBJECTIVES
 from equimesh.surface.pipeline import mesh_surface
 from equimesh.surface.regularity import evaluate
+from equimesh.testing.benchmark import BENCHMARK, SPAN, entry_point_methods, load_method, triangle_mesh
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))  # _common.py, also when loaded by file path
 import _common  # noqa: E402
 
 NAME = "compare_peers"
-REPO = Path(__file__).resolve().parents[1]
-SPAN = 80.0
-DEFAULT_LENGTH = SPAN / 16
 
 #: Cells of the fine triangulation pymeshlab starts from (per side): 0.25 l at the default l.
 FINE_GRID = 64
@@ -65,31 +71,7 @@ FINE_GRID = 64
 BIN_WIDTH = 0.01
 BIN_RANGE = (0.295, 3.305)
 
-
-def _net(z):
-    """A bicubic Bezier net over [0, SPAN]^2 with the (4, 4) heights ``z`` (first axis along u = x)."""
-    t = np.linspace(0.0, SPAN, 4)
-    x, y = np.meshgrid(t, t, indexing="ij")
-    return BezierSurface(np.stack([x, y, np.asarray(z, dtype=float)], axis=-1))
-
-
-def _surfaces():
-    """The surfaces by name: doubly curved (domes, saddle, wave) and developable (barrel)."""
-    dome = load_surface(REPO / "experiments" / "surfaces" / "reference_dome.json")
-    rise = np.zeros((4, 4))
-    rise[1:3, 1:3] = 1.0
-    w = np.array([0.0, 1.0, -1.0, 0.0])
-    t = np.linspace(-1.0, 1.0, 4)
-    return {
-        "reference dome": dome,
-        "steep dome": _net(80.0 * rise),  # rise 60 at the centre, against 35
-        "hyperbolic paraboloid": _net(20.0 * np.outer(t, t)),  # z = 20 (2x/80 - 1)(2y/80 - 1): corners at +-20
-        "wave": _net(15.0 * w[:, None] + 6.0 * w[None, :]),
-        "barrel": _net(np.tile([0.0, 26.0, 26.0, 0.0], (4, 1))),  # a cylinder over x: developable
-    }
-
-
-SURFACES = tuple(_surfaces())
+SURFACES = tuple(BENCHMARK)
 
 
 # --------------------------------------------------------------------------- meshers: (surface, l) -> (points,
@@ -155,8 +137,13 @@ def _pymeshlab(surface, l):
     return mesh.vertex_matrix(), mesh.face_matrix()
 
 
-def methods():
-    """``({method: run}, {method: why skipped})``: every mesher this machine can run, in table order."""
+def methods(added=()):
+    """``({method: run}, {method: why skipped})``: the one table of methods, in table order.
+
+    The meshers of this script this machine can run, then the functions of
+    the ``equimesh.methods`` entry points (by entry-point name), then each
+    ``package.module:function`` of ``added`` (by that text).
+    """
     run, skipped = {}, {}
     for objective in ("paper", "bounded"):
         if objective in OBJECTIVES:
@@ -173,6 +160,8 @@ def methods():
             skipped.update({name: f"cannot import {module} ({exc}); pip install 'equimesh[peers]'" for name in entries})
         else:
             run.update(entries)
+    run.update(entry_point_methods())
+    run.update({spec: load_method(spec) for spec in added})
     return run, skipped
 
 
@@ -180,12 +169,18 @@ def methods():
 
 
 def measure(task):
-    """One (surface, method) run: its figures (:data:`equimesh.metrics.COMPARISON_COLUMNS`) and L/l histogram."""
-    surface_name, method, l = task
-    run = methods()[0][method]
+    """One (surface, method) run: its figures (:data:`equimesh.metrics.COMPARISON_COLUMNS`) and L/l histogram.
+
+    ``task`` is ``(surface name, method name, l, added)``, ``added`` the
+    ``--method`` specs (so that a worker process builds the same table).
+    Raises :class:`equimesh.errors.InvalidMethodError` when the method's
+    answer is no triangle mesh: the method is wrong, not the surface.
+    """
+    surface_name, method, l, added = task
+    run = methods(added)[0][method]
     row = {"surface": surface_name, "method": method}
     try:
-        (points, triangles), seconds = _common.timed(run, _surfaces()[surface_name], l)
+        result, seconds = _common.timed(run, BENCHMARK[surface_name].surface, l)
     except Exception as exc:  # a peer failing on a surface is a result of the comparison, not a crash
         return {
             **row,
@@ -194,6 +189,7 @@ def measure(task):
             "seconds": np.nan,
             "status": f"failed: {type(exc).__name__}: {' '.join(str(exc).split())[:120]}",
         }, None
+    points, triangles = triangle_mesh(result, method)
     figures = comparison_figures(points, triangles, l)
     ratios = edge_lengths(points, unique_edges(triangles)) / l
     return {**row, **figures, "nodes": int(len(points)), "seconds": seconds, "status": "ok"}, _histogram(ratios)
@@ -220,10 +216,15 @@ def histogram_frame(runs):
     return pd.DataFrame(records, columns=["surface", "method", "ratio", "count"])
 
 
-def markdown(df, skipped, l, record):
+def markdown(df, skipped, lengths, record):
     pct = lambda x: "" if pd.isna(x) else f"{100 * x:.1f}"  # noqa: E731
+    if len(set(lengths.values())) == 1:
+        l = next(iter(lengths.values()))
+        target = f"Target length l = {l:g} on 80 x 80 surfaces (span / {SPAN / l:g})"
+    else:
+        target = "Target lengths " + ", ".join(f"l = {v:g} ({k})" for k, v in lengths.items()) + " on 80 x 80 surfaces"
     body = [
-        f"Target length l = {l:g} on 80 x 80 surfaces (span / {SPAN / l:g}). Shares in % of all members; "
+        f"{target}. Shares in % of all members; "
         "classes: fewest length classes at +-0.5 % and +-1 % of l (equimesh.classes); std relative to l; "
         "time: the meshing call alone (equimesh: mesh_surface end to end; pymeshlab: from a "
         f"{FINE_GRID} x {FINE_GRID} grid). In [l, 2l] is strict (up to REL_TOL = 1e-9 relative): a member "
@@ -266,7 +267,7 @@ def plot(hist, fig_dir, parameters):
         axes[0].set_ylabel("members", fontsize=8)
         fig.suptitle(method, fontsize=10)
         fig.tight_layout()
-        slug = method.replace(" ", "_").replace("-", "_").lower()
+        slug = re.sub(r"[^a-z0-9]+", "_", method.lower()).strip("_")
         written += _common.save_figure(fig, Path(fig_dir) / f"{NAME}_{slug}", parameters, dpi=120)
     return written
 
@@ -296,7 +297,12 @@ def _peer_versions():
 def parse_args(argv=None):
     p = _common.parser(__doc__)
     p.add_argument(
-        "--length", type=float, default=DEFAULT_LENGTH, help=f"target member length l (default {DEFAULT_LENGTH:g})"
+        "--length",
+        type=float,
+        default=None,
+        help="target member length l on every surface (default: each surface's own, "
+        + ", ".join(sorted({f"{s.length:g}" for s in BENCHMARK.values()}))
+        + ")",
     )
     p.add_argument(
         "--surfaces",
@@ -311,24 +317,43 @@ def parse_args(argv=None):
         nargs="+",
         default=None,
         metavar="METHOD",
-        help="only these methods (names as in the table, e.g. 'gmsh Delaunay'; default all available)",
+        help="only these methods of the table (names as in the table, e.g. 'gmsh Delaunay'; default all available)",
+    )
+    p.add_argument(
+        "--method",
+        action="append",
+        default=[],
+        metavar="PACKAGE.MODULE:FUNCTION",
+        dest="added",
+        help="add a mesher, a function (surface, l) -> (points, triangles), to the table; repeatable "
+        "(docs/benchmark.md)",
     )
     return _common.add_output_options(p, jobs=True, plot_only=True).parse_args(argv)
 
 
 def main(argv=None):
-    args = parse_args(argv)
+    try:
+        return _main(parse_args(argv))
+    except InvalidMethodError as exc:  # a --method that cannot be loaded or answers no triangle mesh
+        print(f"{NAME}: error: {exc}", file=sys.stderr)
+        return 2
+
+
+def _main(args):
     out_dir, fig_dir = Path(args.out_dir), Path(args.fig_dir)
     hist_path = out_dir / f"{NAME}_histograms.csv"
-    parameters = {"length": args.length, "surfaces": args.surfaces, "fine_grid": FINE_GRID}
+    lengths = {s: BENCHMARK[s].length if args.length is None else args.length for s in args.surfaces}
+    parameters = {"lengths": lengths, "surfaces": args.surfaces, "fine_grid": FINE_GRID}
     if args.plot_only:
         plot(pd.read_csv(hist_path), fig_dir, parameters)
         print(f"{NAME}: redrew the figures from {hist_path}")
         return 0
-    available, skipped = methods()
-    chosen = [m for m in available if args.methods is None or m in args.methods]
+    if args.added:
+        sys.path.insert(0, os.getcwd())  # a researcher's module beside them, as `python -m` finds it
+    available, skipped = methods(tuple(args.added))
+    chosen = [m for m in available if args.methods is None or m in args.methods or m in args.added]
     parameters.update(methods=chosen, peer_versions=_peer_versions())
-    tasks = [(s, m, args.length) for s in args.surfaces for m in chosen]
+    tasks = [(s, m, lengths[s], tuple(args.added)) for s in args.surfaces for m in chosen]
     runs = []
     for row, hist in _common.parallel_map(measure, tasks, args.jobs, scheduler=args.scheduler):
         print(
@@ -346,7 +371,7 @@ def main(argv=None):
         out_dir / f"{NAME}.csv",
         df,
         parameters,
-        lambda record: markdown(df, skipped, args.length, record),
+        lambda record: markdown(df, skipped, lengths, record),
         float_format="%.10g",
     )
     plot(hist, fig_dir, parameters)

@@ -7,7 +7,8 @@ scaled to areas of about 25, 100, 400, 1600 and 6400 l^2, run
 (angle 0, offset (0, 0)) and with :func:`equimesh.best_lattice_placement`,
 and record the G1 share (edges of length exactly l from the lattice), the
 number of non-G1 edges and ``non-G1 * l / perimeter`` (bounded by a constant:
-``tests/planar/test_strip.py::test_non_g1_edges_grow_linearly_with_perimeter``), the number of distinct edge lengths (rounded
+``tests/planar/test_strip.py::test_non_g1_edges_grow_linearly_with_perimeter``), the number of distinct edge lengths
+(rounded
 to
 1e-9 l), the shortest and longest edge (Theorem 3: in [l, 2l]), the gain of
 the placement search and the run times.  A second study sweeps

@@ -1,4 +1,4 @@
-"""Hypothesis profiles, the experiment loader, and a note on conditional properties never exercised.
+"""Hypothesis profiles, the experiment loader, and conditional properties that must be exercised.
 
 Profiles, chosen by the environment variable EQUIMESH_HYPOTHESIS_PROFILE:
 
@@ -18,6 +18,7 @@ the same examples again (one is drawn when none is given; under
 pytest-xdist the controller draws it and the workers inherit it).
 
 Fixture ``load_experiment``: import ``experiments/<name>.py`` for a smoke test.
+Fixture ``saddle_mesh``: one mesh of a real surface, made once, for the writers of ``equimesh.io``.
 
 Conditional properties.  A property that only says something when a
 condition holds (``assume(c)``, or ``if c: check(...)``) passes vacuously if
@@ -28,8 +29,18 @@ the generated inputs never satisfy ``c``.  Such a test wraps the condition in
 
     assume(exercised("strip vertices globally separated (hypothesis H)", separated))
 
-and the end of the run lists every condition that was reached but never held
-("conditional properties never exercised: ..."), also under ``pytest -n 2``.
+and fails when a condition it evaluated never held (``conditional property
+never exercised: ...``).  A fuzz test, which accepts or refuses each
+generated input, also states the share of inputs that must be accepted, so
+that refusing everything fails too::
+
+    @pytest.mark.exercised("Problem 2 accepted the polygon", share=0.3)
+
+fails unless that condition was evaluated and held in at least 30% of its
+evaluations.  The counts are those of one test (each parametrized case on
+its own), taken in the process that runs it, so the check holds under
+``pytest -n 2`` as without it.  ``--hypothesis-show-statistics`` shows the
+share of each condition per test.
 """
 
 import collections
@@ -73,8 +84,10 @@ _SEED_KEY = "equimesh_hypothesis_seed"
 def pytest_configure(config):
     """A random profile without ``--hypothesis-seed``: draw one, before hypothesis's plugin reads the option.
 
-    A pytest-xdist worker takes the controller's (:func:`pytest_configure_node`).
+    A pytest-xdist worker takes the controller's (:func:`pytest_configure_node`).  Also registers the marker of
+    conditional properties (:func:`pytest_runtest_call`).
     """
+    config.addinivalue_line("markers", "exercised(name, share): the condition name holds in share or more of the test")
     if settings.default.derandomize or config.getoption("hypothesis_seed") is not None:
         return
     worker = getattr(config, "workerinput", None)
@@ -116,11 +129,18 @@ def load_experiment():
     sys.path.remove(folder)
 
 
+@pytest.fixture(scope="session")
+def saddle_mesh():
+    """The saddle of experiments/surfaces at l = 6 on an 8 x 8 grid, optimised ("bounded"): about a hundred nodes."""
+    from equimesh import load_surface, mesh_surface
+
+    return mesh_surface(load_surface(EXPERIMENTS / "surfaces" / "saddle.json"), 6.0, grid=(8, 8))
+
+
 # --------------------------------------------------------------------------- conditional properties
 
-#: Condition name -> [times reached, times held], in this process.
-_CONDITIONS = collections.defaultdict(lambda: [0, 0])
-_WORKER_KEY = "equimesh_exercised"
+#: The counts of the test running in this process: condition name -> [times evaluated, times held].
+_RUNNING = []
 
 
 def exercised(name, held):
@@ -129,36 +149,48 @@ def exercised(name, held):
     Also a hypothesis ``event`` inside a property test (``--hypothesis-show-statistics``).
     """
     held = bool(held)
-    counts = _CONDITIONS[name]
-    counts[0] += 1
-    counts[1] += held
+    if _RUNNING:
+        counts = _RUNNING[-1][name]
+        counts[0] += 1
+        counts[1] += held
     if currently_in_test_context():
         event(f"{name}: {'held' if held else 'did not hold'}")
     return held
 
 
-def never_exercised(conditions):
-    """Lines naming each condition of ``{name: (reached, held)}`` that was reached but never held."""
-    return [
-        f"{name}: never held in {reached} evaluation(s)"
-        for name, (reached, held) in sorted(conditions.items())
+def unexercised(counts, shares):
+    """Why a test's conditions fail: ``counts`` is ``{name: (evaluated, held)}``, ``shares`` ``{name: share}``."""
+    problems = [
+        f"conditional property never exercised: {name!r} never held in {evaluated} evaluation(s)"
+        for name, (evaluated, held) in sorted(counts.items())
         if not held
     ]
+    for name, share in sorted(shares.items()):
+        evaluated, held = counts.get(name, (0, 0))
+        if not evaluated:
+            problems.append(f"condition {name!r} was never evaluated (expected to hold in {share:.0%} or more)")
+        elif held and held < share * evaluated:
+            problems.append(
+                f"condition {name!r} held in {held} of {evaluated} evaluations ({held / evaluated:.0%}), "
+                f"less than the {share:.0%} expected"
+            )
+    return problems
 
 
-def pytest_sessionfinish(session):
-    """Under pytest-xdist a worker hands its counts to the controller."""
-    output = getattr(session.config, "workeroutput", None)
-    if output is not None:
-        output[_WORKER_KEY] = {name: tuple(counts) for name, counts in _CONDITIONS.items()}
-
-
-@pytest.hookimpl(optionalhook=True)
-def pytest_testnodedown(node, error):
-    """Controller side of :func:`pytest_sessionfinish`: add a finished worker's counts."""
-    for name, (reached, held) in getattr(node, "workeroutput", {}).get(_WORKER_KEY, {}).items():
-        _CONDITIONS[name][0] += reached
-        _CONDITIONS[name][1] += held
+@pytest.hookimpl(wrapper=True)
+def pytest_runtest_call(item):
+    """Count the conditions a test evaluates; fail it if one never held or held less often than its marker says."""
+    counts = collections.defaultdict(lambda: [0, 0])
+    _RUNNING.append(counts)
+    try:
+        result = yield
+    finally:
+        _RUNNING.pop()
+    shares = {mark.args[0]: mark.kwargs["share"] for mark in item.iter_markers("exercised")}
+    problems = unexercised(counts, shares)
+    if problems:
+        pytest.fail("\n".join(problems), pytrace=False)
+    return result
 
 
 def pytest_terminal_summary(terminalreporter, exitstatus):
@@ -166,8 +198,3 @@ def pytest_terminal_summary(terminalreporter, exitstatus):
     if replay and exitstatus != 0:
         terminalreporter.section("replaying the failures", red=True)
         terminalreporter.write_line(replay)
-    lines = never_exercised(_CONDITIONS)
-    if lines:
-        terminalreporter.section("conditional properties never exercised", yellow=True)
-        for line in lines:
-            terminalreporter.write_line(line)

@@ -1,4 +1,5 @@
-"""Placements of the two sides of a corner (or of sharp corners in a row) enumerated on a grid, independently of planar/boundary/corner.py and chain.py.
+"""Placements of the two sides of a corner (or of sharp corners in a row) enumerated on a grid, independently of
+planar/boundary/corner.py and chain.py.
 
 A placement splits each side (lengths by distance from the corner) into parts of ``[l, 2l]`` and keeps every
 two points of different sides at least ``l`` apart (the corner excluded).  :func:`sampled_placement` tries
@@ -72,7 +73,8 @@ def sampled_chain(thetas, lengths, l, step=0.125):
     """Splits of the shared sides ``T_1 .. T_(m-1)`` of consecutive corners of ``thetas`` (sides ``T_0 .. T_m``:
     ``T_0`` arriving at the first corner, ``T_m`` leaving the last) keeping every corner's two sides l apart, with
     ``T_0`` and ``T_m`` split too, or None.  Each shared side's splits are enumerated given the previous one's points
-    near their common corner (within ``K l``, ``K l sin theta >= l``: farther points are l from the whole other side)."""
+    near their common corner (within ``K l``,
+    ``K l sin theta >= l``: farther points are l from the whole other side)."""
     m = len(thetas)
 
     @functools.lru_cache(maxsize=None)
@@ -102,7 +104,8 @@ def corners(rings):
             yield theta, float(np.linalg.norm(u)), float(np.linalg.norm(w))
 
 
-# --------------------------------------------------------------------------- corners built by hand, and placements checked pair by pair
+# --------------------------------------------------------------------------- corners built by hand, and placements
+# checked pair by pair
 
 
 def at(angle, r):

@@ -1,4 +1,5 @@
-"""Inputs and oracles shared by the tests of the insertion engines (``tests/planar/insertion/``, ``tests/planar/test_engines.py``).
+"""Inputs and oracles shared by the tests of the insertion engines (``tests/planar/insertion/``,
+``tests/planar/test_engines.py``).
 
 * recording the :class:`~equimesh.planar.insertion.Insertion` of each engine run of Problems 1 and 2, and the
   bit-for-bit comparison of two runs;

@@ -1,4 +1,5 @@
-"""Surfaces that break the pipeline's assumptions, and :func:`refuse`, the check of a one-line refusal by ``mesh_surface``."""
+"""Surfaces that break the pipeline's assumptions, and :func:`refuse`, the check of a one-line refusal by
+``mesh_surface``."""
 
 import numpy as np
 import pytest

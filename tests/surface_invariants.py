@@ -1,4 +1,5 @@
-"""What every mesh of a surface must satisfy (Section 4): nodes on the surface and in the chart, no fold-over in (u, v)."""
+"""What every mesh of a surface must satisfy (Section 4): nodes on the surface and in the chart, no fold-over in (u,
+v)."""
 
 import numpy as np
 

@@ -1,7 +1,8 @@
-"""The argument checks every verb shares (``equimesh/_checks.py``): the target length l and real numbers.
+"""The argument checks every verb shares (``equimesh/_checks.py``): the target length l, real numbers, numbers as text.
 
 What must hold: l is one real, positive, finite number in the supported range (numpy scalars and 0-d arrays
-included); anything else is refused with one line saying what it got.
+included); anything else is refused with one line saying what it got, an integer beyond the float range by its size
+(never Python's OverflowError); a number typed as text is read only in its plain spellings.
 """
 
 import re
@@ -10,8 +11,8 @@ import numpy as np
 import pytest
 
 import equimesh
-from equimesh import InvalidLengthError, InvalidPolygonError
-from equimesh._checks import check_length, real_array, real_number
+from equimesh import EquimeshError, InvalidLengthError, InvalidPolygonError
+from equimesh._checks import check_count, check_length, number_text, real_array, real_number
 from equimesh.tolerance import MAX_LENGTH, MIN_LENGTH
 
 
@@ -79,3 +80,78 @@ def test_length_out_of_range_says_to_rescale():
     assert str(err.value) == (
         "target length l = 1e+200 is outside the supported range [1e-150, 1e+150]; rescale the coordinates"
     )
+
+
+BEYOND_FLOATS = 10**400  # a Python int float() cannot hold: OverflowError, not ValueError, unless checked
+
+
+@pytest.mark.parametrize(
+    "call, fragment",
+    [
+        (lambda: equimesh.increment([[0, 0], [BEYOND_FLOATS, 0], [4, 4]], 1.0), "entry [1][0] is an integer of 401"),
+        (lambda: equimesh.uniform_triangulation([[0, 0], [4, 0], [4, BEYOND_FLOATS]], 1.0), "entry [2][1]"),
+        (lambda: equimesh.best_lattice_placement([[0, 0], [4, 0], [-BEYOND_FLOATS, 4]], 1.0), "entry [2][0]"),
+        (lambda: equimesh.node_lower_bound([[BEYOND_FLOATS, 0], [4, 0], [4, 4]], 1.0), "entry [0][0]"),
+        (lambda: equimesh.uniform_triangulation(SQUARE10, 1.0, offset=(0, BEYOND_FLOATS)), "offset must be real"),
+        (lambda: equimesh.uniform_triangulation(SQUARE10, 1.0, angle=BEYOND_FLOATS), "angle must be a real number"),
+        (
+            lambda: equimesh.BezierSurface([[[0, 0, 0], [0, 1, 0]], [[1, 0, 0], [1, 1, BEYOND_FLOATS]]]),
+            "entry [1][1][2] is an integer of 401 digits",
+        ),
+        (
+            lambda: equimesh.NurbsSurface((1, 1), [0, 0, 1, BEYOND_FLOATS], [0, 0, 1, 1], np.zeros((2, 2, 3))),
+            "knots_u must be real numbers within the float range, but entry [3]",
+        ),
+        (
+            lambda: equimesh.TriangulatedSurface([[0, 0, 0], [1, 0, 0], [0, BEYOND_FLOATS, 0]], [[0, 1, 2]]),
+            "entry [2][1]",
+        ),
+        *(
+            (lambda verb=verb: verb(SQUARE10, BEYOND_FLOATS), "within the float range, got an integer of 401 digits")
+            for verb in (
+                equimesh.increment,
+                equimesh.uniform_triangulation,
+                equimesh.best_lattice_placement,
+                equimesh.node_lower_bound,
+            )
+        ),
+        (lambda: equimesh.length_classes([1.0], BEYOND_FLOATS), "target length l must be a real number within"),
+    ],
+)
+def test_integers_beyond_the_float_range_are_refused_by_the_argument_checks(call, fragment):
+    """A vertex, a coordinate, a knot or l = 10**400 is an EquimeshError naming the entry and its size."""
+    with pytest.raises(equimesh.EquimeshError) as err:
+        call()
+    assert fragment in str(err.value) and "0000000000" not in str(err.value)
+
+
+@pytest.mark.parametrize(
+    "text, whole, value",
+    [("2.5", False, 2.5), (" -1e3 ", False, -1000.0), (".5", False, 0.5), ("5.", False, 5.0), ("-inf", False, -np.inf)]
+    + [("12", True, 12), ("+3", True, 3), ("-7", True, -7)],
+)
+def test_numbers_as_typed_are_read(text, whole, value):
+    assert number_text(text, "x", EquimeshError, whole=whole) == value
+
+
+@pytest.mark.parametrize(
+    "text, whole, got",
+    [
+        ("1_0", False, "got '1_0'"),
+        ("1_000", True, "got '1_000'"),
+        ("\u0661\u0662", False, "got '\u0661\u0662'"),  # Arabic-Indic digits, which float() reads as 12
+        ("0x10", True, "got '0x10'"),
+        ("2.5", True, "got '2.5'"),
+        ("", False, "got ''"),
+        ("9" * 5000, True, "got a text of 5000 characters"),
+    ],
+)
+def test_numbers_in_other_spellings_are_refused(text, whole, got):
+    """Python's float() and int() read 1_0 as 10: a person who types it meant something else, or mistyped."""
+    with pytest.raises(EquimeshError, match=f"^x must be a (whole )?number, {got}$"):
+        number_text(text, "x", EquimeshError, whole=whole)
+
+
+def test_counts_below_the_least_show_a_short_number():
+    with pytest.raises(EquimeshError, match=r"^n must be an integer of at least 1, got an integer of 31 digits$"):
+        check_count(-(10**30), "n")

@@ -6,7 +6,7 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from equimesh import G1, OTHER, InvalidToleranceError, LengthClasses, length_classes
+from equimesh import G1, OTHER, EquimeshError, InvalidToleranceError, LengthClasses, length_classes
 from equimesh.classes import CLASS_COLUMNS, DEFAULT_TOLERANCE, check_tolerance
 from equimesh.io import classes_path, member_schedule, write_members
 
@@ -84,7 +84,11 @@ def test_tolerance_forms(given, value):
         ("abc", "a number"),
         ("%", "a number"),
         ("", "a number"),
-        (None, "a number"),
+        (None, "must be a real number, got None"),
+        (True, "must be a real number, got boolean True"),
+        (10**400, "within the float range, got an integer of 401 digits"),
+        ("1_0%", "a number such as 0.005 or a percentage such as 0.5%, got .1_0%."),
+        ("0.5 %%", "a number such as"),
         (-0.001, "got -0.001"),
         ("1e400", "above 0"),
     ],
@@ -93,6 +97,24 @@ def test_bad_tolerances_are_refused_in_one_line(bad, match):
     with pytest.raises(InvalidToleranceError, match=match) as info:
         length_classes([1.0], 1.0, bad)
     assert "\n" not in str(info.value) and "np." not in str(info.value)
+
+
+@pytest.mark.parametrize(
+    "lengths, fragment",
+    [
+        ([1, np.nan, 1.001, np.inf, -5], "length 1 is nan"),
+        ([1, 1.001, np.inf], "length 2 is inf"),
+        ([1, -5], "length 1 is -5.0"),
+        ([0.0, 1], "length 0 is 0.0"),
+        ([1, 10**400], "entry [1] is an integer of 401 digits"),
+        (["a", 1], "member lengths must be an array of numbers"),
+    ],
+)
+def test_lengths_that_are_no_member_are_refused(lengths, fragment):
+    """A NaN, infinite, negative or zero length would make a class of its own with that nominal length."""
+    with pytest.raises(EquimeshError) as info:
+        length_classes(lengths, 1.0, 0.005)
+    assert fragment in str(info.value) and "\n" not in str(info.value)
 
 
 def test_schedule_and_classes_round_trip(tmp_path):

@@ -3,6 +3,7 @@
 import numpy as np
 import pytest
 
+from equimesh.mesh import unique_edges
 from equimesh.metrics import (
     COMPARISON_COLUMNS,
     FABRICATION_COLUMNS,
@@ -16,6 +17,7 @@ from equimesh.metrics import (
     fabrication_figures,
     fabrication_summary,
     length_stats,
+    node_figures,
     quality_summary,
     share_in_bounds,
     share_within,
@@ -121,3 +123,24 @@ def test_fabrication_figures_of_a_group_without_triangles():
     assert f["within_1pct"] == pytest.approx(2 / 3) and f["within_5pct"] == 1.0
     assert f["distinct_lengths_1pct"] == 2
     assert np.isnan(f["angle_min"]) and np.isnan(f["angle_max"])
+
+
+def test_node_figures_of_a_hexagon_fan():
+    """Six equilateral triangles around a centre: the centre meets six members at 60 to 180 degrees, each rim node
+    three members (two rim, one spoke) at 60 to 120, and only the rim is boundary."""
+    rim = [[np.cos(a), np.sin(a), 0.0] for a in np.arange(6) * np.pi / 3]
+    points = np.array([[0.0, 0.0, 0.0], *rim])
+    triangles = np.array([[0, 1 + k, 1 + (k + 1) % 6] for k in range(6)])
+    f = node_figures(points, triangles, unique_edges(triangles))
+    assert f["boundary"].tolist() == [False] + [True] * 6
+    assert f["valence"].tolist() == [6] + [3] * 6
+    np.testing.assert_allclose(f["min_angle"], 60.0, atol=1e-12)
+    np.testing.assert_allclose(f["max_angle"], [180.0] + [120.0] * 6, atol=1e-12)
+
+
+def test_node_figures_are_exact_for_collinear_members():
+    """Two members on a straight line meet at exactly 180 degrees (atan2, where arccos would lose digits)."""
+    points = np.array([[0.0, 0.0, 0.0], [1.0, 1e-9, 0.0], [2.0, 0.0, 0.0], [1.0, 1.0, 0.0]])
+    triangles = np.array([[0, 1, 3], [1, 2, 3]])
+    f = node_figures(points, triangles, unique_edges(triangles))
+    assert f["max_angle"][1] == pytest.approx(180.0 - np.degrees(2e-9), abs=1e-12)

@@ -23,7 +23,15 @@ import pandas as pd
 
 import equimesh
 
-from .common import REFERENCE_SURFACE_JSON, REPO, SURFACE_GRID, SURFACE_LENGTH, reference_surface_json
+from .common import (
+    FACTORISATIONS,
+    PIPELINE_LENGTH,
+    REFERENCE_SURFACE_JSON,
+    REPO,
+    SURFACE_GRID,
+    SURFACE_LENGTH,
+    reference_surface_json,
+)
 
 
 def _surface():
@@ -42,6 +50,39 @@ def _experiment(name):
 def _quietly(function, *args):
     with contextlib.redirect_stdout(io.StringIO()):
         return function(*args)
+
+
+def _remapped(lengths):
+    """The reference surface and its remapped meshes (``optimize="none"``, default placement) at each of ``lengths``:
+    the inputs of the optimisation suites."""
+    surface = _surface()
+    return surface, {
+        l: equimesh.mesh_surface(surface, l, grid=SURFACE_GRID, optimize="none", placement="default", max_nodes=None)
+        for l in lengths
+    }
+
+
+def _optimise(cache, objective, l, factorisation=None, **boundary):
+    """``equimesh.optimize_uv`` of the remapped mesh at ``l`` in ``cache`` (surface, meshes by l), its boundary as
+    ``mesh_surface`` sets it up for ``objective`` unless ``boundary`` gives ``fixed`` and ``slides``."""
+    surface, meshes = cache
+    mesh = meshes[l]
+    if not boundary and objective == "bounded":  # its boundary slides
+        slides, fixed = mesh.stages.outline.slides(mesh.stages.plane, mesh.uv)
+        boundary = {"slides": slides, "fixed": fixed}
+    elif not boundary:
+        boundary = {"slides": (), "fixed": np.arange(mesh.n_boundary)}
+    return equimesh.optimize_uv(
+        surface,
+        mesh.uv,
+        mesh.edges,
+        mesh.edge_groups,
+        l,
+        triangles=mesh.triangles,
+        objective=objective,
+        factorisation=factorisation,
+        **boundary,
+    )
 
 
 class SurfaceStages:
@@ -108,36 +149,11 @@ class Optimisation:
     timeout = 600
 
     def setup_cache(self):
-        surface = _surface()
-        return surface, {
-            l: equimesh.mesh_surface(
-                surface, l, grid=SURFACE_GRID, optimize="none", placement="default", max_nodes=None
-            )
-            for l in self.params[1]
-        }
+        return _remapped(self.params[1])
 
     def _run(self, cache, objective, l):
         surface, meshes = cache
-        mesh = meshes[l]
-        if objective == "bounded":  # its boundary slides, as mesh_surface sets it up
-            slides, fixed = mesh.stages.outline.slides(mesh.stages.plane, mesh.uv)
-        else:
-            slides, fixed = (), np.arange(mesh.n_boundary)
-        return (
-            equimesh.optimize_uv(
-                surface,
-                mesh.uv,
-                mesh.edges,
-                mesh.edge_groups,
-                l,
-                fixed=fixed,
-                slides=slides,
-                triangles=mesh.triangles,
-                objective=objective,
-            ),
-            surface,
-            mesh,
-        )
+        return _optimise(cache, objective, l), surface, meshes[l]
 
     def time_optimisation(self, cache, objective, l):
         """One optimisation of the remapped reference dome."""
@@ -156,6 +172,62 @@ class Optimisation:
         """Jacobian evaluations of the solver, one per iteration (each about one factorisation): its work, whatever the
         load."""
         return self._run(cache, objective, l)[0].njev
+
+    track_jacobian_evaluations.unit = "evaluations"
+
+
+class Pipeline:
+    """``equimesh.mesh_surface`` end to end with its defaults ("bounded", best placement, default node limit) on the
+    reference surface at l = 1.66: about 3,800 nodes and 11,000 members."""
+
+    number = 1
+    repeat = (1, 3, 120.0)
+    timeout = 600.0
+
+    def setup(self):
+        self.surface = _surface()
+
+    def time_mesh_surface(self):
+        """Every stage: auxiliary grid, flattening, placement search and Problem 2, remapping, "bounded"."""
+        equimesh.mesh_surface(self.surface, PIPELINE_LENGTH)
+
+    def track_members(self):
+        """Members of the mesh timed (the size of the benchmark)."""
+        return len(equimesh.mesh_surface(self.surface, PIPELINE_LENGTH, optimize="none").edges)
+
+    track_members.unit = "members"
+
+
+class Factorisations:
+    """The "bounded" optimisation (``equimesh.optimize_uv``) with each factorisation of its normal equations.
+
+    Input: the reference dome remapped at l = 2.5 and 1.25 (about 4,200 and
+    17,300 members), as in :class:`Optimisation`; a factorisation whose
+    library is not installed is skipped.
+    """
+
+    params = (list(FACTORISATIONS), [2.5, 1.25])
+    param_names = ["factorisation", "l"]
+    timeout = 900
+
+    def setup_cache(self):
+        return _remapped(self.params[1])
+
+    def setup(self, cache, factorisation, l):
+        nodes = len(cache[1][l].uv)
+        try:  # every node fixed: only the factorisation is checked
+            _optimise(cache, "bounded", l, factorisation, fixed=np.arange(nodes), slides=())
+        except equimesh.EquimeshError as error:
+            raise NotImplementedError(str(error)) from None
+
+    def time_bounded_optimisation(self, cache, factorisation, l):
+        """One "bounded" optimisation of the remapped reference dome."""
+        _optimise(cache, "bounded", l, factorisation)
+
+    def track_jacobian_evaluations(self, cache, factorisation, l):
+        """Jacobian evaluations (one factorisation each, and those of rejected steps): the rounding of each
+        factorisation takes the rounds on their own path."""
+        return _optimise(cache, "bounded", l, factorisation).njev
 
     track_jacobian_evaluations.unit = "evaluations"
 

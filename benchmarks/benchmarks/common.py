@@ -119,3 +119,13 @@ INSERTION_DENSITY = 0.68
 def square_for_nodes(n):
     """The axis-parallel square on which INCREMENT at l = L places about ``n`` nodes."""
     return square(math.sqrt(n / INSERTION_DENSITY))
+
+
+# --- The pipeline end to end and the factorisations ------------------------------
+
+#: Member length at which the reference surface has about 10^4 members (11,166 at l = 1.66).
+PIPELINE_LENGTH = 1.66
+
+#: The factorisations of the optimisation's normal equations, SuperLU first (always installed: the smoke test runs
+#: it); one whose library is missing is skipped.
+FACTORISATIONS = ("superlu", "cholmod", "pardiso")

@@ -13,6 +13,8 @@ length_classes(lengths, l, tol)   fewest member-length classes at a tolerance (b
 load_surface(path, object=None)   a surface from a file (.json, Rhino .3dm, triangle meshes .obj .stl .ply .vtk .vtu)
 (format by extension; JSON "type" by equimesh.io.SURFACE_TYPES)
 surface_from_dict(d), surface_to_dict(surface)  the JSON description of a surface, both ways
+write_report(mesh, path)          the run's report: one self-contained HTML page (3-D view, lengths, classes)
+write_plot(mesh, path)            the mesh by length class and the length histogram, as PNG, SVG or PDF
 
 Section 4 stages (what mesh_surface chains; public so that they can be timed and reused)
 flatten(points3d, triangles)      step 2: eq. (1) flattening of the auxiliary triangulation
@@ -30,6 +32,7 @@ import importlib
 from .errors import EquimeshError as EquimeshError
 from .errors import InternalError as InternalError
 from .errors import InvalidLengthError as InvalidLengthError
+from .errors import InvalidMethodError as InvalidMethodError
 from .errors import InvalidPolygonError as InvalidPolygonError
 from .errors import InvalidSurfaceError as InvalidSurfaceError
 from .errors import InvalidToleranceError as InvalidToleranceError
@@ -70,6 +73,8 @@ _EXPORTS = {
     "surface_from_dict": ".io",
     "surface_to_dict": ".io",
     "uniform_triangulation": ".planar.strip",
+    "write_plot": ".io",
+    "write_report": ".io",
 }
 
 
@@ -100,6 +105,7 @@ __all__ = sorted(
         "EquimeshError",
         "InternalError",
         "InvalidLengthError",
+        "InvalidMethodError",
         "InvalidPolygonError",
         "InvalidSurfaceError",
         "InvalidToleranceError",

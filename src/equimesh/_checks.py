@@ -1,12 +1,16 @@
-"""Argument checks shared by every verb: real numbers, counts, the target length l, arrays of reals.
+"""Argument checks shared by every verb: real numbers, counts, the target length l, arrays of reals, numbers as text.
 
 Each check returns the value in the form the code uses (a float, an int, a
 float array) or raises an :class:`~equimesh.errors.EquimeshError` subclass
 whose one-line message names the argument and shows the value as the caller
-gave it (a numpy scalar as the number it holds).
+gave it (a numpy scalar as the number it holds).  A Python integer beyond the
+float range (``10**400``) is refused like any other value that is no float,
+never with Python's ``OverflowError``.
 """
 
+import math
 import numbers
+import re
 
 import numpy as np
 
@@ -28,7 +32,25 @@ def real_number(value, name, error):
             else ""
         )
         raise error(f"{name} must be a real number, got {kind}{_plain(value)!r}")
-    return float(value)
+    try:
+        return float(value)
+    except OverflowError:  # an integer (or fraction) beyond the float range
+        raise error(f"{name} must be a real number within the float range, got {_beyond_floats(value)}") from None
+
+
+def _beyond_floats(value):
+    """``value``, a number float() cannot hold, as text for a message: its digit count, not its 400 digits."""
+    return plain_integer(value) if isinstance(value, numbers.Integral) else "a number beyond it"
+
+
+def plain_integer(value):
+    """The integer ``value`` as its digits, or beyond 20 digits as ``an integer of 401 digits``: a message never
+    shows a 400-digit number."""
+    n = abs(int(value))
+    if n < 10**20:
+        return str(int(value))
+    digits = math.floor(n.bit_length() * math.log10(2)) + 1  # exact, or one too many
+    return f"an integer of {digits - (n < 10 ** (digits - 1))} digits"
 
 
 def check_count(value, name, least=1):
@@ -37,8 +59,10 @@ def check_count(value, name, least=1):
     Beyond the paper: the one check of every count a caller gives (grid
     sizes, search counts, ``max_nodes``); numpy integers are accepted.
     """
-    if isinstance(value, bool) or not isinstance(value, numbers.Integral) or value < least:
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral):
         raise EquimeshError(f"{name} must be an integer of at least {least}, got {_plain(value)!r}")
+    if value < least:
+        raise EquimeshError(f"{name} must be an integer of at least {least}, got {plain_integer(value)}")
     return int(value)
 
 
@@ -80,3 +104,44 @@ def real_array(value, what, error):
         return np.array(raw, dtype=float)
     except (TypeError, ValueError):
         raise error(f"{what} must be an array of numbers") from None
+    except OverflowError:  # a Python integer beyond the float range among the entries
+        flat = raw.ravel()
+        k = next(k for k, x in enumerate(flat) if _overflows(x))
+        index = "".join(f"[{int(i)}]" for i in np.unravel_index(k, raw.shape))
+        raise error(
+            f"{what} must be real numbers within the float range, but {f'entry {index}' if index else 'it'} is "
+            f"{_beyond_floats(flat[k])}"
+        ) from None
+
+
+def _overflows(x):
+    """True if ``float(x)`` overflows (other failures are not this entry's overflow)."""
+    try:
+        float(x)
+    except OverflowError:
+        return True
+    except (TypeError, ValueError):
+        pass
+    return False
+
+
+#: Numbers as a person types them: ASCII decimal digits with an optional point and exponent (``0.5``, ``.5``,
+#: ``1e-3``), or ``inf`` and ``nan``; Python's other spellings (``1_0``, other scripts' digits) are refused, as they
+#: are typos more often than intended.
+NUMBER_TEXT = re.compile(r"[+-]?(?:(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?|inf|infinity|nan)", re.IGNORECASE | re.ASCII)
+
+#: Whole numbers as a person types them: decimal digits with an optional sign.
+WHOLE_TEXT = re.compile(r"[+-]?\d+", re.ASCII)
+
+
+def number_text(text, what, error, *, whole=False):
+    """The number written in ``text`` (an int if ``whole``, else a float), or ``error`` ("``what`` must be ...")
+    unless it is written as :data:`NUMBER_TEXT` (:data:`WHOLE_TEXT`) allows: ``1_0`` is refused, not read as 10."""
+    plain = isinstance(text, str) and (WHOLE_TEXT if whole else NUMBER_TEXT).fullmatch(text.strip())
+    try:
+        if plain:
+            return int(text) if whole else float(text)
+    except ValueError:  # more digits than int() reads (sys.get_int_max_str_digits)
+        pass
+    got = repr(text) if len(str(text)) <= 40 else f"a text of {len(str(text))} characters"
+    raise error(f"{what} must be {'a whole number' if whole else 'a number'}, got {got}")

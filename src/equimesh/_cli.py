@@ -24,11 +24,12 @@ import argparse
 import contextlib
 import importlib.util
 import os
+import re
 import sys
 import warnings
 from pathlib import Path
 
-from .errors import EquimeshError, SurfaceWarning, number
+from .errors import EquimeshError, SurfaceWarning
 
 EXIT_USAGE = 2
 EXIT_INTERNAL = 3
@@ -37,7 +38,16 @@ EXPERIMENTS = Path(__file__).resolve().parents[2] / "experiments"
 
 
 class _Parser(argparse.ArgumentParser):
-    """argparse with one-line errors (no usage dump) and exit code 2."""
+    """argparse with one-line errors (no usage dump) and exit code 2, and values that start with a minus sign.
+
+    argparse takes ``-1%`` or ``-1e3`` for an unknown option (its pattern of negative numbers is ``-5`` and ``-.5``),
+    so ``--tolerance -1%`` would fail with "expected one argument" instead of saying what is wrong with the value.
+    Here a word that starts with ``-`` and a digit (or ``-.`` and a digit) is a value: no option of ours looks so.
+    """
+
+    def __init__(self, *args, **kwargs):
+        super().__init__(*args, **kwargs)
+        self._negative_number_matcher = re.compile(r"-\.?\d")
 
     def error(self, message):
         self.exit(EXIT_USAGE, f"{self.prog}: error: {message}\n")
@@ -47,7 +57,7 @@ def build_parser():
     # The library (numpy, scipy, shapely: seconds on a busy machine) is imported here and in
     # _run_mesh, inside main's handlers, so that a Ctrl-C during the import is one line too.
     from .classes import DEFAULT_TOLERANCE, MAX_TOLERANCE
-    from .io import INPUT_FORMATS, MESH_FORMATS
+    from .io import INPUT_FORMATS, OUTPUT_SLOTS
     from .planar.insertion import DEFAULT_ENGINE, ENGINES
     from .surface.mesh_outline import DEFAULT_FEATURE_ANGLE
     from .surface.optimize import OBJECTIVES
@@ -93,10 +103,10 @@ def build_parser():
         metavar="NAME|INDEX",
         help="which object of a Rhino file to mesh, by name or index (needed when it holds several)",
     )
-    mesh.add_argument("--length", "-l", type=float, required=True, metavar="L", help="target member length")
+    mesh.add_argument("--length", "-l", type=_number, required=True, metavar="L", help="target member length")
     mesh.add_argument(
         "--grid",
-        type=int,
+        type=_whole_number,
         nargs=2,
         default=(15, 15),
         metavar=("NU", "NV"),
@@ -137,6 +147,14 @@ def build_parser():
         + ") keep a run to about two minutes on a 2-core machine (docs/performance.md); beyond them time grows "
         "faster than the node count",
     )
+    for slot, record in OUTPUT_SLOTS.items():
+        mesh.add_argument(
+            *(("-o", "--output") if slot == "mesh" else (f"--{slot}",)),
+            dest=_output_dest(slot),
+            required=record.required,
+            metavar=record.metavar,
+            help=_output_help(slot, record),
+        )
     mesh.add_argument(
         "--feature-angle",
         type=_feature_angle,
@@ -147,18 +165,9 @@ def build_parser():
         f"(default: {DEFAULT_FEATURE_ANGLE:g}, at least 0 and below 180)",
     )
     mesh.add_argument(
-        "-o",
-        "--output",
-        required=True,
-        metavar="OUT",
-        help=f"mesh file; format from the extension: {', '.join(sorted(MESH_FORMATS))}",
-    )
-    mesh.add_argument(
-        "--members",
-        metavar="CSV",
-        help="also write a member schedule (member id, node ids, length, group, length class, "
-        "deviation from L) and its length classes to CSV's stem + '.classes.csv' (class id, count, "
-        "nominal, min and max length); all files written together or none",
+        "--dxf-labels",
+        action="store_true",
+        help="in a .dxf mesh file, also write each member's length class as text at its midpoint (layer labels)",
     )
     mesh.add_argument(
         "--tolerance",
@@ -207,9 +216,11 @@ def main(argv=None):
     except Exception as exc:  # InternalError, or any other bug: one line, not a traceback
         if show_traceback:
             raise
+        asks = "report" in str(exc)  # the library's own message may ask already (InternalError does)
         return _fail(
             EXIT_INTERNAL,
-            f"internal error: {type(exc).__name__}: {exc} (please report this; --traceback shows the details)",
+            f"internal error: {type(exc).__name__}: {exc} ({'' if asks else 'please report this; '}"
+            "--traceback shows the details)",
         )
 
 
@@ -219,6 +230,33 @@ def _fail(code, message):
     return code
 
 
+def _output_dest(slot):
+    """The attribute of an output option: ``args.output`` for the mesh (``-o``), ``args.<slot>`` for the others."""
+    return "output" if slot == "mesh" else slot
+
+
+def _output_help(slot, record):
+    """The help of an output option: what it writes, then every format of the registry, with the extra it needs."""
+    from .io import output_formats
+
+    formats = "; ".join(
+        f"{ext} ({fmt.name}" + (f", extra [{fmt.extra}]" if fmt.extra else "") + f": {fmt.holds})"
+        for ext, fmt in output_formats(slot).items()
+    )
+    return f"{record.help}; format from the extension: {formats}; all outputs are written together or none"
+
+
+def _number(text, whole=False):
+    """A number as a person types it (:func:`equimesh._checks.number_text`: ``1_0`` is refused, not read as 10)."""
+    from ._checks import number_text
+
+    return number_text(text, "the value", argparse.ArgumentTypeError, whole=whole)
+
+
+def _whole_number(text):
+    return _number(text, whole=True)
+
+
 def _max_nodes(text):
     """``--max-nodes``: a positive whole number, or 'none' for no limit."""
     if text.strip().lower() == "none":
@@ -226,8 +264,8 @@ def _max_nodes(text):
     from ._checks import check_count
 
     try:
-        return check_count(int(text), "--max-nodes")
-    except ValueError:  # not a whole number, or below 1 (EquimeshError is a ValueError)
+        return check_count(_whole_number(text), "--max-nodes")
+    except (ValueError, argparse.ArgumentTypeError):  # not a whole number, or below 1 (EquimeshError is a ValueError)
         raise argparse.ArgumentTypeError(f"expected a positive whole number or 'none', got {text!r}") from None
 
 
@@ -242,20 +280,25 @@ def _tolerance(text):
 
 
 def _feature_angle(text):
-    """``--feature-angle``: degrees, at least 0 and below 180 (``mesh_outline.check_feature_angle``)."""
+    """``--feature-angle``: degrees as typed (:func:`_number`), at least 0 and below 180
+    (``mesh_outline.check_feature_angle``)."""
+    from ._checks import number_text
     from .surface.mesh_outline import check_feature_angle
 
     try:
-        return check_feature_angle(float(text))
-    except ValueError:  # not a number, or out of range (EquimeshError is a ValueError)
+        return check_feature_angle(number_text(text, "the value", EquimeshError))
+    except EquimeshError:  # not a number, or out of range
         raise argparse.ArgumentTypeError(f"expected degrees, at least 0 and below 180, got {text!r}") from None
 
 
 def _run_mesh(args):
-    from .io import classes_path, load_surface, surface_mesh_writer
+    from .io import OUTPUT_SLOTS, load_surface, surface_mesh_writer
     from .surface.pipeline import mesh_surface
 
-    write = surface_mesh_writer(args.output, args.members)
+    outputs = {slot: getattr(args, _output_dest(slot)) for slot in OUTPUT_SLOTS}
+    write = surface_mesh_writer(
+        outputs, inputs=[args.surface], dxf_labels=args.dxf_labels, parameters=_parameters(args)
+    )
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", SurfaceWarning)
         surface = load_surface(args.surface, **({"object": args.object} if args.object is not None else {}))
@@ -281,9 +324,8 @@ def _run_mesh(args):
     write(mesh, args.tolerance)
     if not args.quiet:
         n_g1 = int(mesh.g1_mask.sum())
-        also = f" and {args.members} (+ {classes_path(args.members)})" if args.members else ""
         print(
-            f"wrote {args.output}{also}: {len(mesh.points)} nodes, {len(mesh.edges)} members "
+            f"wrote {', '.join(map(str, write.paths))}: {len(mesh.points)} nodes, {len(mesh.edges)} members "
             f"({n_g1} in the equal-length group G1), {len(mesh.triangles)} triangles",
             file=sys.stderr,
         )
@@ -291,20 +333,28 @@ def _run_mesh(args):
     return 0
 
 
-def _summary(lengths, l, tolerance):
-    """The one-screen summary of a run's members (:func:`equimesh.metrics.fabrication_summary`)."""
-    from .metrics import fabrication_summary
+def _parameters(args):
+    """What the run was given, for the report's provenance: the input file and every option set."""
+    keys = (
+        "surface",
+        "object",
+        "length",
+        "grid",
+        "optimize",
+        "placement",
+        "engine",
+        "max_nodes",
+        "feature_angle",
+        "tolerance",
+    )
+    return {("input" if k == "surface" else k): getattr(args, k) for k in keys if getattr(args, k, None)}
 
-    s = fabrication_summary(lengths, l, tolerance)
-    tol = f"+-{100 * tolerance:.3g} %"
-    rows = [
-        ("members", f"{s['members']}"),
-        ("length classes", f"{s['classes']} (every member within {tol} of L of its class's nominal length)"),
-        ("in the largest class", f"{100 * s['largest_class_share']:.1f} %"),
-        ("shortest member", f"{number(s['min_length'])} ({s['min_length'] / l:.4f} L)"),
-        ("longest member", f"{number(s['max_length'])} ({s['max_length'] / l:.4f} L)"),
-        (f"within {tol} of L", f"{100 * s['within_tolerance']:.1f} %"),
-    ]
+
+def _summary(lengths, l, tolerance):
+    """The one-screen summary of a run's members (:func:`equimesh.metrics.summary_rows`)."""
+    from .metrics import summary_rows
+
+    rows = summary_rows(lengths, l, tolerance)
     width = max(len(label) for label, _ in rows) + 2
     return "\n".join(f"{label:<{width}}{value}" for label, value in rows)
 

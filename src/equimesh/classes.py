@@ -19,8 +19,8 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
-from ._checks import check_length
-from .errors import InvalidToleranceError
+from ._checks import check_length, number_text, real_array, real_number
+from .errors import EquimeshError, InvalidToleranceError, number
 
 #: Upper limit (exclusive) of the relative tolerance: at 50 % of l a class of
 #: width ``2 tol l = l`` would hold every member of [l, 2l] (Theorems 1 and 3)
@@ -39,23 +39,27 @@ def check_tolerance(tolerance):
     """Return the relative tolerance as a float in ``(0, MAX_TOLERANCE)``.
 
     ``tolerance`` is a number (``0.005``) or a string, either a number
-    (``"0.005"``) or a percentage (``"0.5%"``, i.e. 0.005).
+    (``"0.005"``) or a percentage (``"0.5%"``, i.e. 0.005), written as
+    :data:`equimesh._checks.NUMBER_TEXT` allows (``"1_0%"`` is refused, not
+    read as 10 %).
 
     Raises
     ------
     InvalidToleranceError
         not a number, not finite, or outside ``(0, 50 %)``.
     """
-    text = tolerance.strip() if isinstance(tolerance, str) else None
-    scale = 1.0
-    if text is not None and text.endswith("%"):
-        text, scale = text[:-1].strip(), 0.01
-    try:
-        value = float(text if text is not None else tolerance) * scale
-    except (TypeError, ValueError, OverflowError):
-        raise InvalidToleranceError(
-            f"tolerance must be a number such as 0.005 or a percentage such as 0.5%, got {tolerance!r}"
-        ) from None
+    if isinstance(tolerance, str):
+        text = tolerance.strip()
+        percent = text.endswith("%")
+        try:
+            value = number_text(text[:-1] if percent else text, "tolerance", InvalidToleranceError)
+        except InvalidToleranceError:
+            raise InvalidToleranceError(
+                f"tolerance must be a number such as 0.005 or a percentage such as 0.5%, got {tolerance!r}"
+            ) from None
+        value *= 0.01 if percent else 1.0
+    else:
+        value = real_number(tolerance, "tolerance", InvalidToleranceError)
     if not (math.isfinite(value) and 0.0 < value < MAX_TOLERANCE):
         shown = tolerance if isinstance(tolerance, str) else repr(value)
         raise InvalidToleranceError(f"tolerance must be above 0 and below {MAX_TOLERANCE:.0%} of l, got {shown}")
@@ -131,10 +135,19 @@ def length_classes(lengths, l, tolerance=DEFAULT_TOLERANCE):
     Returns
     -------
     LengthClasses
+
+    Raises
+    ------
+    EquimeshError
+        a length that is not a positive finite number (named by its index).
     """
     l = check_length(l)
     tolerance = check_tolerance(tolerance)
-    x = np.asarray(lengths, dtype=float).ravel()
+    x = real_array(lengths, "member lengths", EquimeshError).ravel()
+    bad = np.flatnonzero(~(np.isfinite(x) & (x > 0.0)))
+    if bad.size:
+        k = int(bad[0])
+        raise EquimeshError(f"member lengths must be positive and finite, but length {k} is {number(x[k], None)}")
     order = np.argsort(x, kind="stable")
     sorted_x = x[order]
     width = 2.0 * tolerance * l

@@ -78,6 +78,10 @@ class OutputPathError(EquimeshError):
     """An output path cannot be written (missing or unwritable folder, unknown extension, name too long)."""
 
 
+class InvalidMethodError(EquimeshError):
+    """A mesher given to the benchmark cannot be imported or called, or does not return a triangle mesh."""
+
+
 class InternalError(RuntimeError):
     """An output violated a proven guarantee (Theorem 1 or 3, a valid triangulation): a bug, not bad input."""
 

@@ -13,15 +13,19 @@ tolerance (:func:`distinct_lengths`) and the range of triangle angles
 tables from :func:`table1_row` and :func:`fabrication_figures`.
 
 :func:`fabrication_summary` is what ``equimesh mesh`` prints after meshing
-(length classes at the chosen tolerance, :mod:`equimesh.classes`), and
+(length classes at the chosen tolerance, :mod:`equimesh.classes`; the lines
+are :func:`summary_rows`, also in its ``--report``), and
 :func:`comparison_figures` the one measure of ``experiments/compare_peers.py``,
-applied alike to equimesh and to other meshers.
+applied alike to equimesh and to other meshers.  :func:`node_figures` is what a
+connector designer asks of each node: on the boundary or not, how many members
+meet there and the smallest and largest angle between two of them.
 """
 
 import numpy as np
 
 from .classes import DEFAULT_TOLERANCE, length_classes
-from .mesh import G1, edge_lengths, unique_edges
+from .errors import number
+from .mesh import G1, edge_keys, edge_lengths, half_edges, unique_edges
 from .tolerance import at_least, at_most
 
 #: Keys of :func:`length_stats`, in the column order of Table 1.
@@ -117,6 +121,21 @@ def fabrication_summary(lengths, l, tolerance=DEFAULT_TOLERANCE):
     }
 
 
+def summary_rows(lengths, l, tolerance=DEFAULT_TOLERANCE):
+    """:func:`fabrication_summary` as ``(label, text)`` pairs: the summary ``equimesh mesh`` prints and its report
+    shows."""
+    s = fabrication_summary(lengths, l, tolerance)
+    tol = f"+-{100 * tolerance:.3g} %"
+    return [
+        ("members", f"{s['members']}"),
+        ("length classes", f"{s['classes']} (every member within {tol} of L of its class's nominal length)"),
+        ("in the largest class", f"{100 * s['largest_class_share']:.1f} %"),
+        ("shortest member", f"{number(s['min_length'])} ({s['min_length'] / l:.4f} L)"),
+        ("longest member", f"{number(s['max_length'])} ({s['max_length'] / l:.4f} L)"),
+        (f"within {tol} of L", f"{100 * s['within_tolerance']:.1f} %"),
+    ]
+
+
 #: Keys of :func:`comparison_figures`: the one set of figures every mesher is measured by
 #: (``experiments/compare_peers.py``).
 COMPARISON_COLUMNS = (
@@ -206,3 +225,43 @@ def quality_summary(points, triangles, edges, l, groups=None):
     out.update({f"total_{k}": v for k, v in length_stats(lengths).items()})
     out.update(fabrication_figures(lengths, l, points, triangles))
     return out
+
+
+#: Keys of :func:`node_figures`, in the column order of the node schedule (``equimesh mesh --nodes``).
+NODE_COLUMNS = ("boundary", "valence", "min_angle", "max_angle")
+
+
+def node_figures(points, triangles, edges):
+    """What a connector designer needs at each node, keyed by :data:`NODE_COLUMNS`, one (N,) array each.
+
+    ``boundary``: the node lies on a boundary edge (an edge of one triangle
+    only); ``valence``: the members (``edges``) meeting at the node;
+    ``min_angle``, ``max_angle``: the smallest and largest angle in degrees
+    between two members meeting at the node, over every pair of them (``nan``
+    where fewer than two meet), as ``atan2(|a x b|, a . b)``, exact near 0 and
+    180 degrees where ``arccos`` is not (docs/decisions.md, "Angles between members at a node").
+    """
+    p = np.asarray(points, dtype=float)
+    p = np.column_stack([p, np.zeros(len(p))]) if p.shape[1] == 2 else p
+    e = np.asarray(edges, dtype=np.int64).reshape(-1, 2)
+    n = len(p)
+    keys, base = edge_keys(half_edges(triangles))
+    key, uses = np.unique(keys, return_counts=True)
+    boundary = np.zeros(n, dtype=bool)
+    boundary[np.concatenate([key[uses == 1] // base, key[uses == 1] % base])] = True
+    valence = np.bincount(e.ravel(), minlength=n)
+    # Every member twice, as a vector leaving each of its nodes, grouped by node: the pairs of members at a node
+    # are the pairs (k, k + a) of one group, for a = 1 up to the largest valence minus one.
+    d = p[e[:, 1]] - p[e[:, 0]]
+    at, vectors = np.concatenate([e[:, 0], e[:, 1]]), np.concatenate([d, -d])
+    order = np.argsort(at, kind="stable")
+    at, vectors = at[order], vectors[order]
+    lo, hi = np.full(n, np.inf), np.full(n, -np.inf)
+    for a in range(1, int(valence.max(initial=0))):
+        pair = at[a:] == at[:-a]
+        u, v = vectors[:-a][pair], vectors[a:][pair]
+        angle = np.degrees(np.arctan2(np.linalg.norm(np.cross(u, v), axis=1), np.sum(u * v, axis=1)))
+        np.minimum.at(lo, at[a:][pair], angle)
+        np.maximum.at(hi, at[a:][pair], angle)
+    lo[valence < 2] = hi[valence < 2] = np.nan
+    return {"boundary": boundary, "valence": valence, "min_angle": lo, "max_angle": hi}

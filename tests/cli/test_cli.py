@@ -27,7 +27,7 @@ from equimesh import (
     InvalidLengthError,
 )
 from equimesh._cli import main
-from equimesh.io import _meshes as io_meshes
+from equimesh.io import _paths as io_paths
 from equimesh.surface import pipeline
 from equimesh.testing.meshes import ellipse, roof_mesh
 
@@ -201,10 +201,17 @@ BAD = {
     "feature angle 180": lambda d: (["mesh", SADDLE, "--length", 5, "--feature-angle", "180"], "below 180"),
     "feature angle 1e3": lambda d: (["mesh", SADDLE, "--length", 5, "--feature-angle", "1e3"], "below 180"),
     "feature angle nan": lambda d: (["mesh", SADDLE, "--length", 5, "--feature-angle", "nan"], "degrees"),
+    "feature angle 4_5": lambda d: (["mesh", SADDLE, "--length", 5, "--feature-angle", "4_5"], "got '4_5'"),
     "feature angle for a chart": lambda d: (
         ["mesh", SADDLE, "--length", 5, "--feature-angle", "30"],
         "feature angle finds the corners of a triangle mesh",
     ),
+    "tolerance -1% as its own word": lambda d: (["mesh", SADDLE, "--length", 5, "--tolerance", "-1%"], "above 0"),
+    "tolerance 1_0%": lambda d: (["mesh", SADDLE, "--length", 5, "--tolerance", "1_0%"], "got '1_0%'"),
+    "L -1e3": lambda d: (["mesh", SADDLE, "--length", "-1e3"], "positive"),
+    "L 1_0": lambda d: (["mesh", SADDLE, "--length", "1_0"], "--length/-l: the value must be a number, got '1_0'"),
+    "grid 1_5": lambda d: (["mesh", SADDLE, "--length", 5, "--grid", "1_5", 4], "must be a whole number, got '1_5'"),
+    "max-nodes 1_000": lambda d: (["mesh", SADDLE, "--length", 5, "--max-nodes", "1_000"], "whole number"),
 }
 
 
@@ -221,7 +228,14 @@ def test_bad_input_exits_2_without_output(case, tmp_path, capsys):
     assert list(out.parent.iterdir()) == []
 
 
-@pytest.mark.parametrize("target, match", [("missing/mesh.obj", "does not exist"), ("mesh.xyz", "extension")])
+@pytest.mark.parametrize(
+    "target, match",
+    [
+        ("missing/mesh.obj", "does not exist"),
+        ("mesh.xyz", "unknown extension '.xyz' for the mesh"),
+        ("mesh.json", "use one of .obj, .vtk, .vtu, .stl, .ply, .msh, .3dm, .compas.json, .dxf"),
+    ],
+)
 def test_bad_output_path(target, match, tmp_path, capsys):
     code, captured = run(["mesh", SADDLE, "--length", 5, "-o", tmp_path / target], capsys)
     assert code == 2 and match in captured.err
@@ -253,6 +267,19 @@ BAD_OUTPUTS = {
     "members folder unwritable": lambda d: ["-o", d / "m.obj", "--members", unwritable_folder(d) / "m.csv"],
     "members extension": lambda d: ["-o", d / "m.obj", "--members", d / "m.txt"],
     "classes CSV is a folder": lambda d: ["-o", d / "m.obj", "--members", (d / "m.classes.csv").mkdir() or d / "m.csv"],
+    "nodes folder unwritable": lambda d: ["-o", d / "m.obj", "--nodes", unwritable_folder(d) / "n.csv"],
+    "nodes folder missing": lambda d: ["-o", d / "m.obj", "--nodes", d / "missing" / "n.csv"],
+    "nodes extension": lambda d: ["-o", d / "m.obj", "--nodes", d / "n.obj"],
+    "members and nodes one file": lambda d: ["-o", d / "m.obj", "--members", d / "a.csv", "--nodes", d / "a.csv"],
+    "nodes are the classes CSV": lambda d: [
+        "-o",
+        d / "m.obj",
+        "--members",
+        d / "a.csv",
+        "--nodes",
+        d / "a.classes.csv",
+    ],
+    "plain JSON mesh": lambda d: ["-o", d / "m.json"],
 }
 
 
@@ -308,7 +335,7 @@ def test_members_write_failure_leaves_no_mesh(tmp_path, capsys, monkeypatch):
 def test_each_output_is_probed_once(tmp_path, capsys, monkeypatch):
     """The outputs are checked before meshing and not again: one probe per file (mesh, schedule, classes)."""
     probed = []
-    monkeypatch.setattr(io_meshes, "probe_folder", lambda folder, suffix="": probed.append(suffix))
+    monkeypatch.setattr(io_paths, "probe_folder", lambda folder, suffix="": probed.append(suffix))
     code, captured = run(
         [
             "mesh",
@@ -376,6 +403,14 @@ def test_every_failure_is_one_line_with_its_exit_code(exc, code, message, tmp_pa
     assert got == code
     assert captured.err.count("\n") == 1 and captured.err.startswith(message), captured.err
     assert list(tmp_path.iterdir()) == []
+
+
+def test_an_internal_error_asks_for_a_report_once(tmp_path, capsys, monkeypatch):
+    """The library's InternalError asks for a report itself; the command line does not ask again."""
+    error = InternalError("Triangle failed on a validated input: a bug in equimesh, please report it")
+    monkeypatch.setattr(pipeline, "mesh_surface", _raising(error))
+    code, captured = run(["mesh", SADDLE, "--length", 5, "-o", tmp_path / "m.obj", "-q"], capsys)
+    assert code == 3 and captured.err.count("report") == 1 and "--traceback shows the details" in captured.err
 
 
 def test_library_noise_does_not_reach_the_terminal(tmp_path, capfd, monkeypatch):
@@ -552,8 +587,11 @@ def test_command_line_meshes_a_round_opening_cut_out_of_a_fine_mesh(tmp_path, ca
 
 @pytest.mark.parametrize("case", sorted(bad_meshes()))
 def test_command_line_refuses_bad_meshes(tmp_path, capsys, case):
-    """Every malformed mesh, written as a .vtu file: one line, exit 2, nothing written."""
+    """Every malformed mesh, written as a .vtu file: one line, exit 2, nothing written; an index out of range is
+    named as the file writes it."""
     (v, t), match = bad_meshes()[case]
+    if case == "index out of range":
+        match = r"bad\.vtu: cell 0 \(a triangle\) refers to point 4, but the file has 4 points \(0 \.\. 3\)"
     source = tmp_path / "bad.vtu"
     # meshio cannot read back an empty triangle block: a mesh of lines only has no triangles either.
     cells = [("line", np.array([[0, 1]]))] if case == "no triangles" else [("triangle", np.asarray(t, dtype=np.int64))]

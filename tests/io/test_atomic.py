@@ -1,4 +1,5 @@
-"""All-or-nothing writes (``io/_atomic.py``): a failed or interrupted write leaves the old file or no file, and no temporary."""
+"""All-or-nothing writes (``io/_atomic.py``): a failed or interrupted write leaves the old file or no file, and no
+temporary."""
 
 import subprocess
 import sys
@@ -36,10 +37,10 @@ def test_interrupt_during_the_renames_is_held_until_they_are_done():
     code = textwrap.dedent(
         """
         import signal
-        from equimesh.io._atomic import _interrupts_held
+        from equimesh.io._atomic import interrupts_held
         done = []
         try:
-            with _interrupts_held():
+            with interrupts_held():
                 signal.raise_signal(signal.SIGINT)
                 done.append(True)
         except KeyboardInterrupt:

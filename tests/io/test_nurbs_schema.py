@@ -6,21 +6,12 @@ import json
 
 import numpy as np
 import pytest
+from hostile_files import degree_399
+from hostile_files import small_nurbs as good
 from refusals import assert_one_line
 
 from equimesh import InvalidSurfaceError, NurbsSurface
 from equimesh.io import surface_from_dict, surface_to_dict
-
-
-def good():
-    return {
-        "type": "nurbs",
-        "degree": [2, 1],
-        "knots_u": [0, 0, 0, 0.5, 1, 1, 1],
-        "knots_v": [0, 0, 1, 1],
-        "control_points": [[[i, j, (i - 1.5) ** 2], [i, j + 5, 0]] for i, j in zip(range(4), range(4))],
-        "weights": [[1, 1], [0.5, 2], [1, 1], [3, 1]],
-    }
 
 
 def test_json_round_trip():
@@ -40,6 +31,9 @@ def _with(**fields):
     [
         (_with(degree=[0, 1]), "degree[0] must be at least 1, got 0"),
         (_with(degree=[2, 1.5]), "degree[1] must be an integer, got number 1.5"),
+        (_with(degree=[True, 1]), "degree[0] must be an integer, got boolean true"),
+        (_with(degree=[26, 1]), "degree[0] = 26 is above 25, the highest degree supported: evaluating the surface"),
+        (_with(degree=[2, 10**400]), "degree[1] = an integer of 401 digits is above 25"),
         (_with(degree=[2]), '"degree" needs at least 2 integers [p, q], got 1'),
         (_with(degree=[2, 1, 1]), '"degree" must be a list of 2 integers [p, q], got 3 entries'),
         (
@@ -71,3 +65,31 @@ def test_bad_nurbs_are_refused_in_one_line_naming_the_field(mutate, fragment):
         surface_from_dict(mutate(good()))
     assert fragment in str(err.value)
     assert_one_line(str(err.value))
+
+
+def test_degree_above_the_bound_is_refused_before_any_evaluation(monkeypatch):
+    """Degree (399, 2): one line saying why, from the constructor, so no point is evaluated."""
+    from equimesh.surface.charts import nurbs
+
+    monkeypatch.setattr(nurbs.NurbsSurface, "_rational", lambda *args: pytest.fail("evaluated"))
+    with pytest.raises(InvalidSurfaceError, match=r"^degree\[0\] = 399 is above 25, .* square of the degree"):
+        surface_from_dict(degree_399())
+
+
+def test_degree_at_the_bound_is_read():
+    from equimesh.surface.charts.nurbs import MAX_DEGREE
+
+    d = {**degree_399(), "degree": [MAX_DEGREE, 2], "knots_u": [0.0] * (MAX_DEGREE + 1) + [1.0] * (MAX_DEGREE + 1)}
+    d["control_points"], d["weights"] = d["control_points"][: MAX_DEGREE + 1], d["weights"][: MAX_DEGREE + 1]
+    assert surface_from_dict(d).degree == (MAX_DEGREE, 2)
+
+
+def test_net_above_the_bound_is_refused_before_its_points_are_read():
+    """A net of more than MAX_NET_POINTS points is refused on its shape: the points (here not even numbers) are not
+    read."""
+    from equimesh.surface.charts.nurbs import MAX_NET_POINTS
+
+    rows = MAX_NET_POINTS // 1000 + 1
+    d = {**good(), "control_points": [["not a point"] * 1000] * rows}
+    with pytest.raises(InvalidSurfaceError, match=rf"has {rows} x 1000 = {rows * 1000} points, more than the"):
+        surface_from_dict(d)

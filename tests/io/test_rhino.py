@@ -153,7 +153,8 @@ def test_object_is_refused_for_json(tmp_path):
 
 
 def test_example_roof_file_meshes_through_the_command_line(rhino3dm, tmp_path):
-    """experiments/surfaces/roof.3dm's roof, written alone to a file, through `equimesh mesh` (the INPUT_FORMATS row)."""
+    """experiments/surfaces/roof.3dm's roof, written alone to a file, through `equimesh mesh` (the INPUT_FORMATS
+    row)."""
 
     roof = load_surface(SURFACES / "roof.3dm", object="roof")
     path = write(tmp_path / "roof.3dm", ("roof", roof))

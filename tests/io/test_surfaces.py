@@ -1,10 +1,12 @@
-"""Surface descriptions in (``io/_surfaces.py``, ``io/_bezier.py``): the surface-type registry, JSON validation, hostile files.
+"""Surface descriptions in (``io/_surfaces.py``, ``io/_bezier.py``): the surface-type registry, JSON validation, hostile
+files.
 
 Every refusal is one line of our own (an :class:`equimesh.EquimeshError`) that
 names the problem in the caller's terms, with plain numbers.
 """
 
 import json
+import os
 import sys
 
 import numpy as np
@@ -191,3 +193,22 @@ def test_unknown_extension_lists_the_known_ones(tmp_path):
         InvalidSurfaceError, match=r"use one of \['\.3dm', '\.json', '\.obj', '\.ply', '\.stl', '\.vtk', '\.vtu'\]"
     ):
         load_surface(tmp_path / "s.igs")
+
+
+def test_a_file_larger_than_any_description_is_refused_before_it_is_parsed(tmp_path, monkeypatch):
+    """Above MAX_JSON_BYTES the file is refused on its size, never parsed (that would take seconds)."""
+    from equimesh.io import _surfaces
+
+    monkeypatch.setattr(_surfaces.json, "loads", lambda *args, **kwargs: pytest.fail("parsed"))
+    path = _file(tmp_path, b"")
+    os.truncate(path, _surfaces.MAX_JSON_BYTES + 1)  # a sparse file: nothing is written
+    with pytest.raises(InvalidSurfaceError, match=rf"has {_surfaces.MAX_JSON_BYTES + 1} bytes, more than the"):
+        load_surface(path)
+
+
+def test_a_bezier_net_above_the_degree_bound_is_refused_on_its_shape():
+    from equimesh.surface.charts.bezier import MAX_DEGREE
+
+    d = {"type": "bezier", "control_points": [["not a point"] * 2] * (MAX_DEGREE + 2)}
+    with pytest.raises(InvalidSurfaceError, match=rf"degree {MAX_DEGREE + 1} x 1; at most degree {MAX_DEGREE}"):
+        surface_from_dict(d)

@@ -68,3 +68,29 @@ def test_unknown_extension_lists_the_mesh_formats(tmp_path):
     path.write_text("OFF\n")
     with pytest.raises(InvalidSurfaceError, match=r"\.obj.*\.ply.*\.stl.*\.vtk.*\.vtu"):
         load_surface(path)
+
+
+def _square_cells(tmp_path, ext, kind, cells, dtype=np.int64):
+    v = np.array([[0.0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]])
+    path = tmp_path / f"bad{ext}"
+    blocks = [("line", np.array([[0, 1]], dtype=dtype)), (kind, np.asarray(cells, dtype=dtype))]
+    meshio.write(path, meshio.Mesh(v, blocks))
+    return path
+
+
+@pytest.mark.parametrize(
+    "ext, kind, cells, dtype, fragment",
+    [
+        (".vtu", "quad", [[0, 1, 2, 9]], np.int64, "cell 1 (a quad) refers to point 9, but the file has 4 points"),
+        (".vtk", "quad", [[0, 1, 2, 3], [0, 1, 2, -2]], np.int64, "cell 2 (a quad) refers to point -2"),
+        (".vtu", "triangle", [[0, 1, 2], [0, 2, 7]], np.int64, "cell 2 (a triangle) refers to point 7"),
+        (".ply", "triangle", [[0, 1, 2], [0, 2, 2**64 - 1]], np.uint64, "refers to point 18446744073709551615"),
+    ],
+)
+def test_a_cell_out_of_range_is_named_by_its_number_in_the_file(tmp_path, ext, kind, cells, dtype, fragment):
+    """Quadrilaterals are range-checked like triangles (no IndexError), and an unsigned index is shown as the file
+    holds it, not wrapped to a negative number; cells count from 0 in the file's order, as in VTK and PLY."""
+    with pytest.raises(InvalidSurfaceError) as err:
+        load_surface(_square_cells(tmp_path, ext, kind, cells, dtype))
+    assert fragment in str(err.value)
+    assert_one_line(str(err.value))

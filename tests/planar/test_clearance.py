@@ -171,7 +171,8 @@ def test_the_doubtful_window_is_relative_to_the_threshold():
 
 
 def kept_by_every_vertex(poly, l, angle, offset, clearance):
-    """The scorer before the row-by-row clearance (the oracle): every lattice vertex tested against the boundary with shapely."""
+    """The scorer before the row-by-row clearance (the oracle): every lattice vertex tested against the boundary with
+    shapely."""
     ii, _, pts, kept = kept_vertices(poly, l, angle, offset, clearance)
     shape = poly.region
     inside = shapely.contains_xy(shape, pts[:, 0], pts[:, 1])
@@ -192,7 +193,8 @@ fractions = st.tuples(st.floats(0.0, 1.0), st.floats(0.0, 1.0))
     st.sampled_from([1.0, 1.5, 2.0]),
 )
 def test_band_scan_keeps_the_same_vertices_as_testing_every_vertex(case, angle, frac, clearance):
-    """The placement's scorer (:mod:`equimesh.planar.clearance`) keeps exactly the vertices the per-vertex test keeps."""
+    """The placement's scorer (:mod:`equimesh.planar.clearance`) keeps exactly the vertices the per-vertex test
+    keeps."""
     vertices, l = case
     poly = as_polygon(vertices, l)
     offset = np.asarray(frac) @ equimesh.planar.lattice.lattice_basis(l, angle)

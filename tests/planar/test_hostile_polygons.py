@@ -41,6 +41,13 @@ EXAMPLES = {"thorough": 2000}.get(os.environ.get("EQUIMESH_HYPOTHESIS_PROFILE", 
 
 fuzz = settings(max_examples=EXAMPLES)
 
+#: The conditions of the fuzz tests: a generated polygon is meshed (not refused).  The share of meshed inputs
+#: each test asks for is a lower bound the code meets with room on both hypothesis profiles: refusing everything
+#: fails.
+PROBLEM2_MESHED = "Problem 2 meshed a hostile polygon"
+PROBLEM1_MESHED = "Problem 1 meshed a convex hull"
+STAR_MESHED = "Problem 2 meshed a reported star"
+
 
 @st.composite
 def stars(draw):
@@ -104,7 +111,14 @@ def _mesh_or_refusal(function, vertices, l):
         return None
 
 
-@pytest.mark.parametrize("family", [stars(), necks(), spikes()], ids=["stars", "necks", "spikes"])
+@pytest.mark.parametrize(
+    "family",
+    [
+        pytest.param(stars(), marks=pytest.mark.exercised(PROBLEM2_MESHED, share=0.5), id="stars"),
+        pytest.param(necks(), marks=pytest.mark.exercised(PROBLEM2_MESHED, share=0.01), id="necks"),
+        pytest.param(spikes(), marks=pytest.mark.exercised(PROBLEM2_MESHED, share=0.3), id="spikes"),
+    ],
+)
 def test_problem2_accepts_only_what_it_can_mesh(family):
     """Every accepted hostile polygon gives a mesh with every Problem 2 guarantee; the rest are refused cleanly."""
 
@@ -113,7 +127,7 @@ def test_problem2_accepts_only_what_it_can_mesh(family):
     def check(problem):
         vertices, l = problem
         mesh = _mesh_or_refusal(equimesh.uniform_triangulation, vertices, l)
-        if exercised("fuzz: Problem 2 accepted a hostile polygon", mesh is not None):
+        if exercised(PROBLEM2_MESHED, mesh is not None):
             inv2.assert_problem2_invariants(mesh, vertices, l)
 
     check()
@@ -129,13 +143,14 @@ def convex_hulls(draw):
     return radius * np.column_stack([np.cos(theta), np.sin(theta)])
 
 
+@pytest.mark.exercised(PROBLEM1_MESHED, share=0.05)
 @fuzz
 @given(placed(convex_hulls()))
 def test_problem1_accepts_only_what_it_can_mesh(problem):
     """Problem 1 on convex polygons that may break its preconditions: a valid mesh or a clean refusal."""
     vertices, l = problem
     mesh = _mesh_or_refusal(equimesh.increment, vertices, l)
-    if exercised("fuzz: Problem 1 accepted a convex hull", mesh is not None):
+    if exercised(PROBLEM1_MESHED, mesh is not None):
         inv1.assert_problem1_invariants(mesh, vertices, l)
 
 
@@ -172,12 +187,10 @@ def reported_stars(draw):
     return np.column_stack([radii * np.cos(angles), radii * np.sin(angles)])
 
 
+@pytest.mark.exercised(STAR_MESHED, share=0.5)
 @given(reported_stars())
 def test_random_stars_are_meshed_within_theorem3_or_refused(vertices):
     """Every accepted star polygon gives edges in [l, 2l]; every refused one a one-line error of ours."""
-    try:
-        mesh = equimesh.uniform_triangulation(vertices, 1.0)
-    except EquimeshError as error:
-        assert "\n" not in str(error)
-        return
-    check_edge_lengths(mesh, 1.0)
+    mesh = _mesh_or_refusal(equimesh.uniform_triangulation, vertices, 1.0)
+    if exercised(STAR_MESHED, mesh is not None):
+        check_edge_lengths(mesh, 1.0)

@@ -266,7 +266,8 @@ def test_far_from_the_origin_the_vertices_are_the_callers_bits():
             1.0,
             InvalidPolygonError,
             (
-                "no mesh with every edge in [l, 2l] exists (both ends of a side are nodes, so some mesh edge on it is no "
+                "no mesh with every edge in [l, 2l] exists (both ends of a side are nodes, so some mesh edge on it is "
+                "no "
                 "longer than the side): edge (1, 2) has length 0.5, shorter than l = 1.0"
             ),
         ),

@@ -40,7 +40,8 @@ HOLE = np.array([[2.5, 2.5], [3.5, 2.5], [3.5, 3.5], [2.5, 3.5]])
 
 
 def brute_force_kept(poly, l, angle, offset, clearance, ij):
-    """Which lattice vertices ``ij`` lie inside ``poly`` at least ``clearance l`` from its boundary (shapely, one by one)."""
+    """Which lattice vertices ``ij`` lie inside ``poly`` at least ``clearance l`` from its boundary (shapely, one by
+    one)."""
     lp = poly.local_length(l)
     pts = lattice.lattice_points(ij, lp, angle, lattice.local_offset(poly, l, angle, offset))
     shape = poly.region
@@ -206,7 +207,8 @@ def lattice_part_checks(part, poly, l, angle, offset, clearance):
     angle=st.floats(0.0, 60.0), ox=st.floats(-2.0, 2.0), oy=st.floats(-2.0, 2.0), clearance=st.sampled_from([1.0, 1.5])
 )
 def test_lattice_part_is_the_union_of_fully_kept_lattice_triangles(name, angle, ox, oy, clearance):
-    """K: kept vertices only, edges exactly l, counter-clockwise, boundary with K on its left, one seed per component."""
+    """K: kept vertices only, edges exactly l, counter-clockwise, boundary with K on its left, one seed per
+    component."""
     vertices, holes = POLYGONS[name]
     poly = as_polygon(vertices, 1.0, holes)
     part = lattice.lattice_part(poly, 1.0, angle, (ox, oy), clearance)

@@ -1,4 +1,5 @@
-"""The lattice placement search of Problem 2 (``planar/placement.py``; docs/decisions.md, "The lattice placement search").
+"""The lattice placement search of Problem 2 (``planar/placement.py``; docs/decisions.md, "The lattice placement
+search").
 
 What must hold: the objective counts the edges of the kept lattice part K
 (each edge of a kept triangle once); the search is the documented one,

@@ -1,4 +1,5 @@
-"""Validation of the input polygon (``planar/polygon.py``), case by case: what is refused, with which line, and what is not.
+"""Validation of the input polygon (``planar/polygon.py``), case by case: what is refused, with which line, and what is
+not.
 
 Each case is built by hand at the edge of one check: a repeated vertex that
 sorting by y alone would not find, a fold-back that a sum over all vertices
@@ -247,7 +248,8 @@ def test_holes_are_clockwise_rings_in_the_outer_frame():
 
 
 def test_holes_whose_bounding_boxes_overlap_are_apart():
-    """Two triangles with overlapping bounding boxes, 1.06 apart: no overlap (the shapes are compared, not the boxes)."""
+    """Two triangles with overlapping bounding boxes, 1.06 apart: no overlap (the shapes are compared, not the
+    boxes)."""
     holes = [[[2, 2], [6, 2], [2, 6]], [[6.5, 3], [6.5, 7], [2.5, 7]]]
     assert len(as_polygon(OUTER, 1.0, holes).holes) == 2
 

@@ -69,8 +69,10 @@ def test_two_corners_separable_alone_but_not_together_are_refused_naming_both():
     tip = [2.1 * np.cos(np.radians(29.4)), 2.1 * np.sin(np.radians(29.4))]
     with pytest.raises(
         InvalidPolygonError,
-        match=r"^the corners at vertex 0 at \(0, 0\) \(29.4 degrees\) and vertex 1 at \(4.25, 0\) \(23.0697 degrees\) cannot "
-        r"meet Lemma 3 \(1\) together for l = 1.0: no split of their sides of 2.1, 4.25, 2.63084273\d* .*not a proof that no "
+        match=r"^the corners at vertex 0 at \(0, 0\) \(29.4 degrees\) and vertex 1 at \(4.25, 0\) "
+        r"\(23.0697 degrees\) cannot "
+        r"meet Lemma 3 \(1\) together for l = 1.0: no split of their sides of 2.1, 4.25, 2.63084273\d* .*not a proof "
+        r"that no "
         r"mesh exists",
     ):
         equimesh.uniform_triangulation([[0, 0], [4.25, 0], tip], 1.0)
@@ -80,7 +82,8 @@ def test_two_corners_separable_alone_but_not_together_are_refused_naming_both():
 MAX_AREA = 1500.0
 
 
-# --------------------------------------------------------------------------- generated sharp corners and the proven refusals
+# --------------------------------------------------------------------------- generated sharp corners and the proven
+# refusals
 
 
 @given(ss.cases(MAX_AREA, families=["sharp wedge", "sharp rhombus"]))
@@ -169,6 +172,7 @@ def _refusal_kind(error):
     return found[0]
 
 
+@pytest.mark.exercised("a short-sided sharp corner is meshed", share=0.5)
 @given(sss.sharp_cases())
 def test_short_sided_sharp_corners_are_meshed_within_every_theorem_or_refused_by_kind(case):
     """Corners of 10 to 60 degrees with sides from l to past the proven limit (thin triangles, short wedges,
@@ -204,7 +208,8 @@ def _meshed_or_refused_by_kind(vertices, holes, l):
 def test_triangles_with_two_sharp_corners_on_one_side_are_meshed_or_refused_with_a_proof(angle_1, angle_2, size):
     """Two corners of 10 to 59 degrees at the ends of a base from l to where they stop sharing any point of it
     (``K_1 l + K_2 l + 3 l``): meshed within every theorem, or refused by kind, a proof confirmed by sampling
-    (jointly: planar/boundary/chain.py).  Rarely "not handled" (docs/proofs.md, "Sharp corners", what is not decided)."""
+    (jointly: planar/boundary/chain.py).
+    Rarely "not handled" (docs/proofs.md, "Sharp corners", what is not decided)."""
     base = 1.0 + size * (stagger_reach(angle_1, 1.0) + stagger_reach(angle_2, 1.0) + 2.0)
     a, b = math.radians(angle_1), math.radians(angle_2)
     side = base * math.sin(b) / math.sin(a + b)
@@ -261,16 +266,20 @@ PROVEN_REFUSALS = {
     # of [l, 2l] keeps them l apart (the relaxation on a grid of cells finds no path): a limit of the method.
     "no placement": (
         [[0, 0], [3.45, 0], at(20.0, 3.45)],
-        r"^the corner at vertex 0 at \(0, 0\) \(20 degrees\) cannot meet Lemma 3 \(1\) for l = 1.0: no split of its sides "
-        r"of 3.45 and 3.45 into parts of \[l, 2l\] .* not a proof that no mesh exists.* sides of at least 4.0 are handled",
+        r"^the corner at vertex 0 at \(0, 0\) \(20 degrees\) cannot meet Lemma 3 \(1\) for l = 1.0: no split of its "
+        r"sides "
+        r"of 3.45 and 3.45 into parts of \[l, 2l\] .* not a proof that no mesh exists.* sides of at least 4.0 are "
+        r"handled",
         _no_sampled_placement,
     ),
     # A dart with tip and barbs of 30 degrees, tip sides 3.5 l: each two corners sharing a side can be separated,
     # the three together cannot (decided jointly on a grid of cells).
     "no chain placement": (
         sharp_dart(30.0, (30.0, 30.0), 3.5).tolist(),
-        r"^the corners at vertex 3 at \(3.380740392, 0.9058666579\) \(30 degrees\), vertex 0 at \(0, 0\) \(30 degrees\) and "
-        r"vertex 1 at .* cannot meet Lemma 3 \(1\) together for l = 1.0: .*\(the middle ones shared\).* at every corner .*"
+        r"^the corners at vertex 3 at \(3.380740392, 0.9058666579\) \(30 degrees\), vertex 0 at \(0, 0\) \(30 "
+        r"degrees\) and "
+        r"vertex 1 at .* cannot meet Lemma 3 \(1\) together for l = 1.0: .*\(the middle ones shared\).* at every "
+        r"corner .*"
         r"not a proof that no mesh exists",
         _no_sampled_chain_placement,
     ),
@@ -278,7 +287,8 @@ PROVEN_REFUSALS = {
     # (no split of the shared side leaves both other sides a split; decided jointly on a grid of cells).
     "no joint placement": (
         [[0, 0], [4.25, 0], at(29.4, 2.1)],
-        r"^the corners at vertex 0 at \(0, 0\) \(29.4 degrees\) and vertex 1 at \(4.25, 0\) \(23.0697 degrees\) cannot meet "
+        r"^the corners at vertex 0 at \(0, 0\) \(29.4 degrees\) and vertex 1 at \(4.25, 0\) \(23.0697 degrees\) cannot "
+        r"meet "
         r"Lemma 3 \(1\) together for l = 1.0: .* not a proof that no mesh exists",
         _no_sampled_chain_placement,
     ),

@@ -610,7 +610,8 @@ def test_square_g1_edges_are_exactly_the_lattice_edges(square_mesh):
 
 
 def test_square_info_and_point_order(square_mesh):
-    """info holds the lattice part's sizes and the run's parameters; boundary first, then strip, then lattice interior."""
+    """info holds the lattice part's sizes and the run's parameters; boundary first, then strip, then lattice
+    interior."""
     m = square_mesh
     info = m.info
     assert (info["n_lattice_vertices"], info["n_lattice_triangles"]) == (22, 28)

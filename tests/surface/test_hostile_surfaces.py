@@ -1,6 +1,8 @@
-"""Hostile surfaces through the whole pipeline: every one meshed within the pipeline's invariants or refused in one line."""
+"""Hostile surfaces through the whole pipeline: each meshed within the pipeline's invariants or refused in one line."""
 
 import numpy as np
+import pytest
+from conftest import exercised
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from invariants import check_edge_lengths
@@ -8,6 +10,9 @@ from surface_invariants import assert_valid_surface_mesh
 
 import equimesh
 from equimesh.surface.charts.bezier import BezierSurface
+
+#: The condition of the fuzz test: the input is accepted.
+MESHED = "a jittered net is meshed"
 
 
 @st.composite
@@ -22,6 +27,7 @@ def jittered_nets(draw):
     return BezierSurface(net)
 
 
+@pytest.mark.exercised(MESHED, share=0.5)
 @settings(max_examples=8, deadline=None)
 @given(jittered_nets())
 def test_jittered_nets_are_meshed_correctly_or_refused_cleanly(surface):
@@ -29,6 +35,8 @@ def test_jittered_nets_are_meshed_correctly_or_refused_cleanly(surface):
         mesh = equimesh.mesh_surface(surface, 6.0, grid=(8, 8), optimize="none")
     except equimesh.EquimeshError as exc:
         assert "\n" not in str(exc) and "edge (" not in str(exc)
+        exercised(MESHED, False)
         return
+    exercised(MESHED, True)
     assert_valid_surface_mesh(mesh, surface)
     check_edge_lengths(mesh.stages.plane, 6.0)

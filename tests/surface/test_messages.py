@@ -45,7 +45,8 @@ def located_refusals(monkeypatch):
 
 
 def test_sharp_corner_is_named_with_the_largest_l_that_fits(located_refusals):
-    """A flat 20-degree parallelogram, sides 30, at l = 9: the refusal names the sharp corner, its angle and an l that works."""
+    """A flat 20-degree parallelogram, sides 30, at l = 9: the refusal names the sharp corner, its angle and an l that
+    works."""
     a = np.radians(20.0)
     patch = plane_patch((30.0, 0.0), (30.0 * np.cos(a), 30.0 * np.sin(a)))
     message = refuse(InvalidSurfaceError, patch, 9.0, r"corner \(u, v\) = \((1, 1|0, 0)\) .* is 20\.0 degrees")

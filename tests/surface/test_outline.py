@@ -100,7 +100,8 @@ def test_sharp_corner_on_a_surface_is_meshed_in_l_2l(angle):
 
 
 def test_sharp_corner_on_a_curved_nurbs_is_meshed_in_l_2l():
-    """A bicubic NURBS on a skewed net (25-degree corners), domed and with uneven weights: every plane member in [l, 2l]."""
+    """A bicubic NURBS on a skewed net (25-degree corners), domed and with uneven weights: every plane member in [l,
+    2l]."""
     a = np.radians(25.0)
     s, t = np.meshgrid(np.linspace(0.0, 1.0, 4), np.linspace(0.0, 1.0, 4), indexing="ij")
     net = np.stack(

@@ -39,7 +39,8 @@ def test_bad_max_nodes(max_nodes):
 
 
 def test_max_nodes_none_means_no_limit_and_default_depends_on_optimize():
-    """None is no limit; the default is UNOPTIMIZED_MAX_NODES without optimisation and each objective's own, smaller, limit
+    """None is no limit; the default is UNOPTIMIZED_MAX_NODES without optimisation and each objective's own, smaller,
+    limit
     with it (the refusal of a tiny l names the limit that applied)."""
     assert equimesh.mesh_surface(plane_patch(), 3.0, grid=(4, 4), optimize="none", max_nodes=None).points.size
     # about 115 nodes: refused under a limit of 100, with either optimisation

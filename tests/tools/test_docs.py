@@ -143,3 +143,31 @@ def test_no_code_cites_an_entry_by_number():
         if BY_NUMBER.search(line)
     ]
     assert not wrong, "cite docs/decisions.md by heading, not by number:\n" + "\n".join(wrong)
+
+
+def test_the_readme_comparison_rows_are_rows_of_the_generated_table():
+    """Every row of the README's comparison says what ``results/compare_peers.md`` (written by
+    ``experiments/compare_peers.py``) says for that surface and method: no number in the README that the script did
+    not write."""
+    readme = (ROOT / "README.md").read_text(encoding="utf-8")
+    section = readme.split("## Against other meshers", 1)[1].split("\n## ", 1)[0]
+    generated = (ROOT / "results" / "compare_peers.md").read_text(encoding="utf-8")
+    header = next(line for line in generated.splitlines() if line.startswith("| surface | method |"))
+    columns = [c.strip() for c in header.strip("|").split("|")]
+    table = {}
+    for line in generated.splitlines():
+        cells = [c.strip() for c in line.strip("|").split("|")]
+        if line.startswith("| ") and len(cells) == len(columns) and cells[0] != "surface":
+            table[cells[0], cells[1]] = dict(zip(columns, cells))
+    rows = [line for line in section.splitlines() if line.startswith("| ") and not line.startswith("| surface")]
+    assert rows
+    for line in rows:
+        surface, method, within, within5, band, classes, angles = (c.strip() for c in line.strip("|").split("|"))
+        row = table[surface, method]
+        assert (within, within5, band, classes, angles) == (
+            f"{row['within 0.5 %']} %",
+            f"{row['within 5 %']} %",
+            f"{row['in [l, 2l]']} %",
+            row["classes 0.5 %"],
+            f"{row['min angle']}-{row['max angle']}",
+        ), line

@@ -40,7 +40,7 @@ def atomic_paths(*paths):
             path.parent.mkdir(parents=True, exist_ok=True)
             tmps.append(_temporary(path.parent, path.suffix))
         yield tmps
-        with _interrupts_held():
+        with interrupts_held():
             for tmp, path in zip(tmps, paths):
                 os.replace(tmp, path)
     except BaseException:
@@ -64,19 +64,28 @@ def atomic_write_text(path, text, encoding="utf-8"):
 
 
 def probe_folder(folder, suffix=""):
-    """Create and remove a temporary file in ``folder``, exactly as a write would; raise its ``OSError``."""
-    os.unlink(_temporary(Path(folder), suffix))
+    """Create and remove a temporary file in ``folder``, exactly as a write would; raise its ``OSError``.
+
+    Returns True if the folder's file system folds case: the temporary file's
+    name in the other case (``.EQUIMESH-...``, a name nobody else makes) is found.
+    """
+    tmp = _temporary(Path(folder), suffix)
+    try:
+        return tmp.with_name(tmp.name.swapcase()).exists()
+    finally:
+        os.unlink(tmp)
 
 
 def _temporary(folder, suffix):
     fd, tmp = tempfile.mkstemp(prefix=TEMP_PREFIX, suffix=suffix, dir=folder)
     os.close(fd)
-    os.chmod(tmp, 0o666 & ~_umask())  # mkstemp makes 0600; give the usual permissions
+    with contextlib.suppress(OSError):  # a file system without permissions (FAT) keeps its own
+        os.chmod(tmp, 0o666 & ~_umask())  # mkstemp makes 0600; give the usual permissions
     return Path(tmp)
 
 
 @contextlib.contextmanager
-def _interrupts_held():
+def interrupts_held():
     """Hold SIGINT back for the duration of the block and deliver it afterwards.
 
     Only the main thread can set signal handlers, and only a handler installed

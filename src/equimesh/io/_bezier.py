@@ -6,7 +6,7 @@ Rows of ``control_points`` run over ``u``, the entries of a row over ``v``; an
 (m+1) x (n+1) net gives a surface of degree (m, n).
 """
 
-from ..surface.charts.bezier import BezierSurface
+from ..surface.charts.bezier import BezierSurface, check_net_shape
 from ._schema import control_net
 
 #: The fields of the "bezier" type besides "type" and "description".
@@ -15,7 +15,7 @@ FIELDS = ("control_points",)
 
 def bezier_from_dict(d):
     """The :class:`BezierSurface` of a checked JSON object; the first problem found is raised naming its field."""
-    return BezierSurface(control_net(d["control_points"]))
+    return BezierSurface(control_net(d["control_points"], check_net_shape))
 
 
 def bezier_to_dict(surface):

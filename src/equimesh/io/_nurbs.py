@@ -12,8 +12,8 @@ over ``v``; ``knots_u`` holds ``n_u + p + 1`` knots for ``n_u`` rows, ``knots_v`
 from numbers import Integral
 
 from ..errors import InvalidSurfaceError
-from ..surface.charts.nurbs import NurbsSurface
-from ._schema import a_list, control_net, finite_number, json_type, number_rows, shown
+from ..surface.charts.nurbs import NurbsSurface, check_net_shape
+from ._schema import a_list, control_net, described, finite_number, number_rows
 
 #: The fields of the "nurbs" type besides "type" and "description".
 FIELDS = ("degree", "knots_u", "knots_v", "control_points", "weights")
@@ -26,9 +26,9 @@ def nurbs_from_dict(d):
         raise InvalidSurfaceError(f'"degree" must be a list of 2 integers [p, q], got {len(degree)} entries')
     for k, value in enumerate(degree):
         if isinstance(value, bool) or not isinstance(value, Integral):
-            raise InvalidSurfaceError(f"degree[{k}] must be an integer, got {json_type(value)} {shown(value)}")
+            raise InvalidSurfaceError(f"degree[{k}] must be an integer, got {described(value)}")
+    net = control_net(d["control_points"], check_net_shape)  # first: its size bounds what the rest may cost
     knots = [_numbers(d[name], name) for name in ("knots_u", "knots_v")]
-    net = control_net(d["control_points"])
     weights = number_rows(d["weights"], "weights", "weights", 1, 1)
     for i, row in enumerate(weights):
         for j, w in enumerate(row):

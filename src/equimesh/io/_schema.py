@@ -25,13 +25,21 @@ def json_type(x):
 
 
 def shown(x):
-    """``x`` as short plain text for a message (numbers as plain decimals, long text cut)."""
-    if isinstance(x, Integral) and not isinstance(x, bool):
+    """``x`` as short plain text for a message (numbers as plain decimals, booleans as JSON writes them, long text
+    cut)."""
+    if isinstance(x, bool):
+        return "true" if x else "false"
+    if isinstance(x, Integral):
         return str(int(x)) if abs(int(x)) < 10**SHOWN_CHARS else f"an integer beyond 1e{SHOWN_CHARS}"
     if isinstance(x, Real):
         return repr(float(x))
     text = str(x)
     return text if len(text) <= SHOWN_CHARS else text[: SHOWN_CHARS - 3] + "..."
+
+
+def described(x):
+    """``x`` by its JSON type and value for a message: ``number 1.5``, ``boolean true``, ``string x``, ``null``."""
+    return "null" if x is None else f"{json_type(x)} {shown(x)}"
 
 
 def a_list(x, where, what, min_length):
@@ -46,7 +54,7 @@ def a_list(x, where, what, min_length):
 def finite_number(x, where):
     """``float(x)`` if ``x`` is a finite real number (not a boolean), else an :class:`InvalidSurfaceError`."""
     if isinstance(x, bool) or not isinstance(x, Real):
-        raise InvalidSurfaceError(f"{where} must be a real number, got {json_type(x)} {shown(x)}")
+        raise InvalidSurfaceError(f"{where} must be a real number, got {described(x)}")
     try:
         value = float(x)
     except OverflowError:  # an integer beyond the float range
@@ -66,9 +74,13 @@ def number_rows(x, where, what, min_rows, min_length):
     return rows
 
 
-def control_net(x, where="control_points"):
-    """``x`` if it is a control net: rows (over u) of equally many points (over v), each ``[x, y, z]`` finite."""
+def control_net(x, check_shape, where="control_points"):
+    """``x`` if it is a control net: rows (over u) of equally many points (over v), each ``[x, y, z]`` finite.
+
+    ``check_shape(rows, columns)``, the chart's bound on the size of its net, runs before any point is read, so that a
+    net too large to evaluate is refused without reading it."""
     rows = number_rows(x, where, "points", 2, 2)
+    check_shape(len(rows), len(rows[0]))
     for i, row in enumerate(rows):
         for j, point in enumerate(row):
             coordinates(point, f"{where}[{i}][{j}]", "xyz")
@@ -89,8 +101,7 @@ def coordinates(point, where, names):
     """``point`` if it is a list of ``len(names)`` finite numbers (e.g. ``[x, y, z]`` for ``names = "xyz"``)."""
     if not isinstance(point, list) or len(point) != len(names):
         raise InvalidSurfaceError(
-            f"{where} must be a list [{', '.join(names)}] of {len(names)} numbers, got {json_type(point)} "
-            f"{shown(point)}"
+            f"{where} must be a list [{', '.join(names)}] of {len(names)} numbers, got {described(point)}"
         )
     for k, c in enumerate(point):
         finite_number(c, f"{where}[{k}]")

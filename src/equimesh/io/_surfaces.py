@@ -141,11 +141,24 @@ def load_surface(path, *, object=None):
         raise InvalidSurfaceError(f"cannot read surface file {shown_path(path)}: {reason}") from None
 
 
+#: The largest JSON file read: three times a net of ``MAX_NET_POINTS`` written with every digit, one number a line
+#: (10.3 MB for 316 x 316 points, ``python experiments/chart_timing.py``).  A larger file is refused on its size,
+#: before a parse of seconds that would end in the refusal of its net (docs/decisions.md, "Charts bounded by what
+#: evaluation costs").
+MAX_JSON_BYTES = 32_000_000
+
+
 def read_json_surface(path):
     """Read a JSON surface description (UTF-8, a byte-order mark allowed) and build it with
     :func:`surface_from_dict`."""
-    data = Path(path).read_bytes()
     where = shown_path(path)
+    size = Path(path).stat().st_size
+    if size > MAX_JSON_BYTES:
+        raise InvalidSurfaceError(
+            f"{where} has {size} bytes, more than the {MAX_JSON_BYTES} of the largest surface description read "
+            "(a control net of the most points allowed takes a third of that)"
+        )
+    data = Path(path).read_bytes()
     try:
         text = data.decode("utf-8-sig")
     except UnicodeDecodeError as exc:

@@ -142,8 +142,21 @@ def mesh_outline(chart, l, spacing, feature_angle=DEFAULT_FEATURE_ANGLE):
     return MeshOutline(tuple(loops), tuple(rings), tuple(arcs), tuple(order), tuple(corner_arcs))
 
 
-def check_feature_angle(angle):
-    """``angle`` (degrees) as a float, refusing anything but a real number in [0, 180)."""
+def check_feature_angle(angle, meshed=True):
+    """``angle`` (degrees) as a float, refusing anything but a real number in [0, 180); None: the default.
+
+    Only a triangle mesh (``meshed``) takes a feature angle: a chart's
+    corners are its rectangle's and its holes' vertices.
+    """
+    if not meshed:
+        if angle is not None:
+            raise EquimeshError(
+                "a feature angle finds the corners of a triangle mesh's boundary loops; a parametric surface's "
+                "corners are those of its parameter rectangle and the vertices of its holes"
+            )
+        return None
+    if angle is None:
+        return DEFAULT_FEATURE_ANGLE
     value = real_number(angle, "feature_angle", EquimeshError)
     if not 0.0 <= value < 180.0:
         raise EquimeshError(f"feature_angle must be at least 0 and below 180 degrees, got {number(value)}")

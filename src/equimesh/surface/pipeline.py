@@ -44,14 +44,7 @@ from .charts.mesh_chart import MeshChart, flatten_mesh
 from .charts.openings import Perforated, holes_of
 from .charts.triangulated import TriangulatedSurface
 from .flatten import flatten
-from .mesh_outline import (
-    DEFAULT_FEATURE_ANGLE,
-    boundary_uv,
-    check_feature_angle,
-    check_open,
-    mesh_outline,
-    restate_mesh_error,
-)
+from .mesh_outline import boundary_uv, check_feature_angle, check_open, mesh_outline, restate_mesh_error
 from .messages import restate_polygon_error
 from .optimize import OBJECTIVES, optimize_uv
 from .optimize.jacobian import signed_areas
@@ -206,10 +199,8 @@ def mesh_surface(
     engine : str
         Insertion engine of Problem 2 (:data:`equimesh.planar.insertion.ENGINES`).
     feature_angle : float, optional
-        For a triangle mesh only: a vertex of a boundary loop is a corner, a
-        node of the mesh that stays put, when the loop turns there by more
-        than this many degrees at the scale of l; the rest of each loop is
-        resampled as a curve (:func:`~equimesh.surface.mesh_outline.loop_corners`).
+        Triangle meshes only: the turn (degrees) at the scale of l above which
+        a boundary vertex is a corner (:func:`~equimesh.surface.mesh_outline.loop_corners`);
         None: :data:`~equimesh.surface.mesh_outline.DEFAULT_FEATURE_ANGLE`.
 
     Returns
@@ -245,14 +236,10 @@ def mesh_surface(
         surface = Perforated(surface, holes)
     seconds = {}
     clock = _Clock(seconds, progress)
-    if isinstance(surface, TriangulatedSurface):
-        angle = check_feature_angle(DEFAULT_FEATURE_ANGLE if feature_angle is None else feature_angle)
+    meshed = isinstance(surface, TriangulatedSurface)
+    angle = check_feature_angle(feature_angle, meshed)
+    if meshed:
         steps = _mesh_front(surface, grid, l, limit, boundary_spacing, clock, angle)
-    elif feature_angle is not None:
-        raise EquimeshError(
-            "a feature angle finds the corners of a triangle mesh's boundary loops; a parametric surface's corners "
-            "are those of its parameter rectangle and the vertices of its holes"
-        )
     else:
         steps = _chart_front(surface, grid, l, limit, boundary_spacing, clock)
 
@@ -389,9 +376,8 @@ def _mesh_front(surface, grid, l, limit, spacing, clock, feature_angle):
     ``grid`` is not used; ``feature_angle`` decides the loops' corners.  The
     flattening starts from the projection onto the best-fit plane, or a
     conformal map or Tutte's embedding if that folds, with the openings capped
-    (:func:`~equimesh.surface.charts.mesh_chart.flatten_mesh`); the size is
-    estimated again on the flattened area, which Problem 2 meshes
-    (:func:`_check_size`); the flattened mesh is the chart
+    (:func:`~equimesh.surface.charts.mesh_chart.flatten_mesh`) and the size
+    estimated again on it (:func:`_check_size`); the flattened mesh is the chart
     (:class:`~equimesh.surface.charts.mesh_chart.MeshChart`) and its loops the
     outline (:mod:`equimesh.surface.mesh_outline`).
     """
@@ -465,24 +451,18 @@ def _check_size(surface_points, triangles, l, max_nodes, flattened=None):
     by a power of two, which is exact), so neither a surface given in units of
     1e-100 nor one in units of 1e100 overflows or underflows; a tiny ``l``
     gives an estimate of ``inf`` rather than an overflow.  With ``flattened``
-    (the plane points of the same triangles, step 2) the estimate is that of
-    the flattened area, which Problem 2 meshes: eq. (1) keeps edge lengths
-    only in the least-squares sense, and a surface that wraps around, as a
-    tube or a nearly closed sphere, flattens to many times its area
+    (step 2's plane points) it is the flattened area's, which Problem 2 meshes
     (docs/decisions.md, "Size limits of mesh_surface").
     """
     if max_nodes is None:
         return
     area, scale = _scaled_area(surface_points, triangles)
-    what = f"this surface (area {number(area / scale / scale)})"
+    what, true_area = f"this surface (area {number(area / scale / scale)})", area / scale / scale
     if flattened is not None:
-        plane, plane_scale = _scaled_area(flattened, triangles)
-        ratio = (plane / plane_scale / plane_scale) / (area / scale / scale)
-        what = (
-            f"the flattened surface (area {number(plane / plane_scale / plane_scale)}, {number(ratio, 3)} times the "
-            f"surface's {number(area / scale / scale)}: eq. (1) stretches it)"
-        )
-        area, scale = plane, plane_scale
+        area, scale = _scaled_area(flattened, triangles)
+        plane = area / scale / scale
+        stretch = f"{plane / true_area:.3g} times the surface's {number(true_area)}"
+        what = f"the flattened surface (area {number(plane)}, {stretch})"
     with np.errstate(over="ignore", under="ignore", divide="ignore"):
         estimate = node_estimate(area, 0.0, np.float64(l * scale))  # Oler's bound, the lattice density
     check_size(what, estimate, max_nodes, l)

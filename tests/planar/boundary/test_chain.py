@@ -439,7 +439,8 @@ def test_a_long_last_side_stops_past_its_own_corners_k_l():
 
 
 def test_entering_a_shared_side_removes_the_positions_of_the_next_side_near_its_first_corner():
-    """Corners of 46, 48 and 16.75 degrees with T_2 only 1.1 l long: corner 1, where T_2 starts, is a point of corner 2's
+    """Corners of 46, 48 and 16.75 degrees with T_2 only 1.1 l long: corner 1, where T_2 starts, is a point of corner
+    2's
     side T_2 and is closer than l to T_3's point 2 l from corner 2 (0.998 l).  Entering T_2 at corner 1 removes such
     positions of T_3: no placement, refuted (from T_2's first grid point instead, the search would place T_3 at 2 l)."""
     thetas = tuple(math.radians(a) for a in (46.0, 48.0, 16.75))

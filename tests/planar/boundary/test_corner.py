@@ -124,7 +124,8 @@ def test_visibility_radii_belong_to_their_sides():
 
 
 def _corners(seed, count, angles, sides):
-    """``count`` corners ``(degrees, A / l, B / l, l)`` drawn from ``seed``: angles and side lengths uniform in the given ranges, rounded."""
+    """``count`` corners ``(degrees, A / l, B / l, l)`` drawn from ``seed``: angles and side lengths uniform in the
+    given ranges, rounded."""
     rng = np.random.default_rng(seed)
     return [
         (
@@ -240,7 +241,8 @@ def test_cut_keeps_a_long_sides_points_up_to_the_first_past_k_l():
 def test_cells_and_nodes_by_hand():
     """K l = 6 and sides 3.125 and 20 (long: past K l + 3 l) at a step of 1/4: the search's nodes are the multiples of
     the step up to K l + 2 l = 8, the short side's far end less multiples of the step, and the points kept; the
-    proof's cells cover [0, 8.25] in steps (one more than 8 needs), with the corner and the short side's far end as points."""
+    proof's cells cover [0, 8.25] in steps (one more than 8 needs),
+    with the corner and the short side's far end as points."""
     lengths, step = (3.125, 20.0), 0.25
     nodes = corner.nodes(lengths, 6.0, 1.0, step, (np.array([1.1, 3.125]), None))
     assert nodes.tolist() == sorted(

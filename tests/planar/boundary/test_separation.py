@@ -1,4 +1,5 @@
-"""Lemma 3 (1) on the Step 2 points (``planar/boundary/separation.py``): boundary points that see each other are l apart.
+"""Lemma 3 (1) on the Step 2 points (``planar/boundary/separation.py``): boundary points that see each other are l
+apart.
 
 What must hold: a neck or a corner whose points are closer than l is refused in one line, in the caller's
 units, saying whether no mesh exists (the sector lemma), the paper's method cannot separate it (its first points
@@ -216,10 +217,13 @@ def test_no_separation_at_a_corner_names_it_with_the_handled_sides():
     and 1.37 l, the first points closer than l wherever they lie; K = 2, so sides of 3 l are handled."""
     poly = as_polygon(np.array([[1.6, 0.0], at(30.0, 2.5), [0.0, 0.0]]) * 3.0 + [6.0, 3.0], 3.0)
     assert str(unseparable_corner(poly, 3.0)) == (
-        "the corner at vertex 1 at (12.49519053, 6.75) (35.6746 degrees) cannot meet Lemma 3 (1) for l = 3.0: with sides "
-        "of 7.499999999999999 and 4.115357934313905 the first boundary points of its two sides are closer than l wherever "
+        "the corner at vertex 1 at (12.49519053, 6.75) (35.6746 degrees) cannot meet Lemma 3 (1) for l = 3.0: with "
+        "sides "
+        "of 7.499999999999999 and 4.115357934313905 the first boundary points of its two sides are closer than l "
+        "wherever "
         "they lie, so no Step 2 separates them (a limit of the paper's method, not a proof that no mesh exists; "
-        "docs/proofs.md, 'Sharp corners'); sides of at least 9.0 are handled; use a smaller l, longer sides or a wider corner"
+        "docs/proofs.md, 'Sharp corners'); sides of at least 9.0 are handled; use a smaller l, longer sides or a wider "
+        "corner"
     )
 
 
@@ -322,7 +326,8 @@ _PAIR_TRIANGLE = [[0.0, 0.0], [25.5, 0.0], at(29.4, 12.6)]
 
 
 _REFUSED_TOGETHER = (
-    "cannot meet Lemma 3 (1) together for l = 6.0: no split of their sides of {sides} (the middle {middle} shared) into "
+    "cannot meet Lemma 3 (1) together for l = 6.0: no split of their sides of {sides} (the middle {middle} shared) "
+    "into "
     "parts of [l, 2l] keeps every two points of different sides l apart at {at} (decided on a grid of cells), so no "
     "Step 2 separates them (a limit of the paper's method, not a proof that no mesh exists; docs/proofs.md, 'Sharp "
     "corners'); use a smaller l, longer sides or wider corners"
@@ -548,14 +553,17 @@ HANDLED = (
         # 20 degrees, sides 3.45 l and 3.3 l: refused by the relaxation of the corner alone
         (
             [(0.0, 0.0), (3.45, 0.0), at(20.0, 3.3)],
-            "the corner at vertex 0 at (0, 0) (20 degrees) cannot meet Lemma 3 (1) for l = 3.0: no split of its sides of "
+            "the corner at vertex 0 at (0, 0) (20 degrees) cannot meet Lemma 3 (1) for l = 3.0: no split of its sides "
+            "of "
             "10.350000000000001 and 9.9 into parts of [l, 2l] keeps every two points of different sides l apart "
             "(decided on a grid of cells), so " + HANDLED,
         ),
-        # 21 degrees, sides 3.48 l and 3.25 l: refused only on the finer cells of the joint decision with no second corner
+        # 21 degrees, sides 3.48 l and 3.25 l: refused only on the finer cells of the joint decision with no second
+        # corner
         (
             [(0.0, 0.0), (3.48, 0.0), at(21.0, 3.25)],
-            "the corner at vertex 0 at (0, 0) (21 degrees) cannot meet Lemma 3 (1) for l = 3.0: no split of its sides of "
+            "the corner at vertex 0 at (0, 0) (21 degrees) cannot meet Lemma 3 (1) for l = 3.0: no split of its sides "
+            "of "
             "10.44 and 9.75 into parts of [l, 2l] keeps every two points of different sides l apart "
             "(decided on a grid of cells), so " + HANDLED,
         ),
@@ -563,9 +571,12 @@ HANDLED = (
         (
             [(0.0, 0.0), (4.25, 0.0), at(29.4, 2.1)],
             "the corners at vertex 0 at (0, 0) (29.4 degrees) and vertex 1 at (12.75, 0) (23.0697 degrees) cannot meet "
-            "Lemma 3 (1) together for l = 3.0: no split of their sides of 6.300000000000001, 12.75, 7.892528190861376 (the "
-            "middle one shared) into parts of [l, 2l] keeps every two points of different sides l apart at both corners "
-            "(decided on a grid of cells), so no Step 2 separates them (a limit of the paper's method, not a proof that no "
+            "Lemma 3 (1) together for l = 3.0: no split of their sides of 6.300000000000001, 12.75, 7.892528190861376 "
+            "(the "
+            "middle one shared) into parts of [l, 2l] keeps every two points of different sides l apart at both "
+            "corners "
+            "(decided on a grid of cells), so no Step 2 separates them (a limit of the paper's method, not a proof "
+            "that no "
             "mesh exists; docs/proofs.md, 'Sharp corners'); use a smaller l, longer sides or wider corners",
         ),
     ],
@@ -605,7 +616,8 @@ def test_unplaceable_chain_passes_over_a_pair_that_can_be_separated():
     decided before runs); asked at the first barb alone, its pairs pass and the run of all three is refused."""
     poly = as_polygon(np.array([(3.7, 0.0), (4.39, 2.27), (0.0, 0.0), (5.12, -0.86)]), 1.0)
     assert str(separation.unplaceable_chain(poly, 1.0, [(0, 1)])).startswith(
-        "the corners at vertex 1 at (4.39, 2.27) (45.7498 degrees), vertex 2 at (0, 0) (36.8777 degrees) and vertex 3 at"
+        "the corners at vertex 1 at (4.39, 2.27) (45.7498 degrees), vertex 2 at (0, 0) (36.8777 degrees) and vertex 3 "
+        "at"
     )
     assert str(separation.unplaceable_chain(poly, 1.0, [(0, 1), (0, 3)])).startswith(
         "the corners at vertex 2 at (0, 0) (36.8777 degrees) and vertex 3 at (5.12, -0.86) (21.6656 degrees) cannot"

@@ -206,7 +206,8 @@ def test_corner_gap_reads_only_the_points_within_k_l():
 
 
 def _fingerprint(lengths, angles, l, spacing):
-    """``side_positions`` of a ring, its parts checked in [l, 2l]: (number of points, sum of i times the i-th position)."""
+    """``side_positions`` of a ring, its parts checked in [l, 2l]: (number of points, sum of i times the i-th
+    position)."""
     points = []
     for length, (num, den) in zip(lengths, side_positions(lengths, angles, l, spacing)):
         ends = np.append(num / den * length, length)
@@ -436,7 +437,8 @@ def test_place_corners_on_a_grid_tries_the_trials_in_order(monkeypatch):
     this one first then the next (previous), jointly with the next, jointly with the previous, with its whole run of
     three or more (when it has one); a trial with a corner
     that is not sharp (corner 2, 100 degrees) is skipped, the others still tried (corner 2's own joint trial with the
-    previous corner too).  (The grid placements are stubbed: each returns its input, and no trial separates anything.)"""
+    previous corner too).
+    (The grid placements are stubbed: each returns its input, and no trial separates anything.)"""
     calls, angles = [], [29.4, 23.0, 100.0, 20.0, 15.0]
     sides = side_positions(np.full(5, 4.0), angles, 1.0, 1.5)
     monkeypatch.setattr(corner, "corner_unplaceable", lambda *args: False)

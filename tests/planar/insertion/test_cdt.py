@@ -114,7 +114,8 @@ def _touches_a_constraint(g, c, P, SA, SB):
 
 @given(square_rings(), st.data())
 def test_walk_decides_visibility_like_the_brute_force_test(ring, data):
-    """Status 1: gc touches no constraint and c is in the triangle returned; 0: it touches one; -1 only when degenerate."""
+    """Status 1: gc touches no constraint and c is in the triangle returned; 0: it touches one; -1 only when
+    degenerate."""
     P, V, SA, SB = ring
     N, S, _ = adjacency(V, SA, SB, len(P))
     t = data.draw(st.integers(0, len(V) - 1))
@@ -215,7 +216,8 @@ def _brute_cavity(P, V, N, S, start, p):
 
 @given(square_rings(), st.tuples(st.floats(0.05, 5.95), st.floats(0.05, 5.95)))
 def test_insertion_by_bowyer_watson_keeps_a_delaunay_triangulation(ring, p):
-    """cavity = the brute-force cavity; its boundary has k + 2 edges; the fan refills it: ccw, linked, locally Delaunay."""
+    """cavity = the brute-force cavity; its boundary has k + 2 edges; the fan refills it: ccw, linked, locally
+    Delaunay."""
     P, V, SA, SB = ring
     N, S, _ = adjacency(V, SA, SB, len(P))
     start = locate(P, V, N, np.ones(len(V), dtype=np.bool_), len(V), 0, *p, len(V) + 1)

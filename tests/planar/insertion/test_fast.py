@@ -1,4 +1,5 @@
-"""The fast engine (``planar/insertion/fast.py``): its kernels against the reference's geometry and the engine against the reference.
+"""The fast engine (``planar/insertion/fast.py``): its kernels against the reference's geometry and the engine against
+the reference.
 
 What must hold:
 
@@ -211,7 +212,8 @@ def _assert_candidates(P, V, SA, SB, l):
 
 @given(square_rings(), st.floats(0.3, 2.0), st.data())
 def test_candidates_are_the_reference_candidates(ring, l, data):
-    """:func:`_assert_candidates`; and ``constraint_gap`` is the distance to the nearest constraint whenever it is at most
+    """:func:`_assert_candidates`; and ``constraint_gap`` is the distance to the nearest constraint whenever it is at
+    most
     half the search reach, also when the search gives up (a buffer of one triangle) and measures every constraint.
     """
     P, V, SA, SB = ring
@@ -382,7 +384,8 @@ def _l_at(value, factor):
 
 
 def _thresholds():
-    """(points, l) of the reference engine's threshold tests (``tests/planar/insertion/test_reference.py``), and a radius
+    """(points, l) of the reference engine's threshold tests (``tests/planar/insertion/test_reference.py``), and a
+    radius
     at (1 - REL_TOL) l and at (1 + REL_TOL) l (this one within SLIVER_GAP l of a constraint) and a constraint of
     half-length (1 - REL_TOL) l, each exactly."""
     cases = [(circle_triangle(gap, radius)[0], 1.0) for gap, radius, _ in NEAR_CONSTRAINT]
@@ -424,7 +427,8 @@ def test_a_circumcentre_refused_when_it_surfaces_is_skipped_and_the_insertion_go
     """A circumcentre accepted when pushed and refused when it surfaces: its triangle is passed over, the rest is
     inserted.  A pentagon a, b, e, x, w, in a frame along ab (6 long, turned by 0.7 rad and moved by (0.1, 0)):
     the circle of t = (a, x, w) has radius 1 about the point 1 along ab and 7e-10 off it, and l (0.7 up to 1e-7)
-    is the float just below the one for which REL_TOL l is the centre's gap to ab.  Pushed, the centre is accepted (gap over
+    is the float just below the one for which REL_TOL l is the centre's gap to ab.  Pushed, the centre is accepted (gap
+    over
     REL_TOL l, radius over l); ab's midpoint (2 from it, outside the circle: t stays) is inserted before it
     surfaces, and rounded it moves the constraint's half (a, p) 8.5e-17 nearer the centre, now within REL_TOL l:
     refused, and five more points follow (the reference's insertion, 13 points)."""

@@ -10,6 +10,7 @@ import math
 from fractions import Fraction
 
 import numpy as np
+from conftest import exercised
 from hypothesis import given
 from hypothesis import strategies as st
 from insertion_cases import exact_incircle, exact_orient, quadruples, sign
@@ -138,7 +139,7 @@ def test_predicates_give_the_exact_sign(quad):
         assert _close(value, det, permanent, 4 * EPS)
         exact = pr.orient_exact(*p, *q, *r)
         assert _top_component(exact, det)
-    if exact_orient(a, b, c)[0] > 0:
+    if exercised("abc is counter-clockwise", exact_orient(a, b, c)[0] > 0):
         det, permanent = exact_incircle(a, b, c, d)
         value = incircle(*a, *b, *c, *d)
         assert sign(value) == sign(det)

@@ -68,7 +68,8 @@ def test_folding_projection_starts_from_the_conformal_map():
 
 
 def test_tutte_embedding_never_folds_a_disc():
-    """Tutte's embedding (the last start) of the opening-free vault and of the strip: every triangle counter-clockwise."""
+    """Tutte's embedding (the last start) of the opening-free vault and of the strip: every triangle
+    counter-clockwise."""
     for vertices, triangles in (roof_mesh(20.0, 14.0, (10, 7), 3.0), cylinder_strip(300.0)):
         surface = TriangulatedSurface(vertices, triangles)
         assert unfolded(harmonic_start(surface), surface.triangles)

@@ -291,3 +291,12 @@ def test_a_surface_the_flattening_stretches_is_refused_before_problem_2(radius, 
         mesh_surface(surface, l, progress=lambda stage, seconds: stages.append(stage))
     assert_one_line(str(info.value))
     assert f"max_nodes = {limit}" in str(info.value) and stages == ["auxiliary triangulation"]
+
+
+def test_an_unsigned_index_out_of_range_is_shown_as_given():
+    """A uint64 index of 2**64 - 1 is named as such, not as the -1 it wraps to in int64."""
+    square = [[0.0, 0, 0], [1, 0, 0], [1, 1, 0]]
+    with pytest.raises(
+        InvalidSurfaceError, match=r"refers to a vertex outside 0 \.\. 2: \[0, 1, 18446744073709551615\]"
+    ):
+        TriangulatedSurface(square, np.array([[0, 1, 2**64 - 1]], dtype=np.uint64))

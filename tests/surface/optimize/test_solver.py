@@ -9,17 +9,22 @@ import numpy as np
 import pytest
 import scipy.optimize
 import scipy.sparse
+from blas_threads import outputs_with_one_and_two_threads
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from equimesh.errors import EquimeshError
 from equimesh.surface.optimize import solver as _solver
-from equimesh.surface.optimize.solver import FACTORISATIONS, NormalEquations, least_squares
+from equimesh.surface.optimize.solver import FACTORISATIONS, INSTALLED, NormalEquations, least_squares
+
+#: The optional extra that installs each factorisation's library.
+EXTRAS = {"cholmod": "fast: cvxopt", "pardiso": "mkl: pypardiso"}
 
 
 def _available(name):
     """``name`` as a pytest parameter, skipped where its optional dependency is not installed."""
-    missing = name == "pardiso" and _solver.pypardiso is None
-    return pytest.param(name, marks=pytest.mark.skipif(missing, reason="pypardiso (extra 'fast') not installed"))
+    missing = name not in INSTALLED
+    return pytest.param(name, marks=pytest.mark.skipif(missing, reason=f"extra {EXTRAS.get(name)} not installed"))
 
 
 BOTH = [_available(name) for name in sorted(FACTORISATIONS)]
@@ -217,24 +222,19 @@ _CHAIN_SOLVE = textwrap.dedent("""
 """)
 
 
-def test_the_same_bits_whatever_the_blas_thread_count():
+@pytest.mark.skipif(
+    (os.cpu_count() or 1) < 2, reason=f"{os.cpu_count()} core: OpenBLAS runs one thread either way, nothing to compare"
+)
+@pytest.mark.parametrize("factorisation", BOTH)
+def test_the_same_bits_whatever_the_blas_thread_count(factorisation):
     """The solver's inner products do not go through the BLAS (``_solver.inner``): with ``a @ b`` OpenBLAS summed a
-    long vector in parts, one per thread, and the same solve ended at other bits with 2 threads than with 1.  (On a
-    one-core machine OpenBLAS runs one thread either way and this cannot fail.)"""
-    outputs = [
-        subprocess.run(
-            [sys.executable, "-c", _CHAIN_SOLVE],
-            env={**os.environ, "OPENBLAS_NUM_THREADS": threads, "OMP_NUM_THREADS": threads},
-            capture_output=True,
-            text=True,
-            check=True,
-        ).stdout
-        for threads in ("1", "2")
-    ]
+    long vector in parts, one per thread, and the same solve ended at other bits with 2 threads than with 1; and every
+    factorisation runs in one thread."""
+    outputs = outputs_with_one_and_two_threads(_CHAIN_SOLVE, factorisation)
     assert outputs[0] == outputs[1] and outputs[0].split()[0] != "0"
 
 
-@pytest.mark.skipif(_solver.pypardiso is None, reason="pypardiso (extra 'fast') not installed")
+@pytest.mark.skipif("pardiso" not in INSTALLED, reason="extra mkl: pypardiso not installed")
 def test_pardiso_releases_mkl_memory_with_the_solver():
     """MKL keeps a factorisation in memory it owns until phase -1: dropping the solver releases it (it leaked
     before)."""
@@ -245,3 +245,31 @@ def test_pardiso_releases_mkl_memory_with_the_solver():
     assert release.alive
     del factorisation, solve
     assert not release.alive
+
+
+def test_a_factorisation_not_installed_or_unknown_is_refused_by_name(monkeypatch):
+    """``NormalEquations`` names a factorisation whose library is missing, or one that does not exist, and lists the
+    installed ones; the environment variable chooses the default."""
+    monkeypatch.setattr(_solver, "INSTALLED", ("superlu",))
+    with pytest.raises(EquimeshError, match="factorisation 'cholmod' is not installed; installed: superlu"):
+        NormalEquations("cholmod")
+    with pytest.raises(EquimeshError, match="unknown factorisation 'lu'; choose from superlu"):
+        NormalEquations("lu")
+    chosen = subprocess.run(
+        [sys.executable, "-c", "from equimesh.surface.optimize import solver; print(solver.DEFAULT_FACTORISATION)"],
+        env={**os.environ, _solver.FACTORISATION_VARIABLE: "superlu"},
+        capture_output=True,
+        text=True,
+        check=True,
+    )
+    assert chosen.stdout.split() == ["superlu"]
+
+
+@pytest.mark.skipif("cholmod" not in INSTALLED, reason="extra fast: cvxopt not installed")
+def test_cholmod_refuses_a_matrix_that_is_not_positive_definite():
+    """CHOLMOD's failure on an indefinite matrix is the solver's failed factorisation (a rejected step), and the same
+    pattern factorises again once the matrix is positive definite."""
+    factorisation = FACTORISATIONS["cholmod"](np.array([0, 0, 1]), np.array([0, 1, 1]), 2)
+    with pytest.raises(_solver._FactorisationError):
+        factorisation.factorise(np.array([1.0, 2.0, 1.0]))
+    np.testing.assert_allclose(factorisation.factorise(np.array([2.0, 1.0, 2.0]))(np.array([3.0, 3.0])), [1.0, 1.0])

@@ -7,17 +7,18 @@ partial derivatives, all vectorised.
 
 import numpy as np
 
+from ..._checks import real_array
 from ..._jit import compiled
 from ...errors import InvalidSurfaceError
 from .chart import UNIT
 
-#: Beyond the paper: the highest degree of a Bezier net in u or in v.  It
-#: was set when the Bernstein basis used the binomial coefficients C(n, i) as
-#: floats (C(n, n / 2) exceeds the largest float from n = 1030 on); the
-#: recurrence of :func:`_basis` has no such limit, but a point costs
-#: ``(m + 1)(n + 1)`` products, so the bound stays and keeps a mistyped net
-#: from hanging the pipeline.  Test: tests/surface/test_pipeline_limits.py.
-MAX_DEGREE = 1000
+#: Beyond the paper: the highest degree of a Bezier net in u and in v, by what evaluation costs.  A point costs about
+#: ``(m + 1)^2 + (n + 1)^2 + (m + 1)(n + 1)`` products (the recurrence of :func:`_basis`, then the tensor sum).
+#: Measured by ``python experiments/chart_timing.py`` (value and first partials): 0.15 ms a point at (100, 100), below
+#: a NURBS surface at its own highest degree (25, 25) in the same run, 0.31 ms at (150, 150), above it, and 14.9 ms at
+#: (1000, 1000), where a coarse run would spend 21 minutes evaluating (docs/decisions.md, "Charts
+#: bounded by what evaluation costs").
+MAX_DEGREE = 100
 
 
 def bernstein(degree, t):
@@ -148,22 +149,23 @@ def _tensor_sum_points(net, u, v):
 _tensor_sum_points = compiled(_tensor_sum_points)
 
 
-def _validate_net(control_points):
-    try:
-        p = np.array(control_points, dtype=float)
-    except (TypeError, ValueError):
+def check_net_shape(rows, cols):
+    """Refuse a net of ``rows x cols`` points whose degree is above :data:`MAX_DEGREE` (called before the net is
+    read)."""
+    if max(rows, cols) > MAX_DEGREE + 1:
         raise InvalidSurfaceError(
-            "control points must form an (m+1, n+1, 3) array of numbers with equal row lengths"
-        ) from None
+            f"control net has {rows} x {cols} points, degree {rows - 1} x {cols - 1}; at most degree {MAX_DEGREE} in "
+            "u and in v is supported, as evaluating the surface costs time growing with the square of the degree"
+        )
+
+
+def _validate_net(control_points):
+    p = real_array(control_points, "control points (an (m+1, n+1, 3) net with equal row lengths)", InvalidSurfaceError)
     if p.ndim != 3 or p.shape[2] != 3:
         raise InvalidSurfaceError(f"control net must have shape (m+1, n+1, 3), got {p.shape}")
     if p.shape[0] < 2 or p.shape[1] < 2:
         raise InvalidSurfaceError(f"control net needs at least 2 x 2 points, got {p.shape[0]} x {p.shape[1]}")
-    if max(p.shape[:2]) > MAX_DEGREE + 1:
-        raise InvalidSurfaceError(
-            f"control net has {p.shape[0]} x {p.shape[1]} points, degree {p.shape[0] - 1} x {p.shape[1] - 1}; "
-            f"at most degree {MAX_DEGREE} in u and in v is supported"
-        )
+    check_net_shape(*p.shape[:2])
     bad = np.argwhere(~np.isfinite(p))
     if len(bad):
         i, j, k = (int(x) for x in bad[0])

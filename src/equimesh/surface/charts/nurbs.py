@@ -19,8 +19,22 @@ eq. (4.20)).
 
 import numpy as np
 
+from ..._checks import plain_integer, real_array
 from ...errors import InvalidSurfaceError
 from .chart import Domain
+
+#: Beyond the paper: the highest degree in u and in v.  Evaluating a point costs time and memory growing with the
+#: square of the degree (the Cox-de Boor table of every degree up to p).  Measured by
+#: ``python experiments/chart_timing.py --length 1`` (value and first partials, one knot span): 0.20 ms and 23 kB a
+#: point at (25, 25), 11.7 ms and 664 kB at (399, 2); a coarse run (l = 1 over 20 x 15, 334 nodes) evaluates 85,130
+#: points, 17 s at (25, 25), 17 minutes at (399, 2).  25 is also the highest degree of OpenCASCADE's B-spline
+#: surfaces (docs/decisions.md, "Charts bounded by what evaluation costs").
+MAX_DEGREE = 25
+
+#: Beyond the paper: the most control points of a net.  Reading and checking a JSON net of 316 x 316 points (10.3 MB,
+#: every digit) takes 2.5 s (``python experiments/chart_timing.py``); the JSON schema refuses a larger net on its shape,
+#: before its points are read.
+MAX_NET_POINTS = 100_000
 
 
 class NurbsSurface:
@@ -29,13 +43,14 @@ class NurbsSurface:
     Parameters
     ----------
     degree : (int, int)
-        ``(p, q)``, each at least 1.
+        ``(p, q)``, each at least 1 and at most :data:`MAX_DEGREE`.
     knots_u, knots_v : array_like
         Non-decreasing, ``n_u + p + 1`` and ``n_v + q + 1`` finite knots; no
         value inside the domain repeated more than ``p`` (``q``) times (the
         surface would be discontinuous there).
     control_points : (n_u, n_v, 3) array_like
-        The first axis runs over ``u``, the second over ``v``; finite.
+        The first axis runs over ``u``, the second over ``v``; finite; at most
+        :data:`MAX_NET_POINTS` points.
     weights : (n_u, n_v) array_like, optional
         Positive and finite; all ones (a polynomial B-spline) by default.
 
@@ -53,6 +68,7 @@ class NurbsSurface:
                 f"control_points must have shape (n_u, n_v, 3) with n_u >= p + 1 = {p + 1} and "
                 f"n_v >= q + 1 = {q + 1}, got {net.shape}"
             )
+        check_net_shape(*net.shape[:2])
         _finite("control_points", net)
         w = np.ones(net.shape[:2]) if weights is None else _array("weights", weights)
         if w.shape != net.shape[:2]:
@@ -167,6 +183,15 @@ def _ratio(num, den):
     return np.divide(num, den, out=np.zeros(num.shape), where=den != 0)
 
 
+def check_net_shape(n_u, n_v):
+    """Refuse a control net of ``n_u x n_v`` points above :data:`MAX_NET_POINTS` (called before the net is read)."""
+    if n_u * n_v > MAX_NET_POINTS:
+        raise InvalidSurfaceError(
+            f"the control net has {n_u} x {n_v} = {n_u * n_v} points, more than the {MAX_NET_POINTS} that are read "
+            "within seconds; refit the surface with fewer control points"
+        )
+
+
 def _degrees(degree):
     try:
         p, q = degree
@@ -176,15 +201,18 @@ def _degrees(degree):
         if isinstance(d, bool) or not isinstance(d, (int, np.integer)):
             raise InvalidSurfaceError(f"{name} must be an integer, got {d!r}")
         if d < 1:
-            raise InvalidSurfaceError(f"{name} must be at least 1, got {int(d)}")
+            raise InvalidSurfaceError(f"{name} must be at least 1, got {plain_integer(d)}")
+        if d > MAX_DEGREE:
+            raise InvalidSurfaceError(
+                f"{name} = {plain_integer(d)} is above {MAX_DEGREE}, the highest degree supported: evaluating the "
+                "surface costs time and memory growing with the square of the degree; rebuild the surface at a lower "
+                "degree"
+            )
     return int(p), int(q)
 
 
 def _array(name, values):
-    try:
-        return np.array(values, dtype=float)
-    except (TypeError, ValueError):
-        raise InvalidSurfaceError(f"{name} must be a regular array of numbers") from None
+    return real_array(values, name, InvalidSurfaceError)
 
 
 def _finite(name, a):

@@ -35,6 +35,7 @@ import numpy as np
 import scipy.sparse
 import scipy.sparse.csgraph
 
+from ..._checks import real_array
 from ...errors import InvalidSurfaceError, coordinates
 from ...mesh import edge_keys, half_edges
 from ...tolerance import SINGULAR_SIN
@@ -89,10 +90,7 @@ class TriangulatedSurface:
 
 
 def _parse(vertices, triangles):
-    try:
-        v = np.asarray(vertices, dtype=float)
-    except (TypeError, ValueError):
-        raise InvalidSurfaceError("triangle mesh vertices must be numbers") from None
+    v = real_array(vertices, "triangle mesh vertices", InvalidSurfaceError)
     if v.ndim != 2 or v.shape[1] != 3:
         raise InvalidSurfaceError(f"triangle mesh vertices must be an (N, 3) array, got shape {v.shape}")
     bad = np.flatnonzero(~np.all(np.isfinite(v), axis=1))
@@ -105,13 +103,12 @@ def _parse(vertices, triangles):
         raise InvalidSurfaceError(
             f"triangles must be an (M, 3) array of vertex indices, got shape {t.shape} of {t.dtype}"
         )
-    t = t.astype(np.int64)
-    bad = np.flatnonzero(np.any((t < 0) | (t >= len(v)), axis=1))
+    bad = np.flatnonzero(np.any((t < 0) | (t >= len(v)), axis=1))  # in the caller's dtype: no uint64 wraps to -1
     if bad.size:
         raise InvalidSurfaceError(
             f"triangle {int(bad[0])} refers to a vertex outside 0 .. {len(v) - 1}: {t[bad[0]].tolist()}"
         )
-    return v, t
+    return v, t.astype(np.int64)
 
 
 def _merge(v, t):

@@ -85,6 +85,7 @@ def optimize_uv(
     ftol=None,
     xtol=1e-10,
     gtol=1e-10,
+    factorisation=None,
 ):
     """Optimise the (u, v) of the free nodes (Section 4, final step).
 
@@ -117,6 +118,10 @@ def optimize_uv(
     ftol, xtol, gtol
         Convergence tolerances of :func:`equimesh.surface.optimize.solver.least_squares`;
         ``ftol=None`` takes each stage's (:attr:`~equimesh.surface.optimize.objectives.Stage.ftol`).
+    factorisation : str, optional
+        The factorisation of the normal equations, one of
+        :data:`~equimesh.surface.optimize.solver.INSTALLED` (checked before any
+        work); by default :data:`~equimesh.surface.optimize.solver.DEFAULT_FACTORISATION`.
 
     Returns
     -------
@@ -134,6 +139,7 @@ def optimize_uv(
         record = OBJECTIVES[objective]
     except (KeyError, TypeError):
         raise EquimeshError(f"unknown objective {objective!r}; choose from {sorted(OBJECTIVES)}") from None
+    normal_equations = NormalEquations(factorisation)  # one pattern for every stage: analysed once
     lower, upper = parameter_box(surface)
     uv = np.clip(np.array(uv, dtype=float).reshape(-1, 2), lower, upper)
     slides = tuple(slides)
@@ -149,7 +155,6 @@ def optimize_uv(
         return UVOptimization(uv, cost0, cost0, 0, 0, True, "no free nodes", objective)
     tri = None if triangles is None else np.asarray(triangles, dtype=np.int64).reshape(-1, 3)
     x, nfev, njev, damping = x0, 0, 0, LM_INITIAL_DAMPING
-    normal_equations = NormalEquations()  # one pattern for every stage: analysed once
     barrier = None if tri is None or area_floor <= 0 else _fold_over_barrier(problem, tri, area_floor)
     while True:
         if stage.start is not None:  # a restart is a fresh solve: its own start and the initial damping

@@ -84,27 +84,38 @@ class UVProblem:
         return full
 
     def chain(self, jacobian, x):
-        """``jacobian`` over the :attr:`moving` entries as one over the variables ``x`` (chain rule).
+        """``jacobian`` over the :attr:`moving` entries as one over the variables ``x`` (chain rule), on its structure.
 
-        A sliding node's column pair ``(d/du, d/dv)`` becomes one column, its
-        dot product with the loop's direction ``d uv / d s`` at its ``s``.
+        A free node's two columns are its two variables'; a sliding node's
+        column pair ``(d/du, d/dv)`` becomes its one column, the two entries
+        scaled by the loop's direction ``d uv / d s`` at its ``s`` and kept
+        side by side in the row, to be summed (as every product with the
+        matrix sums them).  So the result has the Jacobian's structure
+        whatever the values: the product with the matrix ``d uv / d x``
+        dropped the sums that came out exactly zero, a new structure whenever
+        a barrier triangle woke or slept, and the normal equations were
+        analysed anew at nearly every iteration
+        (docs/decisions.md, "One pattern for the normal matrix, three factorisations").
         """
         if not self.slides:
             return jacobian
         moving, variables = self.moving, self.variables
         n = int(variables.sum())
-        row = np.cumsum(moving) - 1  # column of each moving entry in ``jacobian``
-        rows, cols, vals = [row[variables]], [np.arange(n)], [np.ones(n)]
+        entry = np.cumsum(moving) - 1  # column of each moving entry in ``jacobian``
+        column, factor = np.empty(int(moving.sum()), dtype=np.int64), np.ones(int(moving.sum()))
+        column[entry[variables]] = np.arange(n)
         for slide in self.slides:
             k = len(slide.nodes)
-            rows += [row[2 * slide.nodes], row[2 * slide.nodes + 1]]
-            cols += [np.arange(n, n + k)] * 2
-            vals += list(slide.direction(x[n : n + k]).T)
+            direction = slide.direction(x[n : n + k])
+            for axis in (0, 1):
+                column[entry[2 * slide.nodes + axis]] = np.arange(n, n + k)
+                factor[entry[2 * slide.nodes + axis]] = direction[:, axis]
             n += k
-        chain = scipy.sparse.csr_matrix(
-            (np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(int(moving.sum()), n)
+        jacobian = jacobian.tocsr()
+        return scipy.sparse.csr_matrix(
+            (jacobian.data * factor[jacobian.indices], column[jacobian.indices], jacobian.indptr),
+            shape=(jacobian.shape[0], n),
         )
-        return (jacobian @ chain).tocsr()
 
     def step_limit(self, radius):
         """A trust region per node: ``direction -> step`` with every node's move on the surface at most ``radius``.

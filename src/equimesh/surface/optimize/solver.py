@@ -19,7 +19,8 @@ on surface meshes) instead of an inner iterative solve:
   into it through an index map computed once, and the factorisation's
   symbolic analysis (the fill-reducing order) is done once
   (:data:`FACTORISATIONS`: MKL PARDISO's supernodal Cholesky when the optional
-  ``pypardiso`` is installed, else SuperLU in symmetric mode);
+  ``pypardiso`` is installed, else CHOLMOD's, through the optional ``cvxopt``,
+  else SuperLU in symmetric mode; :data:`INSTALLED`);
 * a rejected step is first shortened along the same direction, halving it
   up to :data:`~equimesh.tolerance.LM_BACKTRACKS` times with the same factor
   (a line search, Nocedal and Wright 10.3), and only then retried with a
@@ -41,24 +42,34 @@ on surface meshes) instead of an inner iterative solve:
 Deterministic: no randomness, a fixed ordering, single-threaded
 factorisations and inner products that do not depend on the BLAS's threads
 (:func:`inner`), so the same input gives the same bits on one installation
-(the two factorisations round differently, so a result's last bits depend on
-whether ``pypardiso`` is installed).
+(the factorisations round differently, so a result's last bits depend on
+which one is used).
 """
 
+import ctypes
 import os
 import weakref
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 import scipy.sparse
 import scipy.sparse.linalg
 
 from ..._jit import compiled
+from ...errors import EquimeshError
 from ...tolerance import LM_BACKTRACKS, LM_DIAGONAL_FLOOR, LM_INITIAL_DAMPING
 
 try:
+    from cvxopt import cholmod as _cvxopt_cholmod
+    from cvxopt import matrix as _cvxopt_matrix
+    from cvxopt import spmatrix as _cvxopt_spmatrix
+except ImportError:  # the extra 'fast' is not installed
+    _cvxopt_cholmod = None
+
+try:
     import pypardiso
-except ImportError:  # the extra 'fast' is not installed, or its MKL library is not found
+except ImportError:  # the extra 'mkl' is not installed, or its MKL library is not found
     pypardiso = None
 else:
     # Every PyPardisoSolver() looks for MKL's library again, by a recursive glob of the
@@ -191,8 +202,13 @@ class NormalEquations:
     """
 
     def __init__(self, factorisation=None):
-        """``factorisation``: a key of :data:`FACTORISATIONS`, :data:`DEFAULT_FACTORISATION` by default."""
-        self._factorisation = FACTORISATIONS[factorisation or DEFAULT_FACTORISATION]
+        """``factorisation``: one of :data:`INSTALLED`, :data:`DEFAULT_FACTORISATION` by default."""
+        name = factorisation or DEFAULT_FACTORISATION
+        if name in _LIBRARIES and name not in INSTALLED:
+            raise EquimeshError(f"factorisation {name!r} is not installed; installed: {', '.join(INSTALLED)}")
+        if name not in FACTORISATIONS:
+            raise EquimeshError(f"unknown factorisation {name!r}; choose from {', '.join(INSTALLED)}")
+        self._factorisation = FACTORISATIONS[name]
         self._structure = None
 
     def assemble(self, jac, held):
@@ -349,15 +365,82 @@ class _Pardiso:
         return lambda b: self._call(33, np.asarray(b, dtype=float))
 
 
+class _Cholmod:
+    """CHOLMOD's supernodal Cholesky (SuiteSparse, through ``cvxopt``) of the lower triangle, its symbolic analysis
+    (AMD order, supernodes) done once, the BLAS it calls kept to one thread."""
+
+    def __init__(self, rows, cols, n):
+        _one_blas_thread(_cvxopt_cholmod)
+        # The lower triangle is the upper one transposed: sorted by row then column, its entries are in the
+        # column-major order that cvxopt keeps, so the values are handed over as they come.
+        self._matrix = _cvxopt_spmatrix(
+            _cvxopt_matrix(np.ones(len(rows))), _cvxopt_matrix(cols.tolist()), _cvxopt_matrix(rows.tolist()), (n, n)
+        )
+        options = {"supernodal": 2, "postorder": True}  # cvxopt's defaults, named here since they are global
+        self._symbolic = _with_options(options, _cvxopt_cholmod.symbolic, self._matrix, uplo="L")
+
+    def factorise(self, values):
+        """A function ``b -> A^-1 b`` for the matrix of the pattern's upper-triangular ``values``."""
+        self._matrix.V = _cvxopt_matrix(np.ascontiguousarray(values))
+        try:
+            _cvxopt_cholmod.numeric(self._matrix, self._symbolic)
+        except ArithmeticError as error:  # CHOLMOD: "not positive definite"
+            raise _FactorisationError(str(error)) from None
+        symbolic = self._symbolic
+
+        def solve(b):
+            out = _cvxopt_matrix(np.array(b, dtype=float))
+            _cvxopt_cholmod.solve(symbolic, out)
+            return np.array(out).ravel()
+
+        return solve
+
+
+def _with_options(options, function, *args, **kwargs):
+    """``function(*args, **kwargs)`` with cvxopt's CHOLMOD ``options`` set, the caller's restored after."""
+    saved = dict(_cvxopt_cholmod.options)
+    _cvxopt_cholmod.options.update(options)
+    try:
+        return function(*args, **kwargs)
+    finally:
+        _cvxopt_cholmod.options.clear()
+        _cvxopt_cholmod.options.update(saved)
+
+
+def _one_blas_thread(module):
+    """Keep the OpenBLAS bundled beside ``module``'s package (cvxopt's wheels carry one) to one thread.
+
+    A supernodal factorisation calls the BLAS on dense blocks; with two
+    threads the blocks' sums could be split, tying the last bits to the core
+    count (docs/decisions.md, "One pattern for the normal matrix, three factorisations").
+    Found by its file name beside the package (``cvxopt.libs``, ``cvxopt/.libs``, ``cvxopt/.dylibs``);
+    a BLAS not bundled so is the platform's (Accelerate on macOS), left as it is.
+    """
+    package = Path(module.__file__).resolve().parent
+    for folder in (package.parent / f"{package.name}.libs", package / ".libs", package / ".dylibs"):
+        for path in sorted(folder.glob("*openblas*")) if folder.is_dir() else ():
+            library = ctypes.CDLL(str(path))
+            for name in ("openblas_set_num_threads", "scipy_openblas_set_num_threads64_"):
+                if hasattr(library, name):
+                    getattr(library, name)(1)
+
+
 class _FactorisationError(ArithmeticError):
     """A factorisation of the damped normal matrix failed (a zero or negative pivot in rounding)."""
 
 
 #: Factorisations of the damped normal matrix by name, each ``f(rows, cols, n)``
 #: (the upper-triangular pattern, sorted by row then column) with ``factorise(values) -> solver``.
-FACTORISATIONS = {"superlu": _SuperLU, "pardiso": _Pardiso}
-#: PARDISO when ``pypardiso`` (the optional extra ``fast``) is installed, else SuperLU.
-DEFAULT_FACTORISATION = "superlu" if pypardiso is None else "pardiso"
+FACTORISATIONS = {"superlu": _SuperLU, "cholmod": _Cholmod, "pardiso": _Pardiso}
+_LIBRARIES = {"pardiso": pypardiso, "cholmod": _cvxopt_cholmod, "superlu": scipy}
+#: The factorisations whose library is installed, the fastest first (docs/performance.md, "The final
+#: optimisation"): PARDISO (the extra ``mkl``: pypardiso, where MKL exists), CHOLMOD (the extra ``fast``: cvxopt,
+#: wheels on every platform, about as fast), SuperLU (scipy, always; about six times slower).
+INSTALLED = tuple(name for name, library in _LIBRARIES.items() if library is not None)
+#: The environment variable that names the default factorisation (e.g. ``superlu``, to measure an installation
+#: without the extras in the same checkout); by default the first of :data:`INSTALLED`.
+FACTORISATION_VARIABLE = "EQUIMESH_FACTORISATION"
+DEFAULT_FACTORISATION = os.environ.get(FACTORISATION_VARIABLE) or INSTALLED[0]
 
 
 def _sum_products(data, left, right, slot, values):

@@ -1,0 +1,50 @@
+"""DXF out (``io/_dxf.py``), read back with ezdxf: one 3-D line per member on the layer of its length class, and with
+labels the class as text at each member's midpoint."""
+
+import numpy as np
+import pytest
+
+from equimesh import length_classes
+from equimesh.io import Products, write_surface_mesh
+from equimesh.io._dxf import LABELS_LAYER
+
+TOLERANCE = 0.01
+
+
+@pytest.fixture(scope="module", params=[False, True], ids=["plain", "labels"])
+def drawing(saddle_mesh, tmp_path_factory, request):
+    ezdxf = pytest.importorskip("ezdxf", reason="ezdxf (the optional extra [dxf]) is not installed")
+    path = tmp_path_factory.mktemp("dxf") / "roof.dxf"
+    write_surface_mesh(saddle_mesh, path, tolerance=TOLERANCE, dxf_labels=request.param)
+    doc = ezdxf.readfile(path)
+    assert not doc.audit().has_errors  # a drawing CAD programs open
+    return doc, request.param
+
+
+def test_members_are_lines_on_the_layer_of_their_class(drawing, saddle_mesh):
+    doc, _ = drawing
+    classes = length_classes(saddle_mesh.edge_lengths(), saddle_mesh.length, TOLERANCE)
+    names = Products(saddle_mesh, TOLERANCE).class_names
+    assert set(names) <= {layer.dxf.name for layer in doc.layers}
+    lines = doc.modelspace().query("LINE")
+    assert len(lines) == len(saddle_mesh.edges)
+    ends = {(tuple(line.dxf.start), tuple(line.dxf.end)): line.dxf.layer for line in lines}
+    for member, (i, j) in enumerate(saddle_mesh.edges):
+        key = (tuple(saddle_mesh.points[i]), tuple(saddle_mesh.points[j]))
+        assert ends[key] == names[classes.member_class[member]]
+    for k, name in enumerate(names):
+        assert len(doc.modelspace().query(f'LINE[layer=="{name}"]')) == classes.count[k]
+
+
+def test_labels_give_each_member_its_class_at_its_midpoint(drawing, saddle_mesh):
+    doc, labels = drawing
+    texts = doc.modelspace().query("TEXT")
+    if not labels:
+        assert len(texts) == 0
+        return
+    classes = length_classes(saddle_mesh.edge_lengths(), saddle_mesh.length, TOLERANCE)
+    assert len(texts) == len(saddle_mesh.edges) and {t.dxf.layer for t in texts} == {LABELS_LAYER}
+    middles = (saddle_mesh.points[saddle_mesh.edges[:, 0]] + saddle_mesh.points[saddle_mesh.edges[:, 1]]) / 2
+    placed = {tuple(np.round(t.dxf.insert, 9)): t.dxf.text for t in texts}
+    for member, middle in enumerate(middles):
+        assert placed[tuple(np.round(middle, 9))] == str(classes.member_class[member])

@@ -1,0 +1,72 @@
+"""Rhino files out (``io/_rhino_out.py``), read back with rhino3dm: the mesh, one line per member on the layer of its
+length class, the nodes, each with its schedule row as user text."""
+
+import numpy as np
+import pytest
+
+from equimesh import length_classes
+from equimesh.io import Products, write_surface_mesh
+
+TOLERANCE = 0.01
+
+
+@pytest.fixture(scope="module")
+def model(saddle_mesh, tmp_path_factory):
+    rhino3dm = pytest.importorskip("rhino3dm", reason="rhino3dm (the optional extra [rhino]) is not installed")
+    path = tmp_path_factory.mktemp("rhino") / "roof.3dm"
+    write_surface_mesh(saddle_mesh, path, tolerance=TOLERANCE)
+    return rhino3dm, rhino3dm.File3dm.Read(str(path))
+
+
+def objects_on(model, layer_name):
+    layers = {layer.Index: layer.FullPath for layer in model.Layers}
+    return [o for o in model.Objects if layers[o.Attributes.LayerIndex] == layer_name]
+
+
+def test_the_mesh_reads_back(model, saddle_mesh):
+    rhino3dm, m = model
+    (mesh,) = objects_on(m, "mesh")
+    geometry = mesh.Geometry
+    assert isinstance(geometry, rhino3dm.Mesh)
+    vertices = geometry.Vertices
+    points = np.array([[p.X, p.Y, p.Z] for p in map(vertices.Point3dAt, range(len(vertices)))])
+    np.testing.assert_array_equal(points, saddle_mesh.points)  # double precision vertices
+    faces = np.array([geometry.Faces[k][:3] for k in range(len(geometry.Faces))])
+    np.testing.assert_array_equal(faces, saddle_mesh.triangles)
+
+
+def test_members_lie_on_the_layer_of_their_length_class(model, saddle_mesh):
+    """One sublayer of 'members' per class of equimesh.length_classes, named with its nominal length and count,
+    holding exactly that class's members as lines between their nodes."""
+    _, m = model
+    classes = length_classes(saddle_mesh.edge_lengths(), saddle_mesh.length, TOLERANCE)
+    names = Products(saddle_mesh, TOLERANCE).class_names
+    paths = [layer.FullPath for layer in m.Layers]
+    assert [p for p in paths if p.startswith("members::")] == [f"members::{n}" for n in names]
+    seen = 0
+    for k, name in enumerate(names):
+        lines = objects_on(m, f"members::{name}")
+        assert len(lines) == classes.count[k] and f" - {classes.count[k]} members" in name
+        for line in lines:
+            member = int(line.Attributes.GetUserString("member"))
+            i, j = saddle_mesh.edges[member]
+            assert classes.member_class[member] == k == int(line.Attributes.GetUserString("class"))
+            assert float(line.Attributes.GetUserString("length")) == saddle_mesh.edge_lengths()[member]
+            ends = [line.Geometry.PointAtStart, line.Geometry.PointAtEnd]
+            np.testing.assert_allclose([[p.X, p.Y, p.Z] for p in ends], saddle_mesh.points[[i, j]])
+        seen += len(lines)
+    assert seen == len(saddle_mesh.edges)
+
+
+def test_nodes_are_points_with_their_figures(model, saddle_mesh):
+    _, m = model
+    nodes = objects_on(m, "nodes")
+    assert len(nodes) == len(saddle_mesh.points)
+    table = Products(saddle_mesh).nodes
+    for node in nodes:
+        k = int(node.Attributes.GetUserString("node"))
+        assert node.Attributes.Name == f"node {k}"
+        p = node.Geometry.Location
+        np.testing.assert_array_equal([p.X, p.Y, p.Z], saddle_mesh.points[k])
+        assert int(node.Attributes.GetUserString("valence")) == table["valence"][k]
+        assert float(node.Attributes.GetUserString("min_angle")) == table["min_angle"][k]
