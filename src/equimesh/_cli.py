@@ -61,6 +61,7 @@ def build_parser():
     from .planar.insertion import DEFAULT_ENGINE, ENGINES
     from .surface.mesh_outline import DEFAULT_FEATURE_ANGLE
     from .surface.optimize import OBJECTIVES
+    from .surface.optimize.solver import factorisation_name
     from .surface.pipeline import DEFAULT_OPTIMIZE, MAX_GRID_CELLS, PLACEMENTS, UNOPTIMIZED_MAX_NODES
 
     parser = _Parser(
@@ -142,10 +143,10 @@ def build_parser():
         "no limit. The defaults ("
         + ", ".join(
             [f"{UNOPTIMIZED_MAX_NODES} nodes with --optimize none"]
-            + [f"{record.max_nodes} with --optimize {name}" for name, record in OBJECTIVES.items()]
+            + [f"{record.node_limit()} with --optimize {name}" for name, record in OBJECTIVES.items()]
         )
-        + ") keep a run to about two minutes on a 2-core machine (docs/performance.md); beyond them time grows "
-        "faster than the node count",
+        + f", with the factorisation {factorisation_name()} of the optimisation) bound the time of a run to about "
+        "two minutes on a 2-core machine (docs/performance.md); beyond them time grows faster than the node count",
     )
     for slot, record in OUTPUT_SLOTS.items():
         mesh.add_argument(

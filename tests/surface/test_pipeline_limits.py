@@ -13,6 +13,7 @@ import equimesh
 from equimesh.errors import InternalError, MeshTooLargeError
 from equimesh.surface import pipeline
 from equimesh.surface.optimize import OBJECTIVES
+from equimesh.surface.optimize.solver import DEFAULT_FACTORISATION, FACTORISATIONS, INSTALLED
 
 
 @pytest.mark.parametrize("l", [1e-200, 1e-160, 5e-324, 1e200, 1.7e308])
@@ -24,7 +25,7 @@ def test_length_outside_the_supported_range_is_refused(l):
 @pytest.mark.parametrize("l", [1e-140, 1e-12])
 def test_tiny_length_is_too_large_a_mesh(l):
     """The estimate is a plain float: never an OverflowError or ZeroDivisionError."""
-    limit = OBJECTIVES["bounded"].max_nodes  # the default objective's
+    limit = OBJECTIVES["bounded"].node_limit()  # the default objective's
     refuse(MeshTooLargeError, plane_patch(), l, rf"would need about .* nodes in this surface .* max_nodes = {limit}\b")
 
 
@@ -40,13 +41,12 @@ def test_bad_max_nodes(max_nodes):
 
 def test_max_nodes_none_means_no_limit_and_default_depends_on_optimize():
     """None is no limit; the default is UNOPTIMIZED_MAX_NODES without optimisation and each objective's own, smaller,
-    limit
-    with it (the refusal of a tiny l names the limit that applied)."""
+    limit with it, for the factorisation in use (the refusal of a tiny l names the limit that applied)."""
     assert equimesh.mesh_surface(plane_patch(), 3.0, grid=(4, 4), optimize="none", max_nodes=None).points.size
     # about 115 nodes: refused under a limit of 100, with either optimisation
     for optimize in ("none", "paper"):
         refuse(MeshTooLargeError, plane_patch(), 3.0, "max_nodes = 100", max_nodes=100, optimize=optimize)
-    defaults = {"none": pipeline.UNOPTIMIZED_MAX_NODES, **{name: o.max_nodes for name, o in OBJECTIVES.items()}}
+    defaults = {"none": pipeline.UNOPTIMIZED_MAX_NODES, **{name: o.node_limit() for name, o in OBJECTIVES.items()}}
     for optimize, limit in defaults.items():
         assert optimize == "none" or limit < pipeline.UNOPTIMIZED_MAX_NODES
         refuse(MeshTooLargeError, plane_patch(), 1e-12, rf"max_nodes = {limit}\b", optimize=optimize)
@@ -90,3 +90,16 @@ def test_an_inverting_stage_is_an_internal_error(monkeypatch):
     monkeypatch.setattr(pipeline, "optimize_uv", inverting)
     with pytest.raises(InternalError, match="the optimisation inverted"):
         equimesh.mesh_surface(plane_patch(), 5.0, grid=(4, 4))
+
+
+def test_each_objective_has_a_limit_for_every_factorisation_and_the_one_in_use_applies():
+    """The default node limit follows the factorisation (docs/performance.md, "The final optimisation"): one per
+    factorisation of every objective, the slowest factorisation's the smallest, and a name that is not a factorisation
+    is refused like anywhere else."""
+    for record in OBJECTIVES.values():
+        assert set(record.max_nodes) == set(FACTORISATIONS)
+        assert record.max_nodes["superlu"] == min(record.max_nodes.values())
+        assert record.node_limit() == record.max_nodes[DEFAULT_FACTORISATION]
+        assert all(record.node_limit(name) == record.max_nodes[name] for name in INSTALLED)
+        with pytest.raises(equimesh.EquimeshError, match="unknown factorisation 'nope'"):
+            record.node_limit("nope")

@@ -77,5 +77,17 @@ KERNEL_MODULES = {
 }
 MODULES.update(KERNEL_MODULES)
 
+#: The final optimisation's modules -> their tests.  The Jacobian's area gradients and the solver's sum of the
+#: normal matrix are compiled by a call as the kernels are, so their tests run them as Python too.
+OPTIMIZE_MODULES = {
+    "src/equimesh/surface/optimize/slide.py": ["tests/surface/optimize/test_slide.py"],
+    "src/equimesh/surface/optimize/jacobian.py": ["tests/surface/optimize/test_jacobian.py"],
+    "src/equimesh/surface/optimize/solver.py": ["tests/surface/optimize/test_solver.py"],
+}
+MODULES.update(OPTIMIZE_MODULES)
+
 #: Module -> environment variables of its mutmut run, beyond the caller's.
-ENVIRONMENT = dict.fromkeys(KERNEL_MODULES, {"NUMBA_DISABLE_JIT": "1"})
+ENVIRONMENT = dict.fromkeys(
+    [*KERNEL_MODULES, "src/equimesh/surface/optimize/jacobian.py", "src/equimesh/surface/optimize/solver.py"],
+    {"NUMBA_DISABLE_JIT": "1"},
+)

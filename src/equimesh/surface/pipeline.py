@@ -25,6 +25,7 @@ Every stage is kept in :class:`SurfaceMesh.stages` for tables and figures.
 
 import time
 from dataclasses import dataclass, field
+from functools import partial
 from typing import Callable
 
 import numpy as np
@@ -236,12 +237,9 @@ def mesh_surface(
         surface = Perforated(surface, holes)
     seconds = {}
     clock = _Clock(seconds, progress)
-    meshed = isinstance(surface, TriangulatedSurface)
-    angle = check_feature_angle(feature_angle, meshed)
-    if meshed:
-        steps = _mesh_front(surface, grid, l, limit, boundary_spacing, clock, angle)
-    else:
-        steps = _chart_front(surface, grid, l, limit, boundary_spacing, clock)
+    angle = check_feature_angle(feature_angle, meshed=isinstance(surface, TriangulatedSurface))
+    front = _chart_front if angle is None else partial(_mesh_front, feature_angle=angle)
+    steps = front(surface, grid, l, limit, boundary_spacing, clock)
 
     try:
         # The surface's own guard (_check_size, measured end to end) bounds the planar stage too.
@@ -440,8 +438,10 @@ def _grid_pair(grid):
 
 def _node_limit(max_nodes, optimize):
     """The node limit: a positive int, None (no limit) or "default" (:data:`UNOPTIMIZED_MAX_NODES` or the
-    objective's)."""
-    return check_max_nodes(max_nodes, UNOPTIMIZED_MAX_NODES if optimize == "none" else OBJECTIVES[optimize].max_nodes)
+    objective's with the factorisation in use)."""
+    return check_max_nodes(
+        max_nodes, UNOPTIMIZED_MAX_NODES if optimize == "none" else OBJECTIVES[optimize].node_limit()
+    )
 
 
 def _check_size(surface_points, triangles, l, max_nodes, flattened=None):

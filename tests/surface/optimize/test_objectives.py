@@ -14,6 +14,7 @@ from equimesh.surface.optimize.driver import _fold_over_barrier, _with_barrier
 from equimesh.surface.optimize.jacobian import signed_areas
 from equimesh.surface.optimize.objectives import bounded_stages, edge_length_terms, paper_stage
 from equimesh.surface.optimize.slide import along_polygon
+from equimesh.surface.optimize.solver import FACTORISATIONS
 from equimesh.testing.surfaces import dome
 
 
@@ -198,7 +199,8 @@ def test_objective_table_is_the_seam(monkeypatch):
         x = yield stage
         return x, stage
 
-    record = Objective("all", all_edges, "every member to l", slides=False, bounds_members=False, max_nodes=100)
+    limits = dict.fromkeys(FACTORISATIONS, 100)
+    record = Objective("all", all_edges, "every member to l", slides=False, bounds_members=False, max_nodes=limits)
     monkeypatch.setitem(OBJECTIVES, "all", record)
     mesh, r, opt = run(dome(), 8.0, objective="all")
     assert calls and opt.objective == "all"

@@ -3,13 +3,11 @@
 import os
 import subprocess
 import sys
-import textwrap
 
 import numpy as np
 import pytest
 import scipy.optimize
 import scipy.sparse
-from blas_threads import outputs_with_one_and_two_threads
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -135,22 +133,24 @@ def test_a_rejected_step_is_halved_with_the_same_factor(monkeypatch):
 @pytest.mark.parametrize("failure", ["raises", "not finite"])
 def test_a_failed_factorisation_is_damped_more(monkeypatch, failure):
     """A factorisation that fails in rounding (SuperLU "singular", PARDISO's zero pivot) or gives a
-    non-finite step is a rejected step: ``lambda`` rises and the solve goes on to the same minimum."""
+    non-finite step is a rejected step: ``lambda`` rises by ``nu``, which doubles (1e-3, 2e-3, 8e-3 after two
+    failures), and the solve goes on to the same minimum."""
     calls = []
 
-    class FailingOnce(FACTORISATIONS["superlu"]):
+    class FailingTwice(FACTORISATIONS["superlu"]):
         def factorise(self, values):
-            calls.append(values)
-            if len(calls) > 1:
+            calls.append(values.copy())
+            if len(calls) > 2:
                 return super().factorise(values)
             if failure == "raises":
                 raise _solver._FactorisationError("zero pivot")
             return lambda b: np.full_like(b, np.nan)
 
-    monkeypatch.setitem(FACTORISATIONS, "failing", FailingOnce)
+    monkeypatch.setitem(FACTORISATIONS, "failing", FailingTwice)
     a, b = scipy.sparse.csr_matrix(np.array([[2.0, 0.0], [1.0, 1.0], [0.0, 3.0]])), np.array([1.0, 2.0, 3.0])
+    seen = []
     solution = least_squares(
-        lambda x: a @ x - b,
+        lambda x: seen.append(x) or a @ x - b,
         lambda x: a,
         np.zeros(2),
         np.full(2, -10.0),
@@ -160,6 +160,9 @@ def test_a_failed_factorisation_is_damped_more(monkeypatch, failure):
     )
     assert solution.converged and len(calls) > solution.iterations, solution.message
     np.testing.assert_allclose(solution.x, np.linalg.lstsq(a.toarray(), b, rcond=None)[0], atol=1e-8)
+    assert np.all(np.isfinite(seen))  # no step of a failed factorisation is tried
+    damping = [values[0] / 5.0 - 1.0 for values in calls[:3]]  # (J^T J)_00 = D_00 = 5, first of the pattern
+    np.testing.assert_allclose(damping, [1e-3, 2e-3, 8e-3], rtol=1e-9)
 
 
 def test_a_limit_bounds_every_step_and_the_solve_still_converges():
@@ -201,39 +204,6 @@ def test_rejected_steps_and_bounds_on_rosenbrock():
     assert np.array_equal(runs[0].x, runs[1].x)
 
 
-#: A solve of 60,000 residuals (long enough for OpenBLAS to split a dot product between threads) printing its x's hash.
-_CHAIN_SOLVE = textwrap.dedent("""
-    import hashlib, numpy as np, scipy.sparse
-    from equimesh.surface.optimize.solver import least_squares
-    n = 30000
-    c, i = np.random.default_rng(0).uniform(0.5, 2.0, n), np.arange(n)
-    def residuals(x):
-        return np.concatenate([x**2 + 0.3 * np.roll(x, 1) - c, 0.1 * (x - np.roll(x, -1))])
-    def jacobian(x):
-        rows, ones = np.concatenate([i, i]), np.ones(n)
-        top = scipy.sparse.csr_matrix((np.concatenate([2 * x, 0.3 * ones]), (rows, np.concatenate([i, (i - 1) % n]))),
-        (n, n))
-        bottom = scipy.sparse.csr_matrix((np.concatenate([0.1 * ones, -0.1 * ones]), (rows, np.concatenate([i, (i + 1) %
-        n]))), (n, n))
-        return scipy.sparse.vstack([top, bottom], format="csr")
-    solution = least_squares(residuals, jacobian, np.ones(n), np.full(n, -10.0), np.full(n, 10.0), ftol=1e-15,
-    gtol=1e-14)
-    print(solution.iterations, hashlib.sha256(solution.x.tobytes()).hexdigest())
-""")
-
-
-@pytest.mark.skipif(
-    (os.cpu_count() or 1) < 2, reason=f"{os.cpu_count()} core: OpenBLAS runs one thread either way, nothing to compare"
-)
-@pytest.mark.parametrize("factorisation", BOTH)
-def test_the_same_bits_whatever_the_blas_thread_count(factorisation):
-    """The solver's inner products do not go through the BLAS (``_solver.inner``): with ``a @ b`` OpenBLAS summed a
-    long vector in parts, one per thread, and the same solve ended at other bits with 2 threads than with 1; and every
-    factorisation runs in one thread."""
-    outputs = outputs_with_one_and_two_threads(_CHAIN_SOLVE, factorisation)
-    assert outputs[0] == outputs[1] and outputs[0].split()[0] != "0"
-
-
 @pytest.mark.skipif("pardiso" not in INSTALLED, reason="extra mkl: pypardiso not installed")
 def test_pardiso_releases_mkl_memory_with_the_solver():
     """MKL keeps a factorisation in memory it owns until phase -1: dropping the solver releases it (it leaked
@@ -245,6 +215,10 @@ def test_pardiso_releases_mkl_memory_with_the_solver():
     assert release.alive
     del factorisation, solve
     assert not release.alive
+    again = FACTORISATIONS["pardiso"](np.arange(3), np.arange(3), 3)
+    again.factorise(np.array([1.0, 4.0, 16.0]))
+    again.release()  # released on demand too
+    assert not again.release.alive
 
 
 def test_a_factorisation_not_installed_or_unknown_is_refused_by_name(monkeypatch):
@@ -254,6 +228,11 @@ def test_a_factorisation_not_installed_or_unknown_is_refused_by_name(monkeypatch
     with pytest.raises(EquimeshError, match="factorisation 'cholmod' is not installed; installed: superlu"):
         NormalEquations("cholmod")
     with pytest.raises(EquimeshError, match="unknown factorisation 'lu'; choose from superlu"):
+        NormalEquations("lu")
+    monkeypatch.setattr(_solver, "INSTALLED", ("superlu", "cholmod"))
+    with pytest.raises(EquimeshError, match="'pardiso' is not installed; installed: superlu, cholmod$"):
+        NormalEquations("pardiso")
+    with pytest.raises(EquimeshError, match="unknown factorisation 'lu'; choose from superlu, cholmod$"):
         NormalEquations("lu")
     chosen = subprocess.run(
         [sys.executable, "-c", "from equimesh.surface.optimize import solver; print(solver.DEFAULT_FACTORISATION)"],
@@ -273,3 +252,268 @@ def test_cholmod_refuses_a_matrix_that_is_not_positive_definite():
     with pytest.raises(_solver._FactorisationError):
         factorisation.factorise(np.array([1.0, 2.0, 1.0]))
     np.testing.assert_allclose(factorisation.factorise(np.array([2.0, 1.0, 2.0]))(np.array([3.0, 3.0])), [1.0, 1.0])
+
+
+def _linear(a, b):
+    """The residuals and Jacobian of ``A x - b``."""
+    a = scipy.sparse.csr_matrix(np.asarray(a, dtype=float))
+    return (lambda x: a @ x - b), (lambda x: a)
+
+
+def _unit_solve(x0=0.0, **kwargs):
+    """``min (x - 1)^2 / 2`` over [-10, 10] from ``x0``."""
+    residuals, jacobian = _linear([[1.0]], np.array([1.0]))
+    return least_squares(residuals, jacobian, np.array([x0]), np.array([-10.0]), np.array([10.0]), **kwargs)
+
+
+def test_at_a_minimum_the_solver_stops_at_once():
+    """Started at the least-squares optimum of an inconsistent system (integer coordinates): no iteration, one
+    evaluation, the cost ``|r|^2 / 2`` there, the damping as given and a float point."""
+    residuals, jacobian = _linear([[1.0], [1.0]], np.array([0.0, 2.0]))
+    solution = least_squares(residuals, jacobian, [1], np.array([-5.0]), np.array([5.0]), damping=0.25)
+    assert solution.x.dtype == float and solution.x.tolist() == [1.0]
+    assert (solution.cost, solution.iterations, solution.evaluations) == (1.0, 0, 1)
+    assert solution.converged and solution.message == "projected gradient below gtol" and solution.damping == 0.25
+
+
+def test_a_minimum_on_the_bounds_is_found_by_the_projected_gradient():
+    """The unconstrained minimum (5, -5) lies outside the box [-1, 1]^2: the solve ends on the corner (1, -1), where the
+    gradient points out of the box and the projected gradient is exactly 0 (so even with ``gtol = 0``)."""
+    residuals, jacobian = _linear(np.eye(2), np.array([5.0, -5.0]))
+    solution = least_squares(residuals, jacobian, np.zeros(2), np.full(2, -1.0), np.full(2, 1.0), gtol=0.0)
+    assert solution.x.tolist() == [1.0, -1.0]
+    assert solution.converged and solution.message == "projected gradient below gtol", solution.message
+    assert solution.cost == 0.5 * (16.0 + 16.0)
+
+
+def test_a_variable_on_its_bound_without_gradient_is_free():
+    """At (1, 0), x_0 on its upper bound with ``g_0 = 0``: it is not held, and the first step moves it inward towards
+    the minimum (-1, 2)."""
+    residuals, jacobian = _linear([[1.0, 1.0], [0.0, 1.0]], np.array([1.0, 2.0]))
+    tried = []
+    solution = least_squares(
+        residuals,
+        jacobian,
+        np.array([1.0, 0.0]),
+        np.array([-5.0, -5.0]),
+        np.array([1.0, 5.0]),
+        damping=1e-12,
+        accept=lambda x: tried.append(np.array(x)) or True,
+    )
+    assert tried[0][0] < 1.0 and solution.converged
+    np.testing.assert_allclose(solution.x, [-1.0, 2.0], atol=1e-8)
+
+
+def test_a_held_variable_has_no_direction_for_the_limit():
+    """x_0 on its upper bound with the gradient pointing out is held: its direction is 0, so a limit on the length of
+    the whole direction sees only x_1's (0.3, not limited) and the first step takes it."""
+    residuals, jacobian = _linear(np.eye(2), np.array([5.0, 0.3]))
+
+    def limit(d):
+        norm = np.linalg.norm(d)
+        return d if norm <= 0.5 else 0.5 * d / norm
+
+    tried = []
+    least_squares(
+        residuals,
+        jacobian,
+        np.array([1.0, 0.0]),
+        np.full(2, -1.0),
+        np.full(2, 1.0),
+        damping=1e-12,
+        accept=lambda x: tried.append(np.array(x)) or True,
+        limit=limit,
+    )
+    assert tried[0][0] == 1.0 and abs(tried[0][1] - 0.3) < 1e-9
+
+
+def test_damping_rises_by_nu_after_a_rejected_step_and_falls_after_a_full_one(monkeypatch):
+    """``r(x) = x - 1`` from 0, ``lambda`` 1, the first ``2 (LM_BACKTRACKS + 1)`` trials refused, one taken, the
+    next ``LM_BACKTRACKS + 1`` refused: each failed series of halvings multiplies ``lambda`` by ``nu`` and doubles
+    ``nu`` (1, 2, 8), a full step taken with gain ratio 1 divides it by 3 (Nielsen's rule) and resets ``nu`` to 2
+    (8/3, then 16/3)."""
+    damped = []
+
+    class Recording(FACTORISATIONS["superlu"]):
+        def factorise(self, values):
+            damped.append(float(values[0]) - 1.0)  # J^T J = D = 1: the diagonal is 1 + lambda
+            return super().factorise(values)
+
+    monkeypatch.setitem(FACTORISATIONS, "recording", Recording)
+    series = _solver.LM_BACKTRACKS + 1
+    trials = []
+
+    def accept(x):
+        trials.append(float(x[0]))
+        return len(trials) == 2 * series + 1 or len(trials) > 3 * series + 1
+
+    solution = _unit_solve(
+        damping=1.0,
+        accept=accept,
+        normal_equations=NormalEquations("recording"),
+    )
+    assert solution.converged and abs(solution.x[0] - 1.0) < 1e-8, solution.message
+    assert damped[:3] == [1.0, 2.0, 8.0]
+    np.testing.assert_allclose(damped[3:5], [8.0 / 3.0, 16.0 / 3.0], rtol=1e-12)
+    assert trials[:series] == [0.5**h * 0.5 for h in range(series)]
+    assert trials[2 * series] == 1.0 / 9.0
+
+
+def test_nielsens_rule_follows_the_gain_ratio():
+    """One full step of ``r(x) = exp(x) - 2`` from 3 (gain ratio about 0.88): ``lambda`` is multiplied by
+    ``max(1/3, 1 - (2 rho - 1)^3)``, and the solve reports the iteration cap of 1."""
+
+    def residuals(x):
+        return np.exp(x) - 2.0
+
+    def jacobian(x):
+        return scipy.sparse.csr_matrix(np.exp(x)[:, None])
+
+    x0 = np.array([3.0])
+    solution = least_squares(
+        residuals, jacobian, x0, np.array([-10.0]), np.array([10.0]), damping=1e-3, max_iterations=1
+    )
+    assert solution.converged is False and solution.message == "stopped after 1 iterations"
+    s, g, j = solution.x - x0, np.exp(x0) * residuals(x0), np.exp(x0)
+    rho = (0.5 * residuals(x0)[0] ** 2 - 0.5 * residuals(solution.x)[0] ** 2) / -(
+        g[0] * s[0] + 0.5 * (j[0] * s[0]) ** 2
+    )
+    assert 0.85 < rho < 0.9
+    np.testing.assert_allclose(solution.damping, 1e-3 * (1.0 - (2.0 * rho - 1.0) ** 3), rtol=1e-12)
+
+
+def test_a_large_constant_residual_stops_on_the_relative_reduction():
+    """Behind a residual of 10^10 no step can lower the cost by more than ``ftol`` of it: the first step, taken in full
+    (gain ratio about 1, so lambda / 3), ends the solve; a step taken after a refused trial does not."""
+    a = scipy.sparse.csr_matrix(np.array([[1e6], [0.0]]))
+
+    def residuals(x):
+        return np.array([1e6 * (x[0] - 1.0), 1e10])
+
+    def solve(**kwargs):
+        return least_squares(residuals, lambda x: a, np.array([1.001]), np.array([-10.0]), np.array([10.0]), **kwargs)
+
+    trials = []
+    after_refusal = solve(accept=lambda x: trials.append(x) or len(trials) > 1)
+    assert after_refusal.message == "relative reduction below ftol" and after_refusal.iterations == 2
+    solution = solve()
+    assert solution.converged is True and solution.message == "relative reduction below ftol", solution.message
+    assert (solution.iterations, solution.evaluations) == (1, 2)
+    lam = _solver.LM_INITIAL_DAMPING  # the step is the Gauss-Newton one divided by 1 + lambda
+    np.testing.assert_allclose(solution.x - 1.0, [1e-3 * lam / (1.0 + lam)], rtol=1e-6)
+    assert solution.cost == 0.5 * float(np.sum(residuals(solution.x) ** 2))
+    np.testing.assert_allclose(solution.damping, _solver.LM_INITIAL_DAMPING / 3.0, rtol=1e-12)
+
+
+def test_a_step_below_xtol_ends_the_solve():
+    """``xtol = 10^-3`` and the minimum 10^-4 away: the first step is taken and is below ``xtol (xtol + |x|)``."""
+    solution = _unit_solve(1.0001, gtol=0.0, ftol=0.0, xtol=1e-3)
+    assert solution.converged is True and solution.message == "step below xtol", solution.message
+    assert (solution.iterations, solution.evaluations) == (1, 2)
+    lam = _solver.LM_INITIAL_DAMPING  # the step is the Gauss-Newton one divided by 1 + lambda
+    np.testing.assert_allclose(solution.x - 1.0, [1e-4 * lam / (1.0 + lam)], rtol=1e-6)
+    assert solution.cost == 0.5 * (solution.x[0] - 1.0) ** 2
+    np.testing.assert_allclose(solution.damping, _solver.LM_INITIAL_DAMPING / 3.0, rtol=1e-12)
+
+
+@pytest.mark.parametrize("damping", [1e-3, 1.0 / _solver.LM_DIAGONAL_FLOOR])
+def test_no_acceptable_step_ends_when_damping_is_at_its_limit(damping):
+    """Every trial refused: the damping rises until a step is below ``xtol`` with ``lambda >= 1 / LM_DIAGONAL_FLOOR``,
+    and the solve ends where it started, converged, after one iteration; started at that limit it ends at once."""
+    trials = []
+    solution = _unit_solve(
+        0.5,
+        xtol=1e-3,
+        damping=damping,
+        accept=lambda x: trials.append(x) and False,
+    )
+    assert solution.converged is True and solution.message == "no further reduction: step below xtol"
+    assert solution.x.tolist() == [0.5] and solution.cost == 0.125
+    assert solution.iterations == 1 and solution.evaluations == 1 + len(trials)
+    assert solution.damping >= 1.0 / _solver.LM_DIAGONAL_FLOOR
+    if damping > 1.0:
+        assert solution.damping == damping and len(trials) == 1
+
+
+def test_an_endless_descent_stops_at_max_iterations():
+    """Steps limited to 1e-3 towards a minimum 10^6 away: no criterion is met, and the solve reports the cap (500 by
+    default) it hit."""
+    residuals, jacobian = _linear([[1.0]], np.array([1e6]))
+    solution = least_squares(
+        residuals, jacobian, np.zeros(1), np.array([-1e7]), np.array([1e7]), limit=lambda d: np.clip(d, -1e-3, 1e-3)
+    )
+    assert solution.converged is False and solution.message == "stopped after 500 iterations"
+    assert solution.iterations == 500 and solution.evaluations == 501
+    np.testing.assert_allclose(solution.x, [0.5], rtol=1e-9)
+    assert solution.cost == 0.5 * (solution.x[0] - 1e6) ** 2 and isinstance(solution.damping, float)
+
+
+@pytest.mark.parametrize("factorisation", BOTH)
+def test_normal_equations_follow_a_new_structure(factorisation):
+    """One ``NormalEquations`` for Jacobians of different structures (a column twice in a row, its entries summed;
+    other columns in the same rows; other rows): each is analysed anew and solved as its own dense system."""
+    system = NormalEquations(factorisation)
+    held = np.zeros(3, dtype=bool)
+    rhs = np.array([1.0, 2.0, 3.0])
+    duplicates = scipy.sparse.csr_matrix((np.array([1.0, 2.0, 1.0, 3.0]), np.array([0, 0, 1, 2]), np.array([0, 2, 4])))
+    for dense in (
+        duplicates,
+        [[2.0, 1.0, 0.0], [0.0, 1.0, 3.0]],
+        [[2.0, 0.0, 1.0], [1.0, 3.0, 0.0]],
+        [[1.0, 1.0, 1.0], [0.0, 2.0, 0.0], [4.0, 0.0, 0.0]],
+    ):
+        jac = dense if scipy.sparse.issparse(dense) else scipy.sparse.csr_matrix(np.array(dense))
+        system.assemble(jac, held)
+        normal = jac.toarray().T @ jac.toarray()
+        expected = np.linalg.solve(normal + 0.5 * np.diag(np.diag(normal)), rhs)
+        np.testing.assert_allclose(system.solve(0.5, rhs), expected, rtol=1e-10)
+
+
+def test_a_variable_no_residual_sees_is_damped_by_the_floor():
+    """Marquardt's diagonal of a column without entries is ``LM_DIAGONAL_FLOOR`` times the largest diagonal entry (9
+    here), so its step is ``rhs / (lam 9 LM_DIAGONAL_FLOOR)``."""
+    system = NormalEquations("superlu")
+    system.assemble(scipy.sparse.csr_matrix(np.array([[3.0, 0.0]])), np.zeros(2, dtype=bool))
+    step = system.solve(1.0, np.array([1.0, 1.0]))
+    np.testing.assert_allclose(step, [1.0 / 18.0, 1.0 / (9.0 * _solver.LM_DIAGONAL_FLOOR)], rtol=1e-9)
+
+
+@pytest.mark.parametrize("rejection", ["refused", "failed"])
+def test_a_step_after_a_rejection_does_not_end_the_solve(monkeypatch, rejection):
+    """A small step taken after a refused trial (``xtol = 0.85``: the full step 0.999 from 0 is not small, its half
+    is) or after a failed factorisation (``xtol = 1``: every step is small) does not end the solve: the next, taken
+    at once, does (2 iterations)."""
+
+    class FailingFirst(FACTORISATIONS["superlu"]):
+        calls = 0
+
+        def factorise(self, values):
+            FailingFirst.calls += 1
+            if rejection == "failed" and FailingFirst.calls == 1:
+                raise _solver._FactorisationError("zero pivot")
+            return super().factorise(values)
+
+    monkeypatch.setitem(FACTORISATIONS, "failing first", FailingFirst)
+    trials = []
+    solution = _unit_solve(
+        gtol=0.0,
+        ftol=0.0,
+        xtol=0.85 if rejection == "refused" else 1.0,
+        accept=lambda x: trials.append(x) or rejection != "refused" or len(trials) > 1,
+        normal_equations=NormalEquations("failing first"),
+    )
+    assert solution.message == "step below xtol" and solution.iterations == 2, solution.message
+
+
+def test_a_step_that_does_not_lower_the_cost_is_not_taken():
+    """A Jacobian that promises a reduction the residuals never give (they are constant): every trial is refused, and
+    the solve ends where it started."""
+    solution = least_squares(
+        lambda x: np.ones(1),
+        lambda x: scipy.sparse.csr_matrix(np.ones((1, 1))),
+        np.array([0.5]),
+        np.array([-10.0]),
+        np.array([10.0]),
+        xtol=1e-3,
+    )
+    assert solution.x.tolist() == [0.5] and solution.message == "no further reduction: step below xtol"

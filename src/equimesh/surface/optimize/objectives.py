@@ -2,7 +2,7 @@
 
 An objective is an :class:`Objective` in :data:`OBJECTIVES`: its name, what it
 promises (members bounded to [l, 2l] or not), whether the boundary nodes
-slide, its default node limit, and its *stages*: a generator that yields one
+slide, its default node limit (per factorisation of the normal equations), and its *stages*: a generator that yields one
 :class:`Stage` (a least-squares problem over the variables) at a time,
 receives the point where that stage's solve ended, and returns the point the
 optimisation ends at with the stage whose costs are reported.
@@ -40,6 +40,7 @@ from ...tolerance import (
 )
 from ..regularity import derivatives, evaluate
 from .jacobian import ElementJacobian
+from .solver import factorisation_name
 
 
 @dataclass(frozen=True)
@@ -380,9 +381,12 @@ class Objective:
     bounds_members : bool
         Every member of the result lies in [l, 2l] (the pipeline checks it on
         every mesh it returns).
-    max_nodes : int
+    max_nodes : dict
         The default node limit of :func:`~equimesh.surface.pipeline.mesh_surface`
-        with this objective (docs/performance.md, "The optimisation").
+        with this objective, per factorisation of
+        :data:`~equimesh.surface.optimize.solver.FACTORISATIONS`
+        (docs/performance.md, "The final optimisation"); :meth:`node_limit`
+        gives the one that applies.
     """
 
     name: str
@@ -390,14 +394,23 @@ class Objective:
     description: str
     slides: bool
     bounds_members: bool
-    max_nodes: int
+    max_nodes: dict
+
+    def node_limit(self, factorisation=None):
+        """The default node limit with ``factorisation`` (by default the one the optimisation uses,
+        :data:`~equimesh.surface.optimize.solver.DEFAULT_FACTORISATION`)."""
+        return self.max_nodes[factorisation_name(factorisation)]
 
 
-#: Every objective's record: what ``optimize=`` names.  The default node limits are measured by
-#: ``python experiments/optimisation_timing.py --length 0.52 --objective paper bounded`` (the reference dome,
-#: 101,654 members, 34,031 nodes; docs/performance.md, "The optimisation"): the optimisation took 7.4 s
-#: ("paper") and 26.4 s ("bounded") with PARDISO, 44.7 s and 179.4 s with SuperLU, so at 15,000 and 6,000
-#: nodes a default run stays within two minutes with either factorisation on a 2-core machine.
+#: Every objective's record: what ``optimize=`` names.  The default node limits keep the optimisation of a default
+#: run to about two minutes on a 2-core machine with each factorisation, measured by
+#: ``EQUIMESH_FACTORISATION=F python experiments/optimisation_timing.py --length L --objective bounded`` on the
+#: reference dome (docs/performance.md, "The final optimisation"; CPU seconds, the machine shared): "bounded" took
+#: 46 s (CHOLMOD) and 40 s (PARDISO) at 34,031 nodes, 165 s and 207 s at 67,371 nodes, so 50,000 nodes for
+#: both; SuperLU 201 s at 34,031 and 125 s at 23,916 nodes, so 24,000.  "paper" took 59.2 s with SuperLU, the
+#: slowest, at 34,031 nodes, so 34,000 with each.
+_PAPER_MAX_NODES = {"pardiso": 34_000, "cholmod": 34_000, "superlu": 34_000}
+_BOUNDED_MAX_NODES = {"pardiso": 50_000, "cholmod": 50_000, "superlu": 24_000}
 OBJECTIVES = {
     objective.name: objective
     for objective in (
@@ -407,7 +420,7 @@ OBJECTIVES = {
             "the paper's: the G1 members' relative deviation from l, boundary fixed",
             slides=False,
             bounds_members=False,
-            max_nodes=15_000,
+            max_nodes=_PAPER_MAX_NODES,
         ),
         Objective(
             "bounded",
@@ -415,7 +428,7 @@ OBJECTIVES = {
             "every member in [l, 2l], as many as possible at l; boundary nodes slide along the boundary",
             slides=True,
             bounds_members=True,
-            max_nodes=6_000,
+            max_nodes=_BOUNDED_MAX_NODES,
         ),
     )
 }

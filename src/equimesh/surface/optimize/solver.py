@@ -203,12 +203,7 @@ class NormalEquations:
 
     def __init__(self, factorisation=None):
         """``factorisation``: one of :data:`INSTALLED`, :data:`DEFAULT_FACTORISATION` by default."""
-        name = factorisation or DEFAULT_FACTORISATION
-        if name in _LIBRARIES and name not in INSTALLED:
-            raise EquimeshError(f"factorisation {name!r} is not installed; installed: {', '.join(INSTALLED)}")
-        if name not in FACTORISATIONS:
-            raise EquimeshError(f"unknown factorisation {name!r}; choose from {', '.join(INSTALLED)}")
-        self._factorisation = FACTORISATIONS[name]
+        self._factorisation = FACTORISATIONS[factorisation_name(factorisation)]
         self._structure = None
 
     def assemble(self, jac, held):
@@ -441,6 +436,16 @@ INSTALLED = tuple(name for name, library in _LIBRARIES.items() if library is not
 #: without the extras in the same checkout); by default the first of :data:`INSTALLED`.
 FACTORISATION_VARIABLE = "EQUIMESH_FACTORISATION"
 DEFAULT_FACTORISATION = os.environ.get(FACTORISATION_VARIABLE) or INSTALLED[0]
+
+
+def factorisation_name(factorisation=None):
+    """``factorisation`` (:data:`DEFAULT_FACTORISATION` when None), checked: one of :data:`INSTALLED`."""
+    name = factorisation or DEFAULT_FACTORISATION
+    if name in _LIBRARIES and name not in INSTALLED:
+        raise EquimeshError(f"factorisation {name!r} is not installed; installed: {', '.join(INSTALLED)}")
+    if name not in FACTORISATIONS:
+        raise EquimeshError(f"unknown factorisation {name!r}; choose from {', '.join(INSTALLED)}")
+    return name
 
 
 def _sum_products(data, left, right, slot, values):
