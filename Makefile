@@ -43,6 +43,7 @@ EXPERIMENTS := \
 	experiments/scaling.py:--pipeline \
 	experiments/bounded.py \
 	experiments/bounded_sweep.py \
+	experiments/feature_angle.py \
 	experiments/inputs.py
 
 # The hypothesis profile comes from EQUIMESH_HYPOTHESIS_PROFILE (tests/conftest.py;

@@ -1,10 +1,13 @@
-"""Triangle meshes for the tests: the roof with an opening, meshes that must be refused, and the check that a
-surface mesh lies on the input triangles.
+"""Triangle meshes for the tests: the roof with an opening, an open tube, a closed-ended one, meshes that must be
+refused, and the checks that a surface mesh lies on the input triangles and that its boundary nodes slid along the
+loops.
 """
 
 import numpy as np
+import shapely
 
 import equimesh
+from equimesh import REL_TOL
 from equimesh.surface.charts.mesh_chart import MeshChart
 from equimesh.testing.meshes import roof_mesh
 
@@ -12,6 +15,36 @@ from equimesh.testing.meshes import roof_mesh
 def roof():
     """A 20 x 14 vault rising 3, 10 x 7 cells of 2 x 2, with the opening OPENING (cells 4-5 x 3-4) left out."""
     return roof_mesh(20.0, 14.0, (10, 7), 3.0, opening=(4, 6, 3, 5))
+
+
+def tube(radius=10.0, height=10.0, around=60, along=10, strip=0):
+    """An open cylinder about the z axis, ``around`` x ``along`` cells, the cells of the first ``strip`` columns left
+    out (a strip of triangles from rim to rim: then a disc); vertices ring by ring, two triangles a cell."""
+    phi = 2.0 * np.pi * np.arange(around) / around
+    z = height * np.arange(along + 1) / along
+    ring = np.column_stack([radius * np.cos(phi), radius * np.sin(phi)])
+    vertices = np.column_stack([np.tile(ring, (along + 1, 1)), np.repeat(z, around)])
+    k, j = np.meshgrid(np.arange(strip, around), np.arange(along))
+    a, b = (j * around + k).ravel(), (j * around + (k + 1) % around).ravel()
+    triangles = np.stack([np.column_stack([a, b, b + around]), np.column_stack([a, b + around, a + around])], axis=1)
+    return vertices, triangles.reshape(-1, 3)
+
+
+def sock(radius, length, around=24, cap=6):
+    """A tube of ``radius`` and ``length`` along z closed at its lower end by a hemisphere (a disc: one boundary loop,
+    the upper rim), its cells about square, ``around`` of them round it and ``cap`` rings on the hemisphere."""
+    along = int(length / (2.0 * np.pi * radius / around))
+    theta = 0.5 * np.pi * np.arange(1, cap + 1) / cap
+    rings = [(radius * np.sin(t), -length - radius * np.cos(t)) for t in theta]
+    rings += [(radius, -length + length * k / along) for k in range(1, along + 1)]
+    phi = 2.0 * np.pi * np.arange(around) / around
+    points = [[0.0, 0.0, -length - radius]] + [[r * np.cos(p), r * np.sin(p), z] for r, z in rings for p in phi]
+    j = np.arange(around)
+    faces = [np.column_stack([np.zeros(around, dtype=int), 1 + (j + 1) % around, 1 + j])]
+    for i in range(len(rings) - 1):
+        a, b = 1 + i * around + j, 1 + i * around + (j + 1) % around
+        faces += [np.column_stack([a, b + around, a + around]), np.column_stack([a, b, b + around])]
+    return np.array(points), np.concatenate(faces)
 
 
 def tetrahedron():
@@ -131,3 +164,22 @@ def _rings_about_a_pole(rings, pole, n_ring):
             a, b = 1 + i * n_ring + j, 1 + i * n_ring + (j + 1) % n_ring
             faces += [(a, b + n_ring, a + n_ring), (a, b, b + n_ring)]
     return equimesh.TriangulatedSurface(np.array(points), np.array(faces))
+
+
+def assert_boundary_slid_along_the_loops(mesh):
+    """Boundary nodes on their flattened loops (to 1e-12 of its length), corners where they were, some moved."""
+    outline, plane = mesh.stages.outline, mesh.stages.plane
+    start, moved = 0, 0
+    for loop, corners, count in zip(outline.loops, outline.corners, plane.info["boundary_rings"]):
+        nodes = np.arange(start, start + count)
+        start += count
+        length = loop.length
+        assert np.all(
+            shapely.distance(shapely.LinearRing(loop.points), shapely.points(mesh.uv[nodes])) <= 1e-12 * length
+        )
+        before = mesh.stages.remapped_uv[nodes]
+        for corner in loop.at(corners):
+            at = np.linalg.norm(before - corner, axis=1) <= REL_TOL * length
+            assert at.sum() == 1 and np.array_equal(mesh.uv[nodes[at]], before[at])
+        moved += int(np.count_nonzero(np.any(mesh.uv[nodes] != before, axis=1)))
+    assert moved > 0

@@ -59,6 +59,7 @@ def build_parser():
     from .classes import DEFAULT_TOLERANCE, MAX_TOLERANCE
     from .io import INPUT_FORMATS, OUTPUT_SLOTS
     from .planar.insertion import DEFAULT_ENGINE, ENGINES
+    from .surface.mesh_outline import DEFAULT_FEATURE_ANGLE
     from .surface.optimize import OBJECTIVES
     from .surface.optimize.solver import factorisation_name
     from .surface.pipeline import DEFAULT_OPTIMIZE, MAX_GRID_CELLS, PLACEMENTS, UNOPTIMIZED_MAX_NODES
@@ -155,6 +156,15 @@ def build_parser():
             metavar=record.metavar,
             help=_output_help(slot, record),
         )
+    mesh.add_argument(
+        "--feature-angle",
+        type=_feature_angle,
+        default=argparse.SUPPRESS,
+        metavar="DEGREES",
+        help="triangle meshes only: a boundary vertex is a corner, a node that stays put, where the boundary turns "
+        "by more than DEGREES over a stretch of about L; the rest of each boundary loop is resampled as a curve "
+        f"(default: {DEFAULT_FEATURE_ANGLE:g}, at least 0 and below 180)",
+    )
     mesh.add_argument(
         "--dxf-labels",
         action="store_true",
@@ -311,6 +321,18 @@ def _lengths(text):
     return values
 
 
+def _feature_angle(text):
+    """``--feature-angle``: degrees as typed (:func:`_number`), at least 0 and below 180
+    (``mesh_outline.check_feature_angle``)."""
+    from ._checks import number_text
+    from .surface.mesh_outline import check_feature_angle
+
+    try:
+        return check_feature_angle(number_text(text, "the value", EquimeshError))
+    except EquimeshError:  # not a number, or out of range
+        raise argparse.ArgumentTypeError(f"expected degrees, at least 0 and below 180, got {text!r}") from None
+
+
 def _run_mesh(args):
     from .io import OUTPUT_SLOTS, load_surface, surface_mesh_writer
     from .surface.pipeline import mesh_surface
@@ -329,7 +351,7 @@ def _run_mesh(args):
         if not args.quiet:
             print(f"  {stage}: {seconds:.2f} s", file=sys.stderr)
 
-    limit = {"max_nodes": args.max_nodes} if "max_nodes" in args else {}
+    given = {name: getattr(args, name) for name in ("max_nodes", "feature_angle") if name in args}
     with _library_quiet():
         mesh = mesh_surface(
             surface,
@@ -342,7 +364,7 @@ def _run_mesh(args):
             tolerance=args.tolerance,
             lengths=args.lengths,
             surface_tolerance=args.surface_tolerance,
-            **limit,
+            **given,
         )
     write(mesh, args.tolerance)
     if not args.quiet:
@@ -358,8 +380,8 @@ def _run_mesh(args):
 
 def _parameters(args):
     """What the run was given, for the report's provenance: the input file and every option set."""
-    keys = ("surface", "object", "length", "grid", "optimize", "placement", "engine", "max_nodes", "tolerance")
-    keys += ("surface_tolerance", "lengths")
+    keys = ("surface", "object", "length", "grid", "optimize", "placement", "engine", "max_nodes", "feature_angle")
+    keys += ("tolerance", "surface_tolerance", "lengths")
     return {("input" if k == "surface" else k): getattr(args, k) for k in keys if getattr(args, k, None)}
 
 

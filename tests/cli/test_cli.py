@@ -30,6 +30,7 @@ from equimesh._cli import main
 from equimesh.io import _paths as io_paths
 from equimesh.metrics import triangle_angles
 from equimesh.surface import pipeline
+from equimesh.testing.meshes import ellipse, roof_mesh
 
 SADDLE = SURFACES / "saddle.json"
 
@@ -226,6 +227,16 @@ BAD = {
     "catalogue cannot hold the outline": lambda d: (
         ["mesh", SADDLE, "--length", 6, "--optimize", "classes", "--lengths", "7.7"],
         "adds up to side",
+    ),
+    "feature angle not a number": lambda d: (["mesh", SADDLE, "--length", 5, "--feature-angle", "sharp"], "degrees"),
+    "feature angle negative": lambda d: (["mesh", SADDLE, "--length", 5, "--feature-angle=-1"], "at least 0"),
+    "feature angle 180": lambda d: (["mesh", SADDLE, "--length", 5, "--feature-angle", "180"], "below 180"),
+    "feature angle 1e3": lambda d: (["mesh", SADDLE, "--length", 5, "--feature-angle", "1e3"], "below 180"),
+    "feature angle nan": lambda d: (["mesh", SADDLE, "--length", 5, "--feature-angle", "nan"], "degrees"),
+    "feature angle 4_5": lambda d: (["mesh", SADDLE, "--length", 5, "--feature-angle", "4_5"], "got '4_5'"),
+    "feature angle for a chart": lambda d: (
+        ["mesh", SADDLE, "--length", 5, "--feature-angle", "30"],
+        "feature angle finds the corners of a triangle mesh",
     ),
     "tolerance -1% as its own word": lambda d: (["mesh", SADDLE, "--length", 5, "--tolerance", "-1%"], "above 0"),
     "tolerance 1_0%": lambda d: (["mesh", SADDLE, "--length", 5, "--tolerance", "1_0%"], "got '1_0%'"),
@@ -459,10 +470,17 @@ def test_traceback_option_reraises_internal_errors(tmp_path, monkeypatch):
 
 @pytest.mark.parametrize(
     "given, passed",
-    [([], {}), (["--max-nodes", "none"], {"max_nodes": None}), (["--max-nodes", "1000"], {"max_nodes": 1000})],
+    [
+        ([], {}),
+        (["--max-nodes", "none"], {"max_nodes": None}),
+        (["--max-nodes", "1000"], {"max_nodes": 1000}),
+        (["--feature-angle", "45"], {"feature_angle": 45.0}),
+        (["--feature-angle", "0"], {"feature_angle": 0.0}),
+    ],
 )
-def test_max_nodes_reaches_the_library(given, passed, tmp_path, capsys, monkeypatch):
-    """Not given: the library's default applies; 'none': no limit (None); a number: that limit."""
+def test_limits_reach_the_library(given, passed, tmp_path, capsys, monkeypatch):
+    """Not given: the library's default applies; --max-nodes 'none': no limit (None); a number: that limit or
+    feature angle."""
     seen = {}
 
     def mesh_surface(surface, l, **kwargs):
@@ -471,7 +489,7 @@ def test_max_nodes_reaches_the_library(given, passed, tmp_path, capsys, monkeypa
 
     monkeypatch.setattr(pipeline, "mesh_surface", mesh_surface)
     run(["mesh", SADDLE, "--length", 5, "-o", tmp_path / "m.obj", "-q", *given], capsys)
-    assert {k: v for k, v in seen.items() if k == "max_nodes"} == passed
+    assert {k: v for k, v in seen.items() if k in ("max_nodes", "feature_angle")} == passed
 
 
 def test_sigint_prints_one_line_exits_130_and_writes_nothing(tmp_path):
@@ -579,6 +597,24 @@ def test_command_line_meshes_an_obj(tmp_path, capsys):
     assert main(["mesh", str(source), "--length", str(L), "--optimize", "none", "-q", "-o", str(out)]) == 0
     written = meshio.read(out)
     assert len(written.cells_dict["triangle"]) > 0
+
+
+def test_command_line_meshes_a_round_opening_cut_out_of_a_fine_mesh(tmp_path, capsys):
+    """A dome on 60 x 60 cells with a round opening 10 across cut out, its rim a staircase of mesh edges 1/2 long:
+    meshed at l = 3 at the default feature angle, at 45 and at 0 degrees (the turns that fit are kept), and refused
+    in one line at l = 11, where no ring of parts of at least l fits in the opening."""
+    v, t = roof_mesh(30.0, 30.0, (60, 60), 3.0, cut=[ellipse((15.0, 15.0), 5.0, 5.0)])
+    source = tmp_path / "dome.obj"
+    meshio.write(source, meshio.Mesh(v, [("triangle", t)]))
+    for given in ([], ["--feature-angle", "45"], ["--feature-angle", "0"]):
+        out = tmp_path / "out.vtu"
+        assert main(["mesh", str(source), "--length", "3", "--optimize", "none", "-q", "-o", str(out), *given]) == 0
+        assert len(meshio.read(out).cells_dict["triangle"]) > 0
+        out.unlink()
+    code, captured = run(["mesh", source, "--length", 11, "-q", "-o", tmp_path / "m.vtu"], capsys)
+    assert code == 2 and captured.err.count("\n") == 1, captured.err
+    assert "hole 0" in captured.err and "too small for l = 11" in captured.err, captured.err
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["dome.obj"]
 
 
 @pytest.mark.parametrize("case", sorted(bad_meshes()))

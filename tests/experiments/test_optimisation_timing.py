@@ -33,6 +33,5 @@ def optimize_is_restored(timing):
     from equimesh.surface.optimize import driver, members, solver
 
     return (
-        driver.least_squares is solver.least_squares
-        and timing.members.edge_length_terms.__module__ == members.__name__
+        driver.least_squares is solver.least_squares and timing.members.edge_length_terms.__module__ == members.__name__
     )

@@ -25,6 +25,7 @@ Every stage is kept in :class:`SurfaceMesh.stages` for tables and figures.
 
 import time
 from dataclasses import dataclass, field
+from functools import partial
 from typing import Callable
 
 import numpy as np
@@ -43,7 +44,7 @@ from .charts.mesh_chart import MeshChart, flatten_mesh
 from .charts.openings import Perforated, holes_of
 from .charts.triangulated import TriangulatedSurface
 from .flatten import flatten
-from .mesh_outline import boundary_uv, mesh_outline, restate_mesh_error
+from .mesh_outline import boundary_uv, check_feature_angle, check_open, mesh_outline, restate_mesh_error
 from .messages import restate_polygon_error
 from .optimize import OBJECTIVES, optimize_uv
 from .optimize.joints import joint_bounds
@@ -171,6 +172,7 @@ def mesh_surface(
     tolerance=DEFAULT_TOLERANCE,
     lengths=None,
     surface_tolerance=0.0,
+    feature_angle=None,
 ):
     """Mesh a surface with members as equal as possible (Section 4).
 
@@ -228,6 +230,10 @@ def mesh_surface(
     surface_tolerance : float
         ``D`` in [0, l): how far a moving node may leave the surface along its
         normal (:attr:`SurfaceMesh.offsets`; "bounded" and "classes").
+    feature_angle : float, optional
+        Triangle meshes only: the turn (degrees) at the scale of l above which
+        a boundary vertex is a corner (:func:`~equimesh.surface.mesh_outline.loop_corners`);
+        None: :data:`~equimesh.surface.mesh_outline.DEFAULT_FEATURE_ANGLE`.
 
     Returns
     -------
@@ -266,7 +272,8 @@ def mesh_surface(
         surface = Perforated(surface, holes)
     seconds = {}
     clock = _Clock(seconds, progress)
-    front = _mesh_front if isinstance(surface, TriangulatedSurface) else _chart_front
+    angle = check_feature_angle(feature_angle, meshed=isinstance(surface, TriangulatedSurface))
+    front = _chart_front if angle is None else partial(_mesh_front, feature_angle=angle)
     steps = front(surface, grid, l, limit, boundary_spacing, clock)
     check_plane_size(steps, l, limit)
 
@@ -405,14 +412,17 @@ def _chart_front(surface, grid, l, limit, spacing, clock):
     return _Front(surface, aux, x_s0, flat, outline, place, restate, [hole.points for hole in outline.holes])
 
 
-def _mesh_front(surface, grid, l, limit, spacing, clock):
+def _mesh_front(surface, grid, l, limit, spacing, clock, feature_angle):
     """Steps 1-3 for a triangle mesh (:mod:`equimesh.surface.charts.triangulated`): it is the auxiliary triangulation.
 
-    ``grid`` is not used.  The flattening starts from the projection onto the
-    best-fit plane, or a conformal map or Tutte's embedding if that folds, with
-    the openings capped (:func:`~equimesh.surface.charts.mesh_chart.flatten_mesh`); the flattened
-    mesh is the chart (:class:`~equimesh.surface.charts.mesh_chart.MeshChart`) and
-    its loops the outline (:mod:`equimesh.surface.mesh_outline`).
+    ``grid`` is not used; ``feature_angle`` decides the loops' corners.  The
+    flattening starts from the projection onto the best-fit plane, or a
+    conformal map or Tutte's embedding if that folds, with the openings capped
+    (:func:`~equimesh.surface.charts.mesh_chart.flatten_mesh`; the size is
+    estimated again on the flattened triangles, :func:`~equimesh.surface.size.check_surface_size`); the flattened
+    mesh is the chart
+    (:class:`~equimesh.surface.charts.mesh_chart.MeshChart`) and its loops the
+    outline (:mod:`equimesh.surface.mesh_outline`).
     """
     if len(surface.triangles) > 2 * MAX_GRID_CELLS:
         raise EquimeshError(
@@ -424,10 +434,12 @@ def _mesh_front(surface, grid, l, limit, spacing, clock):
     clock("auxiliary triangulation")
 
     flat = flatten_mesh(surface)
+    check_open(surface, flat.points)
+    check_surface_size(surface.vertices, surface.triangles, l, limit, flattened=flat.points)
     chart = MeshChart(surface, flat.points)
     clock("flattening (eq. 1)")
 
-    outline = mesh_outline(chart, l, spacing)
+    outline = mesh_outline(chart, l, spacing, feature_angle)
 
     def place(plane):
         uv = plane.points.copy()

@@ -45,7 +45,7 @@ class Ring:
     side: np.ndarray
 
 
-def resample_ring(xy, params, corners, l, spacing, too_short=None):
+def resample_ring(xy, params, corners, l, spacing, too_short=None, angles=None):
     """Step 2 on a closed plane polyline: a polygon on it whose edges are at least ``l`` long.
 
     Parameters
@@ -66,6 +66,10 @@ def resample_ring(xy, params, corners, l, spacing, too_short=None):
     too_short : callable, optional
         ``too_short(side, arc, chord)`` returns the exception raised for a
         side that no split leaves with chords of at least ``l``.
+    angles : sequence of float, optional
+        The inner angle (degrees) of each corner, where the polyline's own
+        angle at the vertex is not the corner's (a staircase of mesh edges);
+        by default the polyline's.
 
     A side is split into ``k`` equal parts along its arc, ``k`` by the rule
     of Step 2 (:func:`~equimesh.planar.boundary.sides.split_counts`), the paper's
@@ -83,7 +87,9 @@ def resample_ring(xy, params, corners, l, spacing, too_short=None):
     n = len(xy)
     chains = [np.r_[c0 : c1 + 1] if c1 > c0 else np.r_[c0:n, : c1 + 1] for c0, c1 in zip(corners, np.roll(corners, -1))]
     sides = [Polyline(xy[c], closed=False, values=params[c]) for c in chains]
-    stretches = _corner_edges(xy, sides, corners, l)
+    if angles is None:
+        angles = [inner_angle(xy, c) for c in corners]
+    stretches = _corner_edges(xy, sides, corners, angles, l)
     points, carried, side = [], [], []
     for i, (polyline, stretch) in enumerate(zip(sides, stretches)):
         pts, prm = _split_side(polyline, stretch, l, spacing)
@@ -102,12 +108,13 @@ def resample_ring(xy, params, corners, l, spacing, too_short=None):
 CORNER_PASSES = 4
 
 
-def _corner_edges(xy, sides, corners, l):
+def _corner_edges(xy, sides, corners, angles, l):
     """Per side, the stretch ``(a, b)`` of its arc split into equal parts, or None for one straight edge.
 
-    At a corner sharper than ``SHARP_CORNER`` the sides keep straight edges
-    from the corner to the points at distance ``stagger_reach(angle) + l``
-    from it (first reached along each side), ``angle`` being the angle
+    At a corner sharper than ``SHARP_CORNER`` (its inner angle ``angles``
+    first) the sides keep straight edges from the corner to the points at
+    distance ``stagger_reach(angle) + l`` from it (first reached along each
+    side), ``angle`` being then the angle
     between those two edges (recomputed until the reach no longer grows,
     at most :data:`CORNER_PASSES` passes).  A side whose stretch between such
     points is shorter than ``l``, or that never gets that far from the
@@ -118,11 +125,11 @@ def _corner_edges(xy, sides, corners, l):
     n = len(sides)
     start, end = [0.0] * n, [side.length for side in sides]
     single = [False] * n
-    for i, c in enumerate(corners):
+    for i, (c, angle) in enumerate(zip(corners, angles)):
         leaving, arriving = i, (i - 1) % n
         ahead, into = sides[leaving], sides[arriving]
         back = Polyline(into.points[::-1], closed=False, arc=into.length - into.arc[::-1])  # from the corner
-        angle, reach = inner_angle(xy, c), 0.0
+        reach = 0.0
         for _ in range(CORNER_PASSES):
             need = stagger_reach(angle, l)
             if need <= reach:
@@ -140,15 +147,46 @@ def _corner_edges(xy, sides, corners, l):
 
 def _arc_at_distance(polyline, distance):
     """Arc length along the open ``polyline`` at which it first reaches ``distance`` from its start, or None."""
+    arc = float(reach(polyline, distance, np.array([0]))[0])
+    return None if np.isnan(arc) else arc
+
+
+def reach(polyline, distance, starts):
+    """Arc positions at which ``polyline``, followed forward from its vertices ``starts``, first reaches ``distance``.
+
+    For each start vertex ``i`` the first point at a straight-line distance
+    ``distance`` from vertex ``i``, found on the first segment whose end is
+    that far (:func:`at_distance`); ``nan`` where there is none: past the end
+    of an open polyline, or within one turn of a closed one, whose arc
+    positions run on past its length.
+    """
     pts, arc = polyline.points, polyline.arc
-    far = np.flatnonzero(np.linalg.norm(pts - pts[0], axis=1) >= distance)
-    if not len(far):
-        return None
-    j = int(far[0])
-    p, e = pts[j - 1] - pts[0], pts[j] - pts[j - 1]
-    a, b, c = e @ e, 2.0 * (p @ e), p @ p - distance * distance
-    t = (-b + np.sqrt(b * b - 4.0 * a * c)) / (2.0 * a)
-    return float(arc[j - 1] + t * (arc[j] - arc[j - 1]))
+    n, length = len(pts), polyline.length
+    starts = np.asarray(starts, dtype=np.int64)
+    found = np.full(len(starts), np.nan)
+    todo = np.arange(len(starts))
+    for k in range(1, n + 1 if polyline.closed else n):
+        if not polyline.closed:
+            todo = todo[starts[todo] + k < n]
+        if not todo.size:
+            break
+        j = starts[todo] + k
+        origin, a, b = pts[starts[todo]], pts[(j - 1) % n], pts[j % n]
+        far = np.linalg.norm(b - origin, axis=1) >= distance
+        hit, j = todo[far], j[far]
+        t = at_distance(origin[far], a[far], b[far], distance)
+        before, after = (arc[m % n] + (m // n) * length for m in (j - 1, j))
+        found[hit] = before + t * (after - before)
+        todo = todo[~far]
+    return found
+
+
+def at_distance(origin, a, b, distance):
+    """The fraction ``t`` of each segment ``ab`` at which ``a + t (b - a)`` is ``distance`` from ``origin`` (the
+    larger root; ``a`` within it, ``b`` beyond it)."""
+    p, e = a - origin, b - a
+    qa, qb, qc = np.sum(e * e, axis=-1), 2.0 * np.sum(p * e, axis=-1), np.sum(p * p, axis=-1) - distance * distance
+    return (-qb + np.sqrt(qb * qb - 4.0 * qa * qc)) / (2.0 * qa)
 
 
 def _split_side(polyline, stretch, l, spacing):

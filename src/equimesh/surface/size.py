@@ -13,18 +13,28 @@ from ..errors import number
 from ..planar.limits import check_size, node_estimate
 
 
-def check_surface_size(surface_points, triangles, l, max_nodes):
+def check_surface_size(surface_points, triangles, l, max_nodes, flattened=None):
     """Estimate the node count (surface area at the lattice density) and refuse it above ``max_nodes``.
 
     The area is computed in units of the surface's extent (the points scaled
     by a power of two, which is exact), so neither a surface given in units of
     1e-100 nor one in units of 1e100 overflows or underflows; a tiny ``l``
-    gives an estimate of ``inf`` rather than an overflow.
+    gives an estimate of ``inf`` rather than an overflow.  With ``flattened``
+    (a triangle mesh's plane points after eq. (1)) it is the flattened
+    triangles' area, overlaps counted, checked before the outline is made: a
+    tube closed at one end flattens to several times its area, and would
+    otherwise fail only after minutes of optimisation (:func:`check_plane_size`
+    checks the outline, what Problem 2 meshes, for every surface).
     """
     if max_nodes is None:
         return
     area, scale = surface_area(surface_points, triangles)
-    check_size(f"this surface (area {number(area / scale / scale)})", node_count_estimate(area, scale, l), max_nodes, l)
+    what = f"this surface (area {number(area / scale / scale)})"
+    if flattened is not None:
+        surface = area / scale / scale
+        area, scale = surface_area(flattened, triangles)
+        what = _stretched(area / scale / scale, surface)
+    check_size(what, node_count_estimate(area, scale, l), max_nodes, l)
 
 
 def check_plane_size(steps, l, max_nodes):
@@ -37,16 +47,25 @@ def check_plane_size(steps, l, max_nodes):
     area = abs(signed_area(rings[0] * scale)) - sum(abs(signed_area(ring * scale)) for ring in rings[1:])
     estimate = node_count_estimate(area, scale, l)
     if not estimate <= max_nodes:
-        plane, (surface, surface_scale) = area / scale / scale, surface_area(steps.points, steps.grid.triangles)
-        surface = surface / surface_scale / surface_scale
-        what = f"the flattened surface (area {number(plane)}, {number(plane / surface, 3)} times the surface's "
-        check_size(f"{what}{number(surface)}: eq. (1) stretches it that much)", estimate, max_nodes, l)
+        surface, surface_scale = surface_area(steps.points, steps.grid.triangles)
+        check_size(_stretched(area / scale / scale, surface / surface_scale / surface_scale), estimate, max_nodes, l)
+
+
+def _stretched(plane, surface):
+    """What a refusal on a flattened ``plane`` area of a ``surface`` area names."""
+    return (
+        f"the flattened surface (area {number(plane)}, {number(plane / surface, 3)} times the surface's "
+        f"{number(surface)}: eq. (1) stretches it that much)"
+    )
 
 
 def surface_area(points, triangles):
-    """``(area, scale)``: the area of the triangles in space in units of the points' extent, and that power of two."""
+    """``(area, scale)``: the area of the triangles (2-D or 3-D points) in units of the points' extent, and that
+    power of two."""
     scale = power_of_two_scale(float(np.max(np.ptp(points, axis=0))))
     p = points[triangles] * scale
+    if p.shape[-1] == 2:
+        p = np.concatenate([p, np.zeros(p.shape[:-1] + (1,))], axis=-1)
     return 0.5 * float(np.linalg.norm(np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]), axis=1).sum()), scale
 
 

@@ -1,10 +1,11 @@
 """Triangle meshes of roofs, for the triangle-mesh input of Section 4 (tests, examples, benchmarks)."""
 
 import numpy as np
+import shapely
 import triangle
 
 
-def roof_mesh(width, depth, cells, rise, opening=None):
+def roof_mesh(width, depth, cells, rise, opening=None, cut=()):
     """A vault ``z = rise sin(pi x / width) sin(pi y / depth)`` over ``[0, width] x [0, depth]``, triangulated on a
     grid.
 
@@ -18,6 +19,13 @@ def roof_mesh(width, depth, cells, rise, opening=None):
     opening : (i0, i1, j0, j1), optional
         The cells ``i0 <= i < i1``, ``j0 <= j < j1`` are left out (an opening;
         keep it one cell away from the border).
+    cut : sequence of (k, 2) array_like
+        Openings drawn in plan: the triangles whose centroid lies inside one
+        of these polygons are left out, so a round opening's rim is a
+        staircase of mesh edges, as when faces are removed in a modeller;
+        a polygon whose sides run along grid lines or the cells' diagonals
+        (from ``(x_i, y_j)`` to ``(x_i+1, y_j+1)``) is cut exactly, its
+        corners vertices of the mesh.
 
     Returns
     -------
@@ -36,7 +44,20 @@ def roof_mesh(width, depth, cells, rise, opening=None):
         keep[i0:i1, j0:j1] = False
     a, b, c, d = (n[keep] for n in (node[:-1, :-1], node[1:, :-1], node[1:, 1:], node[:-1, 1:]))
     triangles = np.concatenate([np.column_stack([a, b, c]), np.column_stack([a, c, d])])
+    if len(cut):
+        centroid = vertices[triangles].mean(axis=1)
+        inside = np.zeros(len(triangles), dtype=bool)
+        for polygon in cut:
+            inside |= shapely.contains_xy(shapely.Polygon(polygon), centroid[:, 0], centroid[:, 1])
+        triangles = triangles[~inside]
     return vertices, triangles
+
+
+def ellipse(centre, a, b, n=256):
+    """A closed polygon of ``n`` points on the ellipse of semi-axes ``a`` (along x) and ``b`` (along y): a plan
+    outline for ``roof_mesh(cut=...)``."""
+    t = 2.0 * np.pi * np.arange(n) / n
+    return np.column_stack([centre[0] + a * np.cos(t), centre[1] + b * np.sin(t)])
 
 
 def wedge_mesh(angle=25.0, radius=30.0, opening=((15.0, 2.0), (18.0, 3.2)), warp=0.01, max_area=0.3):
