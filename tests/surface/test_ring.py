@@ -150,20 +150,20 @@ def test_arc_at_distance_by_hand():
     """Along (0, 0), (4, 0), (4, 4): distance 3 at arc 3, 4 at the bend (arc 4), 5 at (4, 3) (arc 7); never 6."""
     pts = np.array([[0.0, 0.0], [4.0, 0.0], [4.0, 4.0]])
     arc = np.array([0.0, 4.0, 8.0])
-    assert [ring._arc_at_distance(Polyline(pts, closed=False, arc=arc), d) for d in (3.0, 4.0, 5.0)] == [3.0, 4.0, 7.0]
-    assert ring._arc_at_distance(Polyline(pts, closed=False, arc=arc), 6.0) is None
+    assert [ring.arc_at_distance(Polyline(pts, closed=False, arc=arc), d) for d in (3.0, 4.0, 5.0)] == [3.0, 4.0, 7.0]
+    assert ring.arc_at_distance(Polyline(pts, closed=False, arc=arc), 6.0) is None
     # The first point at that distance: the polyline comes back to 3 from (0, 0) at arc 11 too.
     back = np.array([[0.0, 0.0], [4.0, 0.0], [4.0, 4.0], [0.0, 4.0], [0.0, 3.0]])
-    assert ring._arc_at_distance(Polyline(back, closed=False, arc=np.array([0.0, 4.0, 8.0, 12.0, 13.0])), 3.0) == 3.0
+    assert ring.arc_at_distance(Polyline(back, closed=False, arc=np.array([0.0, 4.0, 8.0, 12.0, 13.0])), 3.0) == 3.0
     # Anywhere in the plane; and the first time, also when the polyline reaches the distance at a vertex, turns back
     # inside and crosses it again: (0, 0), (4, 0), (2, 0), (6, 0) is 4 from (0, 0) at arc 4 and 8.
-    assert ring._arc_at_distance(Polyline(pts + [5.0, -3.0], closed=False, arc=arc), 5.0) == 7.0
+    assert ring.arc_at_distance(Polyline(pts + [5.0, -3.0], closed=False, arc=arc), 5.0) == 7.0
     assert (
-        ring._arc_at_distance(Polyline(np.array([[0.0, 0.0], [4.0, 0.0], [2.0, 0.0], [6.0, 0.0]]), closed=False), 4.0)
+        ring.arc_at_distance(Polyline(np.array([[0.0, 0.0], [4.0, 0.0], [2.0, 0.0], [6.0, 0.0]]), closed=False), 4.0)
         == 4.0
     )
     # A segment that starts off the start point: (1, 0) to (1, 5) reaches 2 at (1, sqrt(3)).
-    assert ring._arc_at_distance(
+    assert ring.arc_at_distance(
         Polyline(np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 5.0]]), closed=False), 2.0
     ) == pytest.approx(1.0 + math.sqrt(3.0), rel=1e-15)
 
@@ -193,16 +193,16 @@ def test_a_hairpin_side_falls_back_to_fewer_parts():
     """A side up 2, across 0.5, down 2 (arc 4.5): 3 parts put two points 0.5 apart; 2 parts, via (0.25, 2), do not."""
     xy = np.array([[0.0, 0.0], [0.0, 2.0], [0.5, 2.0], [0.5, 0.0]])
     arc = np.array([0.0, 2.0, 2.5, 4.5])
-    pts, prm = ring._split_side(Polyline(xy, closed=False, values=xy, arc=arc), (0.0, 4.5), 1.0, 2.0)
+    pts, prm = ring.split_side(Polyline(xy, closed=False, values=xy, arc=arc), (0.0, 4.5), 1.0, 2.0)
     np.testing.assert_allclose(pts, [[0, 0], [0.25, 2], [0.5, 0]], atol=1e-15)
     np.testing.assert_allclose(prm, pts, atol=1e-15)
-    assert ring._split_side(Polyline(xy, closed=False, values=xy, arc=arc), None, 1.0, 2.0) == (
+    assert ring.split_side(Polyline(xy, closed=False, values=xy, arc=arc), None, 1.0, 2.0) == (
         None,
         None,
     )  # one straight edge: its ends are 0.5 apart
     # Up 0.5, across 1.2, down 0.5 (arc 2.2, k = 2): the middle (0.6, 0.5) is 0.78 from the ends; one part, the chord.
     xy = np.array([[0.0, 0.0], [0.0, 0.5], [1.2, 0.5], [1.2, 0.0]])
-    pts, _ = ring._split_side(Polyline(xy, closed=False, values=xy), (0.0, 2.2), 1.0, 2.0)
+    pts, _ = ring.split_side(Polyline(xy, closed=False, values=xy), (0.0, 2.2), 1.0, 2.0)
     assert np.array_equal(pts, xy[[0, -1]])
 
 

@@ -92,7 +92,7 @@ def resample_ring(xy, params, corners, l, spacing, too_short=None, angles=None):
     stretches = _corner_edges(xy, sides, corners, angles, l)
     points, carried, side = [], [], []
     for i, (polyline, stretch) in enumerate(zip(sides, stretches)):
-        pts, prm = _split_side(polyline, stretch, l, spacing)
+        pts, prm = split_side(polyline, stretch, l, spacing)
         if pts is None:
             chord = float(np.linalg.norm(polyline.points[-1] - polyline.points[0]))
             raise (too_short or _too_short)(i, polyline.length, chord)
@@ -135,7 +135,7 @@ def _corner_edges(xy, sides, corners, angles, l):
             if need <= reach:
                 break
             reach = need
-            s, t = _arc_at_distance(ahead, reach + l), _arc_at_distance(back, reach + l)
+            s, t = arc_at_distance(ahead, reach + l), arc_at_distance(back, reach + l)
             if s is None or t is None:
                 single[leaving] = single[arriving] = True
                 break
@@ -145,7 +145,7 @@ def _corner_edges(xy, sides, corners, angles, l):
     return [None if one or not at_least(b - a, l) else (a, b) for one, a, b in zip(single, start, end)]
 
 
-def _arc_at_distance(polyline, distance):
+def arc_at_distance(polyline, distance):
     """Arc length along the open ``polyline`` at which it first reaches ``distance`` from its start, or None."""
     arc = float(reach(polyline, distance, np.array([0]))[0])
     return None if np.isnan(arc) else arc
@@ -189,7 +189,7 @@ def at_distance(origin, a, b, distance):
     return (-qb + np.sqrt(qb * qb - 4.0 * qa * qc)) / (2.0 * qa)
 
 
-def _split_side(polyline, stretch, l, spacing):
+def split_side(polyline, stretch, l, spacing):
     """Points of one side with chords of at least ``l``, or None: its start, the stretch split evenly, its end.
 
     The stretch ``(a, b)`` is split into ``k`` equal parts (Step 2's count),

@@ -10,7 +10,7 @@ from equimesh import EquimeshError
 from equimesh._geometry import nearest_segment as nearest_segment
 from equimesh.mesh import edge_lengths
 from equimesh.surface.optimize import OBJECTIVES, Objective, Stage, UVProblem, objectives, optimize_uv
-from equimesh.surface.optimize.driver import _fold_over_barrier, _with_barriers
+from equimesh.surface.optimize.driver import fold_over_barrier, with_barriers
 from equimesh.surface.optimize.jacobian import signed_areas
 from equimesh.surface.optimize.objectives import bounded_stages, edge_length_terms, paper_stage
 from equimesh.surface.optimize.slide import along_polygon
@@ -61,7 +61,7 @@ def test_paper_objective_and_barrier_jacobians_match_finite_differences():
     obj = paper_stage(problem)
     x = problem.x0
     np.testing.assert_allclose(obj.jacobian(x).toarray(), finite_difference(obj.residuals, x), atol=1e-6)
-    barrier = _with_barriers(problem, obj, _fold_over_barrier(problem, mesh.triangles, 0.9), None, x)
+    barrier = with_barriers(problem, obj, fold_over_barrier(problem, mesh.triangles, 0.9), None, x)
     squeezed = x + 0.03 * np.random.default_rng(2).standard_normal(x.shape)  # some triangles below the floor
     assert np.any(barrier.residuals(squeezed)[len(obj.residuals(x)) :] > 0)
     np.testing.assert_allclose(
@@ -92,7 +92,7 @@ def test_sliding_nodes_jacobians_match_finite_differences():
     obj = paper_stage(problem)
     lengths, jacobian = edge_length_terms(problem, mesh.edges)
     np.testing.assert_allclose(jacobian(x)[1].toarray(), finite_difference(lengths, x), atol=1e-5 * lengths(x).max())
-    barrier = _with_barriers(problem, obj, _fold_over_barrier(problem, mesh.triangles, 0.9), None, x)
+    barrier = with_barriers(problem, obj, fold_over_barrier(problem, mesh.triangles, 0.9), None, x)
     squeezed = x + 0.03 * np.random.default_rng(2).standard_normal(x.shape)
     assert np.any(barrier.residuals(squeezed)[len(obj.residuals(x)) :] > 0)
     expected = finite_difference(barrier.residuals, squeezed)

@@ -181,7 +181,7 @@ def optimize_uv(
         cost0 = _cost(stage, x0)
         return UVOptimization(uv, np.zeros(len(uv)), cost0, cost0, 0, 0, True, "no free nodes", objective)
     x, nfev, njev, damping = x0, 0, 0, LM_INITIAL_DAMPING
-    barrier = None if tri is None or area_floor <= 0 else _fold_over_barrier(problem, tri, area_floor)
+    barrier = None if tri is None or area_floor <= 0 else fold_over_barrier(problem, tri, area_floor)
     while True:
         if stage.start is not None:  # a restart is a fresh solve: its own start and the initial damping
             x, damping = stage.start, LM_INITIAL_DAMPING
@@ -223,7 +223,7 @@ def _solve(problem, stage, x, damping, triangles, barrier, normal_equations, fto
     solved on at ``PAPER_FTOL``.  The solution's ``iterations`` count every Jacobian evaluated."""
     joints = problem.joints if stage.joints else None
     guard = _Guard(problem, triangles, (stage.feasible, None if joints is None else joints.sound), x)
-    solve = _with_barriers(problem, stage, barrier, joints, x)
+    solve = with_barriers(problem, stage, barrier, joints, x)
     tol = stage.ftol if ftol is None else ftol
     box = problem.bounds if stage.hold is None else tuple(np.where(stage.hold, x, bound) for bound in problem.bounds)
     evaluations = iterations = 0
@@ -280,14 +280,14 @@ class _Guard:
         return True
 
 
-def _fold_over_barrier(problem, triangles, fraction):
+def fold_over_barrier(problem, triangles, fraction):
     """The fold-over barrier (:class:`~equimesh.surface.optimize.jacobian.AreaBarrier`) on the (u, v) areas of
     ``triangles``, weight 1."""
     return AreaBarrier(triangles, problem.uv, fraction, 1.0, problem.moving, power=2)
 
 
-def _with_barriers(problem, obj, barrier, joints, x):
-    """Append the fold-over ``barrier`` (:func:`_fold_over_barrier`, if any) and the joints' angle barrier
+def with_barriers(problem, obj, barrier, joints, x):
+    """Append the fold-over ``barrier`` (:func:`fold_over_barrier`, if any) and the joints' angle barrier
     (:meth:`~equimesh.surface.optimize.joints.Joints.barrier`, if the problem has joints) to ``obj``.
 
     Their weight ``w`` has ``w^2 / 2`` above the objective's cost at ``x``: a
