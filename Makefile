@@ -44,7 +44,8 @@ EXPERIMENTS := \
 	experiments/bounded.py \
 	experiments/bounded_sweep.py \
 	experiments/feature_angle.py \
-	experiments/inputs.py
+	experiments/inputs.py \
+	experiments/fabrication.py
 
 # The hypothesis profile comes from EQUIMESH_HYPOTHESIS_PROFILE (tests/conftest.py;
 # quick "ci" when unset); `make test-thorough` selects the thorough one.

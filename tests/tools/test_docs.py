@@ -162,12 +162,13 @@ def test_the_readme_comparison_rows_are_rows_of_the_generated_table():
     rows = [line for line in section.splitlines() if line.startswith("| ") and not line.startswith("| surface")]
     assert rows
     for line in rows:
-        surface, method, within, within5, band, classes, angles = (c.strip() for c in line.strip("|").split("|"))
+        surface, method, within, within5, band, classes, top10, angles = (c.strip() for c in line.strip("|").split("|"))
         row = table[surface, method]
-        assert (within, within5, band, classes, angles) == (
+        assert (within, within5, band, classes, top10, angles) == (
             f"{row['within 0.5 %']} %",
             f"{row['within 5 %']} %",
             f"{row['in [l, 2l]']} %",
             row["classes 0.5 %"],
+            f"{row['top 10']} %",
             f"{row['min angle']}-{row['max angle']}",
         ), line
