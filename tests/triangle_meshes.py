@@ -30,23 +30,6 @@ def tube(radius=10.0, height=10.0, around=60, along=10, strip=0):
     return vertices, triangles.reshape(-1, 3)
 
 
-def sock(radius, length, around=24, cap=6):
-    """A tube of ``radius`` and ``length`` along z closed at its lower end by a hemisphere (a disc: one boundary loop,
-    the upper rim), its cells about square, ``around`` of them round it and ``cap`` rings on the hemisphere."""
-    along = int(length / (2.0 * np.pi * radius / around))
-    theta = 0.5 * np.pi * np.arange(1, cap + 1) / cap
-    rings = [(radius * np.sin(t), -length - radius * np.cos(t)) for t in theta]
-    rings += [(radius, -length + length * k / along) for k in range(1, along + 1)]
-    phi = 2.0 * np.pi * np.arange(around) / around
-    points = [[0.0, 0.0, -length - radius]] + [[r * np.cos(p), r * np.sin(p), z] for r, z in rings for p in phi]
-    j = np.arange(around)
-    faces = [np.column_stack([np.zeros(around, dtype=int), 1 + (j + 1) % around, 1 + j])]
-    for i in range(len(rings) - 1):
-        a, b = 1 + i * around + j, 1 + i * around + (j + 1) % around
-        faces += [np.column_stack([a, b + around, a + around]), np.column_stack([a, b, b + around])]
-    return np.array(points), np.concatenate(faces)
-
-
 def tetrahedron():
     v = np.array([[0.0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]])
     return v, np.array([[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]])

@@ -33,6 +33,8 @@ from equimesh.surface import pipeline
 from equimesh.testing.meshes import ellipse, roof_mesh
 
 SADDLE = SURFACES / "saddle.json"
+#: A quick run on the saddle: a coarse grid, no optimisation, no summary.
+QUICK_SADDLE = ["mesh", SADDLE, "--length", 6, "--grid", 6, 6, "--optimize", "none", "-q"]
 
 
 def run(args, capsys):
@@ -342,22 +344,7 @@ def test_members_write_failure_leaves_no_mesh(tmp_path, capsys, monkeypatch):
 
     monkeypatch.setattr(pd.DataFrame, "to_csv", disk_full)
     code, captured = run(
-        [
-            "mesh",
-            SADDLE,
-            "--length",
-            6,
-            "--grid",
-            6,
-            6,
-            "--optimize",
-            "none",
-            "-q",
-            "-o",
-            tmp_path / "m.obj",
-            "--members",
-            tmp_path / "m.csv",
-        ],
+        [*QUICK_SADDLE, "-o", tmp_path / "m.obj", "--members", tmp_path / "m.csv"],
         capsys,
     )
     assert code == 3 and "No space left on device" in captured.err and captured.err.count("\n") == 1
@@ -369,22 +356,7 @@ def test_each_output_is_probed_once(tmp_path, capsys, monkeypatch):
     probed = []
     monkeypatch.setattr(io_paths, "probe_folder", lambda folder, suffix="": probed.append(suffix))
     code, captured = run(
-        [
-            "mesh",
-            SADDLE,
-            "--length",
-            6,
-            "--grid",
-            6,
-            6,
-            "--optimize",
-            "none",
-            "-q",
-            "-o",
-            tmp_path / "m.obj",
-            "--members",
-            tmp_path / "m.csv",
-        ],
+        [*QUICK_SADDLE, "-o", tmp_path / "m.obj", "--members", tmp_path / "m.csv"],
         capsys,
     )
     assert code == 0, captured.err

@@ -275,10 +275,9 @@ def mesh_surface(
     angle = check_feature_angle(feature_angle, meshed=isinstance(surface, TriangulatedSurface))
     front = _chart_front if angle is None else partial(_mesh_front, feature_angle=angle)
     steps = front(surface, grid, l, limit, boundary_spacing, clock)
-    check_plane_size(steps, l, limit)
 
     try:
-        # The size guard (check_surface_size, again on the plane: check_plane_size) bounds the planar stage too.
+        # The size guard (surface/size.py: before and after the flattening) bounds the planar stage too.
         holes, vertices = steps.holes, steps.outline.vertices
         chosen = None if placement == "default" else best_lattice_placement(vertices, l, holes=holes, max_nodes=None)
         if placement == "classes":
@@ -383,7 +382,8 @@ class _Front:
 
 
 def _chart_front(surface, grid, l, limit, spacing, clock):
-    """Steps 1-3 for a chart: auxiliary grid of its domain, eq. (1), the outline of the flattened rectangle."""
+    """Steps 1-3 for a chart: auxiliary grid of its domain, eq. (1), the outline of the flattened rectangle (its size
+    estimated again, :func:`~equimesh.surface.size.check_plane_size`)."""
     n_u, n_v = _grid_pair(grid)
     if not (hasattr(surface, "evaluate") and hasattr(surface, "derivatives")):
         raise InvalidSurfaceError(
@@ -399,6 +399,7 @@ def _chart_front(surface, grid, l, limit, spacing, clock):
     clock("flattening (eq. 1)")
 
     outline = resample_outline(flat.points, aux, l, spacing, holes_of(surface))
+    check_plane_size(x_s0, aux.triangles, outline, l, limit)
 
     def place(plane):
         mapped = remap(

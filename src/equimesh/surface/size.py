@@ -1,9 +1,10 @@
 """The size guard of :func:`~equimesh.surface.pipeline.mesh_surface`: the node count estimated before heavy work.
 
 The estimate is Oler's bound at the lattice density (:func:`~equimesh.planar.limits.node_estimate`) on the
-surface's area, before the flattening, and again on the flattened outline before Problem 2, because eq. (1) can
-stretch a surface many times (docs/decisions.md, "Size limits of mesh_surface").  Areas are computed in units of
-the points' extent (scaled by a power of two, which is exact), so that no unit overflows or underflows.
+surface's area, before the flattening, and again after it (a chart's flattened outline, a triangle mesh's flattened
+triangles) before Problem 2, because eq. (1) can stretch a surface many times (docs/decisions.md, "Size limits of
+mesh_surface").  Areas are computed in units of the points' extent (scaled by a power of two, which is exact), so
+that no unit overflows or underflows.
 """
 
 import numpy as np
@@ -21,10 +22,11 @@ def check_surface_size(surface_points, triangles, l, max_nodes, flattened=None):
     1e-100 nor one in units of 1e100 overflows or underflows; a tiny ``l``
     gives an estimate of ``inf`` rather than an overflow.  With ``flattened``
     (a triangle mesh's plane points after eq. (1)) it is the flattened
-    triangles' area, overlaps counted, checked before the outline is made: a
-    tube closed at one end flattens to several times its area, and would
-    otherwise fail only after minutes of optimisation (:func:`check_plane_size`
-    checks the outline, what Problem 2 meshes, for every surface).
+    triangles' area, overlaps counted (at least the area of the outline they
+    tile), checked before the outline is made: a tube closed at one end
+    flattens to several times its area, and would otherwise fail only after
+    minutes of optimisation.  A chart's is checked on its outline
+    (:func:`check_plane_size`).
     """
     if max_nodes is None:
         return
@@ -37,17 +39,17 @@ def check_surface_size(surface_points, triangles, l, max_nodes, flattened=None):
     check_size(what, node_count_estimate(area, scale, l), max_nodes, l)
 
 
-def check_plane_size(steps, l, max_nodes):
-    """:func:`check_surface_size` again on the flattened outline (minus openings), which eq. (1) can make many times the
-    surface's area (docs/decisions.md, "Size limits of mesh_surface"); the refusal says how much."""
+def check_plane_size(surface_points, triangles, outline, l, max_nodes):
+    """:func:`check_surface_size` again on a chart's flattened ``outline`` (minus openings), which eq. (1) can make
+    many times the area of the surface's ``triangles``; the refusal says how much."""
     if max_nodes is None:
         return
-    rings = [np.asarray(ring, dtype=float) for ring in (steps.outline.vertices, *steps.holes)]
+    rings = [np.asarray(ring, dtype=float) for ring in (outline.vertices, *(hole.points for hole in outline.holes))]
     scale = power_of_two_scale(float(np.max(np.ptp(rings[0], axis=0))))
     area = abs(signed_area(rings[0] * scale)) - sum(abs(signed_area(ring * scale)) for ring in rings[1:])
     estimate = node_count_estimate(area, scale, l)
     if not estimate <= max_nodes:
-        surface, surface_scale = surface_area(steps.points, steps.grid.triangles)
+        surface, surface_scale = surface_area(surface_points, triangles)
         check_size(_stretched(area / scale / scale, surface / surface_scale / surface_scale), estimate, max_nodes, l)
 
 
