@@ -93,6 +93,7 @@ IO_MODULES = {
     "src/equimesh/io/_atomic.py": ["tests/io/test_atomic.py"],
     "src/equimesh/io/_obj.py": ["tests/io/test_obj.py"],
     "src/equimesh/io/_trimesh.py": ["tests/io/test_trimesh.py"],
+    "src/equimesh/io/_schema.py": ["tests/io/test_schema.py"],
     "src/equimesh/io/_surfaces.py": ["tests/io/test_surfaces.py"],
     "src/equimesh/io/_meshes.py": ["tests/io/test_meshes.py"],
     "src/equimesh/io/_nurbs.py": ["tests/io/test_nurbs_schema.py"],
