@@ -118,6 +118,9 @@ def test_words_after_a_vertexs_coordinates_and_a_statement_continued_to_the_end_
     np.testing.assert_array_equal(points, [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]])
     assert [(kind, cells.tolist()) for kind, cells in blocks] == [("triangle", [[0, 1, 2], [0, 2, 3]])]
     assert read_obj(_file(tmp_path, SQUARE + "f 1 2 3\n\\"), "m.obj")[1][0][1].tolist() == [[0, 1, 2]]
+    continued = "v 0 0 0\nv 1 0\\\n0\nv 1 1 0\nf 1 2\\\n3\n"  # the backslash right after a word ends it
+    points, blocks = read_obj(_file(tmp_path, continued), "m.obj")
+    assert points.tolist() == [[0, 0, 0], [1, 0, 0], [1, 1, 0]] and blocks[0][1].tolist() == [[0, 1, 2]]
 
 
 def test_line_numbers_count_crlf_lines_and_continued_statements_start_where_they_begin(tmp_path):
