@@ -124,6 +124,9 @@ def test_a_control_net_is_checked_for_its_shape_before_its_points():
     bad = [[[0, 0, 0], [0, 1, 0]], [[1, 0, 0], [1, 1, "z"]]]
     assert refusal(control_net, bad, lambda *_: None, "cp") == "cp[1][1][2] must be a real number, got string z"
     assert refusal(control_net, bad, lambda *_: None).startswith("control_points[1][1][2] must be")
+    assert refusal(control_net, [[[0, 0, 0], [0, 1]], [[1, 0, 0], [1, 1, 1]]], lambda *_: None) == (
+        "control_points[0][1] must be a list [x, y, z] of 3 numbers, got list [0, 1]"
+    )
     assert refusal(control_net, [[[0, 0, 0]], [[1, 0, 0]]], lambda *_: None) == (
         "control_points[0] needs at least 2 points, got 1"
     )

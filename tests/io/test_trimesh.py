@@ -129,21 +129,22 @@ def triangle_sets(surface):
     return sorted(sorted(surface.vertices[t, :2].tolist()) for t in surface.triangles)
 
 
-@pytest.mark.parametrize(
-    "quad, diagonal",
-    [
-        ([[0, 0], [2, 0], [2, 2], [0, 2]], (0, 2)),  # a square: a tie, the first diagonal
-        ([[0, 0], [3, 0], [3, 1], [0.1, 1]], (1, 3)),  # 1-3 shorter
-        ([[0, 0], [3, 0], [2.9, 1], [0, 1]], (0, 2)),  # 0-2 shorter
-    ],
-)
-def test_a_quadrilateral_is_cut_along_its_shorter_diagonal(monkeypatch, tmp_path, quad, diagonal):
-    points = np.column_stack([quad, np.zeros(4)])
+def test_a_square_is_cut_along_its_first_diagonal(monkeypatch, tmp_path):
+    """Both diagonals are as long: the first one, corners 0 and 2."""
+    points = [[0.0, 0, 0], [2, 0, 0], [2, 2, 0], [0, 2, 0]]
     got = read_as(monkeypatch, tmp_path, points, [("quad", np.array([[0, 1, 2, 3]]))])
-    a, b = diagonal
-    others = [k for k in range(4) if k not in diagonal]
-    expected = sorted(sorted(points[[a, b, c], :2].tolist()) for c in others)
-    assert triangle_sets(got) == expected
+    assert triangle_sets(got) == [[[0, 0], [0, 2], [2, 2]], [[0, 0], [2, 0], [2, 2]]]
+
+
+@pytest.mark.parametrize("dtype", [np.float64, np.uint8])
+def test_each_quadrilateral_is_cut_along_its_shorter_diagonal(monkeypatch, tmp_path, dtype):
+    """Two quadrilaterals side by side, away from the origin: the first one's shorter diagonal joins its corners 1
+    and 3, the second one's its corners 0 and 2; unsigned coordinates are taken as the numbers they are."""
+    xy = np.array([[10, 20], [40, 20], [40, 30], [11, 30], [70, 20], [69, 30]])
+    points = np.column_stack([xy, np.zeros(6)]).astype(dtype)
+    got = read_as(monkeypatch, tmp_path, points, [("quad", np.array([[0, 1, 2, 3], [1, 4, 5, 2]]))])
+    expected = [[0, 1, 3], [1, 2, 3], [1, 4, 5], [1, 5, 2]]
+    assert triangle_sets(got) == sorted(sorted(xy[t].tolist()) for t in expected)
 
 
 def test_triangles_and_quadrilaterals_of_several_blocks_make_one_surface(monkeypatch, tmp_path):
@@ -193,6 +194,11 @@ def test_points_in_the_plane_get_z_0(monkeypatch, tmp_path):
             [("line", np.array([[0, 1]])), ("triangle", np.array([[0, 1, 2], [0, 2, 4]], dtype=np.uint32))],
             ": cell 2 (a triangle) refers to point 4, but the file has 4 points (0 .. 3)",
         ),
+        (
+            SQUARE,
+            [("line", np.array([[0, 1]])), ("line", np.array([[1, 2], [2, 3]])), ("quad", np.array([[0, 1, 2, 5]]))],
+            ": cell 3 (a quad) refers to point 5, but the file has 4 points (0 .. 3)",
+        ),
         (SQUARE, [("triangle", np.array([[0, 1, 2], [0, 2, 1.5]]))], ": cell 1 (a triangle) refers to point 1.5, but"),
         (SQUARE, [("triangle", np.array([[0, 1, -1.0]]))], ": cell 0 (a triangle) refers to point -1.0, but the file"),
         (SQUARE, [("triangle", np.array([[0, 1, 4.0]]))], ": cell 0 (a triangle) refers to point 4.0, but the file"),
@@ -220,8 +226,8 @@ def test_a_reader_failure_is_one_line_of_its_words_cut_short(monkeypatch, tmp_pa
 
     def failing(words):
         def read(filename):
-            print("meshio says something")
-            print("and on stderr", file=sys.stderr)
+            sys.stdout.write("meshio says something\n")
+            sys.stderr.write("and on stderr\n")
             warnings.warn("overflow", RuntimeWarning)
             raise ValueError(words) if words else IndexError()
 
