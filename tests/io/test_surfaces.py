@@ -313,6 +313,7 @@ def test_an_object_is_chosen_only_in_files_of_several_surfaces(tmp_path, monkeyp
     monkeypatch.setitem(
         INPUT_FORMATS, ".3dm", type(fmt)(fmt.name, lambda path, object: chosen.append(object), fmt.options)
     )
+    monkeypatch.setitem(INPUT_FORMATS, ".step", type(fmt)("STEP file", lambda path, object: None, ("object",)))
     (tmp_path / "s.3dm").write_bytes(b"")
     load_surface(tmp_path / "s.3dm", object=choice)
     assert chosen == [choice]
@@ -320,7 +321,7 @@ def test_an_object_is_chosen_only_in_files_of_several_surfaces(tmp_path, monkeyp
         with pytest.raises(InvalidSurfaceError) as err:
             load_surface(tmp_path / name, object=choice)
         assert str(err.value) == (
-            f"choosing an object applies to files with several surfaces (.3dm), not to {kind} {tmp_path / name}"
+            f"choosing an object applies to files with several surfaces (.3dm, .step), not to {kind} {tmp_path / name}"
         )
 
 
