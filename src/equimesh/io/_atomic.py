@@ -101,8 +101,8 @@ def interrupts_held():
             signal.raise_signal(signal.SIGINT)
 
 
-# Context managers by a call, not by a decorator, so that mutation testing reaches their bodies (mutmut leaves
-# decorated functions alone; docs/development.md, "Mutation testing").
+# Context managers by a call, not by the decorator, so that mutation testing reaches their bodies (mutmut leaves
+# decorated functions alone; docs/decisions.md, "Context managers made by a call").
 atomic_paths = contextlib.contextmanager(atomic_paths)
 atomic_path = contextlib.contextmanager(atomic_path)
 interrupts_held = contextlib.contextmanager(interrupts_held)
