@@ -93,3 +93,51 @@ def test_net_above_the_bound_is_refused_before_its_points_are_read():
     d = {**good(), "control_points": [["not a point"] * 1000] * rows}
     with pytest.raises(InvalidSurfaceError, match=rf"has {rows} x 1000 = {rows * 1000} points, more than the"):
         surface_from_dict(d)
+
+
+@pytest.mark.parametrize(
+    "fields, message",
+    [
+        ({"degree": [2]}, '"degree" needs at least 2 integers [p, q], got 1'),
+        ({"degree": 2}, '"degree" must be a list of integers [p, q], got number'),
+        ({"degree": [2, 1, 1]}, '"degree" must be a list of 2 integers [p, q], got 3 entries'),
+        ({"degree": [2, "1"]}, "degree[1] must be an integer, got string 1"),
+        ({"degree": [False, 1]}, "degree[0] must be an integer, got boolean false"),
+        ({"degree": [None, 1]}, "degree[0] must be an integer, got null"),
+        ({"knots_u": []}, '"knots_u" needs at least 1 numbers, got 0'),
+        ({"knots_v": {"0": 0}}, '"knots_v" must be a list of numbers, got object'),
+        ({"knots_v": [0, 0, 1, None]}, "knots_v[3] must be a real number, got null"),
+        ({"knots_u": [0, 0, 0, 0.5, 1, 1, float("inf")]}, "knots_u[6] is not a finite number: inf"),
+        ({"weights": []}, '"weights" needs at least 1 rows, got 0'),
+        ({"weights": [[], [], [], []]}, "weights[0] needs at least 1 weights, got 0"),
+        ({"weights": [[1, 1], [0.5, 2], [1, "1"], [3, 1]]}, "weights[2][1] must be a real number, got string 1"),
+        ({"weights": [[1, 1], [0.5, 2], [1, 1], [float("-inf"), 1]]}, "weights[3][0] is not a finite number: -inf"),
+        (
+            {"control_points": [[[0, 0, 0], [0, 1, 0]], [[1, 0, 0], [1, 1, None]]]},
+            "control_points[1][1][2] must be a real number, got null",
+        ),
+    ],
+)
+def test_refusals_of_the_nurbs_fields_are_whole_lines(fields, message):
+    with pytest.raises(InvalidSurfaceError) as err:
+        surface_from_dict({**good(), **fields})
+    assert str(err.value) == message
+
+
+def test_the_net_is_read_before_the_knots_and_the_weights():
+    """Its size bounds what reading the rest may cost: with every field wrong, the net is named."""
+    d = {**good(), "control_points": [[[0, 0, 0]]], "knots_u": "x", "knots_v": "y", "weights": "z"}
+    with pytest.raises(InvalidSurfaceError, match='^"control_points" needs at least 2 rows, got 1$'):
+        surface_from_dict(d)
+    with pytest.raises(InvalidSurfaceError, match='^"knots_u" must be a list'):
+        surface_from_dict({**d, "control_points": good()["control_points"]})
+
+
+def test_the_fields_are_read_into_the_surface():
+    s = surface_from_dict(good())
+    assert s.degree == (2, 1)
+    np.testing.assert_array_equal(s.knots_u, good()["knots_u"])
+    np.testing.assert_array_equal(s.knots_v, good()["knots_v"])
+    np.testing.assert_array_equal(s.control_points, good()["control_points"])
+    np.testing.assert_array_equal(s.weights, good()["weights"])
+    assert surface_to_dict(s) == good()

@@ -53,37 +53,74 @@ def test_faces_keep_the_file_order_in_runs_of_one_kind(tmp_path):
     ]
 
 
+NO_INDEX = "whose vertex is no index (indices count from 1, or back from -1)"
+ONLY_3_OR_4 = "only triangles and quadrilaterals are read (triangulate the mesh when exporting it)"
+
+#: Files that are no mesh -> the refusal after the file's path.
 REFUSED = {
-    "face past the vertices": (SQUARE + "f 1 2 3 9\n", "m.obj, line 5: face 1 refers to vertex 9, but the file has 4"),
+    "face past the vertices": (
+        SQUARE + "f 1 2 3 9\n",
+        ", line 5: face 1 refers to vertex 9, but the file has 4 vertices",
+    ),
     "relative index before the first vertex": (
         SQUARE + "f 1 2 3\nf -1 -2 -5\n",
-        "line 6: face 2 refers to vertex -5, but only 4 vertices come before it",
+        ", line 6: face 2 refers to vertex -5, but only 4 vertices come before it",
     ),
-    "index 0": (SQUARE + "f 0 1 2\n", "line 5: face 1 has the corner '0', whose vertex is no index"),
-    "corner without a vertex": (SQUARE + "f 1 2 /3\n", "face 1 has the corner '/3', whose vertex is no index"),
-    "corner not a number": (SQUARE + "f 1 2 x\n", "face 1 has the corner 'x'"),
-    "index with an underscore": (SQUARE + "f 1 2 1_0\n", "face 1 has the corner '1_0'"),
-    "index of 30 digits": (SQUARE + "f 1 2 " + "9" * 30 + "\n", "face 1 refers to vertex 999999999999999999999999999"),
-    "two corners": (SQUARE + "f 1 2\n", "line 5: face 1 has 2 corners; only triangles and quadrilaterals"),
-    "five corners": (SQUARE + "v 5 15 0\nf 1 2 3 5 4\n", "line 6: face 1 has 5 corners"),
-    "vertex of two numbers": ("v 0 0 0\nv 1 0\n", "line 2: vertex 2 has 2 coordinates; a vertex is 'v x y z'"),
-    "coordinate not a number": ("v 0 0 0\nv 1 0 z\n", "line 2: vertex 2 has a coordinate that is no number: 'z'"),
-    "coordinate with an underscore": ("v 1_0 0 0\n", "vertex 1 has a coordinate that is no number: '1_0'"),
-    "coordinate NaN": ("v 0 0 0\n\nv 1 nan 0\n", "line 3: vertex 2 is not finite: (1, nan, 0)"),
-    "coordinate beyond the float range": ("v 0 0 1e400\n", "line 1: vertex 1 is not finite: (0, 0, inf)"),
-    "no faces": (SQUARE + "vt 0 0\nl 1 2\n", "has no triangles"),
-    "empty": ("", "has no points and no triangles"),
-    "binary": (bytes(range(256)) * 4, "has no points and no triangles"),
+    "index 0": (SQUARE + "f 0 1 2\n", f", line 5: face 1 has the corner '0', {NO_INDEX}"),
+    "index -0": (SQUARE + "f 1 2 -0\n", f", line 5: face 1 has the corner '-0', {NO_INDEX}"),
+    "index 0 of 30 digits": (
+        SQUARE + "f 1 2 " + "0" * 30 + "\n",
+        f", line 5: face 1 has the corner '{'0' * 30}', {NO_INDEX}",
+    ),
+    "corner without a vertex": (SQUARE + "f 1 2 /3\n", f", line 5: face 1 has the corner '/3', {NO_INDEX}"),
+    "corner not a number": (SQUARE + "f 1 2 x\n", f", line 5: face 1 has the corner 'x', {NO_INDEX}"),
+    "index with an underscore": (SQUARE + "f 1 2 1_0\n", f", line 5: face 1 has the corner '1_0', {NO_INDEX}"),
+    "index of 30 digits": (
+        SQUARE + "f 1 2 " + "9" * 30 + "\n",
+        f", line 5: face 1 refers to vertex {'9' * 30}, beyond the file",
+    ),
+    "index of 30 digits after a sign": (
+        SQUARE + "f 1 2 -" + "9" * 30 + "\n",
+        f", line 5: face 1 refers to vertex -{'9' * 30}, beyond the file",
+    ),
+    "a comment's words as corners": (
+        SQUARE + "f 1 2 3 # a # b\nf 1 2 # 4\n",
+        f", line 6: face 2 has 2 corners; {ONLY_3_OR_4}",
+    ),
+    "two corners": (SQUARE + "f 1 2\n", f", line 5: face 1 has 2 corners; {ONLY_3_OR_4}"),
+    "five corners": (SQUARE + "v 5 15 0\nf 1 2 3 5 4\n", f", line 6: face 1 has 5 corners; {ONLY_3_OR_4}"),
+    "vertex of two numbers": ("v 0 0 0\nv 1 0\n", ", line 2: vertex 2 has 2 coordinates; a vertex is 'v x y z'"),
+    "coordinate not a number": ("v 0 0 0\nv 1 0 z\n", ", line 2: vertex 2 has a coordinate that is no number: 'z'"),
+    "coordinate with an underscore": ("v 1_0 0 0\n", ", line 1: vertex 1 has a coordinate that is no number: '1_0'"),
+    "coordinate NaN": ("v 0 0 0\n\nv 1 nan 0\n", ", line 3: vertex 2 is not finite: (1, nan, 0)"),
+    "coordinate beyond the float range": ("v 0 0 1e400\n", ", line 1: vertex 1 is not finite: (0, 0, inf)"),
+    "no faces": (SQUARE + "vt 0 0\nl 1 2\n", " has no triangles (it holds no cells); export the surface as triangles"),
+    "empty": ("", " has no points and no triangles"),
+    "binary": (bytes(range(256)) * 4, " has no points and no triangles"),
 }
 
 
 @pytest.mark.parametrize("case", sorted(REFUSED))
 def test_what_is_not_a_mesh_is_refused_in_one_line_in_the_files_numbers(tmp_path, case):
-    text, fragment = REFUSED[case]
+    text, rest = REFUSED[case]
+    path = _file(tmp_path, text)
     with pytest.raises(InvalidSurfaceError) as err:
-        load_surface(_file(tmp_path, text))
-    assert fragment in str(err.value)
+        load_surface(path)
+    assert str(err.value) == f"{path}{rest}"
     assert_one_line(str(err.value))
+
+
+def test_words_after_a_vertexs_coordinates_and_a_statement_continued_to_the_end_of_the_file_are_read(tmp_path):
+    """``v x y z`` and whatever follows (a colour's name here); a comment holding ``#``; a last line ending in ``\\``
+    continues into nothing, and a line of a lone ``\\`` into the next."""
+    text = "v 0 0 0 red\nv 1 0 0 1 0 0\nv 1 1 0 # a # b\n\\\nv 0 1 0\nf 1 2 3 # c # d\nf 1 \\\n3 \\\n 4 \\"
+    points, blocks = read_obj(_file(tmp_path, text), "m.obj")
+    np.testing.assert_array_equal(points, [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]])
+    assert [(kind, cells.tolist()) for kind, cells in blocks] == [("triangle", [[0, 1, 2], [0, 2, 3]])]
+    assert read_obj(_file(tmp_path, SQUARE + "f 1 2 3\n\\"), "m.obj")[1][0][1].tolist() == [[0, 1, 2]]
+    continued = "v 0 0 0\nv 1 0\\\n0\nv 1 1 0\nf 1 2\\\n3\n"  # the backslash right after a word ends it
+    points, blocks = read_obj(_file(tmp_path, continued), "m.obj")
+    assert points.tolist() == [[0, 0, 0], [1, 0, 0], [1, 1, 0]] and blocks[0][1].tolist() == [[0, 1, 2]]
 
 
 def test_line_numbers_count_crlf_lines_and_continued_statements_start_where_they_begin(tmp_path):

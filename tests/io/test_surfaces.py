@@ -24,6 +24,7 @@ from equimesh.io import (
     surface_from_dict,
     surface_to_dict,
 )
+from equimesh.io._schema import shown_path
 
 
 def good_dict():
@@ -128,12 +129,16 @@ def _file(tmp_path, text, name="s.json"):
     return path
 
 
+#: Files that are no surface description -> the refusal, with ``<P>`` for the file's path.
 HOSTILE_FILES = {
     "5000-digit integer": (
         '{"type": "bezier", "control_points": [[[' + "9" * 5000 + ", 0, 0]]]}",
-        f"more than {sys.get_int_max_str_digits()} digits",
+        f"<P>: an integer has more than {sys.get_int_max_str_digits()} digits; write coordinates as ordinary numbers",
     ),
-    "nested 100000 deep": ("[" * 100_000 + "]" * 100_000, "nested too deeply"),
+    "nested 100000 deep": (
+        "[" * 100_000 + "]" * 100_000,
+        "<P>: JSON nested too deeply to read (a surface needs a few levels)",
+    ),
     "NaN literal": (
         json.dumps(good_dict()).replace("[1, 1, 1]", "[1, NaN, 1]"),
         "control_points[1][1][1] is not a finite number: nan",
@@ -146,19 +151,21 @@ HOSTILE_FILES = {
         json.dumps(good_dict()).replace("[1, 1, 1]", "[1e400, 1, 1]"),
         "control_points[1][1][0] is not a finite number: inf",
     ),
-    "duplicate field": ('{"type": "bezier", "type": "bezier"}', "field 'type' twice"),
-    "malformed": ("{", "malformed JSON at line 1 column 2"),
-    "not UTF-8": (b'{"type": "b\xe9zier"}', "is not UTF-8 text (byte 11"),
-    "empty": ("", "malformed JSON at line 1 column 1"),
+    "duplicate field": ('{"type": "bezier", "type": "bezier"}', "surface JSON has the field 'type' twice"),
+    "duplicate field inside": ('{"a": {"b": 1, "b": 2}}', "surface JSON has the field 'b' twice"),
+    "malformed": ("{", "<P>: malformed JSON at line 1 column 2: Expecting property name enclosed in double quotes"),
+    "not UTF-8": (b'{"type": "b\xe9zier"}', "<P> is not UTF-8 text (byte 11 cannot be decoded)"),
+    "empty": ("", "<P>: malformed JSON at line 1 column 1: Expecting value"),
 }
 
 
 @pytest.mark.parametrize("case", sorted(HOSTILE_FILES))
 def test_hostile_surface_files(case, tmp_path):
-    text, fragment = HOSTILE_FILES[case]
+    text, message = HOSTILE_FILES[case]
+    path = _file(tmp_path, text)
     with pytest.raises(InvalidSurfaceError) as err:
-        load_surface(_file(tmp_path, text))
-    assert fragment in str(err.value)
+        load_surface(path)
+    assert str(err.value) == message.replace("<P>", str(path))
     assert_one_line(str(err.value))
 
 
@@ -202,8 +209,20 @@ def test_a_file_larger_than_any_description_is_refused_before_it_is_parsed(tmp_p
     monkeypatch.setattr(_surfaces.json, "loads", lambda *args, **kwargs: pytest.fail("parsed"))
     path = _file(tmp_path, b"")
     os.truncate(path, _surfaces.MAX_JSON_BYTES + 1)  # a sparse file: nothing is written
-    with pytest.raises(InvalidSurfaceError, match=rf"has {_surfaces.MAX_JSON_BYTES + 1} bytes, more than the"):
+    with pytest.raises(InvalidSurfaceError) as err:
         load_surface(path)
+    assert str(err.value) == (
+        f"{path} has {_surfaces.MAX_JSON_BYTES + 1} bytes, more than the {_surfaces.MAX_JSON_BYTES} of the largest "
+        "surface description read (a control net of the most points allowed takes a third of that)"
+    )
+
+
+def test_a_file_of_the_largest_size_read_is_parsed(tmp_path, monkeypatch):
+    from equimesh.io import _surfaces
+
+    path = _file(tmp_path, json.dumps(good_dict()))
+    monkeypatch.setattr(_surfaces, "MAX_JSON_BYTES", path.stat().st_size)
+    assert load_surface(path).degree == (1, 1)
 
 
 def test_a_bezier_net_above_the_degree_bound_is_refused_on_its_shape():
@@ -212,3 +231,107 @@ def test_a_bezier_net_above_the_degree_bound_is_refused_on_its_shape():
     d = {"type": "bezier", "control_points": [["not a point"] * 2] * (MAX_DEGREE + 2)}
     with pytest.raises(InvalidSurfaceError, match=rf"degree {MAX_DEGREE + 1} x 1; at most degree {MAX_DEGREE}"):
         surface_from_dict(d)
+
+
+# ------------------------------------------------------------------ whole messages, the tables' rows
+
+
+@pytest.mark.parametrize(
+    "d, message",
+    [
+        ("bezier", "surface must be a JSON object, got string"),
+        ({"type": ["bezier"]}, 'surface "type" must be one of "bezier", "nurbs", got list'),
+        ({"type": "b" * 50}, f'surface "type" must be one of "bezier", "nurbs", got \'{"b" * 37}...\''),
+        ({**good_dict(), "zeta": 1, "alpha": 2}, "surface has unknown field 'alpha'"),
+        ({**good_dict(), "description": None}, 'surface "description" must be a string, got null'),
+        ({"type": "nurbs", "degree": [1, 1], "knots_v": []}, 'surface is missing the field "knots_u"'),
+        ({"type": "bezier", "description": 1}, 'surface "description" must be a string, got number'),
+        ({"type": "bezier"}, 'surface is missing the field "control_points"'),
+        ({**good_dict(), "holes": [[[0.1, 0.1], [0.2, 0.1]]]}, "holes[0] needs at least 3 [u, v] points, got 2"),
+        ({**good_dict(), "holes": "none"}, '"holes" must be a list of polylines, got string'),
+    ],
+)
+def test_refusals_of_a_description_are_whole_lines(d, message):
+    with pytest.raises(InvalidSurfaceError) as err:
+        surface_from_dict(d)
+    assert str(err.value) == message
+
+
+def test_a_description_and_no_openings_are_accepted():
+    s = surface_from_dict({**good_dict(), "description": "a test dome", "holes": []})
+    assert surface_to_dict(s) == {**good_dict(), "holes": []}
+
+
+def test_openings_round_trip_through_json():
+    """A surface with openings is the chart perforated; its description gives it back, openings and all."""
+    d = {
+        **good_dict(),
+        "holes": [[[0.2, 0.2], [0.4, 0.2], [0.3, 0.4]], [[0.6, 0.6], [0.8, 0.6], [0.8, 0.8], [0.6, 0.8]]],
+    }
+    s = surface_from_dict(d)
+    assert type(s.chart) is BezierSurface and len(s.holes) == 2
+    assert surface_to_dict(s) == {**d, "control_points": good_dict()["control_points"]}
+    assert json.loads(json.dumps(surface_to_dict(s))) == d
+
+
+def test_a_perforated_chart_of_no_json_type_is_named():
+    from equimesh.surface.charts.openings import Perforated
+
+    class Other(BezierSurface):
+        pass
+
+    with pytest.raises(TypeError, match="^no JSON surface type for Perforated$"):
+        surface_to_dict(Perforated(Other(np.array(good_dict()["control_points"], dtype=float)), []))
+
+
+def test_every_surface_type_reads_back_as_itself():
+    from hostile_files import small_nurbs
+
+    for d in (good_dict(), small_nurbs()):
+        s = surface_from_dict(d)
+        assert type(s) is SURFACE_TYPES[d["type"]].cls
+        assert surface_to_dict(s)["type"] == d["type"]
+
+
+def test_paths_are_read_whatever_the_case_of_their_extension(tmp_path):
+    path = _file(tmp_path, json.dumps(good_dict()), "S.JSON")
+    assert load_surface(path).degree == (1, 1)
+    with pytest.raises(InvalidSurfaceError) as err:
+        load_surface(tmp_path / "s.IGS")
+    assert str(err.value) == (
+        f"unknown surface file extension '.IGS' for {tmp_path / 's.IGS'}; use one of "
+        "['.3dm', '.json', '.obj', '.ply', '.stl', '.vtk', '.vtu']"
+    )
+
+
+@pytest.mark.parametrize("choice", [0, "vault"])
+def test_an_object_is_chosen_only_in_files_of_several_surfaces(tmp_path, monkeypatch, choice):
+    """The choice reaches the reader of a format that holds several surfaces (0 is a choice); any other format
+    refuses it, naming the formats that take one."""
+    chosen = []
+    fmt = INPUT_FORMATS[".3dm"]
+    monkeypatch.setitem(
+        INPUT_FORMATS, ".3dm", type(fmt)(fmt.name, lambda path, object: chosen.append(object), fmt.options)
+    )
+    monkeypatch.setitem(INPUT_FORMATS, ".step", type(fmt)("STEP file", lambda path, object: None, ("object",)))
+    (tmp_path / "s.3dm").write_bytes(b"")
+    load_surface(tmp_path / "s.3dm", object=choice)
+    assert chosen == [choice]
+    for name, kind in [("s.json", "equimesh surface JSON"), ("s.obj", "Wavefront OBJ triangle mesh")]:
+        with pytest.raises(InvalidSurfaceError) as err:
+            load_surface(tmp_path / name, object=choice)
+        assert str(err.value) == (
+            f"choosing an object applies to files with several surfaces (.3dm, .step), not to {kind} {tmp_path / name}"
+        )
+
+
+def test_unreadable_paths_are_named_whole(tmp_path):
+    long = tmp_path / ("a" * 300 + ".json")
+    for path, message in [
+        (tmp_path / "missing.json", f"surface file not found: {tmp_path / 'missing.json'}"),
+        (fifo(tmp_path / "pipe.json"), f"surface file is not a regular file: {tmp_path / 'pipe.json'}"),
+        (long, f"cannot read surface file {shown_path(long)}: path too long"),
+    ]:
+        with pytest.raises(InvalidSurfaceError) as err:
+            load_surface(path)
+        assert str(err.value) == message

@@ -215,6 +215,16 @@ def test_kernel_modules_run_as_python_and_say_so():
     assert "Interrupted: 1 of 1 mutants not run" in text
 
 
+def test_the_all_or_nothing_writes_are_mutated():
+    """mutmut skips decorated functions: the context managers of io/_atomic.py, made by a call, have mutants."""
+    pytest.importorskip("mutmut")
+    from tools.mutation.mutants import module_mutants
+
+    module = "src/equimesh/io/_atomic.py"
+    functions = {m.function for m in module_mutants(module, (ROOT / module).read_text())}
+    assert {"atomic_paths", "atomic_path", "interrupts_held"} <= functions
+
+
 def test_unexplained_reruns_only_the_survivors_not_argued_equivalent(monkeypatch, tmp_path):
     """``--unexplained`` runs again only the last run's survivors not argued equivalent (mutmut stubbed)."""
     module = "src/equimesh/planar/bounds.py"

@@ -86,6 +86,21 @@ OPTIMIZE_MODULES = {
 }
 MODULES.update(OPTIMIZE_MODULES)
 
+#: The input side of the io layer -> its direct tests: output paths checked, files written all or none, surface
+#: files read (OBJ and the other mesh formats, the JSON schemas of each surface type), meshes written.
+IO_MODULES = {
+    "src/equimesh/io/_paths.py": ["tests/io/test_paths.py"],
+    "src/equimesh/io/_atomic.py": ["tests/io/test_atomic.py"],
+    "src/equimesh/io/_obj.py": ["tests/io/test_obj.py"],
+    "src/equimesh/io/_trimesh.py": ["tests/io/test_trimesh.py"],
+    "src/equimesh/io/_schema.py": ["tests/io/test_schema.py"],
+    "src/equimesh/io/_surfaces.py": ["tests/io/test_surfaces.py"],
+    "src/equimesh/io/_meshes.py": ["tests/io/test_meshes.py"],
+    "src/equimesh/io/_nurbs.py": ["tests/io/test_nurbs_schema.py"],
+    "src/equimesh/io/_bezier.py": ["tests/io/test_surfaces.py"],
+}
+MODULES.update(IO_MODULES)
+
 #: Module -> environment variables of its mutmut run, beyond the caller's.
 ENVIRONMENT = dict.fromkeys(
     [*KERNEL_MODULES, "src/equimesh/surface/optimize/jacobian.py", "src/equimesh/surface/optimize/solver.py"],

@@ -76,9 +76,9 @@ def _statements(path):
     """``(line number, words)`` of every statement of the file: comments (``#`` to the end of the line) dropped,
     continued lines joined, blank lines skipped."""
     text = path.read_bytes().decode("utf-8", errors="replace")  # names and comments may be in any encoding
-    pending, start = [], 0
+    pending = []
     for number, raw in enumerate(text.splitlines(), start=1):
-        stripped = raw.split("#", 1)[0].strip()
+        stripped = raw.partition("#")[0].strip()
         if not pending:
             start = number
         if stripped.endswith("\\"):
@@ -88,8 +88,9 @@ def _statements(path):
         pending = []
         if words:
             yield start, words
-    if pending and " ".join(pending).split():  # the last line ends in a backslash
-        yield start, " ".join(pending).split()
+    words = " ".join(pending).split()  # the last line ends in a backslash: its statement, or nothing
+    if words:
+        yield start, words
 
 
 def _vertex(words, line, vertex, where):

@@ -11,14 +11,13 @@ where the file system folds case, and by device and inode (``os.stat``), never
 by the spelling of their paths (docs/decisions.md, "No output overwrites an input").
 """
 
-import errno
 import math
 import os
 from pathlib import Path
 
 from ..errors import OutputPathError
 from ._atomic import probe_folder
-from ._schema import shown_path
+from ._schema import os_reason, shown_path
 
 
 def check_writable(path):
@@ -58,11 +57,10 @@ def check_writable(path):
             raise OutputPathError(f"output {shown_path(path)} exists and is not a regular file")
         return probe_folder(folder, path.suffix)
     except OSError as exc:
-        reason = "path too long" if exc.errno == errno.ENAMETOOLONG else exc.strerror or type(exc).__name__
-        raise OutputPathError(f"cannot write {shown_path(path)}: {reason}") from None
+        raise OutputPathError(f"cannot write {shown_path(path)}: {os_reason(exc)}") from None
 
 
-def identity(path, folds_case=False):
+def identity(path, folds_case):
     """What ``path`` names, as a set of keys: two paths name one file if their sets meet.
 
     The resolved folder (symbolic links and ``..`` followed) and the name,

@@ -4,6 +4,7 @@ Every message names the field by its JSON path (``control_points[1][0][2]``)
 and shows values as plain text, never as a numpy or Python ``repr``.
 """
 
+import errno
 import math
 from numbers import Integral, Real
 
@@ -115,3 +116,8 @@ def shown_path(path):
         return text
     half = SHOWN_PATH_CHARS // 2
     return f"{text[:half]}...{text[-half:]} ({len(text)} characters)"
+
+
+def os_reason(exc):
+    """Why the ``OSError`` ``exc`` happened, as plain text: "path too long", else the system's words for its error."""
+    return "path too long" if exc.errno == errno.ENAMETOOLONG else exc.strerror or type(exc).__name__

@@ -11,7 +11,6 @@ table, nothing else.  Every problem, from an unreadable path to a coordinate
 that is not a finite number, is one :class:`InvalidSurfaceError` line.
 """
 
-import errno
 import json
 import sys
 from dataclasses import dataclass
@@ -24,7 +23,7 @@ from ..surface.charts.nurbs import NurbsSurface
 from ..surface.charts.openings import Perforated
 from . import _bezier, _nurbs
 from ._rhino import read_rhino_surface
-from ._schema import json_type, shown, shown_path, uv_polylines
+from ._schema import json_type, os_reason, shown, shown_path, uv_polylines
 from ._trimesh import TRIANGLE_MESH_FORMATS, read_triangle_mesh
 
 
@@ -137,8 +136,7 @@ def load_surface(path, *, object=None):
             )
         return fmt.read(path, **options)
     except OSError as exc:
-        reason = "path too long" if exc.errno == errno.ENAMETOOLONG else exc.strerror or type(exc).__name__
-        raise InvalidSurfaceError(f"cannot read surface file {shown_path(path)}: {reason}") from None
+        raise InvalidSurfaceError(f"cannot read surface file {shown_path(path)}: {os_reason(exc)}") from None
 
 
 #: The largest JSON file read: three times a net of ``MAX_NET_POINTS`` written with every digit, one number a line

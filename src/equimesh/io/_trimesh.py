@@ -115,7 +115,7 @@ def _in_range(kind, cells, first, n_points, where):
     reads VTU indices as floats), never wrapped around."""
     if cells.dtype.kind not in "iuf" or cells.ndim != 2 or cells.shape[1] != SURFACE_CELLS[kind]:
         raise InvalidSurfaceError(f"{where}: the {kind} cells are not rows of {SURFACE_CELLS[kind]} point indices")
-    inside = (cells < n_points) if cells.dtype.kind == "u" else (cells >= 0) & (cells < n_points)
+    inside = (cells >= 0) & (cells < n_points)
     if cells.dtype.kind == "f":
         inside &= cells == np.floor(cells)
     bad = np.argwhere(~inside)
