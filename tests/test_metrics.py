@@ -232,9 +232,10 @@ def test_share_within_counts_its_ends_and_one_member():
 
 
 def test_fabrication_summary_at_a_tolerance_and_of_no_member():
-    """At +-1 % of l = 5 (width 0.1) 5.0, 5.02 and 5.08 are one class, 5.3 and 9.0 one each; with the catalogue
-    5, 9 at +-1 %, 5.0 to 5.05 go to 5 (three), 9.0 to 9, 5.08 and 5.3 off it, two classes of their own."""
-    lengths = [5.0, 5.02, 5.08, 5.3, 9.0, 5.0]
+    """At +-1 % of l = 5 (width 0.1) 5.0, 5.04 and 5.08 are one class, 5.3 and 9.0 one each; with the catalogue
+    5, 9 at +-1 %, 5.0 to 5.05 go to 5 (three), 9.0 to 9, 5.08 and 5.3 off it, two classes of their own (at
+    +-0.5 % 5.04 would be off it too)."""
+    lengths = [5.0, 5.04, 5.08, 5.3, 9.0, 5.0]
     s = fabrication_summary(lengths, 5.0, 0.01)
     assert (s["classes"], s["largest_class_share"], s["within_tolerance"]) == (3, 4 / 6, 3 / 6)
     c = fabrication_summary(lengths, 5.0, 0.01, catalogue=[5.0, 9.0])
