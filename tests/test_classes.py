@@ -298,6 +298,15 @@ def test_the_interval_cap_closes_the_narrowest_gaps(cap, total, expected, monkey
     assert holds(total, [1.0, 1.25, 1.75], 1.0, 1 / 64) is expected
 
 
+@pytest.mark.parametrize("cap, expected", [(3, False), (2, True), (1, True)])
+def test_the_interval_cap_closes_equal_gaps_together(cap, expected, monkeypatch):
+    """Stock 1, 1.25 and 1.5 at +-1/64 of l = 1: one member in [0.984375, 1.015625], [1.234375, 1.265625] or
+    [1.484375, 1.515625], two gaps of 0.21875.  Kept in two intervals, both gaps close: [0.984375, 1.515625] twice
+    holds 2.125, which no two members add up to (A + A ends at 2.03125, A + B starts at 2.21875)."""
+    monkeypatch.setattr(classes, "MAX_SUM_INTERVALS", cap)
+    assert holds(2.125, [1.0, 1.25, 1.5], 1.0, 1 / 64) is expected
+
+
 @pytest.mark.parametrize("cap, expected", [(3, False), (2, False), (1, True)])
 def test_the_interval_cap_closes_gaps_by_their_width(cap, expected, monkeypatch):
     """Stock 1, 1.25 and 1.46875 to 1.53125 in steps of 1/32 at +-1/64 of l = 1: one member in A = [0.984375,

@@ -313,7 +313,8 @@ def holds(total, catalogue, l, tolerance):
 
 def _merge(intervals):
     """The union of ``intervals`` (rows ``[a, b]``) as sorted disjoint rows; beyond :data:`MAX_SUM_INTERVALS` rows the
-    narrowest gaps between them are closed, so that the rows cover the union and a little more."""
+    narrowest gaps between them are closed, every gap as narrow as the last one needed with them (so that no order
+    among equal gaps counts), and the rows cover the union and a little more."""
     intervals = intervals[np.argsort(intervals[:, 0], kind="stable")]
     merged = [intervals[0].copy()]
     for a, b in intervals[1:]:
@@ -323,6 +324,7 @@ def _merge(intervals):
             merged.append(np.array([a, b]))
     merged = np.array(merged)
     if len(merged) > MAX_SUM_INTERVALS:
-        kept = np.sort(np.argsort(merged[:-1, 1] - merged[1:, 0], kind="stable")[: MAX_SUM_INTERVALS - 1])
-        merged = np.column_stack([merged[np.append(0, kept + 1), 0], merged[np.append(kept, len(merged) - 1), 1]])
+        gaps = merged[1:, 0] - merged[:-1, 1]
+        kept = gaps > np.sort(gaps)[len(merged) - MAX_SUM_INTERVALS - 1]
+        merged = np.column_stack([merged[np.append(True, kept), 0], merged[np.append(kept, True), 1]])
     return merged
