@@ -21,6 +21,7 @@ from equimesh.metrics import (
     quality_summary,
     share_in_bounds,
     share_within,
+    summary_rows,
     table1_row,
     triangle_angles,
 )
@@ -154,3 +155,138 @@ def test_node_figures_are_exact_for_collinear_members():
     triangles = np.array([[0, 1, 3], [1, 2, 3]])
     f = node_figures(points, triangles, unique_edges(triangles))
     assert f["max_angle"][1] == pytest.approx(180.0 - np.degrees(2e-9), abs=1e-12)
+
+
+def test_summary_rows():
+    """The lines ``equimesh mesh`` prints: lengths 5, 5, 5.02, 5.3, 9 at l = 5 and +-0.5 % (three classes, the
+    largest of three members, 5.3 off the stock lengths 5 and 9), a triangle of 30, 60 and 90 degrees."""
+    lengths = [5.0, 5.0, 5.02, 5.3, 9.0]
+    rows = [
+        ("members", "5"),
+        ("length classes", "3 (every member within +-0.5 % of L of its class's nominal length)"),
+        ("in the largest class", "60.0 %"),
+        ("in the 10 largest classes", "100.0 %"),
+        ("shortest member", "5 (1.0000 L)"),
+        ("longest member", "9 (1.8000 L)"),
+        ("within +-0.5 % of L", "60.0 %"),
+    ]
+    assert summary_rows(lengths, 5.0, 0.005) == rows
+    points = [[0.0, 0.0, 0.0], [np.sqrt(3.0), 0.0, 0.0], [0.0, 1.0, 0.0]]
+    extra = summary_rows(lengths, 5.0, 0.005, points, [[0, 1, 2]], (0.012, 0.0034), [5.0, 9.0])
+    assert extra == [
+        *rows,
+        ("triangle angles", "30.0 to 90.0 degrees"),
+        ("off the surface", "max 0.012, mean 0.0034"),
+        ("off the catalogue", "1 members"),
+    ]
+    assert summary_rows([1.2, 1.3], 1.0, 0.0125)[1:2] == [
+        ("length classes", "2 (every member within +-1.25 % of L of its class's nominal length)")
+    ]
+
+
+def _four_triangles(l):
+    """Four triangles apart, of sides (in l) 1, 1, 1; 1.008, 1.015 and its hypotenuse; 1, 0.5 and its hypotenuse
+    (an angle of atan(1 / 2) = 26.6 degrees); 1, tan(30.5 degrees) and its hypotenuse (30.5 degrees)."""
+    s3, t = np.sqrt(3.0), np.tan(np.radians(30.5))
+    corners = [
+        [(0, 0), (1, 0), (0.5, s3 / 2)],
+        [(3, 0), (4.008, 0), (3, 1.015)],
+        [(6, 0), (7, 0), (6, 0.5)],
+        [(9, 0), (10, 0), (9, t)],
+    ]
+    points = l * np.array([(x, y, 0.0) for triangle in corners for x, y in triangle])
+    ratios = [1, 1, 1, 1.008, 1.015, np.hypot(1.008, 1.015), 1, 0.5, np.hypot(1, 0.5), 1, t, np.hypot(1, t)]
+    return points, np.arange(12).reshape(4, 3), np.array(ratios)
+
+
+def test_comparison_figures_of_four_triangles():
+    """Twelve members: five of l, one within 1 % (1.008 l), one within 5 % (1.015 l), two below l.  At +-0.5 % the
+    classes are 0.5, 0.589, {1 (five), 1.008}, 1.015 and the three hypotenuses: seven, the largest of six members;
+    at +-1 % 1.015 joins the class of l: six.  One triangle of four has an angle below 30 degrees."""
+    l = 2.0
+    points, triangles, ratios = _four_triangles(l)
+    f = comparison_figures(points, triangles.astype(float).tolist(), l)
+    assert {k: f[k] for k in ("members", "classes_0.5pct", "classes_1pct")} == {
+        "members": 12,
+        "classes_0.5pct": 7,
+        "classes_1pct": 6,
+    }
+    shares = ("within_0.5pct", "within_1pct", "within_5pct", "in_l_2l", "largest_0.5pct", "top10_0.5pct")
+    assert [f[k] for k in shares] == pytest.approx([5 / 12, 6 / 12, 7 / 12, 10 / 12, 6 / 12, 1.0], rel=1e-15)
+    assert f["below_30deg"] == 0.25 and f["length_std"] == pytest.approx(np.std(ratios), rel=1e-12)
+    assert f["angle_min"] == pytest.approx(np.degrees(np.arctan(0.5)), rel=1e-12) and f["angle_max"] == 90.0
+
+
+def test_comparison_figures_count_the_ten_largest_classes():
+    """Twelve triangles of one member length each, 1 + k / 50 l (k = 0 to 11): twelve classes of three members,
+    the ten largest holding ten twelfths."""
+    rim = [(1 + k / 50) * np.array([[0, 0, 0], [1, 0, 0], [0.5, np.sqrt(0.75), 0]]) + [3 * k, 0, 0] for k in range(12)]
+    f = comparison_figures(np.concatenate(rim), np.arange(36).reshape(12, 3), 1.0)
+    assert (f["classes_0.5pct"], f["largest_0.5pct"]) == (12, 3 / 36) and f["top10_0.5pct"] == pytest.approx(10 / 12)
+
+
+def test_share_within_counts_its_ends_and_one_member():
+    """At l = 4 and 1/4 of l (exact in binary), 5 and 3 are exactly l / 4 from l."""
+    assert share_within([5.0, 3.0, 5.5], 4.0, 0.25) == pytest.approx(2 / 3)
+    assert share_within([5.0], 5.0, 0.01) == 1.0 and share_within([5.1], 5.0, 0.01) == 0.0
+
+
+def test_fabrication_summary_at_a_tolerance_and_of_no_member():
+    """At +-1 % of l = 5 (width 0.1) 5.0, 5.04 and 5.08 are one class, 5.3 and 9.0 one each; with the catalogue
+    5, 9 at +-1 %, 5.0 to 5.05 go to 5 (three), 9.0 to 9, 5.08 and 5.3 off it, two classes of their own (at
+    +-0.5 % 5.04 would be off it too)."""
+    lengths = [5.0, 5.04, 5.08, 5.3, 9.0, 5.0]
+    s = fabrication_summary(lengths, 5.0, 0.01)
+    assert (s["classes"], s["largest_class_share"], s["within_tolerance"]) == (3, 4 / 6, 3 / 6)
+    c = fabrication_summary(lengths, 5.0, 0.01, catalogue=[5.0, 9.0])
+    assert (c["classes"], c["off_catalogue"], c["largest_class_share"]) == (4, 2, 3 / 6)
+    empty = fabrication_summary([], 5.0, 0.01)
+    assert (empty["members"], empty["classes"], empty["off_catalogue"]) == (0, 0, 0)
+    assert all(np.isnan(empty[k]) for k in ("largest_class_share", "top10_share", "min_length", "max_length"))
+
+
+def test_fabrication_summary_counts_the_ten_largest_classes():
+    """Twelve lengths 1 + k / 50 (one class each at +-0.5 %), the first three times: the ten largest classes hold
+    12 of 14 members."""
+    lengths = [1.0, 1.0, *(1 + np.arange(12) / 50)]
+    s = fabrication_summary(lengths, 1.0, 0.005)
+    assert (s["classes"], s["top10_share"], s["largest_class_share"]) == (12, pytest.approx(12 / 14), 3 / 14)
+    rows = dict(summary_rows(lengths, 1.0, 0.005))
+    assert (rows["in the largest class"], rows["in the 10 largest classes"]) == ("21.4 %", "85.7 %")
+
+
+def test_fabrication_figures_within_5pct():
+    f = fabrication_figures([5.0, 5.04, 5.2, 5.3], 5.0)
+    assert (f["within_1pct"], f["within_5pct"]) == (0.5, 0.75)
+
+
+@pytest.mark.parametrize("a, b", [((0.61, 0.73), 3.0), ((0.73, 0.18), -3.0)])
+def test_angles_of_flat_triangles_are_0_or_180(a, b):
+    """Corners 0, a and b a, on one line: cos of the angle at 0 rounds to +-1.0000000000000002, read as +-1."""
+    a = np.array([*a, 0.0])
+    angles = triangle_angles(np.array([0 * a, a, b * a]), np.array([[0.0, 1.0, 2.0]]))
+    assert angles[0, 0] == (0.0 if b > 0 else 180.0) and np.all(np.isfinite(angles))
+
+
+def test_node_figures_of_a_hexagon_fan_numbered_from_the_rim():
+    """The fan with its centre last, an unused node after it, in the plane: the centre is no boundary node (its
+    members are used twice), the unused node meets none."""
+    rim = [[np.cos(a), np.sin(a)] for a in np.arange(6) * np.pi / 3]
+    points = np.array([*rim, [0.0, 0.0], [5.0, 5.0]])
+    triangles = np.array([[6, k, (k + 1) % 6] for k in range(6)])
+    f = node_figures(points, triangles, unique_edges(triangles).astype(float))
+    assert f["boundary"].dtype == bool and f["boundary"].tolist() == [True] * 6 + [False, False]
+    assert f["valence"].tolist() == [3] * 6 + [6, 0]
+    np.testing.assert_allclose(f["min_angle"][:7], 60.0, atol=1e-12)
+    np.testing.assert_allclose(f["max_angle"][:7], [120.0] * 6 + [180.0], atol=1e-12)
+    assert np.isnan(f["min_angle"][7]) and np.isnan(f["max_angle"][7])
+
+
+def test_node_figures_of_one_triangle_and_of_none():
+    """Each corner of an equilateral triangle meets two members at 60 degrees; no node, no figures."""
+    points = np.array([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.5, np.sqrt(0.75), 0.0]])
+    f = node_figures(points, [[0, 1, 2]], [[0, 1], [0, 2], [1, 2]])
+    assert f["valence"].tolist() == [2, 2, 2]
+    np.testing.assert_allclose([f["min_angle"], f["max_angle"]], 60.0, atol=1e-12)
+    none = node_figures(np.zeros((0, 3)), np.zeros((0, 3), dtype=np.int64), np.zeros((0, 2), dtype=np.int64))
+    assert all(len(v) == 0 for v in none.values())

@@ -237,10 +237,11 @@ def check_catalogue(catalogue, l):
 
 
 def on_catalogue(lengths, l, catalogue, tolerance):
-    """(E,) bool: each member within ``tolerance * l`` of a stock length of ``catalogue`` (all lengths absolute)."""
+    """(E,) bool: each member within ``tolerance * l`` of a stock length of ``catalogue`` (all lengths absolute; a
+    catalogue of :func:`check_catalogue`, not empty)."""
     x = np.asarray(lengths, dtype=float).ravel()
     stock = np.asarray(catalogue, dtype=float).ravel()
-    return np.min(np.abs(x[:, None] - stock[None, :]), axis=1, initial=np.inf) <= tolerance * l
+    return np.min(np.abs(x[:, None] - stock[None, :]), axis=1) <= tolerance * l
 
 
 def catalogue_classes(lengths, l, catalogue, tolerance=DEFAULT_TOLERANCE):
@@ -256,14 +257,14 @@ def catalogue_classes(lengths, l, catalogue, tolerance=DEFAULT_TOLERANCE):
     tolerance = check_tolerance(tolerance)
     stock = check_catalogue(catalogue, l)
     x = np.asarray(lengths, dtype=float).ravel()
-    nearest = np.argmin(np.abs(x[:, None] - stock[None, :]), axis=1) if x.size else np.zeros(0, dtype=np.int64)
+    nearest = np.argmin(np.abs(x[:, None] - stock[None, :]), axis=1)
     on = on_catalogue(x, l, stock, tolerance)
     used = np.unique(nearest[on])
     rest = length_classes(x[~on], l, tolerance)
     member_class = np.empty(x.size, dtype=np.int64)
     member_class[on] = np.searchsorted(used, nearest[on])
     member_class[~on] = rest.member_class + len(used)
-    count = np.concatenate([np.bincount(member_class[on], minlength=len(used)), rest.count]).astype(np.int64)
+    count = np.concatenate([np.bincount(member_class[on]), rest.count]).astype(np.int64)  # every used class has one
     lo = np.array([x[on][member_class[on] == k].min() for k in range(len(used))])
     hi = np.array([x[on][member_class[on] == k].max() for k in range(len(used))])
     return LengthClasses(
@@ -288,31 +289,32 @@ def holds(total, catalogue, l, tolerance):
     """Whether some members, each within ``tolerance * l`` of a stock length, add up to ``total``.
 
     The sums of ``m`` such members form a union of intervals (each stock
-    length widened by ``tolerance * l``, added ``m`` times); ``m`` runs from
-    ``ceil(total / max)`` to ``floor(total / min)`` of the widened lengths,
-    the intervals of one count merged where they overlap (at most
-    :data:`MAX_SUM_INTERVALS`, the widest kept first: beyond that the answer
-    errs towards "holds").
+    length widened by ``tolerance * l``, added ``m`` times); ``m`` runs up
+    from 0 until ``total`` lies in one of them or below them all, at most to
+    ``floor(total / min)`` of the widened lengths (a finite ``total``: a stock
+    length is at least l and the tolerance below l / 2, so every widened
+    length is positive), the intervals of one count merged where they overlap
+    (into at most :data:`MAX_SUM_INTERVALS` by closing the narrowest gaps
+    between them: beyond that the answer errs towards "holds").
     """
     stock = np.asarray(catalogue, dtype=float).ravel()
     low, high = stock - tolerance * l, stock + tolerance * l
     if total <= 0:
         return total == 0
     reach = np.array([[0.0, 0.0]])
-    for _ in range(int(math.floor(total / low.min())) + 1):
-        if np.any((reach[:, 0] <= total) & (total <= reach[:, 1])):
-            return True
+    while not np.any((reach[:, 0] <= total) & (total <= reach[:, 1])):
         sums = (reach[:, None, :] + np.stack([low, high], axis=1)[None, :, :]).reshape(-1, 2)
         sums = sums[sums[:, 0] <= total]
         if not len(sums):
             return False
         reach = _merge(sums)
-    return False
+    return True
 
 
 def _merge(intervals):
-    """The union of ``intervals`` (rows ``[a, b]``) as sorted disjoint rows, at most :data:`MAX_SUM_INTERVALS` (the
-    widest)."""
+    """The union of ``intervals`` (rows ``[a, b]``) as sorted disjoint rows; beyond :data:`MAX_SUM_INTERVALS` rows the
+    narrowest gaps between them are closed, every gap as narrow as the last one needed with them (so that no order
+    among equal gaps counts), and the rows cover the union and a little more."""
     intervals = intervals[np.argsort(intervals[:, 0], kind="stable")]
     merged = [intervals[0].copy()]
     for a, b in intervals[1:]:
@@ -322,5 +324,7 @@ def _merge(intervals):
             merged.append(np.array([a, b]))
     merged = np.array(merged)
     if len(merged) > MAX_SUM_INTERVALS:
-        merged = merged[np.sort(np.argsort(merged[:, 0] - merged[:, 1], kind="stable")[:MAX_SUM_INTERVALS])]
+        gaps = merged[1:, 0] - merged[:-1, 1]
+        kept = gaps > np.sort(gaps)[len(merged) - MAX_SUM_INTERVALS - 1]
+        merged = np.column_stack([merged[np.append(True, kept), 0], merged[np.append(kept, True), 1]])
     return merged

@@ -194,7 +194,6 @@ def comparison_figures(points, triangles, l):
     ``below_30deg`` the share of triangles with an angle below 30 degrees (a
     joint that cannot be built, :mod:`equimesh.surface.optimize.joints`).
     """
-    triangles = np.asarray(triangles, dtype=np.int64).reshape(-1, 3)
     lengths = edge_lengths(points, unique_edges(triangles))
     angles = triangle_angles(points, triangles)
     classes = length_classes(lengths, l, 0.005)

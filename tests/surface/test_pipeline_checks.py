@@ -3,12 +3,13 @@
 A broken optimiser is stood in by one that returns a valid result moved a little: on a flat patch (the dome with
 no rise, so that lengths on the surface are lengths in (u, v) times the span) scaling every (u, v) about the centre
 scales every member by the same factor, which puts the shortest member at 0.999 l or the longest at 2.001 l.
+A catalogue of stock lengths no side of the outline can be made of is refused before the optimisation runs.
 """
 
 import numpy as np
 import pytest
 
-from equimesh.errors import InternalError
+from equimesh.errors import InternalError, InvalidCatalogueError
 from equimesh.surface import pipeline
 from equimesh.surface.pipeline import mesh_surface
 from equimesh.testing.surfaces import dome
@@ -67,3 +68,9 @@ def test_a_folded_triangle_is_an_internal_error(monkeypatch):
 
     with pytest.raises(InternalError, match=r"the optimisation inverted \d+ of \d+ triangles"):
         _moved(monkeypatch, swap)
+
+
+def test_a_catalogue_that_cannot_make_a_side_is_refused_before_the_optimisation():
+    """The flat patch's sides are 60 long on the surface, 7.5 members of 8: stock lengths of 8 alone cannot make one."""
+    with pytest.raises(InvalidCatalogueError, match=r"adds up to side 0 of the outer boundary, 60 long on the surface"):
+        mesh_surface(dome(rise=0.0), L, placement="default", optimize="classes", lengths=[L], tolerance=0.001)

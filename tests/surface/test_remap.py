@@ -1,5 +1,7 @@
 """Remapping plane nodes to (u, v) and to the surface, eqs. (2)-(3) (Section 4, step 4)."""
 
+import re
+
 import numpy as np
 import pytest
 from hypothesis import given, settings
@@ -9,9 +11,10 @@ from surface_cases import Wrapped, plane_patch
 
 import equimesh
 from equimesh.errors import InvalidSurfaceError
+from equimesh.mesh import PlanarMesh
 from equimesh.surface.auxiliary import auxiliary_grid
 from equimesh.surface.flatten import flatten
-from equimesh.surface.remap import barycentric, locate, remap
+from equimesh.surface.remap import barycentric, check_remapped, locate, remap
 from equimesh.testing.surfaces import dome
 
 
@@ -179,3 +182,42 @@ def test_mesh_surface_remaps_through_the_public_remap():
         hit = np.flatnonzero(np.all(ring == vertex, axis=1))
         assert len(hit) == 1 and np.array_equal(r.uv[hit[0]], uv)
     assert np.all(np.any((r.uv[:nb] == 0.0) | (r.uv[:nb] == 1.0), axis=1))
+
+
+def test_remapped_triangles_counter_clockwise_in_uv_pass():
+    plane = PlanarMesh.build([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]], [[0, 1, 2], [0, 2, 3]], 1.0, 4)
+    check_remapped(plane.points, plane)
+
+
+def _remapped(moved):
+    """A plane mesh of the square [0, 2]^2 (boundary nodes 0-3, one inner node 4) and its nodes remapped to (u, v)
+    with the nodes ``moved`` put elsewhere."""
+    points = [[0.0, 0.0], [2.0, 0.0], [2.0, 2.0], [0.0, 2.0], [1.0, 1.5]]
+    plane = PlanarMesh.build(points, [[0, 1, 2], [0, 2, 4], [2, 3, 4], [3, 0, 4]], 1.0, 4)
+    uv = plane.points.copy()
+    for node, to in moved.items():
+        uv[node] = to
+    return uv, plane
+
+
+def test_a_remapped_triangle_that_folds_is_refused():
+    """The inner node remapped beyond the left side: the triangle on that side turns clockwise in (u, v)."""
+    message = (
+        "mapping the plane mesh back onto the surface (eqs. 2-3) folds 1 of 4 triangles, first near (u, v) = "
+        "(-0.166667, 1): the flattening's distortion turns there within a member's length; use a smaller l or a "
+        "finer auxiliary grid"
+    )
+    with pytest.raises(InvalidSurfaceError, match="^" + re.escape(message) + "$"):
+        check_remapped(*_remapped({4: (-0.5, 1.0)}))
+
+
+def test_a_remapped_triangle_of_boundary_nodes_flat_in_uv_is_refused():
+    """Three boundary nodes remapped onto one straight line in (u, v), and a triangle with the inner node folded:
+    the flat one of boundary nodes is named, as the boundary's bend."""
+    message = (
+        "the flattened boundary bends so sharply near (u, v) = (1, 1) that Problem 2 joins three boundary nodes "
+        "there in a triangle (1 such in all), flat in (u, v), where the boundary is straight; use a finer auxiliary "
+        "grid or another l"
+    )
+    with pytest.raises(InvalidSurfaceError, match="^" + re.escape(message) + "$"):
+        check_remapped(*_remapped({1: (1.0, 1.0), 4: (-0.5, 1.0)}))

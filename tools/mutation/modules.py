@@ -101,6 +101,15 @@ IO_MODULES = {
 }
 MODULES.update(IO_MODULES)
 
+#: The checks of every returned mesh and the figures of its members -> their direct tests, on meshes of a few
+#: triangles.
+OUTPUT_MODULES = {
+    "src/equimesh/surface/output_checks.py": ["tests/surface/test_output_checks.py"],
+    "src/equimesh/classes.py": ["tests/test_classes.py"],
+    "src/equimesh/metrics.py": ["tests/test_metrics.py"],
+}
+MODULES.update(OUTPUT_MODULES)
+
 #: Module -> environment variables of its mutmut run, beyond the caller's.
 ENVIRONMENT = dict.fromkeys(
     [*KERNEL_MODULES, "src/equimesh/surface/optimize/jacobian.py", "src/equimesh/surface/optimize/solver.py"],

@@ -47,8 +47,7 @@ def check_surface_tolerance(value, l):
     except (TypeError, ValueError, OverflowError):
         raise InvalidToleranceError(f"surface_tolerance must be a number, got {value!r}") from None
     if not (math.isfinite(d) and 0.0 <= d < l):
-        shown = number(d) if math.isfinite(d) else str(d)
-        raise InvalidToleranceError(f"surface_tolerance must be at least 0 and below l = {number(l)}, got {shown}")
+        raise InvalidToleranceError(f"surface_tolerance must be at least 0 and below l = {number(l)}, got {number(d)}")
     return d
 
 
