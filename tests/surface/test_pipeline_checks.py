@@ -5,9 +5,12 @@ no rise, so that lengths on the surface are lengths in (u, v) times the span) sc
 scales every member by the same factor, which puts the shortest member at 0.999 l or the longest at 2.001 l.
 """
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 
+import equimesh
 from equimesh.errors import InternalError
 from equimesh.surface import pipeline
 from equimesh.surface.pipeline import mesh_surface
@@ -67,3 +70,23 @@ def test_a_folded_triangle_is_an_internal_error(monkeypatch):
 
     with pytest.raises(InternalError, match=r"the optimisation inverted \d+ of \d+ triangles"):
         _moved(monkeypatch, swap)
+
+
+def test_a_mesh_with_an_unsound_joint_is_never_returned(monkeypatch):
+    """The pipeline checks the angles of every mesh an objective with sound joints returns: an optimisation that
+    squeezes a triangle is an InternalError, not a mesh."""
+    real = pipeline.optimize_uv
+
+    def squeezing(*args, **kwargs):
+        result = real(*args, **kwargs)
+        uv = result.uv.copy()
+        tri = kwargs["triangles"][0]
+        uv[tri[2]] = uv[tri[0]] + 0.97 * (uv[tri[1]] - uv[tri[0]]) + 1e-3 * (uv[tri[2]] - uv[tri[0]])
+        return replace(result, uv=uv)
+
+    monkeypatch.setattr(pipeline, "optimize_uv", squeezing)
+    monkeypatch.setattr(pipeline, "check_orientation", lambda *args: None)
+    monkeypatch.setattr(pipeline, "check_members", lambda *args: None)
+    surface = equimesh.load_surface("experiments/surfaces/saddle.json")
+    with pytest.raises(InternalError, match="angle below its bound"):
+        equimesh.mesh_surface(surface, 6.0, grid=(8, 8), optimize="classes")
