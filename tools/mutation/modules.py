@@ -85,11 +85,16 @@ OPTIMIZE_MODULES = {
     "src/equimesh/surface/optimize/jacobian.py": ["tests/surface/optimize/test_jacobian.py"],
     "src/equimesh/surface/optimize/solver.py": ["tests/surface/optimize/test_solver.py"],
     "src/equimesh/surface/optimize/joints.py": ["tests/surface/optimize/test_joints.py"],
+    "src/equimesh/surface/optimize/members.py": ["tests/surface/optimize/test_members.py"],
+    "src/equimesh/surface/optimize/problem.py": [
+        "tests/surface/optimize/test_problem.py",
+        "tests/surface/optimize/test_members.py",
+    ],
 }
 MODULES.update(OPTIMIZE_MODULES)
 
 #: The optimisation's modules with compiled functions.
-_COMPILED_OPTIMIZE = ["jacobian", "solver", "joints"]
+_COMPILED_OPTIMIZE = ["jacobian", "solver", "joints", "members"]
 
 #: Module -> environment variables of its mutmut run, beyond the caller's.
 ENVIRONMENT = dict.fromkeys(

@@ -91,18 +91,32 @@ def test_the_barriers_jacobian_is_its_derivative(slides, tolerance, offset):
     np.testing.assert_allclose(got.toarray(), expected, atol=1e-6 * np.abs(expected).max())
 
 
-def test_a_degenerate_triangle_has_no_gradient_and_stops_none():
-    """Three nodes on a line have no angle gradient (zero rows, not NaN); the triangle after it still has its own."""
-    uv = np.array([[0.25, 0.25], [0.75, 0.75], [0.5, 0.5], [0.75, 0.25]])  # the first three exactly on a line
+def test_a_corner_between_parallel_sides_has_no_gradient():
+    """Three nodes on a line, listed from either end: at the first node the two sides are parallel and the angle
+    has no gradient (zero rows, not NaN, whichever side's perpendicular part rounds to zero); the triangle after
+    them still has its own."""
+    uv = np.array([[0.0, 0.0], [0.125, 0.125], [0.1, 0.1], [0.125, 0.0]])
     edges = np.array([[0, 1], [1, 2], [2, 0], [0, 3], [1, 3]])
     p = UVProblem(Flat(), uv, edges, np.ones(5, dtype=np.int8), 8.0, np.ones(4, dtype=bool))
-    triangles = np.array([[0, 1, 2], [0, 3, 1]])
-    bounds = np.radians([[80.0, 80.0, 80.0], [50.0, 100.0, 50.0]])  # every angle below its bound
+    triangles = np.array([[0, 1, 2], [0, 2, 1], [0, 3, 1]])
+    bounds = np.radians([[80.0, 80.0, 80.0], [80.0, 80.0, 80.0], [50.0, 100.0, 50.0]])  # every angle below it
     residuals, jacobian = Joints(p, triangles, bounds).barrier(1.0)
     jac = jacobian(p.x0).toarray()
-    assert np.all(np.isfinite(jac)) and not np.any(jac[0::2])
-    np.testing.assert_allclose(jac[1::2], finite_difference(residuals, p.x0)[1::2], atol=1e-6)
-    assert np.all(np.abs(jac[1::2]).sum(axis=1) > 0)
+    assert np.all(np.isfinite(jac)) and not np.any(jac[[0, 1]])
+    np.testing.assert_allclose(jac[2::3], finite_difference(residuals, p.x0)[2::3], atol=1e-6)
+    assert np.all(np.abs(jac[2::3]).sum(axis=1) > 0)
+
+
+def test_the_barriers_jacobian_keeps_its_structure():
+    """The entries of the angles whose terms are zero are kept (as zeros): one pattern for the normal equations
+    whichever angles are near their bounds."""
+    p, triangles = problem(seed=2)
+    angles = surface_angles(p.points_of(p.x0), triangles)
+    asleep = Joints(p, triangles, angles - 5 * MARGIN).barrier(3.0)[1](p.x0)
+    awake = Joints(p, triangles, angles - 0.5 * MARGIN).barrier(3.0)[1](p.x0)
+    assert not np.any(asleep.data) and np.all(awake.data)
+    np.testing.assert_array_equal(asleep.indptr, awake.indptr)
+    np.testing.assert_array_equal(asleep.indices, awake.indices)
 
 
 def test_bounds_are_30_degrees_but_at_a_sharper_corner():
@@ -139,6 +153,8 @@ def test_the_violation_names_the_triangles_below_their_bounds():
     )
     bounds[0, 0] = bounds[3, 0] = bounds[3, 2] = np.radians(50.0)  # 45, 45 and 90 degrees
     bounds[9, 0] = np.radians(46.0)
+    angles = surface_angles(p.points_of(p.x0), triangles)
+    bounds[5, 1] = angles[5, 1]  # at its bound, not below
     assert Joints(p, triangles, bounds).violation(p.x0) == (
         "3 of 18 triangles with an angle below 50 degrees (smallest 45)"
     )
