@@ -90,6 +90,7 @@ OPTIMIZE_MODULES = {
         "tests/surface/optimize/test_problem.py",
         "tests/surface/optimize/test_members.py",
     ],
+    "src/equimesh/surface/optimize/objectives.py": ["tests/surface/optimize/test_objective_stages.py"],
 }
 MODULES.update(OPTIMIZE_MODULES)
 

@@ -64,6 +64,27 @@ def test_lengths_follow_the_variables_however_they_are_passed():
     np.testing.assert_array_equal(lengths(w), exact(w))
 
 
+def test_the_points_at_the_last_variables_are_computed_once():
+    """The solver evaluates the Jacobian where it last evaluated the residuals, and a stage measures the lengths
+    where its solve ended: the same point again takes the points and lengths kept, a new one computes them."""
+    p, _ = problem(seed=4)
+    calls = []
+
+    class Counting(type(p)):
+        def points_of(self, x):
+            calls.append(np.array(x))
+            return super().points_of(x)
+
+    counting = Counting(**{f: getattr(p, f) for f in p.__dataclass_fields__})
+    lengths, jacobian = edge_length_terms(counting, counting.edges)
+    x, y = moved(p, 1), moved(p, 2)
+    first = lengths(x)
+    assert lengths(x) is first and jacobian(x)[0] is first and lengths(x.copy()) is first
+    assert len(calls) == 1
+    lengths(y)
+    assert len(calls) == 2 and not np.array_equal(lengths(x), lengths(y)) and len(calls) == 4
+
+
 def test_a_member_of_length_zero_has_no_gradient():
     """Two free nodes at one point: their member is 0 long, its Jacobian row zero (not NaN), on and off the
     surface."""
@@ -138,7 +159,8 @@ def test_cauchy_weights_by_hand():
 
 def test_scale_rows_keeps_the_structure():
     """``diag(scale) @ jac``, the entries of a row scaled by 0 kept (as zeros)."""
-    jac = scipy.sparse.csr_matrix(np.array([[1.0, 0.0, 2.0], [0.0, 3.0, 0.0], [4.0, 5.0, 6.0]]))
-    scaled = scale_rows(np.array([2.0, 0.0, -1.0]), jac)
-    np.testing.assert_array_equal(scaled.toarray(), [[2.0, 0.0, 4.0], [0.0, 0.0, 0.0], [-4.0, -5.0, -6.0]])
+    jac = scipy.sparse.csr_matrix(np.array([[1.0, 0.0, 2.0, 0.0], [0.0, 3.0, 0.0, 0.0], [4.0, 5.0, 6.0, 0.0]]))
+    scaled = scale_rows(np.array([2.0, 0.0, -1.0]), jac)  # the last column has no entries
+    expected = [[2.0, 0.0, 4.0, 0.0], [0.0, 0.0, 0.0, 0.0], [-4.0, -5.0, -6.0, 0.0]]
+    np.testing.assert_array_equal(scaled.toarray(), expected)
     assert scaled.nnz == jac.nnz and np.array_equal(scaled.indices, jac.indices) and scaled.shape == jac.shape

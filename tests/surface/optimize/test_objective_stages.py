@@ -1,0 +1,270 @@
+"""The stages of each objective (``surface/optimize/objectives.py``), driven by hand and on tiny grids.
+
+An objective's stages are a generator: it yields a least-squares stage, is sent the point where the solve
+ended, and returns the point the optimisation ends at with its stage.  Here the "solver" is the test: it
+answers each stage with a point of its choosing, so that the rules of the docstrings are checked one by one
+(when a series of rounds ends, when the paper's start is taken, which point is kept, when the last stage
+comes, how the nominal lengths of the classes merge); the tiny grids of ``optimize_cases`` also run through
+:func:`optimize_uv` in about a second each.  On the flat grid with l = 8 every grid edge is 1.25 l and every
+diagonal 1.7678 l; with l = 6 the diagonals are 2.357 l, outside [l, 2l].
+"""
+
+from dataclasses import replace
+
+import numpy as np
+import pytest
+from optimize_cases import RIM, finite_difference, grid, moved, patch, problem
+
+from equimesh import InvalidSurfaceError
+from equimesh.classes import length_classes
+from equimesh.mesh import G1, edge_lengths
+from equimesh.surface.optimize import OBJECTIVES, optimize_uv
+from equimesh.surface.optimize.joints import Joints, surface_angles
+from equimesh.surface.optimize.members import cauchy
+from equimesh.surface.optimize.objectives import bounded_stages, classes_stages, paper_stage, paper_stages
+from equimesh.surface.optimize.slide import along_polygon
+from equimesh.surface.optimize.solver import DEFAULT_FACTORISATION
+from equimesh.tolerance import (
+    BOUNDED_BAND,
+    BOUNDED_FTOL,
+    BOUNDED_OFFSET,
+    BOUNDED_PENALTY,
+    BOUNDED_PULL,
+    BOUNDED_ROUND_ITERATIONS,
+    BOUNDED_SCALE,
+    CLASSES_ROUNDS,
+    PAPER_FTOL,
+)
+
+TARGET, HIGH = 1.0 + BOUNDED_OFFSET, 2.0 - BOUNDED_OFFSET
+
+
+def drive(stages, answer):
+    """Run the generator ``stages``, answering stage k with ``answer(k, stage)``; the stages and what it returns."""
+    seen = [next(stages)]
+    while True:
+        try:
+            seen.append(stages.send(answer(len(seen) - 1, seen[-1])))
+        except StopIteration as done:
+            return seen, done.value
+
+
+def ratio(p, x):
+    return edge_lengths(p.points_of(x), p.edges) / p.length
+
+
+def test_the_papers_stage_by_hand():
+    """``(L - l) / l`` of the G1 members only (the grid edges, 1.25 l), and its Jacobian."""
+    p, _ = problem(rise=0.0, slides=True)
+    stage = paper_stage(p)
+    np.testing.assert_allclose(stage.residuals(p.x0), np.full(24, 0.25), rtol=1e-13)
+    x = moved(p, 1)
+    expected = ratio(p, x)[p.edge_groups == G1] - 1.0
+    np.testing.assert_allclose(stage.residuals(x), expected, rtol=1e-12)
+    np.testing.assert_allclose(stage.jacobian(x).toarray(), finite_difference(stage.residuals, x), atol=1e-7)
+    assert stage.ftol == PAPER_FTOL and stage.start is None and stage.hold is None and stage.feasible is None
+    seen, (end, last) = drive(paper_stages(p), lambda k, stage: x)
+    assert len(seen) == 1 and last is seen[0] and end is x
+
+
+def test_a_series_ends_at_a_settled_round_inside_and_keeps_the_start():
+    """The flat grid at l = 8 is inside [l, 2l] with no member within the band of l: the first round, answered
+    with its start, is settled; the paper's stage starts from the start with the boundary held, and with no
+    better share there, the first round's end is the result."""
+    p, _ = problem(rise=0.0, slides=True, length=8.0)
+    seen, (end, last) = drive(bounded_stages(p), lambda k, stage: p.x0)
+    first, papers = seen
+    assert first.description == f"members into [l, 2l] and to {TARGET:g} l, round 1"
+    assert (first.ftol, first.max_iterations, first.start) == (BOUNDED_FTOL, BOUNDED_ROUND_ITERATIONS, None)
+    r = ratio(p, p.x0)
+    np.testing.assert_allclose(first.residuals(p.x0), cauchy(r - TARGET, BOUNDED_SCALE) * (r - TARGET), rtol=1e-12)
+    step = np.zeros(len(p.x0))
+    step[0] = 1.0  # node 12 along u: 30 per unit, limited to 0.1 l = 0.8
+    np.testing.assert_allclose(first.limit(step), step * 0.8 / 30.0, rtol=1e-12)
+    assert papers.description == paper_stage(p).description
+    np.testing.assert_array_equal(papers.start, p.x0)
+    np.testing.assert_array_equal(papers.hold, p.sliding_variables)
+    assert last is first and np.array_equal(end, p.x0)
+
+
+def test_the_papers_start_is_taken_when_its_share_is_larger():
+    """The paper's answer puts one rim member at l (within the band): the boundary is released (the paper's
+    objective on, no start, no hold) and a second series starts there, whose round is the result."""
+    p, _ = problem(rise=0.0, slides=True, length=9.9)
+    better = p.x0.copy()
+    better[8] = 0.33  # node 1 slides to u = 0.33: the member from node 0 is 9.9 = l long
+    assert np.count_nonzero(np.abs(ratio(p, better) - 1.0) <= BOUNDED_BAND) == 1 and p.sound(better)
+    seen, (end, last) = drive(bounded_stages(p), lambda k, stage: better if k >= 1 else p.x0)
+    assert len(seen) == 4
+    released, second = seen[2], seen[3]
+    assert released.description == paper_stage(p).description and released.start is None and released.hold is None
+    assert second.description.endswith("round 1") and second.start is None
+    assert last is second and np.array_equal(end, better)
+
+
+def infeasible_drive(answer=None):
+    """The flat grid at l = 6 (every diagonal outside [l, 2l]), every stage answered with the start."""
+    p, _ = problem(rise=0.0, slides=True, length=6.0)
+    return p, *drive(bounded_stages(p), answer or (lambda k, stage: p.x0))
+
+
+def test_a_stalled_round_restarts_once_then_the_series_ends():
+    """Answered with its start, a round outside [l, 2l] stalls: the next round restarts there (with the initial
+    damping); stalled again, the series ends.  Members outside ``[target, high]`` are pulled to the nearer end."""
+    p, seen, _ = infeasible_drive()
+    assert [s.description.rsplit(",", 1)[-1] for s in seen[:2]] == [" round 1", " round 2"]
+    assert seen[0].start is None
+    np.testing.assert_array_equal(seen[1].start, p.x0)
+    r = ratio(p, p.x0)
+    outside = r > HIGH
+    assert np.count_nonzero(outside) == 9
+    expected = np.where(outside, BOUNDED_PULL * (r - HIGH), cauchy(r - TARGET, BOUNDED_SCALE) * (r - TARGET))
+    np.testing.assert_allclose(seen[0].residuals(p.x0), expected, rtol=1e-12)
+    assert seen[2].hold is not None and seen[3].hold is None  # the paper's stage held, then released
+    assert [s.description.rsplit(",", 1)[-1] for s in seen[4:6]] == [" round 1", " round 2"]
+
+
+def test_without_a_round_inside_the_last_stage_is_a_penalty():
+    """No round ended in [l, 2l]: the last stage restarts from the remapped mesh with a hard constraint, its
+    violation naming the members out; its result is where it ended."""
+    p, seen, (end, last) = infeasible_drive()
+    assert len(seen) == 7 and last is seen[-1]
+    assert last.description == f"members in [l, 2l] by a penalty, Cauchy loss on L / l - {TARGET:g}"
+    assert last.ftol == BOUNDED_FTOL and last.max_iterations == 500
+    np.testing.assert_array_equal(last.start, p.x0)
+    assert not last.feasible(p.x0) and last.violation(p.x0).startswith("9 of 33 members outside [l, 2l]")
+    np.testing.assert_array_equal(end, p.x0)
+
+
+def test_the_penalty_below_and_above_the_band():
+    """``BOUNDED_PENALTY psi(h)`` of the depth h below ``1 + BOUNDED_OFFSET / 2`` or above ``high``: ``h^2 / 2s``
+    within ``s = BOUNDED_OFFSET / 4`` of it, ``h - s / 2`` beyond, and the Jacobian its derivative."""
+    p, _, (_, last) = infeasible_drive()
+    x = p.x0.copy()
+    low, smooth = 1.0 + 0.5 * BOUNDED_OFFSET, 0.25 * BOUNDED_OFFSET
+    x[8] = (low - 1e-4) / 5.0  # node 1 along the first side: the member from node 0 is 30 s / 6 l long
+    x[15] = 4.0 - 0.18  # node 11 on the last side: the member to node 0 is 0.9 l
+    r = ratio(p, x)
+    edges = [tuple(e) for e in p.edges]
+    inner, short = edges.index((0, 1)), edges.index((0, 11))
+    cauchy_part = cauchy(ratio(p, p.x0) - TARGET, BOUNDED_SCALE) * (r - TARGET)
+    depth = np.maximum(0.0, low - r) + np.maximum(0.0, r - HIGH)
+    assert depth[inner] == pytest.approx(1e-4) and depth[short] == pytest.approx(low - 0.9)
+    psi = np.where(depth < smooth, depth**2 / (2 * smooth), depth - smooth / 2)
+    got = last.residuals(x)
+    np.testing.assert_allclose(got, np.concatenate([cauchy_part, BOUNDED_PENALTY * psi]), rtol=1e-9, atol=1e-12)
+    assert got[33 + inner] == pytest.approx(BOUNDED_PENALTY * 1e-8 / (2 * smooth))
+    expected = finite_difference(last.residuals, x)
+    np.testing.assert_allclose(last.jacobian(x).toarray(), expected, atol=1e-6 * np.abs(expected).max())
+
+
+def test_bounded_on_the_tiny_grid():
+    """Through the solver: every member in [l, 2l], a third at l, the corners fixed; l = 6 is refused."""
+    uv, triangles, edges, groups = grid()
+    square = np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]])
+    slide, corners = along_polygon(np.arange(RIM), square, uv[:RIM])
+    run = dict(fixed=corners, slides=[slide], triangles=triangles, objective="bounded")
+    result = optimize_uv(patch(), uv, edges, groups, 8.0, **run)
+    r = edge_lengths(patch().evaluate(*result.uv.T), edges) / 8.0
+    assert r.min() >= 1.0 and r.max() <= 2.0 and np.mean(np.abs(r - 1.0) <= BOUNDED_BAND) > 0.3
+    np.testing.assert_array_equal(result.uv[corners], uv[corners])
+    with pytest.raises(InvalidSurfaceError, match=r"no mesh with every member in \[l, 2l\] found, 11 of 33"):
+        optimize_uv(patch(), uv, edges, groups, 6.0, **run)
+
+
+def answers_for_classes(p, bounded_end, rounds):
+    """Bounded's stages answered with ``bounded_end`` (a round, settled as the Cauchy loss far from the target
+    hardly changes, then the paper's stage), the classes' rounds with ``rounds(k)``."""
+
+    def answer(k, stage):
+        return bounded_end if k < 2 else rounds(k - 2)
+
+    return answer
+
+
+def test_classes_rounds_merge_the_nominal_lengths():
+    """Bounded ends at the start (two classes, 1.25 l and 1.7678 l): the nominals are those and the target; every
+    three rounds the one holding the fewest members is dropped (the diagonals', then the grid edges'), never the
+    target; the members go to the nearest nominal left.  Nothing beats the start: it is the result."""
+    p, _ = problem(rise=0.0, slides=True, length=8.0)
+    seen, (end, last) = drive(classes_stages(p), lambda k, stage: p.x0)
+    rounds = seen[2:]
+    assert len(rounds) == CLASSES_ROUNDS
+    counts = [int(s.description.split(" of ")[1].split()[0]) for s in rounds]
+    assert counts == [3, 3, 3, 2, 2, 2] + [1] * (CLASSES_ROUNDS - 6)
+    assert rounds[-1].description == f"members to the nearest of 1 nominal lengths, round {CLASSES_ROUNDS}"
+    np.testing.assert_array_equal(rounds[0].start, p.x0)
+    assert all(s.start is None for s in rounds[1:]) and rounds[0].limit is not None
+    assert (rounds[0].ftol, rounds[0].max_iterations) == (BOUNDED_FTOL, BOUNDED_ROUND_ITERATIONS)
+    r = ratio(p, p.x0)
+    diagonal = r > 1.5
+    np.testing.assert_allclose(rounds[0].residuals(p.x0), 0.0, atol=1e-12)  # every member at its own nominal
+    goal = np.where(diagonal, 1.25, r)
+    pull = cauchy(r - goal, 0.5 * p.tolerance) * (r - goal)
+    np.testing.assert_allclose(rounds[3].residuals(p.x0), pull, rtol=1e-9, atol=1e-12)
+    pull = cauchy(r - TARGET, 0.5 * p.tolerance) * (r - TARGET)
+    np.testing.assert_allclose(rounds[6].residuals(p.x0), pull, rtol=1e-9)
+    assert last is seen[0] and np.array_equal(end, p.x0)
+
+
+def test_classes_nominals_move_to_the_middle_of_their_members():
+    """Answered with a point whose grid edges spread about 1.25 l, the nominal of the grid edges moves to the
+    middle of those within the tolerance of it (clipped to [target, high]): the next round pulls them there."""
+    p, _ = problem(rise=0.0, slides=True, length=8.0)
+    spread = moved(p, 3, size=0.0002)
+    seen, _ = drive(classes_stages(p), lambda k, stage: spread if k >= 2 else p.x0)
+    r = ratio(p, spread)
+    grid_edges = np.abs(r - 1.25) <= p.tolerance
+    assert grid_edges.sum() == 24
+    middle = 0.5 * (r[grid_edges].min() + r[grid_edges].max())
+    diagonal = 0.5 * (r[~grid_edges].min() + r[~grid_edges].max())
+    nominal = np.array([TARGET, middle, diagonal])
+    goal = nominal[np.argmin(np.abs(r[:, None] - nominal), axis=1)]
+    expected = cauchy(r - goal, 0.5 * p.tolerance) * (r - goal)
+    np.testing.assert_allclose(seen[3].residuals(spread), expected, rtol=1e-9, atol=1e-15)
+
+
+def test_classes_keeps_the_round_with_the_fewest_classes_and_sound_joints():
+    """Bounded ends at a point with more classes; a round answered with the start (two classes) is kept, unless
+    the start breaks the joints' bounds."""
+    p, triangles = problem(rise=0.0, slides=True, length=8.0)
+    messy = moved(p, 4, size=0.004)
+    r = ratio(p, messy)
+    assert r.min() >= 1.0 and r.max() <= 2.0 and len(length_classes(r, 1.0, p.tolerance)) > 2
+    seen, (end, last) = drive(classes_stages(p), answers_for_classes(p, messy, lambda k: p.x0))
+    assert last is seen[2] and np.array_equal(end, p.x0)
+    angles, start = surface_angles(p.points_of(messy), triangles), surface_angles(p.points_of(p.x0), triangles)
+    bounds = np.minimum(angles, start)
+    corner = np.unravel_index(np.argmax(angles - start), angles.shape)
+    bounds[corner] = angles[corner]  # the start's angle there is below the messy point's: unsound
+    strict = replace(p, joints=Joints(p, triangles, bounds))
+    assert strict.sound(messy) and not strict.sound(p.x0)
+    seen, (end, last) = drive(classes_stages(strict), answers_for_classes(strict, messy, lambda k: p.x0))
+    assert np.array_equal(end, messy) and last is seen[0]
+
+
+def test_classes_with_a_catalogue_counts_the_members_off_it_first():
+    """With the catalogue (1.25 l, 1.5 l) the nominals are the catalogue's, never merged: every member is pulled to
+    the nearest stock length."""
+    p, _ = problem(rise=0.0, slides=True, length=8.0)
+    p = replace(p, catalogue=np.array([1.25, 1.5]))
+    seen, (end, last) = drive(classes_stages(p), lambda k, stage: p.x0)
+    assert all(" of 2 nominal lengths" in s.description for s in seen[2:])
+    r = ratio(p, p.x0)
+    goal = np.where(r > 1.5, 1.5, 1.25)
+    np.testing.assert_allclose(seen[2].residuals(p.x0), cauchy(r - goal, 0.5 * p.tolerance) * (r - goal), rtol=1e-9)
+    assert last is seen[0]
+
+
+def test_the_records():
+    """What each objective promises, and its default node limits (measured, objectives.py)."""
+    paper, bounded, classes = (OBJECTIVES[name] for name in ("paper", "bounded", "classes"))
+    assert [r.name for r in OBJECTIVES.values()] == ["paper", "bounded", "classes"]
+    assert (paper.slides, paper.bounds_members, paper.sound_joints) == (False, False, False)
+    assert (bounded.slides, bounded.bounds_members, bounded.sound_joints) == (True, True, False)
+    assert (classes.slides, classes.bounds_members, classes.sound_joints) == (True, True, True)
+    assert paper.max_nodes == {"pardiso": 34_000, "cholmod": 34_000, "superlu": 34_000}
+    assert bounded.max_nodes == {"pardiso": 50_000, "cholmod": 50_000, "superlu": 24_000}
+    assert classes.max_nodes == {"pardiso": 6_000, "cholmod": 6_000, "superlu": 6_000}
+    assert bounded.node_limit("superlu") == 24_000 and bounded.node_limit() == bounded.max_nodes[DEFAULT_FACTORISATION]
+    assert paper.stages is paper_stages and bounded.stages is bounded_stages and classes.stages is classes_stages
