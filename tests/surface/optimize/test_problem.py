@@ -13,8 +13,10 @@ import numpy as np
 import scipy.sparse
 from optimize_cases import RIM, finite_difference, moved, patch, problem
 
+from equimesh.surface.charts.chart import Domain
 from equimesh.surface.optimize.joints import Joints, surface_angles
 from equimesh.surface.optimize.problem import free_nodes, offset_points, parameter_box, unit_normals
+from equimesh.surface.optimize.slide import Slide
 
 SLIDING = [1, 2, 4, 5, 7, 8, 10, 11]  # the rim's nodes between the square's corners
 
@@ -170,13 +172,49 @@ def test_the_bounds_are_the_domain_the_slides_and_the_tolerance():
     np.testing.assert_array_equal(box[0], [0.0, 0.0])
     np.testing.assert_array_equal(box[1], [1.0, 1.0])
 
+    class Wide:
+        domain = Domain(u=(0.0, 2.0), v=(-1.0, 1.0))
+
+    lower, upper = parameter_box(Wide())
+    np.testing.assert_array_equal(lower, [0.0, -1.0])
+    np.testing.assert_array_equal(upper, [2.0, 1.0])
+    wide = replace(p, surface=Wide())
+    np.testing.assert_array_equal(wide.bounds[0][:8], np.tile([0.0, -1.0], 4))
+    np.testing.assert_array_equal(wide.bounds[1][:8], np.tile([2.0, 1.0], 4))
+
+
+def test_two_slides_are_one_slide_split():
+    """The rim's sliding nodes as two slides along the same square: the same variables in the same order, the
+    same (u, v), points, bounds, trust region and chain rule."""
+    for tolerance in (0.0, 0.5):
+        one, _ = problem(slides=True, surface_tolerance=tolerance)
+        (slide,) = one.slides
+        halves = [
+            Slide(slide.nodes[part], slide.loop, slide.s[part], slide.lower[part], slide.upper[part])
+            for part in (slice(0, 3), slice(3, None))
+        ]
+        two = replace(one, slides=tuple(halves))
+        x = moved(one, 3, size=0.01, offset=0.3)
+        for name in ("moving", "offset_nodes", "sliding_variables", "x0"):
+            np.testing.assert_array_equal(getattr(two, name), getattr(one, name))
+        np.testing.assert_array_equal(two.uv_of(x), one.uv_of(x))
+        np.testing.assert_array_equal(two.points_of(x), one.points_of(x))
+        for a, b in zip(two.bounds, one.bounds):
+            np.testing.assert_array_equal(a, b)
+        direction = np.random.default_rng(4).standard_normal(len(x))
+        np.testing.assert_array_equal(two.step_limit(0.5)(direction), one.step_limit(0.5)(direction))
+        jac = scipy.sparse.csr_matrix(np.random.default_rng(5).standard_normal((3, int(one.moving.sum()))))
+        np.testing.assert_array_equal(two.chain(jac, x).toarray(), one.chain(jac, x).toarray())
+
 
 def test_free_nodes_are_those_neither_fixed_nor_sliding():
     p, _ = problem(slides=True)
     expected = np.zeros(16, dtype=bool)
     expected[[3, 12, 13, 14, 15]] = True
     fixed = [0, 6, 9]
-    np.testing.assert_array_equal(free_nodes(16, fixed, p.slides), expected)
+    free = free_nodes(16, fixed, p.slides)
+    assert free.dtype == bool
+    np.testing.assert_array_equal(free, expected)
     mask = np.zeros(16, dtype=bool)
     mask[fixed] = True
     np.testing.assert_array_equal(free_nodes(16, mask, p.slides), expected)
