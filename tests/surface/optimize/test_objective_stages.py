@@ -16,23 +16,25 @@ import pytest
 from optimize_cases import RIM, finite_difference, grid, moved, patch, problem
 
 from equimesh import InvalidSurfaceError
-from equimesh.classes import length_classes
+from equimesh.classes import length_classes, on_catalogue
 from equimesh.mesh import G1, edge_lengths
 from equimesh.surface.optimize import OBJECTIVES, optimize_uv
 from equimesh.surface.optimize.joints import Joints, surface_angles
-from equimesh.surface.optimize.members import cauchy
+from equimesh.surface.optimize.members import Members, cauchy
 from equimesh.surface.optimize.objectives import bounded_stages, classes_stages, paper_stage, paper_stages
 from equimesh.surface.optimize.slide import along_polygon
 from equimesh.surface.optimize.solver import DEFAULT_FACTORISATION
 from equimesh.tolerance import (
     BOUNDED_BAND,
     BOUNDED_FTOL,
+    BOUNDED_LOSS_TOL,
     BOUNDED_OFFSET,
     BOUNDED_PENALTY,
     BOUNDED_PULL,
     BOUNDED_ROUND_ITERATIONS,
     BOUNDED_SCALE,
     CLASSES_ROUNDS,
+    CLASSES_START,
     PAPER_FTOL,
 )
 
@@ -63,8 +65,10 @@ def test_the_papers_stage_by_hand():
     np.testing.assert_allclose(stage.residuals(x), expected, rtol=1e-12)
     np.testing.assert_allclose(stage.jacobian(x).toarray(), finite_difference(stage.residuals, x), atol=1e-7)
     assert stage.ftol == PAPER_FTOL and stage.start is None and stage.hold is None and stage.feasible is None
+    assert stage.description == "relative deviation (L - l) / l of the G1 edges"
     seen, (end, last) = drive(paper_stages(p), lambda k, stage: x)
     assert len(seen) == 1 and last is seen[0] and end is x
+    np.testing.assert_array_equal(last.residuals(x), expected)
 
 
 def test_a_series_ends_at_a_settled_round_inside_and_keeps_the_start():
@@ -172,14 +176,44 @@ def test_bounded_on_the_tiny_grid():
         optimize_uv(patch(), uv, edges, groups, 6.0, **run)
 
 
-def answers_for_classes(p, bounded_end, rounds):
-    """Bounded's stages answered with ``bounded_end`` (a round, settled as the Cauchy loss far from the target
-    hardly changes, then the paper's stage), the classes' rounds with ``rounds(k)``."""
+def answers_for_classes(bounded_end, rounds):
+    """Bounded's stages answered with ``bounded_end``, the classes' rounds (k = 0, 1, ...) with ``rounds(k)``; the
+    answer and the list of the classes' rounds it answered."""
+    done = []
 
     def answer(k, stage):
-        return bounded_end if k < 2 else rounds(k - 2)
+        if "nominal lengths" not in stage.description:
+            return bounded_end
+        done.append(stage)
+        return rounds(len(done) - 1)
 
-    return answer
+    return answer, done
+
+
+def documented_key(p, x):
+    """(members off the catalogue, classes, minus the share in the ten largest) at ``x`` (classes_stages)."""
+    r = ratio(p, x)
+    off = 0 if p.catalogue is None else int(np.count_nonzero(~on_catalogue(r, 1.0, p.catalogue, p.tolerance)))
+    classes = length_classes(r, 1.0, p.tolerance)
+    return off, len(classes), -classes.top_share()
+
+
+def start_nominals(p, x):
+    """The nominal lengths of the first round from bounded's end ``x``: its 30 largest classes' (in units of l),
+    clipped to [target, high], and the target."""
+    classes = length_classes(ratio(p, x), 1.0, p.tolerance)
+    largest = np.argsort(-classes.count, kind="stable")[:CLASSES_START]
+    return np.unique(np.append(np.clip(classes.nominal[largest], TARGET, HIGH), TARGET))
+
+
+def round_residuals(p, x, nominal):
+    """A round's residuals at its start ``x``: each member pulled to its nearest nominal with the Cauchy weight of
+    scale tolerance / 2, a member outside [target, high] to the nearer end with BOUNDED_PULL."""
+    r = ratio(p, x)
+    goal = nominal[np.argmin(np.abs(r[:, None] - nominal[None, :]), axis=1)]
+    outside = (r < TARGET) | (r > HIGH)
+    weight = np.where(outside, BOUNDED_PULL, cauchy(r - goal, 0.5 * p.tolerance))
+    return weight * (r - np.where(outside, np.clip(r, TARGET, HIGH), goal))
 
 
 def test_classes_rounds_merge_the_nominal_lengths():
@@ -194,7 +228,10 @@ def test_classes_rounds_merge_the_nominal_lengths():
     assert counts == [3, 3, 3, 2, 2, 2] + [1] * (CLASSES_ROUNDS - 6)
     assert rounds[-1].description == f"members to the nearest of 1 nominal lengths, round {CLASSES_ROUNDS}"
     np.testing.assert_array_equal(rounds[0].start, p.x0)
-    assert all(s.start is None for s in rounds[1:]) and rounds[0].limit is not None
+    assert all(s.start is None for s in rounds[1:])
+    step = np.zeros(len(p.x0))
+    step[0] = 1.0  # node 12 along u: 30 per unit, limited to 0.1 l = 0.8
+    np.testing.assert_allclose(rounds[0].limit(step), step * 0.8 / 30.0, rtol=1e-12)
     assert (rounds[0].ftol, rounds[0].max_iterations) == (BOUNDED_FTOL, BOUNDED_ROUND_ITERATIONS)
     r = ratio(p, p.x0)
     diagonal = r > 1.5
@@ -231,15 +268,16 @@ def test_classes_keeps_the_round_with_the_fewest_classes_and_sound_joints():
     messy = moved(p, 4, size=0.004)
     r = ratio(p, messy)
     assert r.min() >= 1.0 and r.max() <= 2.0 and len(length_classes(r, 1.0, p.tolerance)) > 2
-    seen, (end, last) = drive(classes_stages(p), answers_for_classes(p, messy, lambda k: p.x0))
-    assert last is seen[2] and np.array_equal(end, p.x0)
+    answer, rounds = answers_for_classes(messy, lambda k: p.x0)
+    seen, (end, last) = drive(classes_stages(p), answer)
+    assert last is rounds[0] and np.array_equal(end, p.x0)
     angles, start = surface_angles(p.points_of(messy), triangles), surface_angles(p.points_of(p.x0), triangles)
     bounds = np.minimum(angles, start)
     corner = np.unravel_index(np.argmax(angles - start), angles.shape)
     bounds[corner] = angles[corner]  # the start's angle there is below the messy point's: unsound
     strict = replace(p, joints=Joints(p, triangles, bounds))
     assert strict.sound(messy) and not strict.sound(p.x0)
-    seen, (end, last) = drive(classes_stages(strict), answers_for_classes(strict, messy, lambda k: p.x0))
+    seen, (end, last) = drive(classes_stages(strict), answers_for_classes(messy, lambda k: p.x0)[0])
     assert np.array_equal(end, messy) and last is seen[0]
 
 
@@ -254,6 +292,118 @@ def test_classes_with_a_catalogue_counts_the_members_off_it_first():
     goal = np.where(r > 1.5, 1.5, 1.25)
     np.testing.assert_allclose(seen[2].residuals(p.x0), cauchy(r - goal, 0.5 * p.tolerance) * (r - goal), rtol=1e-9)
     assert last is seen[0]
+
+
+def test_classes_counts_the_members_off_the_catalogue_first():
+    """Bounded ends with 3 members off the catalogue; a round answered with a point with 2 off and as many classes
+    is kept."""
+    p, _ = problem(rise=0.0, slides=True, length=8.0)
+    p = replace(p, catalogue=np.array([1.25, 1.7678]))
+    start, fewer_off = moved(p, 1, size=0.001), moved(p, 7, size=0.001)
+    assert documented_key(p, start) == (3, 3, -1.0) and documented_key(p, fewer_off) == (2, 3, -1.0)
+    answer, rounds = answers_for_classes(start, lambda k: fewer_off if k == 0 else start)
+    seen, (end, last) = drive(classes_stages(p), answer)
+    assert last is rounds[0] and np.array_equal(end, fewer_off)
+
+
+def test_classes_breaks_a_tie_in_classes_by_the_share_in_the_ten_largest():
+    """At the tolerance 0.01 l: bounded ends at a point with 12 classes, the two smallest holding 3 members; a
+    round answered with one of 12 classes whose two smallest hold 2 has the larger share in the ten largest and
+    is kept.  The first round's nominals are the start's classes'."""
+    p, _ = problem(rise=0.0, slides=True, length=8.0)
+    p = replace(p, tolerance=0.01)
+    start, better = moved(p, 203, size=0.008), moved(p, 3, size=0.008)
+    assert documented_key(p, start) == (0, 12, pytest.approx(-30 / 33))
+    assert documented_key(p, better) == (0, 12, pytest.approx(-31 / 33))
+    answer, rounds = answers_for_classes(start, lambda k: better if k == 0 else start)
+    seen, (end, last) = drive(classes_stages(p), answer)
+    assert last is rounds[0] and np.array_equal(end, better)
+    nominal = start_nominals(p, start)
+    assert len(nominal) == 13 and rounds[0].description.startswith("members to the nearest of 13 nominal lengths")
+    np.testing.assert_allclose(rounds[0].residuals(start), round_residuals(p, start, nominal), rtol=1e-9, atol=1e-15)
+
+
+def test_the_first_nominals_are_the_30_largest_classes():
+    """At the tolerance 0.0003 l the start's 33 members fall into 31 classes, two of them of two members: the first
+    round's nominals are those of the 30 largest (of equal ones the first by length: the longest single is left
+    out) and the target."""
+    p, _ = problem(rise=0.0, slides=True, length=8.0)
+    p = replace(p, tolerance=0.0003)
+    start = moved(p, 2, size=0.008)
+    classes = length_classes(ratio(p, start), 1.0, p.tolerance)
+    assert len(classes) == 31 and sorted(classes.count)[-3:] == [1, 2, 2]
+    answer, rounds = answers_for_classes(start, lambda k: start)
+    drive(classes_stages(p), answer)
+    nominal = start_nominals(p, start)
+    assert len(nominal) == 31 and classes.nominal.max() not in nominal
+    assert rounds[0].description.startswith("members to the nearest of 31 nominal lengths")
+    np.testing.assert_allclose(rounds[0].residuals(start), round_residuals(p, start, nominal), rtol=1e-9, atol=1e-15)
+
+
+def test_a_class_at_l_starts_at_the_target():
+    """With l = 10 the grid edges are l long: their class's nominal is clipped to the target, one nominal with it;
+    they are below the target, so pulled up to it with BOUNDED_PULL."""
+    p, _ = problem(rise=0.0, slides=True, length=10.0)
+    answer, rounds = answers_for_classes(p.x0, lambda k: p.x0)
+    drive(classes_stages(p), answer)
+    assert rounds[0].description.startswith("members to the nearest of 2 nominal lengths")
+    r = ratio(p, p.x0)
+    expected = np.where(r < 1.2, BOUNDED_PULL * (r - TARGET), 0.0)  # the diagonals at their own nominal
+    np.testing.assert_allclose(rounds[0].residuals(p.x0), expected, atol=1e-12)
+
+
+def test_of_rounds_with_equal_shares_the_first_is_kept():
+    """Two rounds end inside [l, 2l] with no member within the band of l: the first round's end is the result."""
+    p, _ = problem(rise=0.0, slides=True, length=8.0)
+    first, second = moved(p, 1, size=0.02), moved(p, 2, size=0.001)
+    for x in (first, second):
+        assert Members.inside(ratio(p, x)) and not np.any(np.abs(ratio(p, x) - 1.0) <= BOUNDED_BAND)
+    seen, (end, last) = drive(bounded_stages(p), lambda k, stage: first if k == 0 else second)
+    assert seen[1].description.endswith("round 2")  # the first round's loss moved: not settled
+    assert last is seen[0] and np.array_equal(end, first)
+
+
+def cauchy_loss(r):
+    return float(np.sum(np.log1p(((r - TARGET) / BOUNDED_SCALE) ** 2)))
+
+
+def along(p, direction, change, measure, t_max=1.0):
+    """The point ``x0 + t direction`` at which ``measure(x)`` has changed by ``change`` relative to its value at
+    ``x0`` (bisection on t in [0, t_max]; the change grows with t there)."""
+    base = measure(p.x0)
+    lo, hi = 0.0, t_max
+    for _ in range(60):
+        t = 0.5 * (lo + hi)
+        lo, hi = (t, hi) if abs(measure(p.x0 + t * direction) - base) < change * abs(base) else (lo, t)
+    return p.x0 + hi * direction
+
+
+def test_a_round_whose_loss_moved_is_followed_by_another():
+    """A round ending where the Cauchy loss changed by 1.5 BOUNDED_LOSS_TOL of its start's is not settled."""
+    p, _ = problem(rise=0.0, slides=True, length=8.0)
+    x = along(p, moved(p, 11, size=0.01) - p.x0, 1.5 * BOUNDED_LOSS_TOL, lambda y: cauchy_loss(ratio(p, y)))
+    assert Members.inside(ratio(p, x))
+    seen, _ = drive(bounded_stages(p), lambda k, stage: x)
+    assert seen[1].description.endswith("round 2") and seen[1].start is None
+
+
+def test_a_settled_round_whose_cost_fell_does_not_restart():
+    """Outside [l, 2l], a round whose Cauchy loss hardly changed (settled) but whose own cost fell by 1.5
+    BOUNDED_LOSS_TOL has not stalled: the next round goes on without a restart; one whose cost fell by half that
+    has stalled, and the next round restarts."""
+    p, _ = problem(rise=0.0, slides=True, length=6.0)
+    first = next(bounded_stages(p))
+    descent = -(first.jacobian(p.x0).T @ first.residuals(p.x0))
+
+    def cost(y):
+        return float(np.sum(first.residuals(y) ** 2))
+
+    for change, restarts in ((1.5 * BOUNDED_LOSS_TOL, False), (0.5 * BOUNDED_LOSS_TOL, True)):
+        x = along(p, descent, change, cost, t_max=1e-3)
+        loss_change = abs(cauchy_loss(ratio(p, x)) - cauchy_loss(ratio(p, p.x0)))
+        assert loss_change <= BOUNDED_LOSS_TOL * cauchy_loss(ratio(p, p.x0))
+        seen, _ = drive(bounded_stages(p), lambda k, stage: x)
+        assert seen[1].description.endswith("round 2") and (seen[1].start is not None) == restarts
 
 
 def test_the_records():

@@ -212,8 +212,8 @@ def bounded_stages(problem):
         return stage, weight, goal, cauchy_loss(ratio), float(np.sum((weight * (ratio - goal)) ** 2))
 
     def series(x):
-        """Rounds from ``x`` until one settles in [l, 2l], stalls, or :data:`BOUNDED_ROUNDS` are done; ends where the
-        last round did."""
+        """Rounds from ``x`` until one settles in [l, 2l], stalls, or :data:`BOUNDED_ROUNDS` are done (each round's
+        end offered to :func:`keep_best`)."""
         restart = False
         for k in range(BOUNDED_ROUNDS):
             stage, weight, goal, loss, cost = round_stage(k, x, restart)
@@ -227,7 +227,6 @@ def bounded_stages(problem):
             # A stalled round poses the next one the same problem: it ends the series, unless its solve began with
             # a damping left large by earlier solves; then the next round starts afresh.
             restart = stalled
-        return x
 
     def last_stage():
         low, smooth = 1.0 + 0.5 * BOUNDED_OFFSET, 0.25 * BOUNDED_OFFSET
