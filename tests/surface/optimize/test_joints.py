@@ -3,21 +3,18 @@
 What must hold: the angles are the triangles' interior angles, at the vertex they are listed at; the barrier is zero
 from one margin above a bound and grows as the square of the depth below that, and its Jacobian is its derivative
 (on the surface, with sliding nodes, with nodes off the surface, next to a degenerate triangle); the bounds are 30
-degrees except at a corner sharper than that; the test of soundness holds at the bounds exactly and fails below; an
-objective that cannot reach the bounds is refused, naming the angles.  On the tiny grids of ``optimize_cases``.
+degrees except at a corner sharper than that; the test of soundness holds at the bounds exactly and fails below.
+On the tiny grids of ``optimize_cases``; the driver's refusal of an end below the bounds is in ``test_driver.py``.
 """
 
 import numpy as np
 import pytest
-import scipy.sparse
-from optimize_cases import RIM, finite_difference, grid, moved, patch, problem
+from optimize_cases import finite_difference, moved, problem
 
 import equimesh
-from equimesh import InvalidSurfaceError
 from equimesh.metrics import triangle_angles
-from equimesh.surface.optimize import OBJECTIVES, Objective, Stage, UVProblem, joints, optimize_uv
+from equimesh.surface.optimize import UVProblem, joints
 from equimesh.surface.optimize.joints import Joints, joint_bounds, surface_angles
-from equimesh.surface.optimize.solver import FACTORISATIONS
 from equimesh.testing.surfaces import dome
 
 MARGIN = joints.JOINT_MARGIN
@@ -158,31 +155,6 @@ def test_the_violation_names_the_triangles_below_their_bounds():
     assert Joints(p, triangles, bounds).violation(p.x0) == (
         "3 of 18 triangles with an angle below 50 degrees (smallest 45)"
     )
-
-
-def test_bounds_out_of_reach_are_refused(monkeypatch):
-    """The check fires: an objective with sound joints whose stages end with an angle below its bound is refused in
-    the surface's terms, naming the angles."""
-
-    def idle(problem):
-        stage = Stage(lambda x: np.zeros(1), lambda x: scipy.sparse.csr_matrix((1, len(x))), max_iterations=0)
-        x = yield stage
-        return x, stage
-
-    record = Objective(
-        "idle",
-        idle,
-        "nothing",
-        slides=False,
-        bounds_members=False,
-        sound_joints=True,
-        max_nodes=dict.fromkeys(FACTORISATIONS, 100),
-    )
-    monkeypatch.setitem(OBJECTIVES, "idle", record)
-    monkeypatch.setattr(joints, "JOINT_ANGLE", 59.0)  # the grid's triangles have angles of about 45 degrees
-    uv, triangles, edges, groups = grid()
-    with pytest.raises(InvalidSurfaceError, match=r"no mesh with every triangle angle at least 30 degrees.*below 59"):
-        optimize_uv(patch(), uv, edges, groups, 8.0, fixed=np.arange(RIM), triangles=triangles, objective="idle")
 
 
 def test_the_papers_objective_keeps_its_angles_unbounded():
