@@ -337,15 +337,15 @@ def _class_key(ratio, tolerance, catalogue):
 
 
 def _merged(nominal, ratio, tolerance, k, members):
-    """The nominal lengths after round ``k``: each moved to the middle of the members within ``tolerance`` of it
-    (the class at l stays), and every ``CLASSES_MERGE_EVERY`` rounds the one holding the fewest dropped."""
+    """The nominal lengths after round ``k``: each moved to the middle of the members within ``tolerance`` of it (the
+    class at l stays; at most ``high``), and every ``CLASSES_MERGE_EVERY`` rounds the one holding the fewest dropped."""
     nearest = np.argmin(np.abs(ratio[:, None] - nominal[None, :]), axis=1)
     near = np.abs(ratio - nominal[nearest]) <= tolerance
     moved = nominal.copy()
     for q in np.flatnonzero(nominal != members.target):
         held = ratio[near & (nearest == q)]
-        if held.size:
-            moved[q] = np.clip(0.5 * (held.min() + held.max()), members.target, members.high)
+        if held.size:  # above the target: a member below it is nearer to the target (the first nominal) than to q
+            moved[q] = min(0.5 * (held.min() + held.max()), members.high)
     if (k + 1) % CLASSES_MERGE_EVERY or len(moved) == 1:
         return moved
     counts = np.bincount(nearest[near], minlength=len(nominal))
