@@ -20,10 +20,11 @@ from surface_cases import Wrapped, plane_patch
 
 import equimesh
 from equimesh import EquimeshError, InvalidSurfaceError
+from equimesh.surface.charts.chart import Domain
 from equimesh.surface.optimize import OBJECTIVES, Objective, Stage, joints, optimize_uv
 from equimesh.surface.optimize.driver import fold_over_barrier, with_barriers
 from equimesh.surface.optimize.jacobian import signed_areas
-from equimesh.surface.optimize.joints import Joints, joint_bounds
+from equimesh.surface.optimize.joints import Joints, joint_bounds, surface_angles
 from equimesh.surface.optimize.objectives import paper_stage
 from equimesh.surface.optimize.problem import free_nodes
 from equimesh.surface.optimize.slide import along_polygon
@@ -63,7 +64,7 @@ def papers(**fields):
     """The paper's stage with ``fields`` replaced (``start="x0"``: the problem's start)."""
 
     def make(problem):
-        if fields.get("start") == "x0":
+        if isinstance(fields.get("start"), str):
             return replace(paper_stage(problem), **{**fields, "start": problem.x0})
         return replace(paper_stage(problem), **fields)
 
@@ -114,7 +115,40 @@ def test_the_papers_run_on_the_tiny_grid():
     assert result.cost_before == pytest.approx(0.5 * float(np.sum(stage.residuals(p.x0) ** 2)), rel=1e-12)
     assert result.cost_after == pytest.approx(0.5 * float(np.sum(stage.residuals(x) ** 2)), rel=1e-12)
     assert result.cost_after < result.cost_before and result.converged and result.nfev >= result.njev > 0
-    assert result.objective == "paper" and not np.any(result.offsets)
+    assert result.message == "relative reduction below ftol" and result.objective == "paper"
+    np.testing.assert_array_equal(result.offsets, np.zeros(len(UV)))
+
+
+def test_nodes_off_the_surface_within_the_tolerance():
+    result = run(surface_tolerance=0.5)
+    assert result.offsets.shape == (len(UV),) and not np.any(result.offsets[:RIM])
+    assert np.all(np.abs(result.offsets) <= 0.5) and np.any(result.offsets[RIM:])
+
+
+class Wide:
+    """:func:`patch` on the parameter rectangle [0, 2] x [0, 1]."""
+
+    domain = Domain(u=(0.0, 2.0), v=(0.0, 1.0))
+
+    def __init__(self):
+        self.chart = patch()
+
+    def evaluate(self, u, v):
+        return self.chart.evaluate(np.asarray(u) / 2.0, v)
+
+    def derivatives(self, u, v):
+        su, sv = self.chart.derivatives(np.asarray(u) / 2.0, v)
+        return su / 2.0, sv
+
+
+def test_the_start_is_clipped_into_the_charts_domain():
+    """On [0, 2] x [0, 1]: a node at u = 1.5 stays, one at u = 2.01 is clipped to 2."""
+    uv = UV * [2.0, 1.0]
+    uv[3] = [2.01, 0.0]
+    result = optimize_uv(Wide(), uv, EDGES, GROUPS, 8.0, fixed=np.arange(len(UV)))
+    expected = UV * [2.0, 1.0]
+    np.testing.assert_array_equal(result.uv, expected)
+    assert result.uv[13, 0] == 4.0 / 3.0
 
 
 def test_the_problem_posed(monkeypatch):
@@ -159,6 +193,20 @@ def test_a_stage_with_a_start_is_a_fresh_solve(monkeypatch):
     assert restarted.nfev > alone.nfev and restarted.njev > alone.njev
 
 
+def test_a_stage_holding_some_variables_keeps_those(monkeypatch):
+    """The paper's stage with node 12's two variables held: node 12 stays, the others move."""
+
+    def hold_first(problem):
+        hold = np.zeros(len(problem.x0), dtype=bool)
+        hold[:2] = True
+        return replace(paper_stage(problem), hold=hold)
+
+    record(monkeypatch, "some", stages_of(hold_first))
+    result = run("some")
+    np.testing.assert_array_equal(result.uv[RIM], UV[RIM])
+    assert np.all(np.any(result.uv[RIM + 1 :] != UV[RIM + 1 :], axis=1))
+
+
 def test_a_stage_holding_every_variable_keeps_them(monkeypatch):
     """Two iterations, then a stage with every variable held: the end of the two iterations."""
 
@@ -177,6 +225,54 @@ def test_a_stage_goes_on_from_the_last_end(monkeypatch):
     record(monkeypatch, "two", stages_of(papers(max_iterations=2)))
     on, two, alone = run("on"), run("two"), run()
     assert on.cost_after < two.cost_after and on.cost_after == pytest.approx(alone.cost_after, rel=1e-6)
+
+
+def test_the_damping_and_the_analysis_carry_over(monkeypatch):
+    """Two stages share one analysis of the normal equations (one factorisation object built for their one
+    pattern), and the second goes on with the first's damping: restarted at the first's end with the initial
+    damping, it takes another path."""
+    built = []
+    real = FACTORISATIONS["superlu"]
+
+    def counting(*args):
+        built.append(args)
+        return real(*args)
+
+    monkeypatch.setitem(FACTORISATIONS, "superlu", counting)
+    record(monkeypatch, "on", stages_of(papers(max_iterations=2), papers()))
+    warm = run("on", factorisation="superlu")
+    assert len(built) == 1
+    record(monkeypatch, "two", stages_of(papers(max_iterations=2)))
+    two = run("two", factorisation="superlu")
+    end = two.uv[RIM:].ravel()
+    record(monkeypatch, "cold", stages_of(papers(max_iterations=2), papers(start=end)))
+    assert not np.array_equal(run("cold", factorisation="superlu").uv, warm.uv)
+
+
+def test_a_stage_with_no_iterations_evaluates_once(monkeypatch):
+    """No iterations: one evaluation of the residuals and one of the Jacobian, at the start; solved on (its
+    constraint unmet, the stage's tolerance loose), two of each."""
+    record(monkeypatch, "none", stages_of(papers(max_iterations=0)))
+    result = run("none")
+    assert (result.nfev, result.njev) == (1, 1)
+    np.testing.assert_array_equal(result.uv, UV)
+    calls = []
+
+    def met_late(x):
+        calls.append(x)
+        return len(calls) > 2  # the guard's start and the first solve's end: unmet; then met
+
+    record(monkeypatch, "late", stages_of(papers(max_iterations=0, ftol=0.5, feasible=met_late, violation=str)))
+    result = run("late")
+    assert (result.nfev, result.njev) == (2, 2)
+
+
+def test_the_callers_tolerances_and_the_stages_limit_are_the_solvers(monkeypatch):
+    """A loose gtol or xtol stops the solve by that test; a limit that takes every step to zero keeps the start."""
+    assert run(gtol=1.0).message == "projected gradient below gtol"
+    assert "step below xtol" in run(xtol=0.5).message
+    record(monkeypatch, "still", stages_of(papers(limit=lambda d: 0.0 * d)))
+    np.testing.assert_array_equal(run("still").uv, UV)
 
 
 def test_the_callers_ftol_replaces_the_stages(monkeypatch):
@@ -217,9 +313,9 @@ class Finer:
 
 
 def test_an_end_outside_the_constraint_is_refused(monkeypatch):
-    record(monkeypatch, "never", stages_of(papers(feasible=lambda x: False, violation=lambda x: "nothing fits")))
+    record(monkeypatch, "never", stages_of(papers(feasible=lambda x: False, violation=lambda x: f"{len(x)} fit")))
     message = (
-        "optimisation (never): no mesh with every member in [l, 2l] found, nothing fits; use a smaller l, {}, or "
+        "optimisation (never): no mesh with every member in [l, 2l] found, 8 fit; use a smaller l, {}, or "
         "optimize='paper' (which does not bound the members on the surface)"
     )
     with pytest.raises(InvalidSurfaceError) as refused:
@@ -247,6 +343,29 @@ def test_bounds_out_of_reach_are_refused(monkeypatch):
     assert text.endswith(
         "; use a smaller l, a finer control net, or optimize='paper' (which does not bound the angles)"
     )
+    with pytest.raises(InvalidSurfaceError, match=r"use a smaller l, a finer auxiliary grid, or optimize='paper'"):
+        run("idle")
+
+
+def test_the_joints_are_kept_in_a_stage_that_keeps_them(monkeypatch):
+    """Bounds a little below the start's smallest angle and node 12 pulled towards node 13: without sound joints
+    its angles go far below them; with them the stage ends sound; a stage that does not keep them (``joints`` False)
+    ends below them, and is refused."""
+    start = surface_angles(patch().evaluate(*UV.T), TRIANGLES).min()
+    monkeypatch.setattr(joints, "JOINT_ANGLE", float(np.degrees(start)) - 0.5)
+    bound = start - np.radians(0.5)
+    record(monkeypatch, "free", stages_of(pulling(RIM, 0.9)))
+    assert surface_angles(patch().evaluate(*run("free").uv.T), TRIANGLES).min() < bound - np.radians(5.0)
+    record(monkeypatch, "kept", stages_of(pulling(RIM, 0.9)), sound_joints=True)
+    kept = run("kept")
+    assert surface_angles(patch().evaluate(*kept.uv.T), TRIANGLES).min() >= bound
+
+    def loose(problem):
+        return replace(pulling(RIM, 0.9)(problem), joints=False)
+
+    record(monkeypatch, "loose", stages_of(loose), sound_joints=True)
+    with pytest.raises(InvalidSurfaceError, match="no mesh with every triangle angle"):
+        run("loose")
 
 
 def pulling(node, target, weight=10.0):
@@ -275,6 +394,23 @@ def test_no_step_folds_a_triangle(monkeypatch, area_floor):
     assert np.all(signed_areas(result.uv, TRIANGLES) > 0) and result.uv[RIM, 0] > UV[RIM, 0]
     free = optimize_uv(patch(), UV, EDGES, GROUPS, 8.0, fixed=FIXED, objective="pull")  # no triangles, no guards
     assert free.uv[RIM, 0] == pytest.approx(0.9)
+
+
+def test_the_barrier_holds_a_squeezed_triangle_back(monkeypatch):
+    """Node 12 pulled towards node 13: the acceptance test alone lets a triangle shrink to almost nothing; the
+    barrier (floor 0.5 or 0.9 of the start areas) keeps the smallest larger, the higher floor the more."""
+    record(monkeypatch, "pull", stages_of(pulling(RIM, 0.9)))
+    start = signed_areas(UV, TRIANGLES)
+    smallest = [(signed_areas(run("pull", area_floor=f).uv, TRIANGLES) / start).min() for f in (0.0, 0.5, 0.9)]
+    assert smallest[0] < 1e-3 < smallest[1] < smallest[2]
+
+
+def test_a_triangle_flat_at_the_start_is_not_guarded(monkeypatch):
+    """A triangle of three rim nodes on a side (zero area) added: the guard ignores it, and node 12 still moves."""
+    record(monkeypatch, "pull", stages_of(pulling(RIM, 0.5)))
+    triangles = np.vstack([TRIANGLES, [[0, 1, 2]]])
+    result = optimize_uv(patch(), UV, EDGES, GROUPS, 8.0, fixed=FIXED, triangles=triangles, objective="pull")
+    assert result.uv[RIM, 0] > UV[RIM, 0] + 0.05
 
 
 def test_a_triangle_clockwise_at_the_start_is_not_guarded(monkeypatch):
@@ -328,6 +464,8 @@ def test_the_fold_over_barrier_by_hand():
     barrier = fold_over_barrier(p, triangles, 0.5)
     assert not np.any(barrier.residuals(p.uv))
     uv = p.uv.copy()
-    uv[RIM] = uv[RIM - 1] + 0.75 * (uv[RIM] - uv[RIM - 1])  # node 12 towards node 11: its triangles shrink
+    uv[RIM] = uv[RIM - 1] + 0.25 * (uv[RIM] - uv[RIM - 1])  # node 12 towards node 11: its triangles shrink
     areas, start = signed_areas(uv, triangles), signed_areas(p.uv, triangles)
-    np.testing.assert_allclose(barrier.residuals(uv), np.maximum(0.0, 1.0 - areas / (0.5 * start)) ** 2, atol=1e-15)
+    expected = np.maximum(0.0, 1.0 - areas / (0.5 * start)) ** 2
+    assert np.count_nonzero(expected) == 2 and np.all(expected < 1.0)
+    np.testing.assert_allclose(barrier.residuals(uv), expected, atol=1e-15)
