@@ -368,11 +368,11 @@ def test_the_joints_are_kept_in_a_stage_that_keeps_them(monkeypatch):
         run("loose")
 
 
-def pulling(node, target, weight=10.0):
-    """A stage pulling the free ``node``'s u (variable ``2 (node - RIM)``) to ``target``."""
+def pulling(node, target, weight=10.0, axis=0):
+    """A stage pulling the free ``node``'s u (``axis`` 0, variable ``2 (node - RIM)``) or v (1) to ``target``."""
 
     def make(problem):
-        k = 2 * (node - RIM)
+        k = 2 * (node - RIM) + axis
 
         def residuals(x):
             return np.array([weight * (x[k] - target)])
@@ -411,6 +411,14 @@ def test_a_triangle_flat_at_the_start_is_not_guarded(monkeypatch):
     triangles = np.vstack([TRIANGLES, [[0, 1, 2]]])
     result = optimize_uv(patch(), UV, EDGES, GROUPS, 8.0, fixed=FIXED, triangles=triangles, objective="pull")
     assert result.uv[RIM, 0] > UV[RIM, 0] + 0.05
+
+
+def test_a_step_that_flattens_a_triangle_is_refused(monkeypatch):
+    """Node 12 pulled below the square (v = -1): its steps are clipped onto v = 0, the side through nodes 0 and
+    1, which flattens the triangle (0, 1, 12) to area 0 exactly; the acceptance test refuses that as a fold."""
+    record(monkeypatch, "down", stages_of(pulling(RIM, -1.0, axis=1)))
+    result = run("down", area_floor=0.0)
+    assert np.all(signed_areas(result.uv, TRIANGLES) > 0) and 0.0 < result.uv[RIM, 1] < UV[RIM, 1]
 
 
 def test_a_triangle_clockwise_at_the_start_is_not_guarded(monkeypatch):
