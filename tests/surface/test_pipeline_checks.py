@@ -6,9 +6,12 @@ scales every member by the same factor, which puts the shortest member at 0.999 
 A catalogue of stock lengths no side of the outline can be made of is refused before the optimisation runs.
 """
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 
+import equimesh
 from equimesh.errors import InternalError, InvalidCatalogueError
 from equimesh.surface import pipeline
 from equimesh.surface.pipeline import mesh_surface
@@ -74,3 +77,23 @@ def test_a_catalogue_that_cannot_make_a_side_is_refused_before_the_optimisation(
     """The flat patch's sides are 60 long on the surface, 7.5 members of 8: stock lengths of 8 alone cannot make one."""
     with pytest.raises(InvalidCatalogueError, match=r"adds up to side 0 of the outer boundary, 60 long on the surface"):
         mesh_surface(dome(rise=0.0), L, placement="default", optimize="classes", lengths=[L], tolerance=0.001)
+
+
+def test_a_mesh_with_an_unsound_joint_is_never_returned(monkeypatch):
+    """The pipeline checks the angles of every mesh an objective with sound joints returns: an optimisation that
+    squeezes a triangle is an InternalError, not a mesh."""
+    real = pipeline.optimize_uv
+
+    def squeezing(*args, **kwargs):
+        result = real(*args, **kwargs)
+        uv = result.uv.copy()
+        tri = kwargs["triangles"][0]
+        uv[tri[2]] = uv[tri[0]] + 0.97 * (uv[tri[1]] - uv[tri[0]]) + 1e-3 * (uv[tri[2]] - uv[tri[0]])
+        return replace(result, uv=uv)
+
+    monkeypatch.setattr(pipeline, "optimize_uv", squeezing)
+    monkeypatch.setattr(pipeline, "check_orientation", lambda *args: None)
+    monkeypatch.setattr(pipeline, "check_members", lambda *args: None)
+    surface = equimesh.load_surface("experiments/surfaces/saddle.json")
+    with pytest.raises(InternalError, match="angle below its bound"):
+        equimesh.mesh_surface(surface, 6.0, grid=(8, 8), optimize="classes")

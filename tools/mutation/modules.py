@@ -77,12 +77,21 @@ KERNEL_MODULES = {
 }
 MODULES.update(KERNEL_MODULES)
 
-#: The final optimisation's modules -> their tests.  The Jacobian's area gradients and the solver's sum of the
-#: normal matrix are compiled by a call as the kernels are, so their tests run them as Python too.
+#: The final optimisation's modules -> their tests (direct tests on the tiny grids of ``tests/optimize_cases.py``).
+#: The Jacobian's area gradients, the solver's sum of the normal matrix, the angle and the length gradients are
+#: compiled by a call as the kernels are, so their tests run them as Python too.
 OPTIMIZE_MODULES = {
     "src/equimesh/surface/optimize/slide.py": ["tests/surface/optimize/test_slide.py"],
     "src/equimesh/surface/optimize/jacobian.py": ["tests/surface/optimize/test_jacobian.py"],
     "src/equimesh/surface/optimize/solver.py": ["tests/surface/optimize/test_solver.py"],
+    "src/equimesh/surface/optimize/joints.py": ["tests/surface/optimize/test_joints.py"],
+    "src/equimesh/surface/optimize/members.py": ["tests/surface/optimize/test_members.py"],
+    "src/equimesh/surface/optimize/problem.py": [
+        "tests/surface/optimize/test_problem.py",
+        "tests/surface/optimize/test_members.py",
+    ],
+    "src/equimesh/surface/optimize/objectives.py": ["tests/surface/optimize/test_objective_stages.py"],
+    "src/equimesh/surface/optimize/driver.py": ["tests/surface/optimize/test_driver.py"],
 }
 MODULES.update(OPTIMIZE_MODULES)
 
@@ -110,8 +119,11 @@ OUTPUT_MODULES = {
 }
 MODULES.update(OUTPUT_MODULES)
 
+#: The optimisation's modules with compiled functions.
+_COMPILED_OPTIMIZE = ["jacobian", "solver", "joints", "members"]
+
 #: Module -> environment variables of its mutmut run, beyond the caller's.
 ENVIRONMENT = dict.fromkeys(
-    [*KERNEL_MODULES, "src/equimesh/surface/optimize/jacobian.py", "src/equimesh/surface/optimize/solver.py"],
+    [*KERNEL_MODULES, *(f"src/equimesh/surface/optimize/{name}.py" for name in _COMPILED_OPTIMIZE)],
     {"NUMBA_DISABLE_JIT": "1"},
 )

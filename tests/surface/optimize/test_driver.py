@@ -1,12 +1,74 @@
-"""The optimisation's driver (``surface/optimize/driver.py``): a surface that is not finite at a trial point is
-refused."""
+"""The optimisation's driver (``surface/optimize/driver.py``): the problem it poses, how it runs the stages, its
+guards and its refusals.
+
+What must hold: the problem is the start clipped into the domain with the caller's fixed and sliding nodes, its
+tolerances and catalogue (in units of l), and the joints' bounds for an objective with sound joints; a stage with a
+start restarts there as a fresh solve, one with held variables keeps them, the next goes on from where the last
+ended; a stage with a hard constraint that ends outside it is solved on, and an end outside it, or with an angle
+below its bound, is refused in the surface's terms; no step folds a triangle that was counter-clockwise at the
+start, nor leaves a hard constraint it met; a surface that is not finite at a trial point is refused.  Mostly on
+the tiny grids of ``optimize_cases``, with objectives of a few stages made for the test.
+"""
+
+from dataclasses import replace
 
 import numpy as np
 import pytest
+import scipy.sparse
+from optimize_cases import RIM, finite_difference, grid, moved, patch, problem
 from surface_cases import Wrapped, plane_patch
 
 import equimesh
-from equimesh.errors import InvalidSurfaceError
+from equimesh import EquimeshError, InvalidSurfaceError
+from equimesh.surface.charts.chart import Domain
+from equimesh.surface.optimize import OBJECTIVES, Objective, Stage, joints, optimize_uv
+from equimesh.surface.optimize.driver import fold_over_barrier, with_barriers
+from equimesh.surface.optimize.jacobian import signed_areas
+from equimesh.surface.optimize.joints import Joints, joint_bounds, surface_angles
+from equimesh.surface.optimize.objectives import paper_stage
+from equimesh.surface.optimize.problem import free_nodes
+from equimesh.surface.optimize.slide import along_polygon
+from equimesh.surface.optimize.solver import FACTORISATIONS
+from equimesh.tolerance import PAPER_FTOL
+
+UV, TRIANGLES, EDGES, GROUPS = grid()
+FIXED = np.arange(RIM)
+
+
+def record(monkeypatch, name, stages, slides=False, bounds_members=False, sound_joints=False):
+    """An objective record of ``stages(problem)`` under ``name`` for the test."""
+    record = Objective(name, stages, name, slides, bounds_members, sound_joints, dict.fromkeys(FACTORISATIONS, 100))
+    monkeypatch.setitem(OBJECTIVES, name, record)
+
+
+def run(objective="paper", surface=None, uv=UV, **kw):
+    kw.setdefault("fixed", FIXED)
+    surface = patch() if surface is None else surface
+    return optimize_uv(surface, uv, EDGES, GROUPS, 8.0, triangles=TRIANGLES, objective=objective, **kw)
+
+
+def stages_of(*make):
+    """Stages ``make[0](problem), make[1](problem), ...`` in turn; the last one's end is the result."""
+
+    def stages(problem):
+        x = stage = None
+        for m in make:
+            stage = m(problem)
+            x = yield stage
+        return x, stage
+
+    return stages
+
+
+def papers(**fields):
+    """The paper's stage with ``fields`` replaced (``start="x0"``: the problem's start)."""
+
+    def make(problem):
+        if isinstance(fields.get("start"), str):
+            return replace(paper_stage(problem), **{**fields, "start": problem.x0})
+        return replace(paper_stage(problem), **fields)
+
+    return make
 
 
 def test_nan_during_the_optimisation_is_refused():
@@ -15,3 +77,403 @@ def test_nan_during_the_optimisation_is_refused():
     uv = np.array([[0.0, 0.0], [1.0, 0.0], [0.5, 0.5]])
     with pytest.raises(InvalidSurfaceError, match="not finite"):
         equimesh.optimize_uv(holed, uv, [[0, 1], [1, 2], [0, 2]], [1, 1, 1], 3.0, fixed=[0, 1])
+
+
+def test_an_unknown_objective_or_factorisation_is_named():
+    with pytest.raises(EquimeshError, match=r"unknown objective 'nope'; choose from \['bounded', 'classes', 'paper'\]"):
+        run(objective="nope")
+    with pytest.raises(EquimeshError, match=r"unknown objective \['paper'\]"):
+        run(objective=["paper"])
+    with pytest.raises(EquimeshError, match="unknown factorisation 'nope'"):
+        run(factorisation="nope")
+
+
+def test_without_free_nodes_nothing_moves():
+    """Every node fixed: the start, clipped into the domain, with the first stage's cost at it."""
+    uv = UV.copy()
+    uv[0] = [-0.01, 0.0]
+    result = run(uv=uv, fixed=np.arange(len(UV)))
+    np.testing.assert_array_equal(result.uv, UV)
+    np.testing.assert_array_equal(result.offsets, np.zeros(len(UV)))
+    p, _ = problem()
+    p = replace(p, free=np.zeros(len(UV), dtype=bool))
+    cost = 0.5 * float(np.sum(paper_stage(p).residuals(np.zeros(0)) ** 2))
+    assert result.cost_before == result.cost_after == pytest.approx(cost, rel=1e-12) and cost > 0
+    assert (result.nfev, result.njev, result.converged, result.message) == (0, 0, True, "no free nodes")
+    assert result.objective == "paper"
+
+
+def test_the_papers_run_on_the_tiny_grid():
+    """The fixed nodes keep their (clipped) start; the costs are the paper stage's at the start and at the end."""
+    uv = UV.copy()
+    uv[0] = [-0.01, 0.0]
+    result = run(uv=uv)
+    np.testing.assert_array_equal(result.uv[:RIM], UV[:RIM])
+    p, _ = problem()
+    stage = paper_stage(p)
+    x = result.uv[RIM:].ravel()
+    assert result.cost_before == pytest.approx(0.5 * float(np.sum(stage.residuals(p.x0) ** 2)), rel=1e-12)
+    assert result.cost_after == pytest.approx(0.5 * float(np.sum(stage.residuals(x) ** 2)), rel=1e-12)
+    assert result.cost_after < result.cost_before and result.converged and result.nfev >= result.njev > 0
+    assert result.message == "relative reduction below ftol" and result.objective == "paper"
+    np.testing.assert_array_equal(result.offsets, np.zeros(len(UV)))
+
+
+def test_nodes_off_the_surface_within_the_tolerance():
+    result = run(surface_tolerance=0.5)
+    assert result.offsets.shape == (len(UV),) and not np.any(result.offsets[:RIM])
+    assert np.all(np.abs(result.offsets) <= 0.5) and np.any(result.offsets[RIM:])
+
+
+class Wide:
+    """:func:`patch` on the parameter rectangle [0, 2] x [0, 1]."""
+
+    domain = Domain(u=(0.0, 2.0), v=(0.0, 1.0))
+
+    def __init__(self):
+        self.chart = patch()
+
+    def evaluate(self, u, v):
+        return self.chart.evaluate(np.asarray(u) / 2.0, v)
+
+    def derivatives(self, u, v):
+        su, sv = self.chart.derivatives(np.asarray(u) / 2.0, v)
+        return su / 2.0, sv
+
+
+def test_the_start_is_clipped_into_the_charts_domain():
+    """On [0, 2] x [0, 1]: a node at u = 1.5 stays, one at u = 2.01 is clipped to 2."""
+    uv = UV * [2.0, 1.0]
+    uv[3] = [2.01, 0.0]
+    result = optimize_uv(Wide(), uv, EDGES, GROUPS, 8.0, fixed=np.arange(len(UV)))
+    expected = UV * [2.0, 1.0]
+    np.testing.assert_array_equal(result.uv, expected)
+    assert result.uv[13, 0] == 4.0 / 3.0
+
+
+def test_the_problem_posed(monkeypatch):
+    """What an objective's stages see: the start clipped, the caller's nodes, tolerances and catalogue (in units of
+    l), and the joints' bounds at the start with an objective with sound joints and triangles."""
+    seen = []
+
+    def capture(problem):
+        seen.append(problem)
+        return paper_stage(problem)
+
+    record(monkeypatch, "capture", stages_of(capture))
+    record(monkeypatch, "sound", stages_of(capture), sound_joints=True)
+    square = np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]])
+    slide, corners = along_polygon(np.arange(RIM), square, UV[:RIM])
+    uv = UV.copy()
+    uv[0] = [-0.01, 1e-9]
+    kw = dict(fixed=corners, slides=[slide], surface_tolerance=0.25, tolerance=0.01, catalogue=[10.0, 12.0])
+    run("capture", uv=uv, **kw)
+    (p,) = seen
+    np.testing.assert_array_equal(p.uv, np.clip(uv, 0.0, 1.0))
+    assert p.edges.dtype == np.int64 and np.array_equal(p.edges, EDGES) and np.array_equal(p.edge_groups, GROUPS)
+    assert p.length == 8.0 and len(p.slides) == 1 and p.slides[0] is slide and p.joints is None
+    np.testing.assert_array_equal(p.free, free_nodes(len(UV), corners, [slide]))
+    assert (p.surface_tolerance, p.tolerance) == (0.25, 0.01)
+    np.testing.assert_array_equal(p.catalogue, [1.25, 1.5])
+    run("sound")
+    bounds = joint_bounds(patch(), UV, TRIANGLES)
+    assert seen[1].catalogue is None and isinstance(seen[1].joints, Joints)
+    np.testing.assert_array_equal(seen[1].joints.bounds, bounds)
+    optimize_uv(patch(), UV, EDGES, GROUPS, 8.0, fixed=FIXED, objective="sound")
+    assert seen[2].joints is None  # no triangles, no joints
+
+
+def test_a_stage_with_a_start_is_a_fresh_solve(monkeypatch):
+    """A few iterations of the paper's stage, then the paper's stage restarted at the start (with the initial
+    damping): the same result as the restarted stage alone."""
+    record(monkeypatch, "restart", stages_of(papers(max_iterations=2), papers(start="x0")))
+    record(monkeypatch, "alone", stages_of(papers(start="x0")))
+    restarted, alone = run("restart"), run("alone")
+    np.testing.assert_array_equal(restarted.uv, alone.uv)
+    assert restarted.nfev > alone.nfev and restarted.njev > alone.njev
+
+
+def test_a_stage_holding_some_variables_keeps_those(monkeypatch):
+    """The paper's stage with node 12's two variables held: node 12 stays, the others move."""
+
+    def hold_first(problem):
+        hold = np.zeros(len(problem.x0), dtype=bool)
+        hold[:2] = True
+        return replace(paper_stage(problem), hold=hold)
+
+    record(monkeypatch, "some", stages_of(hold_first))
+    result = run("some")
+    np.testing.assert_array_equal(result.uv[RIM], UV[RIM])
+    assert np.all(np.any(result.uv[RIM + 1 :] != UV[RIM + 1 :], axis=1))
+
+
+def test_a_stage_holding_every_variable_keeps_them(monkeypatch):
+    """Two iterations, then a stage with every variable held: the end of the two iterations."""
+
+    def hold_all(problem):
+        return replace(paper_stage(problem), hold=np.ones(len(problem.x0), dtype=bool))
+
+    record(monkeypatch, "held", stages_of(papers(max_iterations=2), hold_all))
+    record(monkeypatch, "two", stages_of(papers(max_iterations=2)))
+    np.testing.assert_array_equal(run("held").uv, run("two").uv)
+
+
+def test_a_stage_goes_on_from_the_last_end(monkeypatch):
+    """Two iterations, then the paper's stage on: it ends where the paper's stage alone ends, up to its tolerance,
+    but not at the two iterations' end."""
+    record(monkeypatch, "on", stages_of(papers(max_iterations=2), papers()))
+    record(monkeypatch, "two", stages_of(papers(max_iterations=2)))
+    on, two, alone = run("on"), run("two"), run()
+    assert on.cost_after < two.cost_after and on.cost_after == pytest.approx(alone.cost_after, rel=1e-6)
+
+
+def test_the_damping_and_the_analysis_carry_over(monkeypatch):
+    """Two stages share one analysis of the normal equations (one factorisation object built for their one
+    pattern), and the second goes on with the first's damping: restarted at the first's end with the initial
+    damping, it takes another path."""
+    built = []
+    real = FACTORISATIONS["superlu"]
+
+    def counting(*args):
+        built.append(args)
+        return real(*args)
+
+    monkeypatch.setitem(FACTORISATIONS, "superlu", counting)
+    record(monkeypatch, "on", stages_of(papers(max_iterations=2), papers()))
+    warm = run("on", factorisation="superlu")
+    assert len(built) == 1
+    record(monkeypatch, "two", stages_of(papers(max_iterations=2)))
+    two = run("two", factorisation="superlu")
+    end = two.uv[RIM:].ravel()
+    record(monkeypatch, "cold", stages_of(papers(max_iterations=2), papers(start=end)))
+    assert not np.array_equal(run("cold", factorisation="superlu").uv, warm.uv)
+
+
+def test_a_stage_with_no_iterations_evaluates_once(monkeypatch):
+    """No iterations: one evaluation of the residuals and one of the Jacobian, at the start; solved on (its
+    constraint unmet, the stage's tolerance loose), two of each."""
+    record(monkeypatch, "none", stages_of(papers(max_iterations=0)))
+    result = run("none")
+    assert (result.nfev, result.njev) == (1, 1)
+    np.testing.assert_array_equal(result.uv, UV)
+    calls = []
+
+    def met_late(x):
+        calls.append(x)
+        return len(calls) > 2  # the guard's start and the first solve's end: unmet; then met
+
+    record(monkeypatch, "late", stages_of(papers(max_iterations=0, ftol=0.5, feasible=met_late, violation=str)))
+    result = run("late")
+    assert (result.nfev, result.njev) == (2, 2)
+
+
+def test_the_callers_tolerances_and_the_stages_limit_are_the_solvers(monkeypatch):
+    """A loose gtol or xtol stops the solve by that test; a limit that takes every step to zero keeps the start."""
+    assert run(gtol=1.0).message == "projected gradient below gtol"
+    assert "step below xtol" in run(xtol=0.5).message
+    record(monkeypatch, "still", stages_of(papers(limit=lambda d: 0.0 * d)))
+    np.testing.assert_array_equal(run("still").uv, UV)
+
+
+def test_the_callers_ftol_replaces_the_stages(monkeypatch):
+    record(monkeypatch, "loose", stages_of(papers(ftol=0.5)))
+    loose, tight = run("loose"), run()
+    assert loose.nfev < tight.nfev and loose.cost_after > tight.cost_after
+    np.testing.assert_array_equal(run("loose", ftol=PAPER_FTOL).uv, tight.uv)
+
+
+def test_a_stage_ending_outside_its_constraint_is_solved_on(monkeypatch):
+    """A loose stage whose constraint (a cost near the optimum's) only the paper's tolerance reaches: solved on,
+    it is met."""
+    best = run().cost_after
+
+    def constrained(problem):
+        stage = paper_stage(problem)
+
+        def near(x):
+            return 0.5 * float(np.sum(stage.residuals(x) ** 2)) <= best * (1 + 2e-7)
+
+        return replace(stage, ftol=0.5, feasible=near, violation=lambda x: "too far")
+
+    record(monkeypatch, "near", stages_of(constrained))
+    record(monkeypatch, "loose", stages_of(papers(ftol=0.5)))
+    assert run("loose").cost_after > best * (1 + 2e-7)
+    assert run("near").cost_after <= best * (1 + 2e-7)
+
+
+class Finer:
+    """:func:`patch` that names what refines it."""
+
+    finer = "a finer control net"
+
+    def __init__(self):
+        self.chart = patch()
+        self.evaluate, self.derivatives = self.chart.evaluate, self.chart.derivatives
+        self.second_derivatives = self.chart.second_derivatives
+
+
+def test_an_end_outside_the_constraint_is_refused(monkeypatch):
+    record(monkeypatch, "never", stages_of(papers(feasible=lambda x: False, violation=lambda x: f"{len(x)} fit")))
+    message = (
+        "optimisation (never): no mesh with every member in [l, 2l] found, 8 fit; use a smaller l, {}, or "
+        "optimize='paper' (which does not bound the members on the surface)"
+    )
+    with pytest.raises(InvalidSurfaceError) as refused:
+        run("never")
+    assert str(refused.value) == message.format("a finer auxiliary grid")
+    with pytest.raises(InvalidSurfaceError) as refused:
+        run("never", surface=Finer())
+    assert str(refused.value) == message.format("a finer control net")
+
+
+def test_bounds_out_of_reach_are_refused(monkeypatch):
+    """The joints' check fires: an objective with sound joints whose stages end with an angle below its bound is
+    refused in the surface's terms, naming the angles."""
+
+    def idle(problem):
+        return Stage(lambda x: np.zeros(1), lambda x: scipy.sparse.csr_matrix((1, len(x))), max_iterations=0)
+
+    record(monkeypatch, "idle", stages_of(idle), sound_joints=True)
+    monkeypatch.setattr(joints, "JOINT_ANGLE", 59.0)  # the grid's triangles have angles of about 45 degrees
+    with pytest.raises(InvalidSurfaceError) as refused:
+        run("idle", surface=Finer())
+    text = str(refused.value)
+    assert text.startswith("optimisation (idle): no mesh with every triangle angle at least 30 degrees found, 18 of")
+    assert "below 59 degrees" in text
+    assert text.endswith(
+        "; use a smaller l, a finer control net, or optimize='paper' (which does not bound the angles)"
+    )
+    with pytest.raises(InvalidSurfaceError, match=r"use a smaller l, a finer auxiliary grid, or optimize='paper'"):
+        run("idle")
+
+
+def test_the_joints_are_kept_in_a_stage_that_keeps_them(monkeypatch):
+    """Bounds a little below the start's smallest angle and node 12 pulled towards node 13: without sound joints
+    its angles go far below them; with them the stage ends sound, the barrier holding every angle a part of its
+    margin above its bound; a stage that does not keep them (``joints`` False) ends below them, and is refused."""
+    start = surface_angles(patch().evaluate(*UV.T), TRIANGLES).min()
+    monkeypatch.setattr(joints, "JOINT_ANGLE", float(np.degrees(start)) - 0.5)
+    bound = start - np.radians(0.5)
+    record(monkeypatch, "free", stages_of(pulling(RIM, 0.9)))
+    assert surface_angles(patch().evaluate(*run("free").uv.T), TRIANGLES).min() < bound - np.radians(5.0)
+    record(monkeypatch, "kept", stages_of(pulling(RIM, 0.9)), sound_joints=True)
+    kept = run("kept")
+    assert surface_angles(patch().evaluate(*kept.uv.T), TRIANGLES).min() >= bound + 0.25 * joints.JOINT_MARGIN
+
+    def loose(problem):
+        return replace(pulling(RIM, 0.9)(problem), joints=False)
+
+    record(monkeypatch, "loose", stages_of(loose), sound_joints=True)
+    with pytest.raises(InvalidSurfaceError, match="no mesh with every triangle angle"):
+        run("loose")
+
+
+def pulling(node, target, weight=10.0, axis=0):
+    """A stage pulling the free ``node``'s u (``axis`` 0, variable ``2 (node - RIM)``) or v (1) to ``target``."""
+
+    def make(problem):
+        k = 2 * (node - RIM) + axis
+
+        def residuals(x):
+            return np.array([weight * (x[k] - target)])
+
+        def jacobian(x):
+            return scipy.sparse.csr_matrix(([weight], ([0], [k])), shape=(1, len(x)))
+
+        return Stage(residuals, jacobian, "pull")
+
+    return make
+
+
+@pytest.mark.parametrize("area_floor", [0.0, 0.5], ids=["acceptance only", "with the barrier"])
+def test_no_step_folds_a_triangle(monkeypatch, area_floor):
+    """Node 12 pulled across its neighbours (to u = 0.9, beyond node 13 at 2/3): every triangle counter-clockwise
+    at the start stays so, by the acceptance test alone or with the barrier."""
+    record(monkeypatch, "pull", stages_of(pulling(RIM, 0.9)))
+    result = run("pull", area_floor=area_floor)
+    assert np.all(signed_areas(result.uv, TRIANGLES) > 0) and result.uv[RIM, 0] > UV[RIM, 0]
+    free = optimize_uv(patch(), UV, EDGES, GROUPS, 8.0, fixed=FIXED, objective="pull")  # no triangles, no guards
+    assert free.uv[RIM, 0] == pytest.approx(0.9)
+
+
+def test_the_barrier_holds_a_squeezed_triangle_back(monkeypatch):
+    """Node 12 pulled towards node 13: the acceptance test alone lets a triangle shrink to almost nothing; the
+    barrier (floor 0.5 or 0.9 of the start areas) keeps the smallest larger, the higher floor the more."""
+    record(monkeypatch, "pull", stages_of(pulling(RIM, 0.9)))
+    start = signed_areas(UV, TRIANGLES)
+    smallest = [(signed_areas(run("pull", area_floor=f).uv, TRIANGLES) / start).min() for f in (0.0, 0.5, 0.9)]
+    assert smallest[0] < 1e-3 < smallest[1] < smallest[2]
+
+
+def test_a_triangle_flat_at_the_start_is_not_guarded(monkeypatch):
+    """A triangle of three rim nodes on a side (zero area) added: the guard ignores it, and node 12 still moves."""
+    record(monkeypatch, "pull", stages_of(pulling(RIM, 0.5)))
+    triangles = np.vstack([TRIANGLES, [[0, 1, 2]]])
+    result = optimize_uv(patch(), UV, EDGES, GROUPS, 8.0, fixed=FIXED, triangles=triangles, objective="pull")
+    assert result.uv[RIM, 0] > UV[RIM, 0] + 0.05
+
+
+def test_a_step_that_flattens_a_triangle_is_refused(monkeypatch):
+    """Node 12 pulled below the square (v = -1): its steps are clipped onto v = 0, the side through nodes 0 and
+    1, which flattens the triangle (0, 1, 12) to area 0 exactly; the acceptance test refuses that as a fold."""
+    record(monkeypatch, "down", stages_of(pulling(RIM, -1.0, axis=1)))
+    result = run("down", area_floor=0.0)
+    assert np.all(signed_areas(result.uv, TRIANGLES) > 0) and 0.0 < result.uv[RIM, 1] < UV[RIM, 1]
+
+
+def test_a_triangle_clockwise_at_the_start_is_not_guarded(monkeypatch):
+    """One of node 12's triangles given clockwise: the guard ignores it, and node 12 still moves."""
+    record(monkeypatch, "pull", stages_of(pulling(RIM, 0.5)))
+    triangles = TRIANGLES.copy()
+    touching = np.flatnonzero(np.any(triangles == RIM, axis=1))[0]
+    triangles[touching] = triangles[touching, ::-1]
+    result = optimize_uv(patch(), UV, EDGES, GROUPS, 8.0, fixed=FIXED, triangles=triangles, objective="pull")
+    assert result.uv[RIM, 0] > UV[RIM, 0] + 0.05
+
+
+def test_a_constraint_met_stays_met(monkeypatch):
+    """Node 12 pulled to u = 0.6 under the constraint u <= 0.45, met at the start: every step keeps it."""
+
+    def constrained(problem):
+        return replace(pulling(RIM, 0.6)(problem), feasible=lambda x: x[0] <= 0.45, violation=lambda x: "")
+
+    record(monkeypatch, "kept", stages_of(constrained))
+    result = run("kept", area_floor=0.0)
+    assert UV[RIM, 0] + 0.05 < result.uv[RIM, 0] <= 0.45
+
+
+def test_the_barriers_are_appended_with_a_weight_above_the_cost():
+    """The fold-over and the angle barriers after the stage's residuals, each of weight ``1 + 2 sqrt(cost)``;
+    without them the stage itself."""
+    p, triangles = problem(seed=1)
+    stage = paper_stage(p)
+    x = p.x0
+    weight = 1.0 + 2.0 * np.sqrt(0.5 * float(np.sum(stage.residuals(x) ** 2)))
+    assert with_barriers(p, stage, None, None, x) is stage
+    folds = fold_over_barrier(p, triangles, 0.9)
+    angles = Joints(p, triangles, np.full(triangles.shape, np.radians(44.5)))
+    both = with_barriers(p, stage, folds, angles, x)
+    assert both.description == stage.description + " + barriers"
+    y = moved(p, 2, size=0.05)  # some triangles squeezed below 0.9 of their area, some angles near 44.5 degrees
+    expected = np.concatenate(
+        [stage.residuals(y), folds.weighted(weight).residuals(p.uv_of(y)), angles.barrier(weight)[0](y)]
+    )
+    assert np.count_nonzero(expected[len(stage.residuals(y)) : len(stage.residuals(y)) + 18]) > 0
+    assert np.count_nonzero(expected[len(stage.residuals(y)) + 18 :]) > 0
+    np.testing.assert_allclose(both.residuals(y), expected, rtol=1e-12)
+    np.testing.assert_allclose(both.jacobian(y).toarray(), finite_difference(both.residuals, y), atol=1e-5)
+    only_folds = with_barriers(p, stage, folds, None, x)
+    np.testing.assert_allclose(only_folds.residuals(y), expected[: len(stage.residuals(y)) + 18], rtol=1e-12)
+
+
+def test_the_fold_over_barrier_by_hand():
+    """``(1 - A / (f A0))^2`` per triangle of weight 1: zero at the start, 1 for a triangle folded flat."""
+    p, triangles = problem(rise=0.0)
+    barrier = fold_over_barrier(p, triangles, 0.5)
+    assert not np.any(barrier.residuals(p.uv))
+    uv = p.uv.copy()
+    uv[RIM] = uv[RIM - 1] + 0.25 * (uv[RIM] - uv[RIM - 1])  # node 12 towards node 11: its triangles shrink
+    areas, start = signed_areas(uv, triangles), signed_areas(p.uv, triangles)
+    expected = np.maximum(0.0, 1.0 - areas / (0.5 * start)) ** 2
+    assert np.count_nonzero(expected) == 2 and np.all(expected < 1.0)
+    np.testing.assert_allclose(barrier.residuals(uv), expected, atol=1e-15)

@@ -1,60 +1,119 @@
 """Sound joints (``surface/optimize/joints.py``): every triangle angle on the surface at least its bound.
 
-What must hold: the angles are the metrics' angles; the barrier's Jacobian is its derivative, on the surface, with
-sliding nodes and with nodes off the surface; the bounds are 30 degrees except at a corner sharper than that; an
-objective that cannot reach the bounds is refused, and a mesh that breaks them is never returned.
+What must hold: the angles are the triangles' interior angles, at the vertex they are listed at; the barrier is zero
+from one margin above a bound and grows as the square of the depth below that, and its Jacobian is its derivative
+(on the surface, with sliding nodes, with nodes off the surface, next to a degenerate triangle); the bounds are 30
+degrees except at a corner sharper than that; the test of soundness holds at the bounds exactly and fails below.
+On the tiny grids of ``optimize_cases``; the driver's refusal of an end below the bounds is in ``test_driver.py``.
 """
-
-from dataclasses import replace
 
 import numpy as np
 import pytest
-import scipy.sparse
-from test_objectives import finite_difference, run, sliding_problem
+from optimize_cases import finite_difference, moved, problem
 
 import equimesh
-from equimesh import InternalError, InvalidSurfaceError
 from equimesh.metrics import triangle_angles
-from equimesh.surface import pipeline
-from equimesh.surface.optimize import OBJECTIVES, Objective, Stage, joints, optimize_uv
+from equimesh.surface.optimize import UVProblem, joints
 from equimesh.surface.optimize.joints import Joints, joint_bounds, surface_angles
-from equimesh.surface.optimize.objectives import edge_length_terms
-from equimesh.surface.optimize.solver import FACTORISATIONS
 from equimesh.testing.surfaces import dome
 
+MARGIN = joints.JOINT_MARGIN
 
-def perturbed(problem, seed, offset=0.0):
-    """The problem's start moved a little (and its offsets set to about ``offset``)."""
-    rng = np.random.default_rng(seed)
-    x = problem.x0 + 0.01 * rng.standard_normal(len(problem.x0))
-    k = len(problem.offset_nodes)
-    if k:
-        x[len(x) - k :] = offset * rng.uniform(-1.0, 1.0, k)
-    return x
+
+class Flat:
+    """The plane z = 0 as a chart on [0, 1]^2: every point is its (u, v), exactly."""
+
+    def evaluate(self, u, v):
+        return np.column_stack([u, v, np.zeros_like(u)])
+
+    def derivatives(self, u, v):
+        one, zero = np.ones_like(u), np.zeros_like(u)
+        return np.column_stack([one, zero, zero]), np.column_stack([zero, one, zero])
+
+
+def test_surface_angles_by_hand():
+    """A right isosceles triangle listed from each of its vertices, an obtuse one (135 degrees) and an equilateral
+    one off every coordinate plane."""
+    points = np.array([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [-1.0, 1.0, 0.0], [0.0, 0.0, 1.0]])
+    triangles = np.array([[0, 1, 2], [1, 2, 0], [2, 0, 1], [0, 1, 3], [1, 2, 4]])
+    expected = [[90, 45, 45], [45, 45, 90], [45, 90, 45], [135, 26.56505117707799, 18.43494882292201], [60, 60, 60]]
+    np.testing.assert_allclose(np.degrees(surface_angles(points, triangles)), expected, rtol=1e-13)
 
 
 def test_surface_angles_are_the_metrics_angles():
-    mesh, plain, problem, _ = sliding_problem()
-    points = problem.points_of(problem.x0)
+    p, triangles = problem(seed=1)
+    points = p.points_of(p.x0)
     np.testing.assert_allclose(
-        np.degrees(surface_angles(points, mesh.triangles)), triangle_angles(points, mesh.triangles), atol=1e-9
+        np.degrees(surface_angles(points, triangles)), triangle_angles(points, triangles), atol=1e-9
     )
 
 
-@pytest.mark.parametrize("tolerance, offset", [(0.0, 0.0), (0.8, 0.6)], ids=["on the surface", "off the surface"])
-def test_barrier_and_length_jacobians_match_finite_differences(tolerance, offset):
-    """With sliding boundary nodes, and with offsets along the normal large enough that the normal's own derivative
-    counts."""
-    mesh, _, sliding, _ = sliding_problem()
-    problem = replace(sliding, surface_tolerance=tolerance)
-    x = perturbed(problem, 5, offset)
-    lengths, jacobian = edge_length_terms(problem, mesh.edges)
-    np.testing.assert_allclose(jacobian(x)[1].toarray(), finite_difference(lengths, x), atol=1e-5 * lengths(x).max())
-    bounds = np.full(mesh.triangles.shape, np.radians(58.0))  # most angles within a degree of it: the barrier acts
-    residuals, barrier = Joints(problem, mesh.triangles, bounds).barrier(3.0)
-    assert np.count_nonzero(residuals(x)) > 10
+def test_the_barrier_is_the_squared_depth_below_one_margin_above_the_bound():
+    """``weight (1 - (theta - bound) / margin)^2`` per angle, corner by corner (all triangles' first angles, then
+    their second, their third), zero from one margin above the bound."""
+    p, triangles = problem(rise=0.0)
+    angles = surface_angles(p.points_of(p.x0), triangles)
+    depth = np.zeros_like(angles)
+    depth[0, 0], depth[3, 1], depth[7, 2] = 0.5, 2.0, 1.0  # bounds half a margin, one margin above and at the angle
+    bounds = angles - (1.0 - depth) * MARGIN  # depth 0 elsewhere: each angle one margin above its bound
+    bounds[5, 0] = angles[5, 0] - 4.0 * MARGIN  # four margins above: no term either
+    residuals, _ = Joints(p, triangles, bounds).barrier(3.0)
+    np.testing.assert_allclose(residuals(p.x0).reshape(3, -1).T, 3.0 * depth**2, atol=1e-12)
+
+
+def active_bounds(p, triangles, x):
+    """Bounds within a margin of most angles at ``x`` (the barrier acts), the first triangle's far below its angles
+    (its terms zero)."""
+    angles = surface_angles(p.points_of(x), triangles)
+    bounds = angles - MARGIN * np.random.default_rng(7).uniform(0.2, 0.9, angles.shape)
+    bounds[0] = angles[0] - 5 * MARGIN
+    return bounds
+
+
+@pytest.mark.parametrize(
+    "slides, tolerance, offset",
+    [(False, 0.0, 0.0), (True, 0.0, 0.0), (True, 0.8, 0.6)],
+    ids=["inner", "sliding", "off"],
+)
+def test_the_barriers_jacobian_is_its_derivative(slides, tolerance, offset):
+    """Inner nodes free; the rim sliding along the square; and every moving node off the surface, far enough that
+    the normal's own derivative counts."""
+    p, triangles = problem(seed=2, slides=slides, surface_tolerance=tolerance)
+    x = moved(p, 5, offset=offset)
+    residuals, jacobian = Joints(p, triangles, active_bounds(p, triangles, x)).barrier(3.0)
+    assert np.count_nonzero(residuals(x)) > 20 and not np.any(residuals(x)[:: len(triangles)])
     expected = finite_difference(residuals, x)
-    np.testing.assert_allclose(barrier(x).toarray(), expected, atol=1e-6 * np.abs(expected).max())
+    got = jacobian(x)
+    assert got.shape == (3 * len(triangles), len(x))
+    np.testing.assert_allclose(got.toarray(), expected, atol=1e-6 * np.abs(expected).max())
+
+
+def test_a_corner_between_parallel_sides_has_no_gradient():
+    """Three nodes on a line, listed from either end: at the first node the two sides are parallel and the angle
+    has no gradient (zero rows, not NaN, whichever side's perpendicular part rounds to zero); the triangle after
+    them still has its own."""
+    uv = np.array([[0.0, 0.0], [0.125, 0.125], [0.1, 0.1], [0.125, 0.0]])
+    edges = np.array([[0, 1], [1, 2], [2, 0], [0, 3], [1, 3]])
+    p = UVProblem(Flat(), uv, edges, np.ones(5, dtype=np.int8), 8.0, np.ones(4, dtype=bool))
+    triangles = np.array([[0, 1, 2], [0, 2, 1], [0, 3, 1]])
+    bounds = np.radians([[80.0, 80.0, 80.0], [80.0, 80.0, 80.0], [50.0, 100.0, 50.0]])  # every angle below it
+    residuals, jacobian = Joints(p, triangles, bounds).barrier(1.0)
+    jac = jacobian(p.x0).toarray()
+    assert np.all(np.isfinite(jac)) and not np.any(jac[[0, 1]])
+    np.testing.assert_allclose(jac[2::3], finite_difference(residuals, p.x0)[2::3], atol=1e-6)
+    assert np.all(np.abs(jac[2::3]).sum(axis=1) > 0)
+
+
+def test_the_barriers_jacobian_keeps_its_structure():
+    """The entries of the angles whose terms are zero are kept (as zeros): one pattern for the normal equations
+    whichever angles are near their bounds."""
+    p, triangles = problem(seed=2)
+    angles = surface_angles(p.points_of(p.x0), triangles)
+    asleep = Joints(p, triangles, angles - 5 * MARGIN).barrier(3.0)[1](p.x0)
+    awake = Joints(p, triangles, angles - 0.5 * MARGIN).barrier(3.0)[1](p.x0)
+    assert not np.any(asleep.data) and np.all(awake.data)
+    np.testing.assert_array_equal(asleep.indptr, awake.indptr)
+    np.testing.assert_array_equal(asleep.indices, awake.indices)
 
 
 def test_bounds_are_30_degrees_but_at_a_sharper_corner():
@@ -63,78 +122,39 @@ def test_bounds_are_30_degrees_but_at_a_sharper_corner():
     points = np.array([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [10.0, 2.0, 0.0]])
     triangles = np.array([[0, 1, 2], [1, 3, 2]])
 
-    class Flat:
-        def evaluate(self, u, v):
-            return np.column_stack([u, v, np.zeros_like(u)])
-
-        def derivatives(self, u, v):
-            one, zero = np.ones_like(u), np.zeros_like(u)
-            return np.column_stack([one, zero, zero]), np.column_stack([zero, one, zero])
-
     bounds = np.degrees(joint_bounds(Flat(), points[:, :2], triangles))
     angles = triangle_angles(points, triangles)
     sharp = angles[1, 1]  # node 3 is in one triangle only, with an angle of about 8 degrees
     assert sharp < 30 and angles[1, 0] + angles[0, 1] > 30 and angles[1, 2] + angles[0, 2] > 30
-    assert bounds[1, 1] == pytest.approx(sharp - np.degrees(joints.JOINT_MARGIN))
+    assert bounds[1, 1] == pytest.approx(sharp - np.degrees(MARGIN))
     np.testing.assert_allclose(np.delete(bounds.ravel(), 4), 30.0, rtol=1e-14)
 
 
-def saddle(l=6.0):
-    return equimesh.load_surface("experiments/surfaces/saddle.json"), l
+def test_sound_holds_at_the_bounds_and_fails_just_below():
+    """The check fires: one angle a rounding below its bound makes the mesh unsound."""
+    p, triangles = problem(seed=3)
+    angles = surface_angles(p.points_of(p.x0), triangles)
+    assert Joints(p, triangles, angles).sound(p.x0)
+    bounds = angles.copy()
+    bounds[4, 2] = np.nextafter(angles[4, 2], np.inf)
+    assert not Joints(p, triangles, bounds).sound(p.x0)
+    assert p.sound(p.x0)  # a problem without joints keeps no bounds
 
 
-def test_bounds_out_of_reach_are_refused(monkeypatch):
-    """The check fires: an objective with sound joints whose stages end with an angle below its bound is refused in
-    the surface's terms, naming the angles."""
-
-    def idle(problem):
-        stage = Stage(lambda x: np.zeros(1), lambda x: scipy.sparse.csr_matrix((1, len(x))), max_iterations=0)
-        x = yield stage
-        return x, stage
-
-    record = Objective(
-        "idle",
-        idle,
-        "nothing",
-        slides=False,
-        bounds_members=False,
-        sound_joints=True,
-        max_nodes=dict.fromkeys(FACTORISATIONS, 100),
+def test_the_violation_names_the_triangles_below_their_bounds():
+    """On the flat grid every triangle has angles 90, 45 and 45 degrees."""
+    p, triangles = problem(rise=0.0)
+    bounds = np.full(triangles.shape, np.radians(30.0))
+    assert Joints(p, triangles, bounds).violation(p.x0) == (
+        "0 of 18 triangles with an angle below 0 degrees (smallest 45)"
     )
-    monkeypatch.setitem(OBJECTIVES, "idle", record)
-    monkeypatch.setattr(joints, "JOINT_ANGLE", 59.0)  # the stand-in's strip has angles below 59 degrees
-    mesh, r, _ = run(dome(), 8.0, objective="paper")
-    with pytest.raises(InvalidSurfaceError, match=r"no mesh with every triangle angle at least 30 degrees.*below 59"):
-        optimize_uv(
-            dome(),
-            r.uv,
-            mesh.edges,
-            mesh.edge_groups,
-            8.0,
-            fixed=np.arange(mesh.n_boundary),
-            triangles=mesh.triangles,
-            objective="idle",
-        )
-
-
-def test_a_mesh_with_an_unsound_joint_is_never_returned(monkeypatch):
-    """The pipeline checks the angles of every mesh an objective with sound joints returns: an optimisation that
-    squeezes a triangle is an InternalError, not a mesh."""
-    real = pipeline.optimize_uv
-
-    def squeezing(*args, **kwargs):
-        result = real(*args, **kwargs)
-        uv = result.uv.copy()
-        tri = kwargs["triangles"][0]
-        uv[tri[2]] = uv[tri[0]] + 0.97 * (uv[tri[1]] - uv[tri[0]]) + 1e-3 * (uv[tri[2]] - uv[tri[0]])
-        return replace(result, uv=uv)
-
-    monkeypatch.setattr(pipeline, "optimize_uv", squeezing)
-    monkeypatch.setattr(pipeline, "check_orientation", lambda *args: None)
-    monkeypatch.setattr(pipeline, "check_members", lambda *args: None)
-    surface, l = saddle()
-    with pytest.raises(InternalError, match="angle below its bound"):
-        equimesh.mesh_surface(surface, l, grid=(8, 8), optimize="classes")
+    bounds[0, 0] = bounds[3, 0] = bounds[3, 2] = np.radians(50.0)  # 45, 45 and 90 degrees
+    bounds[9, 0] = np.radians(46.0)
+    angles = surface_angles(p.points_of(p.x0), triangles)
+    bounds[5, 1] = angles[5, 1]  # at its bound, not below
+    assert Joints(p, triangles, bounds).violation(p.x0) == (
+        "3 of 18 triangles with an angle below 50 degrees (smallest 45)"
+    )
 
 
 def test_the_papers_objective_keeps_its_angles_unbounded():

@@ -212,8 +212,8 @@ def bounded_stages(problem):
         return stage, weight, goal, cauchy_loss(ratio), float(np.sum((weight * (ratio - goal)) ** 2))
 
     def series(x):
-        """Rounds from ``x`` until one settles in [l, 2l], stalls, or :data:`BOUNDED_ROUNDS` are done; ends where the
-        last round did."""
+        """Rounds from ``x`` until one settles in [l, 2l], stalls, or :data:`BOUNDED_ROUNDS` are done (each round's
+        end offered to :func:`keep_best`)."""
         restart = False
         for k in range(BOUNDED_ROUNDS):
             stage, weight, goal, loss, cost = round_stage(k, x, restart)
@@ -227,7 +227,6 @@ def bounded_stages(problem):
             # A stalled round poses the next one the same problem: it ends the series, unless its solve began with
             # a damping left large by earlier solves; then the next round starts afresh.
             restart = stalled
-        return x
 
     def last_stage():
         low, smooth = 1.0 + 0.5 * BOUNDED_OFFSET, 0.25 * BOUNDED_OFFSET
@@ -338,15 +337,15 @@ def _class_key(ratio, tolerance, catalogue):
 
 
 def _merged(nominal, ratio, tolerance, k, members):
-    """The nominal lengths after round ``k``: each moved to the middle of the members within ``tolerance`` of it
-    (the class at l stays), and every ``CLASSES_MERGE_EVERY`` rounds the one holding the fewest dropped."""
+    """The nominal lengths after round ``k``: each moved to the middle of the members within ``tolerance`` of it (the
+    class at l stays; at most ``high``), and every ``CLASSES_MERGE_EVERY`` rounds the one holding the fewest dropped."""
     nearest = np.argmin(np.abs(ratio[:, None] - nominal[None, :]), axis=1)
     near = np.abs(ratio - nominal[nearest]) <= tolerance
     moved = nominal.copy()
     for q in np.flatnonzero(nominal != members.target):
         held = ratio[near & (nearest == q)]
-        if held.size:
-            moved[q] = np.clip(0.5 * (held.min() + held.max()), members.target, members.high)
+        if held.size:  # above the target: a member below it is nearer to the target (the first nominal) than to q
+            moved[q] = min(0.5 * (held.min() + held.max()), members.high)
     if (k + 1) % CLASSES_MERGE_EVERY or len(moved) == 1:
         return moved
     counts = np.bincount(nearest[near], minlength=len(nominal))

@@ -155,8 +155,6 @@ class UVProblem:
         node ``elements[j, c]`` (``grads`` (E, k, 3): the derivatives of residual j by the points of its nodes)."""
         elements = np.asarray(elements, dtype=np.int64)
         n, k = len(x), len(self.offset_nodes)
-        if not k:
-            return scipy.sparse.csr_matrix((len(elements), n))
         column = np.full(len(self.uv), -1, dtype=np.int64)
         column[self.offset_nodes] = np.arange(n - k, n)
         normal = unit_normals(self.surface, self.uv_of(x))[0]
