@@ -100,6 +100,7 @@ def test_bounds_out_of_reach_are_refused(monkeypatch):
         bounds_members=False,
         sound_joints=True,
         max_nodes=dict.fromkeys(FACTORISATIONS, 100),
+        max_jacobians=10,
     )
     monkeypatch.setitem(OBJECTIVES, "idle", record)
     monkeypatch.setattr(joints, "JOINT_ANGLE", 59.0)  # the stand-in's strip has angles below 59 degrees

@@ -381,6 +381,10 @@ class Objective:
         :data:`~equimesh.surface.optimize.solver.FACTORISATIONS`
         (docs/performance.md, "The final optimisation"); :meth:`node_limit`
         gives the one that applies.
+    max_jacobians : int
+        The work bound: the Jacobian evaluations of the solver (the result's ``njev``, all stages) after which
+        :func:`~equimesh.surface.optimize.driver.optimize_uv` refuses the surface (docs/decisions.md, "A work bound
+        for the optimisation").
     """
 
     name: str
@@ -390,6 +394,7 @@ class Objective:
     bounds_members: bool
     sound_joints: bool
     max_nodes: dict
+    max_jacobians: int
 
     def node_limit(self, factorisation=None):
         """The default node limit with ``factorisation`` (by default the one the optimisation uses,
@@ -410,6 +415,16 @@ _BOUNDED_MAX_NODES = {"pardiso": 50_000, "cholmod": 50_000, "superlu": 24_000}
 #: mesh in [l, 2l] on the reference dome at 3,800 nodes (docs/decisions.md, "Sound joints"), so it keeps the limit
 #: bounded had before the fast factorisations, 6,000 nodes, with each.
 _CLASSES_MAX_NODES = {"pardiso": 6_000, "cholmod": 6_000, "superlu": 6_000}
+#: The work bounds (docs/decisions.md, "A work bound for the optimisation"; docs/performance.md, "The final
+#: optimisation"), in Jacobian evaluations.  "paper" is one solve of at most 500 iterations (the solver's guard,
+#: :attr:`Stage.max_iterations`), so 501: the bound it always had.  "bounded": the most measured on a mesh it returned
+#: was 635 (the reference dome at 67,371 nodes, above its node limit, with PARDISO; 403 at 34,031, 281 in the tests,
+#: 204 on the 101 domes of ``python experiments/bounded_sweep.py``), and ``python experiments/optimisation_work.py``
+#: over the repository's surfaces; 1,500 is about 2.4 times that.  "classes" adds its own rounds to bounded's, each at
+#: most ``BOUNDED_ROUND_ITERATIONS`` iterations: ``CLASSES_ROUNDS (BOUNDED_ROUND_ITERATIONS + 1)`` more.
+_PAPER_MAX_JACOBIANS = 501
+_BOUNDED_MAX_JACOBIANS = 1_500
+_CLASSES_MAX_JACOBIANS = _BOUNDED_MAX_JACOBIANS + CLASSES_ROUNDS * (BOUNDED_ROUND_ITERATIONS + 1)
 OBJECTIVES = {
     objective.name: objective
     for objective in (
@@ -421,6 +436,7 @@ OBJECTIVES = {
             bounds_members=False,
             sound_joints=False,
             max_nodes=_PAPER_MAX_NODES,
+            max_jacobians=_PAPER_MAX_JACOBIANS,
         ),
         Objective(
             "bounded",
@@ -430,6 +446,7 @@ OBJECTIVES = {
             bounds_members=True,
             sound_joints=False,
             max_nodes=_BOUNDED_MAX_NODES,
+            max_jacobians=_BOUNDED_MAX_JACOBIANS,
         ),
         Objective(
             "classes",
@@ -439,6 +456,7 @@ OBJECTIVES = {
             bounds_members=True,
             sound_joints=True,
             max_nodes=_CLASSES_MAX_NODES,
+            max_jacobians=_CLASSES_MAX_JACOBIANS,
         ),
     )
 }
