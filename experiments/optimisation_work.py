@@ -53,7 +53,7 @@ CAPS = ((3.0, 60.0), (3.0, 120.0), (3.0, 170.0))
 STRETCHED_LENGTH = 0.5
 #: The domes of experiments/bounded_sweep.py, meshed by "paper" and "bounded" only (as there).
 SWEEP_DOMES = 101
-QUICK = ("reference dome", 2.0), ("closed tube 1 x 17", STRETCHED_LENGTH)
+QUICK = ("reference dome", 5.0), ("closed tube 1 x 17", 1.0)
 COLUMNS = [
     "surface",
     "l",
@@ -158,7 +158,7 @@ def summarize(df, record):
 
 def parse_args(argv=None):
     p = _common.add_output_options(_common.parser(__doc__), fig_dir=False, jobs=True)
-    p.add_argument("--quick", action="store_true", help="the reference dome at l = 2 and one closed tube")
+    p.add_argument("--quick", action="store_true", help="the reference dome at l = 5 and one closed tube at l = 1")
     return p.parse_args(argv)
 
 

@@ -415,16 +415,18 @@ _BOUNDED_MAX_NODES = {"pardiso": 50_000, "cholmod": 50_000, "superlu": 24_000}
 #: mesh in [l, 2l] on the reference dome at 3,800 nodes (docs/decisions.md, "Sound joints"), so it keeps the limit
 #: bounded had before the fast factorisations, 6,000 nodes, with each.
 _CLASSES_MAX_NODES = {"pardiso": 6_000, "cholmod": 6_000, "superlu": 6_000}
-#: The work bounds (docs/decisions.md, "A work bound for the optimisation"; docs/performance.md, "The final
-#: optimisation"), in Jacobian evaluations.  "paper" is one solve of at most 500 iterations (the solver's guard,
-#: :attr:`Stage.max_iterations`), so 501: the bound it always had.  "bounded": the most measured on a mesh it returned
-#: was 635 (the reference dome at 67,371 nodes, above its node limit, with PARDISO; 403 at 34,031, 281 in the tests,
-#: 204 on the 101 domes of ``python experiments/bounded_sweep.py``), and ``python experiments/optimisation_work.py``
-#: over the repository's surfaces; 1,500 is about 2.4 times that.  "classes" adds its own rounds to bounded's, each at
-#: most ``BOUNDED_ROUND_ITERATIONS`` iterations: ``CLASSES_ROUNDS (BOUNDED_ROUND_ITERATIONS + 1)`` more.
+#: The work bounds in Jacobian evaluations (docs/decisions.md, "A work bound for the optimisation"), measured by
+#: ``python experiments/optimisation_work.py`` (results/optimisation_work.md: the reference dome at l = 0.5 to 2, the
+#: examples of experiments/surfaces at two l each, the 101 domes of experiments/bounded_sweep.py, closed-ended tubes and
+#: spherical caps; with PARDISO).  "paper" is one solve of at most 500 iterations (the solver's guard,
+#: :attr:`Stage.max_iterations`), so 501: the bound it always had (the tubes take it all).  "bounded": at most 409 on
+#: a mesh returned there (the reference dome at 36,848 nodes), 635 in docs/performance.md (67,371 nodes, above its
+#: node limit), so 1,500, 2.4 times the most.  "classes": at most 1,313 (the reference dome at l = 2.5, 1,438 nodes,
+#: bounded's stages with the angle guards ending in the last stage), so 2,600, twice that; hopeless, it took 2,911
+#: on the reference dome at l = 2 before the bound.
 _PAPER_MAX_JACOBIANS = 501
 _BOUNDED_MAX_JACOBIANS = 1_500
-_CLASSES_MAX_JACOBIANS = _BOUNDED_MAX_JACOBIANS + CLASSES_ROUNDS * (BOUNDED_ROUND_ITERATIONS + 1)
+_CLASSES_MAX_JACOBIANS = 2_600
 OBJECTIVES = {
     objective.name: objective
     for objective in (
