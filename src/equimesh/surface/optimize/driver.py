@@ -147,9 +147,13 @@ def optimize_uv(
     ------
     InvalidSurfaceError
         The objective has a hard constraint (``"bounded"``: every member in
-        [l, 2l]) and no point satisfying it was found; the message suggests a
-        smaller l, a finer grid (``surface.finer`` names what refines a chart,
-        "a finer auxiliary grid" by default) or ``optimize='paper'``.
+        [l, 2l]) and no point satisfying it was found, or its start is out of
+        reach of it (:func:`~equimesh.surface.optimize.members.out_of_reach`);
+        the message suggests a smaller l, a finer grid (``surface.finer`` names
+        what refines a chart, "a finer auxiliary grid" by default) or
+        ``optimize='paper'``.  Also when the solver's Jacobian evaluations would
+        exceed the objective's work bound
+        (:attr:`~equimesh.surface.optimize.objectives.Objective.max_jacobians`).
     """
     try:
         record = OBJECTIVES[objective]
@@ -272,9 +276,10 @@ class _Work:
     (:attr:`~equimesh.surface.optimize.objectives.Objective.max_jacobians`; docs/decisions.md, "A work bound for
     the optimisation").
 
-    A solve of ``k`` iterations counts ``k + 1`` (its last Jacobian tests convergence), so a solve is given at most
-    the iterations left; one that stops there unconverged would need more than the bound: :class:`_OutOfWork`.
-    Below the bound no solve is given fewer iterations than its stage's, so the bound changes nothing there.
+    A solve of ``k`` iterations counts ``k + 1`` (as the result's ``njev``), so a solve is given at most the
+    iterations left; one that stops there unconverged, or one the bound leaves no iteration, would need more:
+    :class:`_OutOfWork`.  A capped solve that converges ends where the uncapped one does, so a run within the bound
+    keeps its bits.
     """
 
     def __init__(self, bound):

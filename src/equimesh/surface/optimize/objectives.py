@@ -421,9 +421,8 @@ _CLASSES_MAX_NODES = {"pardiso": 6_000, "cholmod": 6_000, "superlu": 6_000}
 #: spherical caps; with PARDISO).  "paper" is one solve of at most 500 iterations (the solver's guard,
 #: :attr:`Stage.max_iterations`), so 501: the bound it always had (the tubes take it all).  "bounded": at most 409 on
 #: a mesh returned there (the reference dome at 36,848 nodes), 635 in docs/performance.md (67,371 nodes, above its
-#: node limit), so 1,500, 2.4 times the most.  "classes": at most 1,313 (the reference dome at l = 2.5, 1,438 nodes,
-#: bounded's stages with the angle guards ending in the last stage), so 2,600, twice that; hopeless, it took 2,911
-#: on the reference dome at l = 2 before the bound.
+#: node limit), so 1,500, 2.4 times the most.  "classes": at most 1,313 (the reference dome at l = 2.5, 1,438 nodes),
+#: so 2,600, twice that.
 _PAPER_MAX_JACOBIANS = 501
 _BOUNDED_MAX_JACOBIANS = 1_500
 _CLASSES_MAX_JACOBIANS = 2_600
