@@ -43,6 +43,7 @@ EXPERIMENTS := \
 	experiments/scaling.py:--pipeline \
 	experiments/bounded.py \
 	experiments/bounded_sweep.py \
+	experiments/optimisation_work.py \
 	experiments/feature_angle.py \
 	experiments/inputs.py \
 	experiments/fabrication.py

@@ -9,6 +9,7 @@ import shapely
 import equimesh
 from equimesh import REL_TOL
 from equimesh.surface.charts.mesh_chart import MeshChart
+from equimesh.testing import meshes
 from equimesh.testing.meshes import roof_mesh
 
 
@@ -123,30 +124,13 @@ def assert_on_input_surface(mesh, surface, l):
 
 
 def closed_tube(radius, length, n_ring=24, n_cap=6):
-    """An open cylinder closed by a hemisphere at one end, as a triangle mesh: a disc with one boundary loop."""
-    n_length = int(length / (2.0 * np.pi * radius / n_ring))
-    quarter = np.pi / 2.0 * np.arange(1, n_cap + 1) / n_cap
-    rings = [(radius * np.sin(a), -length - radius * np.cos(a)) for a in quarter]
-    rings += [(radius, -length + length * k / n_length) for k in range(1, n_length + 1)]
-    return _rings_about_a_pole(rings, [0.0, 0.0, -length - radius], n_ring)
+    """:func:`equimesh.testing.meshes.closed_tube` as a surface."""
+    return equimesh.TriangulatedSurface(*meshes.closed_tube(radius, length, n_ring, n_cap))
 
 
 def spherical_cap(radius, degrees, n_ring=24, n_rings=12):
-    """The cap of a sphere within ``degrees`` of its pole, as a triangle mesh (near 180: a nearly closed sphere)."""
-    polar = np.radians(degrees) * np.arange(1, n_rings + 1) / n_rings
-    return _rings_about_a_pole([(radius * np.sin(a), -radius * np.cos(a)) for a in polar], [0.0, 0.0, -radius], n_ring)
-
-
-def _rings_about_a_pole(rings, pole, n_ring):
-    """A fan about ``pole``, then strips between rings of ``n_ring`` points at (radius, z) each."""
-    phi = np.linspace(0.0, 2.0 * np.pi, n_ring, endpoint=False)
-    points = [pole] + [[r * np.cos(p), r * np.sin(p), z] for r, z in rings for p in phi]
-    faces = [(0, 1 + (j + 1) % n_ring, 1 + j) for j in range(n_ring)]
-    for i in range(len(rings) - 1):
-        for j in range(n_ring):
-            a, b = 1 + i * n_ring + j, 1 + i * n_ring + (j + 1) % n_ring
-            faces += [(a, b + n_ring, a + n_ring), (a, b, b + n_ring)]
-    return equimesh.TriangulatedSurface(np.array(points), np.array(faces))
+    """:func:`equimesh.testing.meshes.spherical_cap` as a surface."""
+    return equimesh.TriangulatedSurface(*meshes.spherical_cap(radius, degrees, n_ring, n_rings))
 
 
 def assert_boundary_slid_along_the_loops(mesh):

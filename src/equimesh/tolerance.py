@@ -152,6 +152,14 @@ BOUNDED_LOSS_TOL = 1e-3
 BOUNDED_STEP = 0.1
 PAPER_FTOL = 1e-8
 
+#: Beyond the paper (docs/decisions.md, "A work bound for the optimisation"): an objective that bounds the members
+#: (``"bounded"``, ``"classes"``) refuses at once a remapped mesh with more than ``REACH_SHARE`` of its members shorter
+#: than ``REACH_LENGTH`` l on the surface, where the flattening stretched it (a closed-ended tube): no start of a mesh
+#: they returned in ``python experiments/optimisation_work.py`` had a member shorter than l / 2, the refused tubes'
+#: 70 to 99 % (:func:`equimesh.surface.optimize.members.out_of_reach`).
+REACH_LENGTH = 0.5
+REACH_SHARE = 0.5
+
 #: Beyond the paper (docs/decisions.md, "Sound joints"): an objective with
 #: ``sound_joints`` (``"classes"``) keeps every triangle angle on the surface at least ``JOINT_ANGLE``
 #: degrees (hence at most ``180 - 2 JOINT_ANGLE = 120``), Chew's bound for

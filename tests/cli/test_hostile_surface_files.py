@@ -55,6 +55,15 @@ def test_a_tube_the_flattening_stretches_is_refused_on_its_flattened_area(tmp_pa
     assert code == 2 and "flattened surface" in err
 
 
+@pytest.mark.parametrize("radius, length", [(1.0, 10.0), (2.0, 30.0)], ids=["tube 1 x 10", "tube 2 x 30"])
+def test_a_tube_the_flattening_stretches_is_refused_before_the_optimisation(radius, length, tmp_path, capsys):
+    """The default objective on a closed-ended tube whose remapped members are nearly all shorter than l / 2 on the
+    surface: refused at once (docs/decisions.md, "A work bound for the optimisation"), exit 2, one line, no file."""
+    tube = write_obj(tmp_path / "tube.obj", closed_tube(radius, length))
+    code, err = mesh(capsys, tmp_path, tube, "-l", radius, "--max-nodes", "none")
+    assert code == 2 and "optimisation (bounded): no mesh with every member in [l, 2l] within reach" in err, err
+
+
 @pytest.mark.parametrize(
     "surface, match",
     [

@@ -1,4 +1,5 @@
-"""Triangle meshes of roofs, for the triangle-mesh input of Section 4 (tests, examples, benchmarks)."""
+"""Triangle meshes of roofs, closed-ended tubes and spherical caps, for the triangle-mesh input of Section 4 (tests,
+examples, benchmarks, experiments)."""
 
 import numpy as np
 import shapely
@@ -86,3 +87,32 @@ def wedge_mesh(angle=25.0, radius=30.0, opening=((15.0, 2.0), (18.0, 3.2)), warp
     )
     v = mesh["vertices"]
     return np.column_stack([v, warp * v[:, 0] * v[:, 1]]), mesh["triangles"]
+
+
+def closed_tube(radius, length, n_ring=24, n_cap=6):
+    """An open cylinder closed by a hemisphere at one end, as ``(vertices, triangles)``: a disc with one boundary loop,
+    which the flattening stretches to several times its area."""
+    n_length = int(length / (2.0 * np.pi * radius / n_ring))
+    quarter = np.pi / 2.0 * np.arange(1, n_cap + 1) / n_cap
+    rings = [(radius * np.sin(a), -length - radius * np.cos(a)) for a in quarter]
+    rings += [(radius, -length + length * k / n_length) for k in range(1, n_length + 1)]
+    return _rings_about_a_pole(rings, [0.0, 0.0, -length - radius], n_ring)
+
+
+def spherical_cap(radius, degrees, n_ring=24, n_rings=12):
+    """The cap of a sphere within ``degrees`` of its pole, as ``(vertices, triangles)`` (near 180: a nearly closed
+    sphere)."""
+    polar = np.radians(degrees) * np.arange(1, n_rings + 1) / n_rings
+    return _rings_about_a_pole([(radius * np.sin(a), -radius * np.cos(a)) for a in polar], [0.0, 0.0, -radius], n_ring)
+
+
+def _rings_about_a_pole(rings, pole, n_ring):
+    """A fan about ``pole``, then strips between rings of ``n_ring`` points at (radius, z) each."""
+    phi = np.linspace(0.0, 2.0 * np.pi, n_ring, endpoint=False)
+    points = [pole] + [[r * np.cos(p), r * np.sin(p), z] for r, z in rings for p in phi]
+    faces = [(0, 1 + (j + 1) % n_ring, 1 + j) for j in range(n_ring)]
+    for i in range(len(rings) - 1):
+        for j in range(n_ring):
+            a, b = 1 + i * n_ring + j, 1 + i * n_ring + (j + 1) % n_ring
+            faces += [(a, b + n_ring, a + n_ring), (a, b, b + n_ring)]
+    return np.array(points), np.array(faces)

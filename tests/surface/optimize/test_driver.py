@@ -37,7 +37,9 @@ FIXED = np.arange(RIM)
 
 def record(monkeypatch, name, stages, slides=False, bounds_members=False, sound_joints=False):
     """An objective record of ``stages(problem)`` under ``name`` for the test."""
-    record = Objective(name, stages, name, slides, bounds_members, sound_joints, dict.fromkeys(FACTORISATIONS, 100))
+    record = Objective(
+        name, stages, name, slides, bounds_members, sound_joints, dict.fromkeys(FACTORISATIONS, 100), max_jacobians=1000
+    )
     monkeypatch.setitem(OBJECTIVES, name, record)
 
 

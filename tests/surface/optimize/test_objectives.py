@@ -202,7 +202,14 @@ def test_objective_table_is_the_seam(monkeypatch):
 
     limits = dict.fromkeys(FACTORISATIONS, 100)
     record = Objective(
-        "all", all_edges, "every member to l", slides=False, bounds_members=False, sound_joints=False, max_nodes=limits
+        "all",
+        all_edges,
+        "every member to l",
+        slides=False,
+        bounds_members=False,
+        sound_joints=False,
+        max_nodes=limits,
+        max_jacobians=501,
     )
     monkeypatch.setitem(OBJECTIVES, "all", record)
     mesh, r, opt = run(dome(), 8.0, objective="all")

@@ -40,6 +40,7 @@ from ...errors import EquimeshError, InvalidSurfaceError
 from ...tolerance import JOINT_ANGLE, LM_INITIAL_DAMPING, PAPER_FTOL
 from .jacobian import AreaBarrier, signed_areas
 from .joints import Joints, joint_bounds
+from .members import Members, out_of_reach
 from .objectives import OBJECTIVES, Stage
 from .problem import UVProblem, free_nodes, parameter_box
 from .solver import NormalEquations, inner, least_squares
@@ -146,9 +147,13 @@ def optimize_uv(
     ------
     InvalidSurfaceError
         The objective has a hard constraint (``"bounded"``: every member in
-        [l, 2l]) and no point satisfying it was found; the message suggests a
-        smaller l, a finer grid (``surface.finer`` names what refines a chart,
-        "a finer auxiliary grid" by default) or ``optimize='paper'``.
+        [l, 2l]) and no point satisfying it was found, or its start is out of
+        reach of it (:func:`~equimesh.surface.optimize.members.out_of_reach`);
+        the message suggests a smaller l, a finer grid (``surface.finer`` names
+        what refines a chart, "a finer auxiliary grid" by default) or
+        ``optimize='paper'``.  Also when the solver's Jacobian evaluations would
+        exceed the objective's work bound
+        (:attr:`~equimesh.surface.optimize.objectives.Objective.max_jacobians`).
     """
     try:
         record = OBJECTIVES[objective]
@@ -180,29 +185,36 @@ def optimize_uv(
     if len(x0) == 0:
         cost0 = _cost(stage, x0)
         return UVOptimization(uv, np.zeros(len(uv)), cost0, cost0, 0, 0, True, "no free nodes", objective)
-    x, nfev, njev, damping = x0, 0, 0, LM_INITIAL_DAMPING
+    if record.bounds_members:
+        members = Members(problem)
+        if out_of_reach(members.ratio(x0)):  # docs/decisions.md, "A work bound for the optimisation"
+            raise _refusal(objective, surface, f"within reach of the remapped mesh: {members.reach(x0)}")
+    x, nfev, work, damping = x0, 0, _Work(record.max_jacobians), LM_INITIAL_DAMPING
     barrier = None if tri is None or area_floor <= 0 else fold_over_barrier(problem, tri, area_floor)
     while True:
         if stage.start is not None:  # a restart is a fresh solve: its own start and the initial damping
             x, damping = stage.start, LM_INITIAL_DAMPING
-        solution = _solve(problem, stage, x, damping, tri, barrier, normal_equations, ftol, xtol, gtol)
-        x, nfev, njev = solution.x, nfev + solution.evaluations, njev + solution.iterations
-        damping = solution.damping  # warm start: the next solve begins where this one's damping ended
+        try:
+            solution = _solve(problem, stage, x, damping, tri, barrier, normal_equations, ftol, xtol, gtol, work)
+        except _OutOfWork as spent:
+            within = f"within {record.max_jacobians} Jacobian evaluations (its work bound)"
+            if not record.bounds_members:
+                raise InvalidSurfaceError(
+                    f"optimisation ({objective}): not converged {within}; use a larger l or {_finer(surface)}"
+                ) from None
+            raise _refusal(objective, surface, f"found {within}, {Members(problem).violation(spent.x)}") from None
+        x, nfev, damping = solution.x, nfev + solution.evaluations, solution.damping  # damping: the next solve's start
         try:
             stage = stages.send(x)
         except StopIteration as done:
             x, stage = done.value
             break
     if stage.feasible is not None and not stage.feasible(x):
-        raise InvalidSurfaceError(
-            f"optimisation ({objective}): no mesh with every member in [l, 2l] found, {stage.violation(x)}; "
-            f"use a smaller l, {getattr(surface, 'finer', 'a finer auxiliary grid')}, or optimize='paper' "
-            "(which does not bound the members on the surface)"
-        )
+        raise _refusal(objective, surface, f"found, {stage.violation(x)}")
     if not problem.sound(x):
         raise InvalidSurfaceError(
             f"optimisation ({objective}): no mesh with every triangle angle at least {JOINT_ANGLE:g} degrees found, "
-            f"{problem.joints.violation(x)}; use a smaller l, {getattr(surface, 'finer', 'a finer auxiliary grid')}, "
+            f"{problem.joints.violation(x)}; use a smaller l, {_finer(surface)}, "
             "or optimize='paper' (which does not bound the angles)"
         )
     return UVOptimization(
@@ -211,23 +223,25 @@ def optimize_uv(
         _cost(stage, x0),
         _cost(stage, x),
         nfev,
-        njev,
+        work.spent,
         solution.converged,
         solution.message,
         objective,
     )
 
 
-def _solve(problem, stage, x, damping, triangles, barrier, normal_equations, ftol, xtol, gtol):
+def _solve(problem, stage, x, damping, triangles, barrier, normal_equations, ftol, xtol, gtol, work):
     """One stage solved from ``x`` with the fold-over guards; a stage with a hard constraint that ends outside it is
-    solved on at ``PAPER_FTOL``.  The solution's ``iterations`` count every Jacobian evaluated."""
+    solved on at ``PAPER_FTOL``.  Every solve's Jacobians are counted in ``work`` (a :class:`_Work`), which ends the
+    stage with :class:`_OutOfWork` when they would exceed its bound."""
     joints = problem.joints if stage.joints else None
     guard = _Guard(problem, triangles, (stage.feasible, None if joints is None else joints.sound), x)
     solve = with_barriers(problem, stage, barrier, joints, x)
     tol = stage.ftol if ftol is None else ftol
     box = problem.bounds if stage.hold is None else tuple(np.where(stage.hold, x, bound) for bound in problem.bounds)
-    evaluations = iterations = 0
+    evaluations = 0
     while True:
+        cap = work.cap(stage.max_iterations, x)
         solution = least_squares(
             solve.residuals,
             solve.jacobian,
@@ -237,16 +251,65 @@ def _solve(problem, stage, x, damping, triangles, barrier, normal_equations, fto
             gtol=gtol,
             xtol=xtol,
             ftol=tol,
-            max_iterations=stage.max_iterations,
+            max_iterations=cap,
             damping=damping,
             normal_equations=normal_equations,
             limit=stage.limit,
         )
-        x, damping = solution.x, solution.damping
-        evaluations, iterations = evaluations + solution.evaluations, iterations + solution.iterations + 1
+        x, damping, evaluations = solution.x, solution.damping, evaluations + solution.evaluations
+        work.spend(solution, cap < stage.max_iterations)
         if stage.feasible is None or stage.feasible(x) or tol <= PAPER_FTOL:
-            return replace(solution, evaluations=evaluations, iterations=iterations)
+            return replace(solution, evaluations=evaluations)
         tol = PAPER_FTOL
+
+
+class _OutOfWork(Exception):
+    """The optimisation's Jacobians would exceed its work bound; ``x`` is where the last solve ended."""
+
+    def __init__(self, x):
+        super().__init__()
+        self.x = x
+
+
+class _Work:
+    """The Jacobian evaluations of one optimisation, against its work bound
+    (:attr:`~equimesh.surface.optimize.objectives.Objective.max_jacobians`; docs/decisions.md, "A work bound for
+    the optimisation").
+
+    A solve of ``k`` iterations counts ``k + 1`` (as the result's ``njev``), so a solve is given at most the
+    iterations left; one that stops there unconverged, or one the bound leaves no iteration, would need more:
+    :class:`_OutOfWork`.  A capped solve that converges ends where the uncapped one does, so a run within the bound
+    keeps its bits.
+    """
+
+    def __init__(self, bound):
+        self.bound, self.spent = bound, 0
+
+    def cap(self, iterations, x):
+        """The iterations the next solve (from ``x``) may take, at most its stage's ``iterations``."""
+        left = self.bound - self.spent - 1
+        if left < min(iterations, 1):
+            raise _OutOfWork(x)
+        return min(iterations, left)
+
+    def spend(self, solution, capped):
+        """Count ``solution``'s Jacobians; ``capped``: its solve was given fewer iterations than its stage's."""
+        self.spent += solution.iterations + 1
+        if capped and not solution.converged:
+            raise _OutOfWork(solution.x)
+
+
+def _finer(surface):
+    """What refines ``surface``'s chart, for a refusal's advice."""
+    return getattr(surface, "finer", "a finer auxiliary grid")
+
+
+def _refusal(objective, surface, why):
+    """The refusal of an objective that bounds the members: ``why`` no mesh with every member in [l, 2l] was found."""
+    return InvalidSurfaceError(
+        f"optimisation ({objective}): no mesh with every member in [l, 2l] {why}; use a smaller l, {_finer(surface)}, "
+        "or optimize='paper' (which does not bound the members on the surface)"
+    )
 
 
 def _cost(obj, x):

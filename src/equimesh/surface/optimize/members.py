@@ -14,7 +14,7 @@ import scipy.sparse
 from ..._jit import compiled
 from ...errors import number
 from ...mesh import edge_lengths
-from ...tolerance import BOUNDED_OFFSET, BOUNDED_PULL, at_least, at_most
+from ...tolerance import BOUNDED_OFFSET, BOUNDED_PULL, REACH_LENGTH, REACH_SHARE, at_least, at_most
 from .jacobian import ElementJacobian
 
 
@@ -120,6 +120,15 @@ class Members:
             f"(lengths from {number(ratio.min())} l to {number(ratio.max())} l)"
         )
 
+    def reach(self, x):
+        """A phrase saying how far the members are from [l, 2l] at ``x`` (:func:`out_of_reach`)."""
+        ratio = self.ratio(x)
+        return (
+            f"{number(100.0 * short_share(ratio))} % of its {len(ratio)} members shorter than "
+            f"{number(REACH_LENGTH)} l on the surface (the flattening stretched it), "
+            f"lengths from {number(ratio.min())} l to {number(ratio.max())} l"
+        )
+
     def pulled(self, ratio, weight, goal):
         """``(weight, goal)`` per member: a member outside ``[target, high]`` pulled to the nearer end with the weight
         ``BOUNDED_PULL``, the others to ``goal`` with ``weight``."""
@@ -160,3 +169,15 @@ def scale_rows(scale, jac):
     become zero: a new structure, so a new analysis of the normal equations, whenever a weight or slope is 0)."""
     data = np.repeat(scale, np.diff(jac.indptr)) * jac.data
     return scipy.sparse.csr_matrix((data, jac.indices, jac.indptr), shape=jac.shape)
+
+
+def short_share(ratio):
+    """The share of members shorter than ``REACH_LENGTH`` l (``ratio = L / l``)."""
+    return float(np.mean(ratio < REACH_LENGTH)) if len(ratio) else 0.0
+
+
+def out_of_reach(ratio):
+    """Whether members at ``ratio = L / l`` are too far from [l, 2l] for the optimisation to bring them in:
+    more than ``REACH_SHARE`` of them shorter than ``REACH_LENGTH`` l (a measured bound, docs/decisions.md,
+    "A work bound for the optimisation")."""
+    return short_share(ratio) > REACH_SHARE

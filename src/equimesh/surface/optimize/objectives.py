@@ -380,6 +380,10 @@ class Objective:
         :data:`~equimesh.surface.optimize.solver.FACTORISATIONS`
         (docs/performance.md, "The final optimisation"); :meth:`node_limit`
         gives the one that applies.
+    max_jacobians : int
+        The work bound: the Jacobian evaluations of the solver (the result's ``njev``, all stages) after which
+        :func:`~equimesh.surface.optimize.driver.optimize_uv` refuses the surface (docs/decisions.md, "A work bound
+        for the optimisation").
     """
 
     name: str
@@ -389,6 +393,7 @@ class Objective:
     bounds_members: bool
     sound_joints: bool
     max_nodes: dict
+    max_jacobians: int
 
     def node_limit(self, factorisation=None):
         """The default node limit with ``factorisation`` (by default the one the optimisation uses,
@@ -409,6 +414,17 @@ _BOUNDED_MAX_NODES = {"pardiso": 50_000, "cholmod": 50_000, "superlu": 24_000}
 #: mesh in [l, 2l] on the reference dome at 3,800 nodes (docs/decisions.md, "Sound joints"), so it keeps the limit
 #: bounded had before the fast factorisations, 6,000 nodes, with each.
 _CLASSES_MAX_NODES = {"pardiso": 6_000, "cholmod": 6_000, "superlu": 6_000}
+#: The work bounds in Jacobian evaluations (docs/decisions.md, "A work bound for the optimisation"), measured by
+#: ``python experiments/optimisation_work.py`` (results/optimisation_work.md: the reference dome at l = 0.5 to 2, the
+#: examples of experiments/surfaces at two l each, the 101 domes of experiments/bounded_sweep.py, closed-ended tubes and
+#: spherical caps; with PARDISO).  "paper" is one solve of at most 500 iterations (the solver's guard,
+#: :attr:`Stage.max_iterations`), so 501: the bound it always had (the tubes take it all).  "bounded": at most 409 on
+#: a mesh returned there (the reference dome at 36,848 nodes), 635 in docs/performance.md (67,371 nodes, above its
+#: node limit), so 1,500, 2.4 times the most.  "classes": at most 1,313 (the reference dome at l = 2.5, 1,438 nodes),
+#: so 2,600, twice that.
+_PAPER_MAX_JACOBIANS = 501
+_BOUNDED_MAX_JACOBIANS = 1_500
+_CLASSES_MAX_JACOBIANS = 2_600
 OBJECTIVES = {
     objective.name: objective
     for objective in (
@@ -420,6 +436,7 @@ OBJECTIVES = {
             bounds_members=False,
             sound_joints=False,
             max_nodes=_PAPER_MAX_NODES,
+            max_jacobians=_PAPER_MAX_JACOBIANS,
         ),
         Objective(
             "bounded",
@@ -429,6 +446,7 @@ OBJECTIVES = {
             bounds_members=True,
             sound_joints=False,
             max_nodes=_BOUNDED_MAX_NODES,
+            max_jacobians=_BOUNDED_MAX_JACOBIANS,
         ),
         Objective(
             "classes",
@@ -438,6 +456,7 @@ OBJECTIVES = {
             bounds_members=True,
             sound_joints=True,
             max_nodes=_CLASSES_MAX_NODES,
+            max_jacobians=_CLASSES_MAX_JACOBIANS,
         ),
     )
 }
