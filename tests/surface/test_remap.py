@@ -292,6 +292,16 @@ def test_check_remapped_refuses_flat_ears_of_boundary_nodes():
         check_remapped(uv, plane)
 
 
+def test_check_remapped_refuses_a_flat_ear_beside_triangles_with_an_inner_node():
+    """A square fanned around inner node 5, and an ear of boundary nodes 0, 4, 1 below it, flat in (u, v)."""
+    points = [[0.0, 0.0], [2.0, 0.0], [2.0, 2.0], [0.0, 2.0], [1.0, -0.5], [1.0, 1.0]]
+    plane = PlanarMesh.build(points, [[0, 4, 1], [0, 1, 5], [1, 2, 5], [2, 3, 5], [3, 0, 5]], 1.0, 5)
+    uv = plane.points.copy()
+    uv[4] = [1.0, 0.0]
+    with pytest.raises(InvalidSurfaceError, match=r"bends so sharply near \(u, v\) = \(1, 0\) .* \(1 such in all\)"):
+        check_remapped(uv, plane)
+
+
 def test_to_plane_maps_the_auxiliary_nodes_to_their_flattened_points_and_back():
     """Eqs. (2)-(3) forward: a node's (u, v) goes to its flattened point, any (u, v) to a point locate maps back."""
     surface, g, flat = flattened()
@@ -303,7 +313,7 @@ def test_to_plane_maps_the_auxiliary_nodes_to_their_flattened_points_and_back():
 def test_to_plane_refuses_a_point_outside_the_domain():
     surface, g, flat = flattened()
     with pytest.raises(InternalError, match=r"^\(u, v\) = \(1\.5, 0\.5\) is in no auxiliary triangle$"):
-        to_plane([[0.5, 0.5], [1.5, 0.5], [2.0, 2.0]], flat, g)
+        to_plane([[0.05, 0.01], [0.5, 0.5], [1.5, 0.5], [2.0, 2.0]], flat, g)  # the first in auxiliary triangle 0
 
 
 def test_loop_projects_onto_the_ring_of_each_segment():
