@@ -258,48 +258,52 @@ def test_check_remapped_passes_an_unfolded_mesh():
     assert check_remapped(plane.points, plane) is None
 
 
-def test_check_remapped_refuses_folded_triangles_naming_the_first():
-    """The inner node moved across two sides of the square: triangles 0 and 1 turn clockwise in (u, v)."""
+@pytest.mark.parametrize(
+    "inner, message",
+    [
+        # moved across two sides of the square: triangles 0 and 1 turn clockwise in (u, v)
+        (
+            [2.0, -1.0],
+            r"^mapping the plane mesh back .* folds 2 of 4 triangles, first near \(u, v\) = \(1, -0\.333333\): ",
+        ),
+        # on side 0-1: triangle 0 is flat, neither counter-clockwise nor of boundary nodes alone
+        ([0.5, 0.0], r"^mapping the plane mesh back .* folds 1 of 4 triangles, first near \(u, v\) = \(0\.5, 0\): "),
+    ],
+)
+def test_check_remapped_refuses_folded_or_flat_triangles_naming_the_first(inner, message):
     plane = _fan()
     uv = plane.points.copy()
-    uv[4] = [2.0, -1.0]
-    with pytest.raises(
-        InvalidSurfaceError,
-        match=r"^mapping the plane mesh back .* folds 2 of 4 triangles, first near \(u, v\) = \(1, "
-        r"-0\.333333\): .*smaller l or a finer auxiliary grid$",
-    ):
+    uv[4] = inner
+    with pytest.raises(InvalidSurfaceError, match=message + r".*smaller l or a finer auxiliary grid$"):
         check_remapped(uv, plane)
 
 
-def test_check_remapped_refuses_a_flat_triangle_with_an_inner_node():
-    """The inner node on side 0-1: triangle 0 is flat, neither counter-clockwise nor of boundary nodes alone."""
-    plane = _fan()
-    uv = plane.points.copy()
-    uv[4] = [0.5, 0.0]
-    with pytest.raises(InvalidSurfaceError, match=r"folds 1 of 4 triangles, first near \(u, v\) = \(0\.5, 0\)"):
-        check_remapped(uv, plane)
+#: Meshes with ears: plane points, triangles, boundary nodes, (u, v) of the nodes, the ears' count and first centre.
+EARS = {
+    # two triangles of boundary nodes alone, both flat where the boundary is straight in (u, v)
+    "two ears": ([[0, 0], [1, 0], [1, 1], [0, 1]], [[0, 1, 2], [0, 2, 3]], 4, [[0, 0], [1, 0], [2, 0], [3, 0]], 2),
+    # a square fanned around inner node 5, and an ear of boundary nodes 0, 4, 1 below it, flat in (u, v)
+    "an ear beside inner triangles": (
+        [[0, 0], [2, 0], [2, 2], [0, 2], [1, -0.5], [1, 1]],
+        [[0, 4, 1], [0, 1, 5], [1, 2, 5], [2, 3, 5], [3, 0, 5]],
+        5,
+        [[0, 0], [2, 0], [2, 2], [0, 2], [1, 0], [1, 1]],
+        1,
+    ),
+}
 
 
-def test_check_remapped_refuses_flat_ears_of_boundary_nodes():
-    """Two triangles of boundary nodes alone, flat when the boundary is straight in (u, v): the ears' message."""
-    plane = PlanarMesh.build([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]], [[0, 1, 2], [0, 2, 3]], 1.0, 4)
-    uv = np.array([[0.0, 0.0], [1.0, 0.0], [2.0, 0.0], [3.0, 0.0]])
+@pytest.mark.parametrize("case", EARS.values(), ids=EARS.keys())
+def test_check_remapped_refuses_flat_ears_of_boundary_nodes(case):
+    """Both name the first ear, centred at (u, v) = (1, 0), and the count of ears."""
+    points, triangles, n_boundary, uv, count = case
+    plane = PlanarMesh.build(np.array(points, dtype=float), triangles, 1.0, n_boundary)
     with pytest.raises(
         InvalidSurfaceError,
         match=r"^the flattened boundary bends so sharply near \(u, v\) = \(1, 0\) that Problem 2 joins three boundary "
-        r"nodes there in a triangle \(2 such in all\), flat in \(u, v\), .*another l$",
+        rf"nodes there in a triangle \({count} such in all\), flat in \(u, v\), .*another l$",
     ):
-        check_remapped(uv, plane)
-
-
-def test_check_remapped_refuses_a_flat_ear_beside_triangles_with_an_inner_node():
-    """A square fanned around inner node 5, and an ear of boundary nodes 0, 4, 1 below it, flat in (u, v)."""
-    points = [[0.0, 0.0], [2.0, 0.0], [2.0, 2.0], [0.0, 2.0], [1.0, -0.5], [1.0, 1.0]]
-    plane = PlanarMesh.build(points, [[0, 4, 1], [0, 1, 5], [1, 2, 5], [2, 3, 5], [3, 0, 5]], 1.0, 5)
-    uv = plane.points.copy()
-    uv[4] = [1.0, 0.0]
-    with pytest.raises(InvalidSurfaceError, match=r"bends so sharply near \(u, v\) = \(1, 0\) .* \(1 such in all\)"):
-        check_remapped(uv, plane)
+        check_remapped(np.array(uv, dtype=float), plane)
 
 
 def test_to_plane_maps_the_auxiliary_nodes_to_their_flattened_points_and_back():
