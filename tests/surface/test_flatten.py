@@ -298,7 +298,7 @@ def test_plane_start_is_the_plane_itself_for_a_planar_patch_counter_clockwise(mi
     frame = (
         np.array([[0.6, 0.0, 0.8], [0.3, 0.9, -0.3]]) if not mirrored else np.array([[0.3, 0.9, -0.3], [0.6, 0, 0.8]])
     )
-    x = (g.uv @ [[0.2, 0.0], [0.07, 0.15]]) @ frame + [100.0, -50.0, 20.0]  # of area 0.03
+    x = (g.uv @ [[0.2, 0.0], [0.07, 0.15]]) @ frame + [100.0, -50.0, 20.0]  # of area about 0.03
     p = plane_start(x, g.triangles)
     np.testing.assert_allclose(p.mean(axis=0), 0.0, atol=1e-12)
     np.testing.assert_allclose(np.linalg.norm(p - p[0], axis=1), np.linalg.norm(x - x[0], axis=1), rtol=1e-12)
