@@ -15,7 +15,7 @@ from equimesh._geometry import orient
 from equimesh.mesh import edge_lengths
 from equimesh.surface.auxiliary import auxiliary_grid
 from equimesh.surface.charts.bezier import BezierSurface
-from equimesh.surface.flatten import energy_terms, flatten
+from equimesh.surface.flatten import check_edge_lengths, energy_terms, flatten, plane_start
 from equimesh.surface.optimize.jacobian import AreaBarrier
 from equimesh.surface.optimize.solver import INSTALLED
 from equimesh.testing.surfaces import dome
@@ -211,3 +211,176 @@ def test_the_same_bits_whatever_the_blas_thread_count(factorisation):
     ``OPENBLAS_NUM_THREADS`` 1 and 2 (scipy's solver and the starts' least-squares fits by LAPACK differed by 2e-4)."""
     outputs = outputs_with_one_and_two_threads(_FLATTENINGS, factorisation)
     assert outputs[0] == outputs[1] and int(outputs[0].split()[0]) > 0
+
+
+def _folded_fan():
+    """A flat fan of four triangles around node 4, put beyond the corners 0, 1 and 2 of the square: triangles 0 and 1
+    are clockwise.  Its own points are a flattening of zero energy, so every start ends folded."""
+    uv = np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0], [2.0, -1.0]])
+    return np.column_stack([uv, np.zeros(5)]), np.array([[0, 1, 4], [1, 2, 4], [2, 3, 4], [3, 0, 4]]), uv
+
+
+@pytest.mark.parametrize("area_floor", [0.1, 0.0])
+def test_a_folded_flattening_is_refused_naming_the_first_folded_triangle(area_floor):
+    x, triangles, uv = _folded_fan()
+    with pytest.raises(
+        InvalidSurfaceError,
+        match=r"^flattening folds 2 of 4 auxiliary triangles over, first near \(u, v\) = \(1, -0\.333333\); the "
+        r"surface is degenerate or too strongly curved for this grid$",
+    ):
+        flatten(x, triangles, uv=uv, area_floor=area_floor)
+    with pytest.raises(InvalidSurfaceError, match=r"^flattening folds 2 of 4 auxiliary triangles over; the surface"):
+        flatten(x, triangles, area_floor=area_floor)
+
+
+def test_a_retry_counts_the_evaluations_of_both_starts():
+    g, x, f = run(dome(), 6, 6)
+    retried = flatten(x, g.triangles, uv=g.uv, edges=g.edges, x0=g.uv * [-60.0, 60.0])
+    assert retried.start == "metric" and retried.nfev > f.nfev
+    np.testing.assert_array_equal(retried.points, f.points)
+
+
+def test_edge_lengths_2_to_the_26_apart_are_flattened_and_further_apart_refused_naming_both():
+    edges = np.array([[0, 1], [1, 2], [2, 3]])
+    points = np.arange(12.0).reshape(4, 3)
+    uv = np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]])
+    check_edge_lengths(np.array([2.0, 1.0, 2.0**26]), edges, points, uv)
+    lengths = np.array([2.0, 1.0, 2.0**27])
+    with pytest.raises(
+        InvalidSurfaceError,
+        match=r"^the auxiliary triangulation samples the surface too unevenly to flatten by eq\. \(1\): its edge "
+        r"from \(u, v\) = \(1, 0\) to \(u, v\) = \(1, 1\) is 1 long on the surface, 1\.3e\+08 times shorter than the "
+        r"one from \(u, v\) = \(1, 1\) to \(u, v\) = \(0, 1\) \(1\.34218e\+08\), beyond the 6\.7e\+07 that floating "
+        r"point resolves; .*give a mesh of it\)$",
+    ):
+        check_edge_lengths(lengths, edges, points, uv)
+    with pytest.raises(
+        InvalidSurfaceError,
+        match=r"its edge from node 1 at \(3, 4, 5\) to node 2 at \(6, 7, 8\) is 1 long .* than the one from node 2 at "
+        r"\(6, 7, 8\) to node 3 at \(9, 10, 11\) \(1\.34218e\+08\)",
+    ):
+        check_edge_lengths(lengths, edges, points)
+
+
+def test_flatten_refuses_edges_too_far_apart_before_solving():
+    """A node of a 2 x 1 grid 1e-9 from its neighbour: refused by the check of the lengths, not by the solver."""
+    g = auxiliary_grid(2, 1)
+    x = np.column_stack([g.uv, np.zeros(len(g.uv))])
+    x[g.node(1, 0)] = x[g.node(0, 0)] + [1e-9, 0.0, 0.0]
+    with pytest.raises(
+        InvalidSurfaceError, match=r"^the auxiliary triangulation .* its edge from \(u, v\) = \(0, 0\) to"
+    ):
+        flatten(x, g.triangles, uv=g.uv)
+    with pytest.raises(
+        InvalidSurfaceError, match=r"^the auxiliary triangulation .* its edge from node 0 at \(0, 0, 0\) to"
+    ):
+        flatten(x, g.triangles)
+
+
+def test_the_gauge_is_the_first_edge_given_whichever_nodes_it_joins():
+    """The edges in reverse order: the gauge is their first edge, g0 at the origin and g1 on the positive x-axis,
+    and the flattening is the same up to that rigid motion."""
+    g, x, f = run(dome(), 6, 7)
+    edges = g.edges[::-1]
+    r = flatten(x, g.triangles, uv=g.uv, edges=edges)
+    a, b = r.gauge
+    assert [a, b] == edges[0].tolist() and a > 0
+    assert np.array_equal(r.points[a], [0.0, 0.0]) and r.points[b, 1] == 0.0 and r.points[b, 0] > 0
+    np.testing.assert_allclose(r.energy, f.energy, rtol=1e-9)
+    np.testing.assert_allclose(edge_lengths(r.points, g.edges), edge_lengths(f.points, g.edges), rtol=1e-9)
+
+
+@pytest.mark.parametrize("mirrored", [False, True])
+def test_plane_start_is_the_plane_itself_for_a_planar_patch_counter_clockwise(mirrored):
+    """A sheared grid on a tilted plane far from the origin (and its mirror image): the projection is congruent to
+    it, centred at its centroid, and every triangle is counter-clockwise."""
+    g = auxiliary_grid(3, 4)
+    frame = (
+        np.array([[0.6, 0.0, 0.8], [0.3, 0.9, -0.3]]) if not mirrored else np.array([[0.3, 0.9, -0.3], [0.6, 0, 0.8]])
+    )
+    x = (g.uv @ [[0.2, 0.0], [0.07, 0.15]]) @ frame + [100.0, -50.0, 20.0]  # of area about 0.03
+    p = plane_start(x, g.triangles)
+    np.testing.assert_allclose(p.mean(axis=0), 0.0, atol=1e-12)
+    np.testing.assert_allclose(np.linalg.norm(p - p[0], axis=1), np.linalg.norm(x - x[0], axis=1), rtol=1e-12)
+    assert np.all(orientations(p, g.triangles) > 0)
+
+
+def test_the_metric_start_is_exact_on_an_affine_patch():
+    """A sheared plane patch is an affine image of (u, v): the best constant metric is its own, and the start (no
+    iteration) is already a flattening of zero energy."""
+    g, x, f = run(flat_patch(shear=25.0), 4, 5, max_iterations=0)
+    assert f.start == "metric" and f.energy < 1e-24
+
+
+def _kite():
+    """A 1 x 1 grid laid flat as a kite: edges 0-1 and 0-2 of length 1, the three others (0-3 the diagonal) of 4.
+
+    The least-squares metric of its edges is indefinite (the diagonal is longer than the sum of the roots of the
+    fitted metric along u and v), so the start is the isotropic one of the median stretch, 4 / sqrt(2)."""
+    g = auxiliary_grid(1, 1)
+    h = np.sqrt(63.0) / 8.0
+    return g, np.array([[0.0, 0.0, 0.0], [1 / 8, h, 0.0], [1 / 8, -h, 0.0], [4.0, 0.0, 0.0]])
+
+
+def test_without_a_constant_metric_the_start_is_the_median_stretch_and_flattens():
+    g, x = _kite()
+    start = flatten(x, g.triangles, uv=g.uv, max_iterations=0)
+    side = 2.0 * np.sqrt(2.0)  # the square of side 2 sqrt(2), node 0 -> node 1 along +x
+    np.testing.assert_allclose(start.points, [[0.0, 0.0], [side, 0.0], [0.0, -side], [side, -side]], atol=1e-12)
+    f = flatten(x, g.triangles, uv=g.uv)
+    assert f.start == "metric" and f.energy < 1e-24
+    np.testing.assert_allclose(f.plane_lengths, [1.0, 1.0, 4.0, 4.0, 4.0], rtol=1e-12)
+
+
+def test_single_precision_points_and_32_bit_indices_flatten_to_the_same_bytes():
+    """Eq. (1) is solved in double precision on 64-bit indices whatever the caller's arrays hold: the same bytes
+    from the plane projection start (no uv), from the metric start of single-precision (u, v) and from a
+    single-precision start of the caller's, as from the double-precision, 64-bit copies of the same values."""
+    g = auxiliary_grid(5, 6)
+    x = dome().evaluate(g.uv[:, 0], g.uv[:, 1]).astype(np.float32)
+    single = flatten(x, g.triangles.astype(np.int32), edges=g.edges.astype(np.int32))
+    double = flatten(x.astype(float), g.triangles.astype(np.int64), edges=g.edges.astype(np.int64))
+    assert single.points.tobytes() == double.points.tobytes() and single.edges.tobytes() == double.edges.tobytes()
+    uv = g.uv.astype(np.float32)
+    on_uv = flatten(x, g.triangles, uv=uv, max_iterations=0)  # the metric start
+    assert on_uv.points.tobytes() == flatten(x, g.triangles, uv=uv.astype(float), max_iterations=0).points.tobytes()
+    start = (g.uv * 40.0).astype(np.float32)
+    given = flatten(x, g.triangles, x0=start)
+    assert (
+        given.start == "given"
+        and given.points.tobytes() == flatten(x, g.triangles, x0=start.astype(float)).points.tobytes()
+    )
+
+
+def test_the_first_pair_of_coinciding_nodes_is_named():
+    """A fan of short edges (all below 1) whose inner node 4 sits on corner 2: edge 2-4, not the first edge, named."""
+    x = np.array([[0.0, 0.0, 0.0], [0.1, 0.0, 0.0], [0.1, 0.1, 0.0], [0.0, 0.1, 0.0], [0.1, 0.1, 0.0]])
+    triangles = np.array([[0, 1, 4], [1, 2, 4], [2, 3, 4], [3, 0, 4]])
+    uv = np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0], [0.5, 0.5]])
+    with pytest.raises(InvalidSurfaceError, match=r"^the surface points of auxiliary nodes 2 and 4 coincide"):
+        flatten(x, triangles)
+    with pytest.raises(InvalidSurfaceError, match=r"points at \(u, v\) = \(1, 1\) and \(u, v\) = \(0\.5, 0\.5\) coin"):
+        flatten(x, triangles, uv=uv)
+
+
+@pytest.mark.parametrize("tolerance", ["ftol", "xtol", "gtol"])
+def test_a_loose_tolerance_reaches_the_solver_and_stops_it_earlier(tolerance):
+    g, x, f = run(dome(), 6, 6)
+    loose = flatten(x, g.triangles, uv=g.uv, edges=g.edges, **{tolerance: 1e-3})
+    assert loose.nfev < f.nfev and loose.energy >= f.energy
+
+
+def test_a_solve_without_iterations_evaluates_eq_1_once_at_the_start():
+    g, x, f = run(dome(), 6, 6, max_iterations=0)
+    assert f.nfev == 1 and f.energy > 0
+
+
+@pytest.mark.parametrize("with_uv", [False, True])
+def test_a_flat_triangle_in_the_flattening_is_refused_as_folded(with_uv):
+    """The inner node of a planar fan on side 0-1: its own points are a flattening of zero energy, with triangle 0
+    of zero area, which keeps no orientation; the three others are counter-clockwise."""
+    x = np.array([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0], [0.5, 0.0, 0.0]])
+    triangles = np.array([[0, 1, 4], [1, 2, 4], [2, 3, 4], [3, 0, 4]])
+    near = r", first near \(u, v\) = \(0\.5, 0\)" if with_uv else ""
+    with pytest.raises(InvalidSurfaceError, match=rf"^flattening folds 1 of 4 auxiliary triangles over{near}; the"):
+        flatten(x, triangles, uv=x[:, :2] if with_uv else None)

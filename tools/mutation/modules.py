@@ -39,6 +39,9 @@ MODULES = {
     "src/equimesh/planar/strip.py": ["tests/planar/test_strip.py"],
     # Step 2 on surfaces (boundary resampling)
     "src/equimesh/surface/ring.py": ["tests/surface/test_ring.py"],
+    # Section 4's step 2 (eq. (1)) and step 4 (eqs. (2)-(3) and the check of the remapped triangles)
+    "src/equimesh/surface/flatten.py": ["tests/surface/test_flatten.py"],
+    "src/equimesh/surface/remap.py": ["tests/surface/test_remap.py"],
     # Problem 2's lattice placement search
     "src/equimesh/planar/placement.py": ["tests/planar/test_placement.py"],
     # the insertion's region and constrained Delaunay triangulation

@@ -168,6 +168,7 @@ def flatten(
     """
     x3 = np.asarray(points3d, dtype=float)
     tri = np.asarray(triangles, dtype=np.int64)
+    uv = None if uv is None else np.asarray(uv, dtype=float)
     e = unique_edges(tri) if edges is None else np.asarray(edges, dtype=np.int64)
     ls = edge_lengths(x3, e)
     if not np.all(ls > 0):
@@ -191,7 +192,7 @@ def flatten(
             energy = 0.5 * inner((lp - ls) / ls, (lp - ls) / ls)
             return Flattening(points, energy, ls, lp, e, np.array([g0, g1]), nfev, start)
     bad = np.flatnonzero(~(triangle_orient(points, tri) > 0))
-    near = "" if uv is None else f", first near {at(np.asarray(uv, dtype=float)[tri[bad[0]]].mean(axis=0))}"
+    near = "" if uv is None else f", first near {at(uv[tri[bad[0]]].mean(axis=0))}"
     raise InvalidSurfaceError(
         f"flattening folds {bad.size} of {len(tri)} auxiliary triangles over{near}; "
         "the surface is degenerate or too strongly curved for this grid"
@@ -321,7 +322,7 @@ def _gauge(x, g0, g1):
 
 
 def _metric_start(uv, edges, ls):
-    """Affine start ``X = R u`` with ``R^T R = M`` the best constant metric for the edges.
+    """Affine start ``X = R u`` with ``R^T R = M`` the best constant metric for the edges (``uv`` a float array).
 
     ``M`` (symmetric 2 x 2) minimises ``sum_j ((du_j^T M du_j - L_j^2) / L_j^2)^2``,
     a linear least-squares problem in (M11, M12, M22).  ``R`` is the upper
@@ -329,7 +330,6 @@ def _metric_start(uv, edges, ls):
     not positive definite (never for a regular surface), the isotropic metric
     of the median stretch ``L_j / |du_j|`` is used instead.
     """
-    uv = np.asarray(uv, dtype=float)
     du = uv[edges[:, 1]] - uv[edges[:, 0]]
     a = np.column_stack([du[:, 0] ** 2, 2.0 * du[:, 0] * du[:, 1], du[:, 1] ** 2]) / (ls**2)[:, None]
     # The normal equations, summed in one order (docs/decisions.md, "Step 2 by the solver of the final

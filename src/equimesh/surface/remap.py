@@ -89,9 +89,10 @@ def remap(surface, plane_points, flat_points, grid, *, on_boundary=None, outline
         The auxiliary triangulation (step 1): ``uv``, ``triangles``,
         ``boundary``, ``boundary_sides`` and ``domain`` are used.
     on_boundary : array_like of int or bool, optional
-        Nodes known to lie on the boundary of the plane polygon (e.g. the
-        leading ``n_boundary`` nodes of a :class:`~equimesh.mesh.PlanarMesh`);
-        they take the exact boundary path.
+        Nodes known to lie on the boundary of the plane polygon, as indices
+        or as a mask over the K nodes (e.g. the leading ``n_boundary`` nodes
+        of a :class:`~equimesh.mesh.PlanarMesh`); they take the exact
+        boundary path wherever they are.
     outline : Outline, optional
         The polygon of step 3 the plane triangulation was built on: the nodes
         of ``on_boundary`` are then projected onto its edges, (u, v)
@@ -128,8 +129,7 @@ def locate(plane_points, flat_points, grid, *, on_boundary=None, outline=None, s
     k = len(x)
     boundary_path = np.zeros(k, dtype=bool)
     if on_boundary is not None:
-        ob = np.asarray(on_boundary)
-        boundary_path[ob if ob.dtype != bool else np.flatnonzero(ob)] = True
+        boundary_path[np.asarray(on_boundary)] = True  # indices or a mask
     on_outline = boundary_path.copy() if outline is not None else np.zeros(k, dtype=bool)
 
     triangulation = matplotlib.tri.Triangulation(flat[:, 0], flat[:, 1], tri)
@@ -137,13 +137,12 @@ def locate(plane_points, flat_points, grid, *, on_boundary=None, outline=None, s
     boundary_path |= found < 0
 
     loop = Loop(flat[grid.boundary], grid.uv[grid.boundary], grid.boundary_segment_side, grid.domain)
-    seg_a, seg_b = loop.xy, np.roll(loop.xy, -1, axis=0)
     if snap_tol is None:
         snap_tol = 1e-9 * float(np.linalg.norm(flat.max(axis=0) - flat.min(axis=0)))
     if snap_tol > 0:
         near = ~boundary_path
         if np.any(near):
-            dist = nearest_segment(x[near], seg_a, seg_b)[2]
+            dist = loop.distance(x[near])
             boundary_path[np.flatnonzero(near)[dist <= snap_tol]] = True
 
     uv = np.empty((k, 2))
@@ -186,13 +185,22 @@ class Loop:
     domain: Domain
     succ: np.ndarray | None = None
 
+    @property
+    def successors(self):
+        """``succ``, or by default ``k + 1`` around one ring: the vertex that ends each segment."""
+        return np.roll(np.arange(len(self.xy)), -1) if self.succ is None else self.succ
+
+    def distance(self, x):
+        """Distance of points ``x`` to their nearest segment."""
+        return nearest_segment(x, self.xy, self.xy[self.successors])[2]
+
     def project(self, x):
         """Nearest segment, position ``t`` on it and (u, v) there (eq. (3) on a boundary edge) for points ``x``.
 
         ``(1 - t) uv_a + t uv_b`` is exact at both ends; on a side of the
         domain the side coordinate is then set to exactly the domain's bound.
         """
-        succ = np.roll(np.arange(len(self.xy)), -1) if self.succ is None else self.succ
+        succ = self.successors
         seg, tt, _ = nearest_segment(x, self.xy, self.xy[succ])
         uv = between(self.uv[seg], self.uv[succ[seg]], tt)
         side = self.side[seg]  # index into SIDES = (u=u0, u=u1, v=v0, v=v1), -1 inside
@@ -219,7 +227,7 @@ def to_plane(uv, flat_points, grid):
     found = np.asarray(matplotlib.tri.TrapezoidMapTriFinder(triangulation)(uv[:, 0], uv[:, 1]), dtype=np.int64)
     if np.any(found < 0):
         k = int(np.flatnonzero(found < 0)[0])
-        raise InternalError(f"(u, v) = ({uv[k, 0]!r}, {uv[k, 1]!r}) is in no auxiliary triangle")
+        raise InternalError(f"{at(uv[k])} is in no auxiliary triangle")
     a, b = barycentric(uv, grid.uv[tri[found]])
     q, r, s = (flat_points[tri[found, j]] for j in range(3))
     return q + a[:, None] * (r - q) + b[:, None] * (s - q)
