@@ -450,6 +450,30 @@ def test_entering_a_shared_side_removes_the_positions_of_the_next_side_near_its_
     assert chain.chain_unplaceable(thetas, lengths, 1.0, (math.inf,) * 6)
 
 
+def test_a_proof_past_the_work_it_shares_is_left_undecided():
+    """The proof of the unplaceable pair reduces some number of positions: with exactly that much work shared it is
+    proven, with one position less it is not; a second proof charged to the same exhausted work proves nothing."""
+    inf = (math.inf,) * 4
+    measured = chain.Work(math.inf)
+    assert chain.chain_unplaceable(PAIR_THETAS, PAIR_LENGTHS, 1.0, inf, measured)
+    assert measured.spent > 0
+    assert chain.chain_unplaceable(PAIR_THETAS, PAIR_LENGTHS, 1.0, inf, chain.Work(measured.spent))
+    short = chain.Work(measured.spent - 1)
+    assert not chain.chain_unplaceable(PAIR_THETAS, PAIR_LENGTHS, 1.0, inf, short)
+    assert short.spent > short.limit
+    assert not chain.chain_unplaceable(PAIR_THETAS, PAIR_LENGTHS, 1.0, inf, short)
+
+
+def test_work_is_charged_one_per_position_of_each_new_reduction():
+    """Each distinct set of positions reduced spends its side's positions once (cached sets spend nothing)."""
+    inf = (math.inf,) * 4
+    work = chain.Work(math.inf)
+    proof = chain.Chain(PAIR_THETAS, PAIR_LENGTHS, 1.0, 0, cells=True, radii=inf, work=work)
+    assert proof.search() is None
+    sizes = [len(proof.sides[side][0]) for side, _ in proof.tested]
+    assert work.spent == sum(sizes) and len(sizes) == proof.steps
+
+
 def test_a_point_leaving_the_next_side_no_split_reduces_nothing_of_t0(monkeypatch):
     """Corners of 49.6, 35.3 and 24 degrees (sides 1.19, 2.34, 2.43, 1.16 l): the first cells refute the chain with 7
     distinct reductions; a point of T_1 that leaves T_2 no split is dropped before T_0's positions are reduced for it
