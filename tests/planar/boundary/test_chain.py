@@ -464,6 +464,21 @@ def test_a_proof_past_the_work_it_shares_is_left_undecided():
     assert not chain.chain_unplaceable(PAIR_THETAS, PAIR_LENGTHS, 1.0, inf, short)
 
 
+def test_a_proof_charges_its_searches_on_nodes_too():
+    """The pair proven only on cells of l/128: the searches on the nodes of the coarser grids, which find nothing, are
+    charged to the work shared as the cells are, so it spends more than the cells' searches alone."""
+    thetas = (math.radians(16.0), math.radians(24.0))
+    lengths = (3.4802343778963283, 5.5, 2.358485811095189)
+    inf = (math.inf,) * 4
+    shared = chain.Work(math.inf)
+    assert chain.chain_unplaceable(thetas, lengths, 1.0, inf, shared)
+    cells = []
+    for level in range(4):
+        cells.append(chain.Work(math.inf))
+        chain.Chain(thetas, lengths, 1.0, level, cells=True, radii=inf, work=cells[-1]).search()
+    assert shared.spent > sum(work.spent for work in cells)
+
+
 def test_work_is_charged_one_per_position_of_each_new_reduction():
     """Each distinct set of positions reduced spends its side's positions once (cached sets spend nothing)."""
     inf = (math.inf,) * 4

@@ -133,8 +133,10 @@ def chain_unplaceable(thetas, lengths, l, radii, work=None):
         try:
             if Chain(thetas, lengths, l, level, cells=True, radii=radii, work=work).search() is None:
                 return True
-            placement = Chain(thetas, lengths, l, level, cells=False, radii=inf, work=work)
-            if level <= CORNER_REFINEMENTS and placement.search():
+            if (
+                level <= CORNER_REFINEMENTS
+                and Chain(thetas, lengths, l, level, cells=False, radii=inf, work=work).search()
+            ):
                 return False
         except Undecided:
             return False
