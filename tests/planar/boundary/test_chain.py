@@ -11,7 +11,7 @@ import math
 
 import numpy as np
 import pytest
-from conftest import exercised
+from conditions import exercised
 from corner_sampling import assert_placement, sampled_chain, sampled_placement
 from hypothesis import given
 from hypothesis import strategies as st
