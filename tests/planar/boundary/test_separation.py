@@ -762,3 +762,13 @@ def test_the_cause_pairs_a_rounding_error_outside_are_still_seen():
     assert not np.all(shapely.covers(poly.region, lines))  # the old, exact test misses some pair
     with pytest.raises(InvalidPolygonError):
         check_boundary_separation(poly, boundary, 1.0)
+
+
+def test_a_lone_corners_proof_is_charged_to_the_refusals_work(monkeypatch):
+    """The short wedge of 21.69 degrees with sides of 3.188 l, proven only by the clipped cells of the proof with no
+    second corner: with no work left for the refusal that proof is undecided too, and the corner is "not handled"."""
+    theta, side = math.radians(21.693585695037463), 3.18837772
+    wedge = [[0.0, 0.0], [side, 0.0], [side * math.cos(theta), side * math.sin(theta)]]
+    assert refusal(wedge, 1.0).startswith("the corner at vertex 0 at (0, 0) (21.6936 degrees) cannot meet Lemma 3 (1)")
+    monkeypatch.setattr(separation, "PROOF_WORK", 0)
+    assert refusal(wedge, 1.0).startswith("the corner at vertex 0 at (0, 0) (21.6936 degrees) is not handled for l")
