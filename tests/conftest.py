@@ -20,27 +20,8 @@ pytest-xdist the controller draws it and the workers inherit it).
 Fixture ``load_experiment``: import ``experiments/<name>.py`` for a smoke test.
 Fixture ``saddle_mesh``: one mesh of a real surface, made once, for the writers of ``equimesh.io``.
 
-Conditional properties.  A property that only says something when a
-condition holds (``assume(c)``, or ``if c: check(...)``) passes vacuously if
-the generated inputs never satisfy ``c``.  Such a test wraps the condition in
-:func:`exercised`::
-
-    from conftest import exercised
-
-    assume(exercised("strip vertices globally separated (hypothesis H)", separated))
-
-and fails when a condition it evaluated never held (``conditional property
-never exercised: ...``).  A fuzz test, which accepts or refuses each
-generated input, also states the share of inputs that must be accepted, so
-that refusing everything fails too::
-
-    @pytest.mark.exercised("Problem 2 accepted the polygon", share=0.3)
-
-fails unless that condition was evaluated and held in at least 30% of its
-evaluations.  The counts are those of one test (each parametrized case on
-its own), taken in the process that runs it, so the check holds under
-``pytest -n 2`` as without it.  ``--hypothesis-show-statistics`` shows the
-share of each condition per test.
+Conditional properties (:mod:`conditions`): the hook that counts, per test, the conditions it evaluates
+and fails it when one never held or held less often than its ``exercised`` marker says.
 """
 
 import collections
@@ -51,7 +32,8 @@ import sys
 from pathlib import Path
 
 import pytest
-from hypothesis import HealthCheck, currently_in_test_context, event, settings
+from conditions import RUNNING, unexercised
+from hypothesis import HealthCheck, settings
 
 settings.register_profile(
     "ci",
@@ -139,53 +121,16 @@ def saddle_mesh():
 
 # --------------------------------------------------------------------------- conditional properties
 
-#: The counts of the test running in this process: condition name -> [times evaluated, times held].
-_RUNNING = []
-
-
-def exercised(name, held):
-    """Record that the condition ``name`` was evaluated and whether it ``held``; returns ``held``.
-
-    Also a hypothesis ``event`` inside a property test (``--hypothesis-show-statistics``).
-    """
-    held = bool(held)
-    if _RUNNING:
-        counts = _RUNNING[-1][name]
-        counts[0] += 1
-        counts[1] += held
-    if currently_in_test_context():
-        event(f"{name}: {'held' if held else 'did not hold'}")
-    return held
-
-
-def unexercised(counts, shares):
-    """Why a test's conditions fail: ``counts`` is ``{name: (evaluated, held)}``, ``shares`` ``{name: share}``."""
-    problems = [
-        f"conditional property never exercised: {name!r} never held in {evaluated} evaluation(s)"
-        for name, (evaluated, held) in sorted(counts.items())
-        if not held
-    ]
-    for name, share in sorted(shares.items()):
-        evaluated, held = counts.get(name, (0, 0))
-        if not evaluated:
-            problems.append(f"condition {name!r} was never evaluated (expected to hold in {share:.0%} or more)")
-        elif held and held < share * evaluated:
-            problems.append(
-                f"condition {name!r} held in {held} of {evaluated} evaluations ({held / evaluated:.0%}), "
-                f"less than the {share:.0%} expected"
-            )
-    return problems
-
 
 @pytest.hookimpl(wrapper=True)
 def pytest_runtest_call(item):
     """Count the conditions a test evaluates; fail it if one never held or held less often than its marker says."""
     counts = collections.defaultdict(lambda: [0, 0])
-    _RUNNING.append(counts)
+    RUNNING.append(counts)
     try:
         result = yield
     finally:
-        _RUNNING.pop()
+        RUNNING.pop()
     shares = {mark.args[0]: mark.kwargs["share"] for mark in item.iter_markers("exercised")}
     problems = unexercised(counts, shares)
     if problems:

@@ -1,19 +1,21 @@
-"""Conditional properties (tests/conftest.py): a test whose condition never held fails, and so does one below its share.
+"""Conditional properties (tests/conditions.py, counted by tests/conftest.py): a test whose condition never held
+fails, and so does one below its share.
 
 The checks run in a pytest of their own (``pytester``, in a subprocess so that its ``conftest`` is not ours
-already imported), plain and under pytest-xdist.
+already imported), plain, under pytest-xdist, and as two sessions in one process (as mutmut runs them).
 """
 
+import sys
 from pathlib import Path
 
 import pytest
-from conftest import unexercised
+from conditions import unexercised
 
 pytest_plugins = ["pytester"]
 
 CASES = """
 import pytest
-from conftest import exercised
+from conditions import exercised
 from hypothesis import given
 from hypothesis import strategies as st
 
@@ -61,8 +63,7 @@ def test_unexercised_names_what_never_held_and_what_held_too_rarely():
 
 @pytest.mark.parametrize("xdist", [[], ["-n", "2"]], ids=["one process", "pytest-xdist"])
 def test_a_condition_never_held_or_held_too_rarely_fails_its_test(pytester, xdist):
-    pytester.makeconftest((Path(__file__).parent / "conftest.py").read_text())
-    pytester.makepyfile(test_cases=CASES)
+    _cases(pytester)
     result = pytester.runpytest_subprocess("-p", "no:cacheprovider", "-p", "no:randomly", *xdist)
     result.assert_outcomes(passed=3, failed=3)
     result.stdout.fnmatch_lines_random(
@@ -76,3 +77,27 @@ def test_a_condition_never_held_or_held_too_rarely_fails_its_test(pytester, xdis
         ]
     )
     assert "PytestUnknownMarkWarning" not in result.stdout.str()
+
+
+def test_a_second_session_in_one_process_counts_as_the_first(pytester):
+    """pytest imports the conftest anew for a second session while the test module stays imported: the counts are
+    still those the hook reads, so a condition that held passes and one that never held fails, in both sessions."""
+    _cases(pytester)
+    pytester.makepyfile(
+        run_twice="""
+import sys
+import pytest
+args = ["-q", "-p", "no:cacheprovider", "-p", "no:randomly", "test_cases.py"]
+sys.exit(10 * pytest.main(args) + pytest.main(args))
+"""
+    )
+    result = pytester.run(sys.executable, "run_twice.py")
+    assert result.ret == 11  # each session: tests failed (exit 1), the same three
+    assert result.stdout.str().count("3 failed, 3 passed") == 2
+
+
+def _cases(pytester):
+    """The cases above with this folder's conftest and conditions."""
+    here = Path(__file__).parent
+    pytester.makeconftest((here / "conftest.py").read_text())
+    pytester.makepyfile(conditions=(here / "conditions.py").read_text(), test_cases=CASES)

@@ -15,7 +15,7 @@ import tempfile
 from pathlib import Path
 
 import pytest
-from conftest import exercised
+from conditions import exercised
 from hostile_files import (
     MODELLER_OBJ,
     degree_399,

@@ -27,7 +27,7 @@ import invariants as inv1
 import invariants_uniform as inv2
 import numpy as np
 import pytest
-from conftest import exercised
+from conditions import exercised
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from invariants import check_edge_lengths

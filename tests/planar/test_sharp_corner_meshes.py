@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 import strategies_sharp as sss
 import strategies_simple as ss
-from conftest import exercised
+from conditions import exercised
 from corner_sampling import at, corners, sampled_chain, sampled_placement
 from hypothesis import example, given
 from hypothesis import strategies as st

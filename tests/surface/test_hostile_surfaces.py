@@ -2,7 +2,7 @@
 
 import numpy as np
 import pytest
-from conftest import exercised
+from conditions import exercised
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from invariants import check_edge_lengths

@@ -14,7 +14,7 @@ import math
 import numpy as np
 import pytest
 import shapely
-from conftest import exercised
+from conditions import exercised
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 from refusals import assert_one_line

@@ -11,7 +11,7 @@ import math
 
 import numpy as np
 import pytest
-from conftest import exercised
+from conditions import exercised
 from corner_sampling import assert_placement, sampled_chain, sampled_placement
 from hypothesis import given
 from hypothesis import strategies as st
@@ -448,6 +448,45 @@ def test_entering_a_shared_side_removes_the_positions_of_the_next_side_near_its_
     assert math.dist((1.1, 0.0), (2.0 * math.cos(thetas[2]), 2.0 * math.sin(thetas[2]))) < 1.0
     assert chain.place_chain(thetas, lengths, 1.0) is None
     assert chain.chain_unplaceable(thetas, lengths, 1.0, (math.inf,) * 6)
+
+
+def test_a_proof_past_the_work_it_shares_is_left_undecided():
+    """The proof of the unplaceable pair reduces some number of positions: with exactly that much work shared it is
+    proven, with one position less it is not; a second proof charged to the same exhausted work proves nothing."""
+    inf = (math.inf,) * 4
+    measured = chain.Work(math.inf)
+    assert chain.chain_unplaceable(PAIR_THETAS, PAIR_LENGTHS, 1.0, inf, measured)
+    assert measured.spent > 0
+    assert chain.chain_unplaceable(PAIR_THETAS, PAIR_LENGTHS, 1.0, inf, chain.Work(measured.spent))
+    short = chain.Work(measured.spent - 1)
+    assert not chain.chain_unplaceable(PAIR_THETAS, PAIR_LENGTHS, 1.0, inf, short)
+    assert short.spent > short.limit
+    assert not chain.chain_unplaceable(PAIR_THETAS, PAIR_LENGTHS, 1.0, inf, short)
+
+
+def test_a_proof_charges_its_searches_on_nodes_too():
+    """The pair proven only on cells of l/128: the searches on the nodes of the coarser grids, which find nothing, are
+    charged to the work shared as the cells are, so it spends more than the cells' searches alone."""
+    thetas = (math.radians(16.0), math.radians(24.0))
+    lengths = (3.4802343778963283, 5.5, 2.358485811095189)
+    inf = (math.inf,) * 4
+    shared = chain.Work(math.inf)
+    assert chain.chain_unplaceable(thetas, lengths, 1.0, inf, shared)
+    cells = []
+    for level in range(4):
+        cells.append(chain.Work(math.inf))
+        chain.Chain(thetas, lengths, 1.0, level, cells=True, radii=inf, work=cells[-1]).search()
+    assert shared.spent > sum(work.spent for work in cells)
+
+
+def test_work_is_charged_one_per_position_of_each_new_reduction():
+    """Each distinct set of positions reduced spends its side's positions once (cached sets spend nothing)."""
+    inf = (math.inf,) * 4
+    work = chain.Work(math.inf)
+    proof = chain.Chain(PAIR_THETAS, PAIR_LENGTHS, 1.0, 0, cells=True, radii=inf, work=work)
+    assert proof.search() is None
+    sizes = [len(proof.sides[side][0]) for side, _ in proof.tested]
+    assert work.spent == sum(sizes) and len(sizes) == proof.steps
 
 
 def test_a_point_leaving_the_next_side_no_split_reduces_nothing_of_t0(monkeypatch):

@@ -24,6 +24,7 @@ import equimesh
 from equimesh import REL_TOL
 from equimesh.errors import InvalidPolygonError
 from equimesh.planar.boundary import chain, corner, resample, separation
+from equimesh.planar.boundary.chain import Work
 from equimesh.planar.boundary.resample import Boundary, resample_boundary
 from equimesh.planar.boundary.separation import (
     VISIBLE_BISECTIONS,
@@ -112,17 +113,36 @@ def test_a_corner_not_handled_is_named_with_its_limit_in_the_callers_units(monke
     does not decide meets) it is "not handled" (docs/proofs.md, "Sharp corners"); K = 3, so sides of
     (K + 1) l = 16 are handled; the closest pair is on edges 0 and 2."""
     monkeypatch.setattr(chain, "chain_unplaceable", lambda *args: False)
+    assert _thin_triangle_refusal() == (NOT_HANDLED, [[5.0, 0.0], [3.4848552444807583, 1.9636150144605629]])
 
+
+NOT_HANDLED = (
+    "the corner at vertex 0 at (0, 0) (29.4 degrees) is not handled for l = 4.0: boundary points on edge (0, 1) "
+    "and edge (2, 0) are 2.4802111916513114 apart, closer than l (Lemma 3 (1)); the staggered Step 2 is proven at "
+    "29.4 degrees for sides of at least 16.0, longer if the next corner is sharp too; for these the searches "
+    "found no placement and none is proven impossible, even for each corner alone (a limit of this method, not a "
+    "proof that no mesh exists; docs/proofs.md, 'Sharp corners'); use a smaller l, longer sides or a wider corner"
+)
+
+
+def _thin_triangle_refusal():
+    """The message and points of the thin triangle's refusal at l = 4."""
     triangle = np.array([[0, 0], [4.25, 0], [2.1 * math.cos(math.radians(29.4)), 2.1 * math.sin(math.radians(29.4))]])
-    message, points = _separation_message(triangle * 4.0, 4.0, spacing=BOUNDARY_SPACING)
-    assert message == (
-        "the corner at vertex 0 at (0, 0) (29.4 degrees) is not handled for l = 4.0: boundary points on edge (0, 1) "
-        "and edge (2, 0) are 2.4802111916513114 apart, closer than l (Lemma 3 (1)); the staggered Step 2 is proven at "
-        "29.4 degrees for sides of at least 16.0, longer if the next corner is sharp too; for these the searches "
-        "found no placement and none is proven impossible, even for each corner alone (a limit of this method, not a "
-        "proof that no mesh exists; docs/proofs.md, 'Sharp corners'); use a smaller l, longer sides or a wider corner"
-    )
-    assert points == [[5.0, 0.0], [3.4848552444807583, 1.9636150144605629]]
+    return _separation_message(triangle * 4.0, 4.0, spacing=BOUNDARY_SPACING)
+
+
+@pytest.mark.parametrize("spare", [0, 1])
+def test_the_proofs_of_one_refusal_share_its_work(monkeypatch, spare):
+    """The thin triangle's joint proof needs some work: with that much for the refusal (and no less) it is proven;
+    with one position less the proof is left undecided and the corner is "not handled"."""
+    works = []
+    monkeypatch.setattr(chain, "Work", lambda limit: works.append(Work(math.inf)) or works[-1])
+    proven, _ = _thin_triangle_refusal()
+    assert "cannot meet Lemma 3 (1) together" in proven and works[-1].spent > 0
+    monkeypatch.setattr(chain, "Work", Work)
+    monkeypatch.setattr(separation, "PROOF_WORK", works[-1].spent - 1 + spare)
+    message, _ = _thin_triangle_refusal()
+    assert message == (proven if spare else NOT_HANDLED)
 
 
 @pytest.mark.parametrize(
@@ -389,7 +409,7 @@ def test_the_joint_refusal_reads_each_corners_visible_radii_in_side_order(monkey
     assert separation.unplaceable_chain(poly, 6.0, [(0, 0)]) is None
     edges = tuple(poly.rings[0].local_edge_lengths[[2, 3, 0, 1]])  # T_0 .. T_3 of the run 3, 0, 1
     assert seen[-3:] == [(3, (edges[1], edges[0])), (0, (edges[2], edges[1])), (1, (edges[3], edges[2]))]
-    assert decided[-1][1:] == (edges, lp, (32.0, 31.0, 2.0, 1.0, 12.0, 11.0))
+    assert decided[-1][1:] == (edges, lp, (32.0, 31.0, 2.0, 1.0, 12.0, 11.0), None)
 
 
 def first_corner(vertices, l):
@@ -742,3 +762,13 @@ def test_the_cause_pairs_a_rounding_error_outside_are_still_seen():
     assert not np.all(shapely.covers(poly.region, lines))  # the old, exact test misses some pair
     with pytest.raises(InvalidPolygonError):
         check_boundary_separation(poly, boundary, 1.0)
+
+
+def test_a_lone_corners_proof_is_charged_to_the_refusals_work(monkeypatch):
+    """The short wedge of 21.69 degrees with sides of 3.188 l, proven only by the clipped cells of the proof with no
+    second corner: with no work left for the refusal that proof is undecided too, and the corner is "not handled"."""
+    theta, side = math.radians(21.693585695037463), 3.18837772
+    wedge = [[0.0, 0.0], [side, 0.0], [side * math.cos(theta), side * math.sin(theta)]]
+    assert refusal(wedge, 1.0).startswith("the corner at vertex 0 at (0, 0) (21.6936 degrees) cannot meet Lemma 3 (1)")
+    monkeypatch.setattr(separation, "PROOF_WORK", 0)
+    assert refusal(wedge, 1.0).startswith("the corner at vertex 0 at (0, 0) (21.6936 degrees) is not handled for l")

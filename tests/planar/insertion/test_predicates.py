@@ -10,7 +10,7 @@ import math
 from fractions import Fraction
 
 import numpy as np
-from conftest import exercised
+from conditions import exercised
 from hypothesis import given
 from hypothesis import strategies as st
 from insertion_cases import exact_incircle, exact_orient, quadruples, sign

@@ -64,7 +64,26 @@ PAIR_REFINEMENTS = 4
 
 
 class Undecided(Exception):
-    """The enumeration ran out of :data:`PAIR_STEPS`."""
+    """The enumeration ran out of :data:`PAIR_STEPS`, or of the :class:`Work` it shares."""
+
+
+class Work:
+    """The positions that the decisions sharing it may reduce together (:func:`useful`): a bound on their work.
+
+    Each reduction of a side's positions spends their number: its cost grows
+    with them, and a finer grid has more positions per side, so the bound
+    follows the time where a count of reductions (:data:`PAIR_STEPS`) does
+    not.  Past ``limit``, each decision charged to it is :class:`Undecided`.
+    """
+
+    def __init__(self, limit):
+        self.limit, self.spent = limit, 0
+
+    def spend(self, positions):
+        """Charge ``positions``; :class:`Undecided` once the total passes the limit."""
+        self.spent += positions
+        if self.spent > self.limit:
+            raise Undecided
 
 
 def place_chain(thetas, lengths, l):
@@ -93,7 +112,7 @@ def place_chain(thetas, lengths, l):
     return None
 
 
-def chain_unplaceable(thetas, lengths, l, radii):
+def chain_unplaceable(thetas, lengths, l, radii, work=None):
     """True when no Step 2 keeps every corner's two sides ``l`` apart (Lemma 3 (1)): proven on a grid of cells.
 
     ``thetas`` and ``lengths`` as for :func:`place_chain`.  ``radii`` are two
@@ -104,16 +123,20 @@ def chain_unplaceable(thetas, lengths, l, radii):
     that refuted nothing, the search on its nodes (the finest of the
     search's), and False when it finds a placement (then no proof exists).
     False means only that no grid refuted every prefix within
-    :data:`PAIR_STEPS`.
+    :data:`PAIR_STEPS`, or within ``work`` (a :class:`Work` the caller shares
+    among several decisions; None: no bound but the steps).
     """
     if not coupled(thetas, lengths, l):
         return False
     inf = (math.inf,) * (2 * len(thetas))
     for level in range(PAIR_REFINEMENTS + 1):
         try:
-            if Chain(thetas, lengths, l, level, cells=True, radii=radii).search() is None:
+            if Chain(thetas, lengths, l, level, cells=True, radii=radii, work=work).search() is None:
                 return True
-            if level <= CORNER_REFINEMENTS and Chain(thetas, lengths, l, level, cells=False, radii=inf).search():
+            if (
+                level <= CORNER_REFINEMENTS
+                and Chain(thetas, lengths, l, level, cells=False, radii=inf, work=work).search()
+            ):
                 return False
         except Undecided:
             return False
@@ -258,7 +281,7 @@ def _spread(parts, left, seen):
 class Chain:
     """The enumeration of the module docstring on one grid (``l / (CORNER_GRID 2^level)``), nodes or cells."""
 
-    def __init__(self, thetas, lengths, l, level, cells, radii):
+    def __init__(self, thetas, lengths, l, level, cells, radii, work=None):
         step = l / (CORNER_GRID * 2**level)
         tol = 2.0 * REL_TOL if cells else REL_TOL / 4.0
         m, alone = len(thetas), thetas[1] is None
@@ -289,7 +312,7 @@ class Chain:
             cross[-1] = cross[:, 0] = True  # a corner is no point of the other side
             self.ahead.append(cross)
         self.back[0] = self.back[:, 0] = True
-        self.dead, self.steps, self.tested = set(), 0, {}
+        self.dead, self.steps, self.tested, self.work = set(), 0, {}, work
 
     def search(self):
         """One array of points per side, as :func:`place_chain` returns them (for cells: their lower ends), or None."""
@@ -337,11 +360,14 @@ class Chain:
             yield None if following[k + 1] is None or following[0] is None else following
 
     def _useful(self, side, left):
-        """:func:`useful` of one side's positions left (cached; each new set counts towards :data:`PAIR_STEPS`)."""
+        """:func:`useful` of one side's positions left (cached; each new set counts towards :data:`PAIR_STEPS`, and its
+        positions towards the :class:`Work` shared, if any)."""
         key = (side, left.tobytes())
         if key not in self.tested:
             self.steps += 1
             if self.steps > PAIR_STEPS:
                 raise Undecided
+            if self.work is not None:
+                self.work.spend(len(left))
             self.tested[key] = useful(self.sides[side][3], left, self.sides[side][2])
         return self.tested[key]

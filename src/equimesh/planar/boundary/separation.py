@@ -22,6 +22,10 @@ from . import chain as _chain
 from . import corner as _corner
 from .sides import SHARP_CORNER, sharp_run, stagger_count, stagger_reach
 
+#: Positions the proofs of one refusal may reduce together (:class:`.chain.Work`): a bound on the time a refusal
+#: takes to say what is proven, not a tolerance; past it the corners left are "not handled".
+PROOF_WORK = 2_000_000
+
 
 def check_boundary_separation(poly, boundary, l):
     """Lemma 3 (1): mutually visible boundary points are at least ``l`` apart.
@@ -63,11 +67,12 @@ def check_boundary_separation(poly, boundary, l):
     pairs = pairs[visible]
     gap = np.linalg.norm(pts[pairs[:, 0]] - pts[pairs[:, 1]], axis=1)
     i, j = pairs[np.lexsort((pairs[:, 1], pairs[:, 0], gap))[0]]
+    work = _chain.Work(PROOF_WORK)
     raise (
         unmeshable_corner(poly, l)
         or unseparable_corner(poly, l)
-        or unplaceable_corner(poly, l, corners_of(poly, boundary, pairs))
-        or unplaceable_chain(poly, l, corners_of(poly, boundary, pairs))
+        or unplaceable_corner(poly, l, corners_of(poly, boundary, pairs), work)
+        or unplaceable_chain(poly, l, corners_of(poly, boundary, pairs), work)
         or separation_error(poly, boundary, l, int(i), int(j))
     )
 
@@ -226,7 +231,7 @@ def corners_of(poly, boundary, pairs):
     return sorted(found)
 
 
-def unplaceable_corner(poly, l, corners):
+def unplaceable_corner(poly, l, corners, work=None):
     """The error for the first of ``corners`` (``(ring, i)``) that no Step 2 can separate (Lemma 3 (1)), or None.
 
     Only corners sharper than :data:`SHARP_CORNER` are decided
@@ -251,7 +256,7 @@ def unplaceable_corner(poly, l, corners):
         radii = visible_radii(grown, ring, i, sides)
         theta = math.radians(angle)
         if not _corner.corner_unplaceable(theta, sides, lp, radii) and not _chain.chain_unplaceable(
-            (theta, None), (sides[1], sides[0], 0.0), lp, (radii[1], radii[0], 0.0, 0.0)
+            (theta, None), (sides[1], sides[0], 0.0), lp, (radii[1], radii[0], 0.0, 0.0), work
         ):
             continue
         need = number((stagger_reach(angle, lp) + lp) / poly.frame.scale, None)
@@ -267,7 +272,7 @@ def unplaceable_corner(poly, l, corners):
     return None
 
 
-def unplaceable_chain(poly, l, corners):
+def unplaceable_chain(poly, l, corners, work=None):
     """The error for the first sharp corners in a row, one of ``corners``, that no Step 2 separates together, or None.
 
     First each two consecutive corners ``i``, ``i + 1`` both sharper than
@@ -298,7 +303,7 @@ def unplaceable_chain(poly, l, corners):
             continue
         edges = [lengths[(run[0] - 1 + k) % n] for k in range(len(run) + 1)]
         radii = sum((visible_radii(grown, ring, c, (edges[k + 1], edges[k]))[::-1] for k, c in enumerate(run)), ())
-        if not _chain.chain_unplaceable(tuple(math.radians(a) for a in angles), tuple(edges), lp, radii):
+        if not _chain.chain_unplaceable(tuple(math.radians(a) for a in angles), tuple(edges), lp, radii, work):
             continue
         names = [f"{ring.vertex_name(c)} ({number(a)} degrees)" for c, a in zip(run, angles)]
         sides = ", ".join(number(x / poly.frame.scale, None) for x in edges)
