@@ -13,14 +13,14 @@ TOLERANCE = 0.01
 
 
 @pytest.fixture(scope="module")
-def written(saddle_mesh, tmp_path_factory):
+def written(tent_mesh, tmp_path_factory):
     compas = pytest.importorskip("compas", reason="compas (the optional extra [compas]) is not installed")
     path = tmp_path_factory.mktemp("compas") / "roof.compas.json"
-    write_surface_mesh(saddle_mesh, path, tolerance=TOLERANCE)
+    write_surface_mesh(tent_mesh, path, tolerance=TOLERANCE)
     return compas, path
 
 
-def test_the_file_is_a_valid_compas_mesh(written, saddle_mesh):
+def test_the_file_is_a_valid_compas_mesh(written, tent_mesh):
     compas, path = written
     from compas.datastructures import Mesh
 
@@ -29,17 +29,17 @@ def test_the_file_is_a_valid_compas_mesh(written, saddle_mesh):
     document = json.loads(path.read_text())
     assert document["dtype"] == "compas.datastructures/Mesh" and "guid" not in document
     Mesh.validate_data(document["data"])  # raises on a schema violation
-    np.testing.assert_array_equal([mesh.vertex_coordinates(v) for v in mesh.vertices()], saddle_mesh.points)
-    np.testing.assert_array_equal([mesh.face_vertices(f) for f in mesh.faces()], saddle_mesh.triangles)
-    assert mesh.attributes["length"] == saddle_mesh.length and mesh.attributes["tolerance"] == TOLERANCE
+    np.testing.assert_array_equal([mesh.vertex_coordinates(v) for v in mesh.vertices()], tent_mesh.points)
+    np.testing.assert_array_equal([mesh.face_vertices(f) for f in mesh.faces()], tent_mesh.triangles)
+    assert mesh.attributes["length"] == tent_mesh.length and mesh.attributes["tolerance"] == TOLERANCE
 
 
-def test_edges_carry_the_member_schedule(written, saddle_mesh):
+def test_edges_carry_the_member_schedule(written, tent_mesh):
     compas, path = written
     mesh = compas.json_load(str(path))
-    classes = length_classes(saddle_mesh.edge_lengths(), saddle_mesh.length, TOLERANCE)
-    members = Products(saddle_mesh, TOLERANCE).members
-    assert sorted(tuple(sorted(e)) for e in mesh.edges()) == [tuple(e) for e in saddle_mesh.edges.tolist()]
+    classes = length_classes(tent_mesh.edge_lengths(), tent_mesh.length, TOLERANCE)
+    members = Products(tent_mesh, TOLERANCE).members
+    assert sorted(tuple(sorted(e)) for e in mesh.edges()) == [tuple(e) for e in tent_mesh.edges.tolist()]
     for row in members.itertuples():
         edge = (row.node_i, row.node_j)
         assert mesh.edge_attribute(edge, "member") == row.member
@@ -48,10 +48,10 @@ def test_edges_carry_the_member_schedule(written, saddle_mesh):
         assert mesh.edge_attribute(edge, "group") == row.group
 
 
-def test_vertices_carry_the_node_schedule(written, saddle_mesh):
+def test_vertices_carry_the_node_schedule(written, tent_mesh):
     compas, path = written
     mesh = compas.json_load(str(path))
-    nodes = Products(saddle_mesh).nodes
+    nodes = Products(tent_mesh).nodes
     assert [mesh.vertex_attribute(v, "boundary") for v in mesh.vertices()] == nodes["boundary"].astype(bool).tolist()
     assert [mesh.vertex_attribute(v, "valence") for v in mesh.vertices()] == nodes["valence"].tolist()
     assert [mesh.vertex_degree(v) for v in mesh.vertices()] == nodes["valence"].tolist()

@@ -12,39 +12,39 @@ TOLERANCE = 0.01
 
 
 @pytest.fixture(scope="module", params=[False, True], ids=["plain", "labels"])
-def drawing(saddle_mesh, tmp_path_factory, request):
+def drawing(tent_mesh, tmp_path_factory, request):
     ezdxf = pytest.importorskip("ezdxf", reason="ezdxf (the optional extra [dxf]) is not installed")
     path = tmp_path_factory.mktemp("dxf") / "roof.dxf"
-    write_surface_mesh(saddle_mesh, path, tolerance=TOLERANCE, dxf_labels=request.param)
+    write_surface_mesh(tent_mesh, path, tolerance=TOLERANCE, dxf_labels=request.param)
     doc = ezdxf.readfile(path)
     assert not doc.audit().has_errors  # a drawing CAD programs open
     return doc, request.param
 
 
-def test_members_are_lines_on_the_layer_of_their_class(drawing, saddle_mesh):
+def test_members_are_lines_on_the_layer_of_their_class(drawing, tent_mesh):
     doc, _ = drawing
-    classes = length_classes(saddle_mesh.edge_lengths(), saddle_mesh.length, TOLERANCE)
-    names = Products(saddle_mesh, TOLERANCE).class_names
+    classes = length_classes(tent_mesh.edge_lengths(), tent_mesh.length, TOLERANCE)
+    names = Products(tent_mesh, TOLERANCE).class_names
     assert set(names) <= {layer.dxf.name for layer in doc.layers}
     lines = doc.modelspace().query("LINE")
-    assert len(lines) == len(saddle_mesh.edges)
+    assert len(lines) == len(tent_mesh.edges)
     ends = {(tuple(line.dxf.start), tuple(line.dxf.end)): line.dxf.layer for line in lines}
-    for member, (i, j) in enumerate(saddle_mesh.edges):
-        key = (tuple(saddle_mesh.points[i]), tuple(saddle_mesh.points[j]))
+    for member, (i, j) in enumerate(tent_mesh.edges):
+        key = (tuple(tent_mesh.points[i]), tuple(tent_mesh.points[j]))
         assert ends[key] == names[classes.member_class[member]]
     for k, name in enumerate(names):
         assert len(doc.modelspace().query(f'LINE[layer=="{name}"]')) == classes.count[k]
 
 
-def test_labels_give_each_member_its_class_at_its_midpoint(drawing, saddle_mesh):
+def test_labels_give_each_member_its_class_at_its_midpoint(drawing, tent_mesh):
     doc, labels = drawing
     texts = doc.modelspace().query("TEXT")
     if not labels:
         assert len(texts) == 0
         return
-    classes = length_classes(saddle_mesh.edge_lengths(), saddle_mesh.length, TOLERANCE)
-    assert len(texts) == len(saddle_mesh.edges) and {t.dxf.layer for t in texts} == {LABELS_LAYER}
-    middles = (saddle_mesh.points[saddle_mesh.edges[:, 0]] + saddle_mesh.points[saddle_mesh.edges[:, 1]]) / 2
+    classes = length_classes(tent_mesh.edge_lengths(), tent_mesh.length, TOLERANCE)
+    assert len(texts) == len(tent_mesh.edges) and {t.dxf.layer for t in texts} == {LABELS_LAYER}
+    middles = (tent_mesh.points[tent_mesh.edges[:, 0]] + tent_mesh.points[tent_mesh.edges[:, 1]]) / 2
     placed = {tuple(np.round(t.dxf.insert, 9)): t.dxf.text for t in texts}
     for member, middle in enumerate(middles):
         assert placed[tuple(np.round(middle, 9))] == str(classes.member_class[member])

@@ -93,8 +93,8 @@ def test_a_format_without_its_extra_says_how_to_install_it(fmt, tmp_path, monkey
     assert list(tmp_path.iterdir()) == []
 
 
-def test_outputs_are_written_together_or_not_at_all(saddle_mesh, tmp_path, monkeypatch):
-    write_surface_mesh(saddle_mesh, tmp_path / "m.obj", tmp_path / "m.csv", nodes=tmp_path / "n.csv")
+def test_outputs_are_written_together_or_not_at_all(tent_mesh, tmp_path, monkeypatch):
+    write_surface_mesh(tent_mesh, tmp_path / "m.obj", tmp_path / "m.csv", nodes=tmp_path / "n.csv")
     written = ["m.classes.csv", "m.csv", "m.obj", "n.csv"]
     assert sorted(p.name for p in tmp_path.iterdir()) == written
 
@@ -103,7 +103,7 @@ def test_outputs_are_written_together_or_not_at_all(saddle_mesh, tmp_path, monke
 
     monkeypatch.setattr(pd.DataFrame, "to_csv", disk_full)
     with pytest.raises(OSError, match="disk full"):
-        write_surface_mesh(saddle_mesh, tmp_path / "x.obj", tmp_path / "x.csv", nodes=tmp_path / "y.csv")
+        write_surface_mesh(tent_mesh, tmp_path / "x.obj", tmp_path / "x.csv", nodes=tmp_path / "y.csv")
     assert sorted(p.name for p in tmp_path.iterdir()) == written
 
 
@@ -122,8 +122,8 @@ def test_every_file_is_checked_before_the_writer_is_returned(tmp_path):
     assert sorted(p.name for p in tmp_path.iterdir()) == ["roof.obj"]
 
 
-def test_members_alone_are_written_with_their_classes(saddle_mesh, tmp_path):
-    m = saddle_mesh
+def test_members_alone_are_written_with_their_classes(tent_mesh, tmp_path):
+    m = tent_mesh
     write_members(tmp_path / "s.csv", m.points, m.edges, m.edge_groups, m.length)
     assert sorted(p.name for p in tmp_path.iterdir()) == ["s.classes.csv", "s.csv"]
     assert len(pd.read_csv(tmp_path / "s.csv")) == len(m.edges)

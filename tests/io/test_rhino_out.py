@@ -11,10 +11,10 @@ TOLERANCE = 0.01
 
 
 @pytest.fixture(scope="module")
-def model(saddle_mesh, tmp_path_factory):
+def model(tent_mesh, tmp_path_factory):
     rhino3dm = pytest.importorskip("rhino3dm", reason="rhino3dm (the optional extra [rhino]) is not installed")
     path = tmp_path_factory.mktemp("rhino") / "roof.3dm"
-    write_surface_mesh(saddle_mesh, path, tolerance=TOLERANCE)
+    write_surface_mesh(tent_mesh, path, tolerance=TOLERANCE)
     return rhino3dm, rhino3dm.File3dm.Read(str(path))
 
 
@@ -23,24 +23,24 @@ def objects_on(model, layer_name):
     return [o for o in model.Objects if layers[o.Attributes.LayerIndex] == layer_name]
 
 
-def test_the_mesh_reads_back(model, saddle_mesh):
+def test_the_mesh_reads_back(model, tent_mesh):
     rhino3dm, m = model
     (mesh,) = objects_on(m, "mesh")
     geometry = mesh.Geometry
     assert isinstance(geometry, rhino3dm.Mesh)
     vertices = geometry.Vertices
     points = np.array([[p.X, p.Y, p.Z] for p in map(vertices.Point3dAt, range(len(vertices)))])
-    np.testing.assert_array_equal(points, saddle_mesh.points)  # double precision vertices
+    np.testing.assert_array_equal(points, tent_mesh.points)  # double precision vertices
     faces = np.array([geometry.Faces[k][:3] for k in range(len(geometry.Faces))])
-    np.testing.assert_array_equal(faces, saddle_mesh.triangles)
+    np.testing.assert_array_equal(faces, tent_mesh.triangles)
 
 
-def test_members_lie_on_the_layer_of_their_length_class(model, saddle_mesh):
+def test_members_lie_on_the_layer_of_their_length_class(model, tent_mesh):
     """One sublayer of 'members' per class of equimesh.length_classes, named with its nominal length and count,
     holding exactly that class's members as lines between their nodes."""
     _, m = model
-    classes = length_classes(saddle_mesh.edge_lengths(), saddle_mesh.length, TOLERANCE)
-    names = Products(saddle_mesh, TOLERANCE).class_names
+    classes = length_classes(tent_mesh.edge_lengths(), tent_mesh.length, TOLERANCE)
+    names = Products(tent_mesh, TOLERANCE).class_names
     paths = [layer.FullPath for layer in m.Layers]
     assert [p for p in paths if p.startswith("members::")] == [f"members::{n}" for n in names]
     seen = 0
@@ -49,24 +49,24 @@ def test_members_lie_on_the_layer_of_their_length_class(model, saddle_mesh):
         assert len(lines) == classes.count[k] and f" - {classes.count[k]} members" in name
         for line in lines:
             member = int(line.Attributes.GetUserString("member"))
-            i, j = saddle_mesh.edges[member]
+            i, j = tent_mesh.edges[member]
             assert classes.member_class[member] == k == int(line.Attributes.GetUserString("class"))
-            assert float(line.Attributes.GetUserString("length")) == saddle_mesh.edge_lengths()[member]
+            assert float(line.Attributes.GetUserString("length")) == tent_mesh.edge_lengths()[member]
             ends = [line.Geometry.PointAtStart, line.Geometry.PointAtEnd]
-            np.testing.assert_allclose([[p.X, p.Y, p.Z] for p in ends], saddle_mesh.points[[i, j]])
+            np.testing.assert_allclose([[p.X, p.Y, p.Z] for p in ends], tent_mesh.points[[i, j]])
         seen += len(lines)
-    assert seen == len(saddle_mesh.edges)
+    assert seen == len(tent_mesh.edges)
 
 
-def test_nodes_are_points_with_their_figures(model, saddle_mesh):
+def test_nodes_are_points_with_their_figures(model, tent_mesh):
     _, m = model
     nodes = objects_on(m, "nodes")
-    assert len(nodes) == len(saddle_mesh.points)
-    table = Products(saddle_mesh).nodes
+    assert len(nodes) == len(tent_mesh.points)
+    table = Products(tent_mesh).nodes
     for node in nodes:
         k = int(node.Attributes.GetUserString("node"))
         assert node.Attributes.Name == f"node {k}"
         p = node.Geometry.Location
-        np.testing.assert_array_equal([p.X, p.Y, p.Z], saddle_mesh.points[k])
+        np.testing.assert_array_equal([p.X, p.Y, p.Z], tent_mesh.points[k])
         assert int(node.Attributes.GetUserString("valence")) == table["valence"][k]
         assert float(node.Attributes.GetUserString("min_angle")) == table["min_angle"][k]

@@ -86,6 +86,18 @@ OPTIMIZE_MODULES = {
 }
 MODULES.update(OPTIMIZE_MODULES)
 
+#: The output side of the io layer -> its direct tests, on a mesh of seven nodes made by hand (``tent_mesh``).
+OUTPUT_MODULES = {
+    "src/equimesh/io/_outputs.py": ["tests/io/test_outputs.py"],
+    "src/equimesh/io/_schedules.py": ["tests/io/test_schedules.py"],
+    "src/equimesh/io/_rhino_out.py": ["tests/io/test_rhino_out.py"],
+    "src/equimesh/io/_compas.py": ["tests/io/test_compas.py"],
+    "src/equimesh/io/_dxf.py": ["tests/io/test_dxf.py"],
+    "src/equimesh/io/_rhino.py": ["tests/io/test_rhino.py"],
+    "src/equimesh/io/provenance.py": ["tests/io/test_provenance.py"],
+}
+MODULES.update(OUTPUT_MODULES)
+
 #: Module -> environment variables of its mutmut run, beyond the caller's.
 ENVIRONMENT = dict.fromkeys(
     [*KERNEL_MODULES, "src/equimesh/surface/optimize/jacobian.py", "src/equimesh/surface/optimize/solver.py"],
