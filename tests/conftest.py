@@ -145,7 +145,7 @@ class TentMesh:
 
     The six sides are 1.0198 long, the spokes 1.1180 (to a low node) and 1.0440 (to a high one): three
     length classes of 6, 3 and 3 members at a tolerance of 1 %; the spokes are G1, the sides not; the first six
-    nodes are the boundary.  It has what the writers read of a :class:`equimesh.SurfaceMesh`.
+    nodes are the boundary.  It has what the writers, the report and the plot read of a mesh.
     """
 
     def __init__(self):
@@ -159,6 +159,7 @@ class TentMesh:
         self.edge_groups = np.where(self.edges[:, 1] == 6, G1, OTHER).astype(np.int8)
         self.length = 1.0
         self.n_boundary = 6
+        self.info = {"boundary_rings": [6]}  # one boundary ring, as a PlanarMesh says
 
     def edge_lengths(self):
         from equimesh.mesh import edge_lengths
