@@ -237,11 +237,11 @@ for k, ext in enumerate(sys.argv[3:]):
 """
 
 
-def test_the_same_mesh_gives_the_same_bytes_in_every_format(saddle_mesh, tmp_path):
+def test_the_same_mesh_gives_the_same_bytes_in_every_format(tent_mesh, tmp_path):
     """Two interpreters, with other hash seeds and at other times (more than a second apart), write every format
     whose library is installed; every file is the same, byte for byte."""
     arrays = tmp_path / "mesh.npz"
-    m = saddle_mesh
+    m = tent_mesh
     np.savez(arrays, points=m.points, triangles=m.triangles, edges=m.edges, edge_groups=m.edge_groups, length=m.length)
     extensions = [f.extension for f in OUTPUT_FORMATS if f.slot == "mesh" and installed(f)]
     env = {**os.environ, "PYTHONPATH": os.pathsep.join(sys.path)}
