@@ -5,6 +5,7 @@ import json
 
 import numpy as np
 import pytest
+from conftest import TentMesh
 
 from equimesh import length_classes
 from equimesh.io import Products, write_surface_mesh
@@ -56,4 +57,19 @@ def test_vertices_carry_the_node_schedule(written, tent_mesh):
     assert [mesh.vertex_attribute(v, "valence") for v in mesh.vertices()] == nodes["valence"].tolist()
     assert [mesh.vertex_degree(v) for v in mesh.vertices()] == nodes["valence"].tolist()
     assert [mesh.vertex_attribute(v, "min_angle") for v in mesh.vertices()] == nodes["min_angle"].tolist()
+    assert [mesh.vertex_attribute(v, "max_angle") for v in mesh.vertices()] == nodes["max_angle"].tolist()
     assert [mesh.is_vertex_on_boundary(v) for v in mesh.vertices()] == nodes["boundary"].astype(bool).tolist()
+
+
+def test_the_json_holds_booleans_and_floats_whatever_the_mesh_holds(written, tmp_path):
+    """``boundary`` is a JSON boolean; integer coordinates are written as the floats they are."""
+    _, path = written
+    vertices = json.loads(path.read_text())["data"]["vertex"]
+    flags = [vertices[str(v)]["boundary"] for v in range(7)]
+    assert flags == [True] * 6 + [False] and {type(f) for f in flags} == {bool}
+    mesh = TentMesh()
+    mesh.points = np.round(4 * mesh.points)
+    write_surface_mesh(mesh, tmp_path / "float.compas.json")
+    mesh.points = mesh.points.astype(int)
+    write_surface_mesh(mesh, tmp_path / "int.compas.json")
+    assert (tmp_path / "float.compas.json").read_bytes() == (tmp_path / "int.compas.json").read_bytes()

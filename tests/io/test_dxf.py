@@ -3,6 +3,7 @@ labels the class as text at each member's midpoint."""
 
 import numpy as np
 import pytest
+from conftest import TentMesh
 
 from equimesh import length_classes
 from equimesh.io import Products, write_surface_mesh
@@ -48,3 +49,14 @@ def test_labels_give_each_member_its_class_at_its_midpoint(drawing, tent_mesh):
     placed = {tuple(np.round(t.dxf.insert, 9)): t.dxf.text for t in texts}
     for member, middle in enumerate(middles):
         assert placed[tuple(np.round(middle, 9))] == str(classes.member_class[member])
+
+
+def test_a_dxf_r2010_drawing_with_labels_a_tenth_of_l_high(tmp_path):
+    ezdxf = pytest.importorskip("ezdxf")
+    mesh = TentMesh()
+    mesh.points, mesh.length = 2.5 * mesh.points, 2.5
+    write_surface_mesh(mesh, tmp_path / "big.dxf", tolerance=TOLERANCE, dxf_labels=True)
+    doc = ezdxf.readfile(tmp_path / "big.dxf")
+    assert doc.dxfversion == "AC1024"  # R2010
+    texts = doc.modelspace().query("TEXT")
+    assert len(texts) == len(mesh.edges) and [t.dxf.height for t in texts] == pytest.approx([0.25] * len(texts))

@@ -3,9 +3,11 @@ length class, the nodes, each with its schedule row as user text."""
 
 import numpy as np
 import pytest
+from conftest import TentMesh
 
 from equimesh import length_classes
 from equimesh.io import Products, write_surface_mesh
+from equimesh.mesh import G1
 
 TOLERANCE = 0.01
 
@@ -26,6 +28,7 @@ def objects_on(model, layer_name):
 def test_the_mesh_reads_back(model, tent_mesh):
     rhino3dm, m = model
     (mesh,) = objects_on(m, "mesh")
+    assert mesh.Attributes.Name == "mesh"
     geometry = mesh.Geometry
     assert isinstance(geometry, rhino3dm.Mesh)
     vertices = geometry.Vertices
@@ -52,6 +55,8 @@ def test_members_lie_on_the_layer_of_their_length_class(model, tent_mesh):
             i, j = tent_mesh.edges[member]
             assert classes.member_class[member] == k == int(line.Attributes.GetUserString("class"))
             assert float(line.Attributes.GetUserString("length")) == tent_mesh.edge_lengths()[member]
+            assert line.Attributes.Name == f"member {member}"
+            assert line.Attributes.GetUserString("group") == ("G1" if tent_mesh.edge_groups[member] == G1 else "other")
             ends = [line.Geometry.PointAtStart, line.Geometry.PointAtEnd]
             np.testing.assert_allclose([[p.X, p.Y, p.Z] for p in ends], tent_mesh.points[[i, j]])
         seen += len(lines)
@@ -69,4 +74,22 @@ def test_nodes_are_points_with_their_figures(model, tent_mesh):
         p = node.Geometry.Location
         np.testing.assert_array_equal([p.X, p.Y, p.Z], tent_mesh.points[k])
         assert int(node.Attributes.GetUserString("valence")) == table["valence"][k]
+        assert int(node.Attributes.GetUserString("boundary")) == (k < tent_mesh.n_boundary)
         assert float(node.Attributes.GetUserString("min_angle")) == table["min_angle"][k]
+        assert float(node.Attributes.GetUserString("max_angle")) == table["max_angle"][k]
+
+
+def test_every_layer_and_object_has_its_own_id_made_from_the_mesh(model, tent_mesh, tmp_path):
+    """The ids depend on the mesh's nodes and triangles, not on their types: integer coordinates or 32-bit
+    triangles give the same file."""
+    rhino3dm, m = model
+    ids = [layer.Id for layer in m.Layers] + [o.Attributes.Id for o in m.Objects]
+    assert len(ids) == len(set(ids)) == len(m.Layers) + len(m.Objects)
+    mesh = TentMesh()
+    mesh.points = np.round(4 * mesh.points)
+    write_surface_mesh(mesh, tmp_path / "float.3dm")
+    mesh.points, mesh.triangles = mesh.points.astype(int), mesh.triangles.astype(np.int32)
+    write_surface_mesh(mesh, tmp_path / "int.3dm")
+    assert (tmp_path / "float.3dm").read_bytes() == (tmp_path / "int.3dm").read_bytes()
+    other = rhino3dm.File3dm.Read(str(tmp_path / "float.3dm"))
+    assert not {layer.Id for layer in other.Layers} & set(ids)  # another mesh, other ids
