@@ -157,8 +157,11 @@ def test_every_file_is_checked_before_the_writer_is_returned(tmp_path):
     """Two outputs that are one file, an output that is an input: refused when the writer is made."""
     source = tmp_path / "roof.obj"
     source.write_text("v 0 0 0\n")
-    with pytest.raises(OutputPathError, match="would destroy the input"):
+    with pytest.raises(OutputPathError) as err:
         surface_mesh_writer({"mesh": tmp_path / "." / "roof.obj"}, inputs=[source])
+    assert str(err.value) == (
+        f"the mesh {source} is the input {source}: writing it would destroy the input; choose another output file"
+    )
     with pytest.raises(OutputPathError, match="length classes .* and the node schedule"):
         surface_mesh_writer(
             {"mesh": tmp_path / "m.obj", "members": tmp_path / "a.csv", "nodes": tmp_path / "a.classes.csv"}
@@ -196,6 +199,13 @@ def test_the_tolerance_and_the_labels_reach_every_writer(tent_mesh, tmp_path):
         classes = (tmp_path / f"{name}.classes.csv").read_bytes()
         assert classes == written(output_formats("members")[".csv"].beside[0].write, products, tmp_path)
     assert b"labels" in (tmp_path / "m.dxf").read_bytes() and b"labels" not in (tmp_path / "d.dxf").read_bytes()
+
+
+def test_a_writer_made_alone_writes_no_labels(tent_mesh, tmp_path):
+    pytest.importorskip("ezdxf")
+    surface_mesh_writer({"mesh": tmp_path / "m.dxf"})(tent_mesh)
+    plain = written(output_formats("mesh")[".dxf"].write, Products(tent_mesh), tmp_path)
+    assert (tmp_path / "m.dxf").read_bytes() == plain
 
 
 def test_the_plot_and_the_report_are_those_of_their_writers(tent_mesh, tmp_path):
