@@ -13,16 +13,17 @@ from equimesh.io import Products, write_surface_mesh
 TOLERANCE = 0.01
 
 
-@pytest.fixture(scope="module")
-def written(tent_mesh, tmp_path_factory):
+def written(mesh, folder):
+    """compas and the file of ``mesh`` written in ``folder`` (in the test itself, so that mutation testing sees
+    which tests write)."""
     compas = pytest.importorskip("compas", reason="compas (the optional extra [compas]) is not installed")
-    path = tmp_path_factory.mktemp("compas") / "roof.compas.json"
-    write_surface_mesh(tent_mesh, path, tolerance=TOLERANCE)
+    path = folder / "roof.compas.json"
+    write_surface_mesh(mesh, path, tolerance=TOLERANCE)
     return compas, path
 
 
-def test_the_file_is_a_valid_compas_mesh(written, tent_mesh):
-    compas, path = written
+def test_the_file_is_a_valid_compas_mesh(tent_mesh, tmp_path):
+    compas, path = written(tent_mesh, tmp_path)
     from compas.datastructures import Mesh
 
     mesh = compas.json_load(str(path))
@@ -35,8 +36,8 @@ def test_the_file_is_a_valid_compas_mesh(written, tent_mesh):
     assert mesh.attributes["length"] == tent_mesh.length and mesh.attributes["tolerance"] == TOLERANCE
 
 
-def test_edges_carry_the_member_schedule(written, tent_mesh):
-    compas, path = written
+def test_edges_carry_the_member_schedule(tent_mesh, tmp_path):
+    compas, path = written(tent_mesh, tmp_path)
     mesh = compas.json_load(str(path))
     classes = length_classes(tent_mesh.edge_lengths(), tent_mesh.length, TOLERANCE)
     members = Products(tent_mesh, TOLERANCE).members
@@ -49,8 +50,8 @@ def test_edges_carry_the_member_schedule(written, tent_mesh):
         assert mesh.edge_attribute(edge, "group") == row.group
 
 
-def test_vertices_carry_the_node_schedule(written, tent_mesh):
-    compas, path = written
+def test_vertices_carry_the_node_schedule(tent_mesh, tmp_path):
+    compas, path = written(tent_mesh, tmp_path)
     mesh = compas.json_load(str(path))
     nodes = Products(tent_mesh).nodes
     assert [mesh.vertex_attribute(v, "boundary") for v in mesh.vertices()] == nodes["boundary"].astype(bool).tolist()
@@ -61,9 +62,9 @@ def test_vertices_carry_the_node_schedule(written, tent_mesh):
     assert [mesh.is_vertex_on_boundary(v) for v in mesh.vertices()] == nodes["boundary"].astype(bool).tolist()
 
 
-def test_the_json_holds_booleans_and_floats_whatever_the_mesh_holds(written, tmp_path):
+def test_the_json_holds_booleans_and_floats_whatever_the_mesh_holds(tent_mesh, tmp_path):
     """``boundary`` is a JSON boolean; integer coordinates are written as the floats they are."""
-    _, path = written
+    _, path = written(tent_mesh, tmp_path)
     vertices = json.loads(path.read_text())["data"]["vertex"]
     flags = [vertices[str(v)]["boundary"] for v in range(7)]
     assert flags == [True] * 6 + [False] and {type(f) for f in flags} == {bool}

@@ -12,18 +12,23 @@ from equimesh.io._dxf import LABELS_LAYER
 TOLERANCE = 0.01
 
 
-@pytest.fixture(scope="module", params=[False, True], ids=["plain", "labels"])
-def drawing(tent_mesh, tmp_path_factory, request):
+def drawing(mesh, folder, labels):
+    """The drawing ezdxf reads of ``mesh`` written in ``folder`` (in the test itself, so that mutation testing sees
+    which tests write)."""
     ezdxf = pytest.importorskip("ezdxf", reason="ezdxf (the optional extra [dxf]) is not installed")
-    path = tmp_path_factory.mktemp("dxf") / "roof.dxf"
-    write_surface_mesh(tent_mesh, path, tolerance=TOLERANCE, dxf_labels=request.param)
+    path = folder / "roof.dxf"
+    write_surface_mesh(mesh, path, tolerance=TOLERANCE, dxf_labels=labels)
     doc = ezdxf.readfile(path)
     assert not doc.audit().has_errors  # a drawing CAD programs open
-    return doc, request.param
+    return doc
 
 
-def test_members_are_lines_on_the_layer_of_their_class(drawing, tent_mesh):
-    doc, _ = drawing
+LABELS = pytest.mark.parametrize("labels", [False, True], ids=["plain", "labels"])
+
+
+@LABELS
+def test_members_are_lines_on_the_layer_of_their_class(tent_mesh, tmp_path, labels):
+    doc = drawing(tent_mesh, tmp_path, labels)
     classes = length_classes(tent_mesh.edge_lengths(), tent_mesh.length, TOLERANCE)
     names = Products(tent_mesh, TOLERANCE).class_names
     assert set(names) <= {layer.dxf.name for layer in doc.layers}
@@ -37,8 +42,9 @@ def test_members_are_lines_on_the_layer_of_their_class(drawing, tent_mesh):
         assert len(doc.modelspace().query(f'LINE[layer=="{name}"]')) == classes.count[k]
 
 
-def test_labels_give_each_member_its_class_at_its_midpoint(drawing, tent_mesh):
-    doc, labels = drawing
+@LABELS
+def test_labels_give_each_member_its_class_at_its_midpoint(tent_mesh, tmp_path, labels):
+    doc = drawing(tent_mesh, tmp_path, labels)
     texts = doc.modelspace().query("TEXT")
     if not labels:
         assert len(texts) == 0

@@ -12,11 +12,12 @@ from equimesh.mesh import G1
 TOLERANCE = 0.01
 
 
-@pytest.fixture(scope="module")
-def model(tent_mesh, tmp_path_factory):
+def read_back(mesh, folder):
+    """rhino3dm and the model it reads of ``mesh`` written in ``folder`` (in the test itself, so that mutation
+    testing sees which tests write)."""
     rhino3dm = pytest.importorskip("rhino3dm", reason="rhino3dm (the optional extra [rhino]) is not installed")
-    path = tmp_path_factory.mktemp("rhino") / "roof.3dm"
-    write_surface_mesh(tent_mesh, path, tolerance=TOLERANCE)
+    path = folder / "roof.3dm"
+    write_surface_mesh(mesh, path, tolerance=TOLERANCE)
     return rhino3dm, rhino3dm.File3dm.Read(str(path))
 
 
@@ -25,23 +26,23 @@ def objects_on(model, layer_name):
     return [o for o in model.Objects if layers[o.Attributes.LayerIndex] == layer_name]
 
 
-def test_the_mesh_reads_back(model, tent_mesh):
-    rhino3dm, m = model
+def test_the_mesh_reads_back(tent_mesh, tmp_path):
+    rhino3dm, m = read_back(tent_mesh, tmp_path)
     (mesh,) = objects_on(m, "mesh")
     assert mesh.Attributes.Name == "mesh"
     geometry = mesh.Geometry
     assert isinstance(geometry, rhino3dm.Mesh)
     vertices = geometry.Vertices
     points = np.array([[p.X, p.Y, p.Z] for p in map(vertices.Point3dAt, range(len(vertices)))])
-    np.testing.assert_array_equal(points, tent_mesh.points)  # double precision vertices
+    np.testing.assert_array_equal(points, tent_mesh.points)  # the nodes to the last bit, as in the other formats
     faces = np.array([geometry.Faces[k][:3] for k in range(len(geometry.Faces))])
     np.testing.assert_array_equal(faces, tent_mesh.triangles)
 
 
-def test_members_lie_on_the_layer_of_their_length_class(model, tent_mesh):
+def test_members_lie_on_the_layer_of_their_length_class(tent_mesh, tmp_path):
     """One sublayer of 'members' per class of equimesh.length_classes, named with its nominal length and count,
     holding exactly that class's members as lines between their nodes."""
-    _, m = model
+    _, m = read_back(tent_mesh, tmp_path)
     classes = length_classes(tent_mesh.edge_lengths(), tent_mesh.length, TOLERANCE)
     names = Products(tent_mesh, TOLERANCE).class_names
     paths = [layer.FullPath for layer in m.Layers]
@@ -63,8 +64,8 @@ def test_members_lie_on_the_layer_of_their_length_class(model, tent_mesh):
     assert seen == len(tent_mesh.edges)
 
 
-def test_nodes_are_points_with_their_figures(model, tent_mesh):
-    _, m = model
+def test_nodes_are_points_with_their_figures(tent_mesh, tmp_path):
+    _, m = read_back(tent_mesh, tmp_path)
     nodes = objects_on(m, "nodes")
     assert len(nodes) == len(tent_mesh.points)
     table = Products(tent_mesh).nodes
@@ -79,10 +80,10 @@ def test_nodes_are_points_with_their_figures(model, tent_mesh):
         assert float(node.Attributes.GetUserString("max_angle")) == table["max_angle"][k]
 
 
-def test_every_layer_and_object_has_its_own_id_made_from_the_mesh(model, tent_mesh, tmp_path):
+def test_every_layer_and_object_has_its_own_id_made_from_the_mesh(tent_mesh, tmp_path):
     """The ids depend on the mesh's nodes and triangles, not on their types: integer coordinates or 32-bit
     triangles give the same file."""
-    rhino3dm, m = model
+    rhino3dm, m = read_back(tent_mesh, tmp_path)
     ids = [layer.Id for layer in m.Layers] + [o.Attributes.Id for o in m.Objects]
     assert len(ids) == len(set(ids)) == len(m.Layers) + len(m.Objects)
     mesh = TentMesh()
