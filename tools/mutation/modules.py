@@ -95,6 +95,7 @@ OUTPUT_MODULES = {
     "src/equimesh/io/_dxf.py": ["tests/io/test_dxf.py"],
     "src/equimesh/io/_rhino.py": ["tests/io/test_rhino.py"],
     "src/equimesh/io/provenance.py": ["tests/io/test_provenance.py"],
+    "src/equimesh/io/_view.py": ["tests/io/test_view.py"],
 }
 MODULES.update(OUTPUT_MODULES)
 
