@@ -1,16 +1,18 @@
 """What the report and the plot draw (equimesh.io._view): every member in one group, the bins, the outline."""
 
-import functools
 from types import SimpleNamespace
 
 import numpy as np
+import report_meshes
 from conftest import TentMesh
 from hypothesis import given
 from hypothesis import strategies as st
 
-from equimesh import length_classes, uniform_triangulation
+from equimesh import length_classes
 from equimesh.io._view import MAX_BINS, PALETTE, REST_COLOUR, class_groups, length_bins, mesh_view
 from equimesh.metrics import triangle_angles
+
+square_mesh = report_meshes.square_mesh  # the shared fixture
 
 lengths_st = st.lists(st.floats(0.5, 3.0, allow_nan=False), min_size=1, max_size=300)
 tolerances = st.sampled_from([1e-6, 0.001, 0.005, 0.05, 0.3])
@@ -50,15 +52,10 @@ def test_bins_hold_every_length_and_lie_on_l_plus_whole_multiples_of_the_toleran
     assert len(set(np.diff(np.round(k)).tolist())) == 1  # one width
 
 
-@functools.cache
-def _square_with_opening():
-    return uniform_triangulation([[0, 0], [5, 0], [5, 5], [0, 5]], 1.0, holes=[[[2, 2], [3, 2], [3, 3], [2, 3]]])
-
-
-def test_the_outline_is_the_outer_boundary_and_the_openings():
+def test_the_outline_is_the_outer_boundary_and_the_openings(square_mesh):
     """The planar mesh's info says how many nodes the outer ring has; a surface mesh's plane says it; without
     rings every boundary node is on the outer ring."""
-    mesh = _square_with_opening()
+    mesh = square_mesh
     outer, opening = mesh.info["boundary_rings"]
     view = mesh_view(mesh)
     # a closed ring of k nodes has k edges; the outer ring's nodes come first
@@ -72,8 +69,8 @@ def test_the_outline_is_the_outer_boundary_and_the_openings():
     assert len(mesh_view(surface).openings) == 0 and len(mesh_view(surface).boundary) == outer + opening
 
 
-def test_a_planar_mesh_is_drawn_at_z_0_and_its_histogram_counts_every_member():
-    mesh = _square_with_opening()
+def test_a_planar_mesh_is_drawn_at_z_0_and_its_histogram_counts_every_member(square_mesh):
+    mesh = square_mesh
     view = mesh_view(mesh, 0.005)
     assert view.points.shape == (len(mesh.points), 3) and not view.points[:, 2].any()
     np.testing.assert_array_equal(view.points[:, :2], mesh.points)
