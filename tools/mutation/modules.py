@@ -96,6 +96,7 @@ OUTPUT_MODULES = {
     "src/equimesh/io/_rhino.py": ["tests/io/test_rhino.py"],
     "src/equimesh/io/provenance.py": ["tests/io/test_provenance.py"],
     "src/equimesh/io/_view.py": ["tests/io/test_view.py"],
+    "src/equimesh/io/_plot.py": ["tests/io/test_plot.py"],
 }
 MODULES.update(OUTPUT_MODULES)
 
