@@ -66,3 +66,11 @@ def test_a_dxf_r2010_drawing_with_labels_a_tenth_of_l_high(tmp_path):
     assert doc.dxfversion == "AC1024"  # R2010
     texts = doc.modelspace().query("TEXT")
     assert len(texts) == len(mesh.edges) and [t.dxf.height for t in texts] == pytest.approx([0.25] * len(texts))
+
+
+def test_the_classes_in_use_come_first_in_sorted_order(tent_mesh, tmp_path):
+    """Not in the order of a set of strings, which changes with the interpreter's hash seed."""
+    doc = drawing(tent_mesh, tmp_path, labels=True)
+    names = [c.dxf.name for c in doc.classes]
+    in_use = sorted(set(doc.entitydb.dxf_types_in_use()) & set(names))
+    assert len(in_use) > 1 and names[: len(in_use)] == in_use
