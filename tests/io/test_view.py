@@ -10,6 +10,7 @@ from hypothesis import strategies as st
 
 from equimesh import length_classes
 from equimesh.io._view import MAX_BINS, PALETTE, REST_COLOUR, class_groups, length_bins, mesh_view
+from equimesh.mesh import G1
 from equimesh.metrics import triangle_angles
 
 square_mesh = report_meshes.square_mesh  # the shared fixture
@@ -73,6 +74,7 @@ def test_a_planar_mesh_is_drawn_at_z_0_and_its_histogram_counts_every_member(squ
     mesh = square_mesh
     view = mesh_view(mesh, 0.005)
     assert view.points.shape == (len(mesh.points), 3) and not view.points[:, 2].any()
+    assert view.n_g1 == 0 and not (mesh.edge_groups == G1).any()  # none of the square's members is in G1
     np.testing.assert_array_equal(view.points[:, :2], mesh.points)
     edges, counts = view.histogram()
     assert counts.shape == (len(view.groups), len(edges) - 1) and counts.sum() == len(mesh.edges)
@@ -85,7 +87,12 @@ def test_the_view_of_the_tent(tent_mesh):
     six sides as the outer boundary, the six G1 spokes, whatever integer types the mesh holds."""
     mesh = TentMesh()
     mesh.triangles, mesh.edges = mesh.triangles.astype(np.int32), mesh.edges.astype(np.int32)
+    mesh.points = np.round(4 * mesh.points).astype(int)
+    np.testing.assert_array_equal(mesh_view(mesh).points, np.round(4 * tent_mesh.points))
+    assert mesh_view(mesh).points.dtype == float
+    mesh.points = tent_mesh.points
     view = mesh_view(mesh, "1%")
+    assert view.classes.count.tolist() == [6, 3, 3]
     assert view.tolerance == 0.01 and view.l == 1.0 and view.n_g1 == 6
     assert view.triangles.dtype == view.edges.dtype == np.int64
     np.testing.assert_array_equal(view.edges, tent_mesh.edges)
@@ -103,6 +110,17 @@ def test_the_view_of_the_tent(tent_mesh):
     np.testing.assert_array_equal(angle_edges, np.arange(181.0))
     expected, _ = np.histogram(triangle_angles(view.points, view.triangles), bins=np.arange(181.0))
     assert angle_counts.tolist() == expected.tolist() and angle_counts.sum() == 18
+
+
+def test_as_many_classes_as_drawn_are_all_drawn_and_the_largest_first_beyond(tent_mesh):
+    """max_drawn classes: each its own group; more: the largest ones, and among equal counts the shorter."""
+    classes = length_classes(tent_mesh.edge_lengths(), 1.0, 0.01)
+    assert [g.classes for g in class_groups(classes, max_drawn=3)] == [(0,), (1,), (2,)]
+    middle = length_classes([1.0, 1.1, 1.1, 1.1, 1.2], 1.0, 0.01)  # the largest class is not the first
+    assert [g.classes for g in class_groups(middle, max_drawn=2)] == [(1,), (0, 2)]
+    ties = length_classes(np.repeat(1.0 + 0.1 * np.arange(20), [1, 2] * 10), 1.0, 0.01)  # ten of 2 members
+    drawn = [g.classes[0] for g in class_groups(ties, max_drawn=10)[:-1]]
+    assert drawn == [1, 3, 5, 7, 9, 11, 13, 15, 17]
 
 
 def test_the_smaller_classes_are_one_grey_group(tent_mesh):
