@@ -3,14 +3,16 @@ stacked length histogram with the band [l, 2l] and the window l +- t l), a PNG o
 
 from types import SimpleNamespace
 
+import matplotlib
 import numpy as np
 import pytest
 import report_meshes
+from conftest import TentMesh
 from matplotlib.colors import to_rgba
 from matplotlib.image import imread
 
 from equimesh import OutputPathError
-from equimesh.io import output_formats, write_plot
+from equimesh.io import Products, output_formats, write_plot
 from equimesh.io._plot import PLOT_DPI, PLOT_SIZE, plot_figure
 from equimesh.io._view import BOUNDARY_COLOUR, PALETTE, mesh_view
 from equimesh.mesh import G1
@@ -59,6 +61,7 @@ def test_the_title_the_size_and_the_layout(tent_mesh):
     assert mesh_axes.name == "3d" and lengths_axes.name == "rectilinear" and not mesh_axes.axison
     grid = lengths_axes.get_subplotspec().get_gridspec()
     assert grid.get_geometry() == (1, 2) and grid.get_width_ratios() == (1.25, 1.0)
+    assert mesh_axes.get_subplotspec().get_gridspec() is grid
     assert mesh_axes.get_subplotspec().colspan == range(0, 1) and lengths_axes.get_subplotspec().colspan == range(1, 2)
     assert (grid.left, grid.right, grid.bottom, grid.top, grid.wspace) == (0.0, 0.98, 0.11, 0.9, 0.08)
 
@@ -108,19 +111,29 @@ def test_the_mesh_fills_its_box(tent_mesh, square_mesh):
     aspect = axes.get_box_aspect()
     np.testing.assert_allclose(aspect / aspect[0], [1.0, np.sqrt(3) / 2, 0.25])
     assert plot_figure(square_mesh).axes[0].get_zlim() == (0.0, 5e-9)
+    far = SimpleNamespace(**vars(square_mesh) | {"points": square_mesh.points + 10.0})  # the extent, not the corner
+    assert plot_figure(far).axes[0].get_zlim() == (0.0, 5e-9)
     small = SimpleNamespace(**vars(square_mesh) | {"points": square_mesh.points / 10, "length": 0.1})
     assert plot_figure(small).axes[0].get_zlim() == (0.0, 1e-9)
     assert small.points[:, 0].max() == 0.5  # smaller than 1
 
 
-def test_the_lengths_stacked_by_class_with_the_band_and_the_window(tent_mesh):
-    view = mesh_view(tent_mesh, 0.01)
-    fig = plot_figure(tent_mesh, 0.01)
+def test_a_mesh_without_openings_has_the_boundary_alone_in_its_legend(tent_mesh):
+    fig = plot_figure(tent_mesh)
+    members, boundary = fig.axes[0].collections
+    assert [t.get_text() for t in fig.axes[0].get_legend().get_texts()] == ["boundary"]
+
+
+def test_the_lengths_stacked_by_class_with_the_band_and_the_window():
+    mesh = TentMesh()
+    mesh.points, mesh.length = 2.5 * mesh.points, 2.5  # l = 2.5: the band and the window scale with l
+    view = mesh_view(mesh, 0.01)
+    fig = plot_figure(mesh, 0.01)
     fig.draw_without_rendering()
     axes = fig.axes[1]
     band, window = axes.patches
-    assert (band.get_label(), band.get_x(), band.get_width()) == ("[l, 2l]", 1.0, 1.0)
-    assert (window.get_label(), window.get_x()) == ("l +- 1 %", 0.99) and window.get_width() == pytest.approx(0.02)
+    assert (band.get_label(), band.get_x(), band.get_width()) == ("[l, 2l]", 2.5, 2.5)
+    assert (window.get_label(), window.get_x()) == ("l +- 1 %", 2.475) and window.get_width() == pytest.approx(0.05)
     assert band.get_facecolor()[:3] == window.get_facecolor()[:3] == to_rgba("#2ca02c")[:3]
     assert band.get_alpha() < window.get_alpha() < 1 and band.get_linewidth() == window.get_linewidth() == 0
     edges, counts = view.histogram()
@@ -149,3 +162,54 @@ def test_one_member_per_bin_still_gets_a_y_axis_to_1_5():
         info={},
     )
     assert plot_figure(triangle, 0.01).axes[1].get_ylim() == (0.0, 1.5)
+
+
+def test_the_y_axis_reaches_1_5_times_the_fullest_bin_not_the_largest_class(tent_mesh):
+    """At 2 %, nine members in one class fall in two bins of six and three."""
+    view = mesh_view(tent_mesh, 0.02)
+    _, counts = view.histogram()
+    assert counts.sum(axis=0).max() == 6 and max(len(g.members) for g in view.groups) == 9
+    assert plot_figure(tent_mesh, 0.02).axes[1].get_ylim() == (0.0, 9.0)
+
+
+def test_more_groups_than_matplotlib_has_colours_keep_theirs():
+    """A fan of ten spokes of ten lengths: each class its colour of the palette, not matplotlib's cycle."""
+    angles = np.arange(10) * np.pi / 5
+    radii = 1.0 + 0.04 * np.arange(10)
+    ring = np.column_stack([radii * np.cos(angles), radii * np.sin(angles), np.zeros(10)])
+    triangles = np.array([[k, (k + 1) % 10, 10] for k in range(10)])
+    edges = np.unique(
+        np.sort(np.concatenate([triangles[:, [0, 1]], triangles[:, [1, 2]], triangles[:, [0, 2]]]), 1), axis=0
+    )
+    fan = SimpleNamespace(
+        points=np.vstack([ring, [0.0, 0.0, 0.0]]),
+        triangles=triangles,
+        edges=edges,
+        edge_groups=np.zeros(len(edges), dtype=np.int8),
+        length=1.0,
+        n_boundary=10,
+        info={},
+    )
+    view = mesh_view(fan, 0.005)
+    assert len(view.groups) > len(PALETTE)
+    stacks = plot_figure(fan, 0.005).axes[1].collections
+    assert [tuple(s.get_facecolor()[0]) for s in stacks] == [to_rgba(g.colour) for g in view.groups]
+
+
+def test_a_writer_writes_its_format_whatever_the_file_is_called(tent_mesh, tmp_path):
+    """The temporary file gets the format of the row, with no date and no software stamp; the tolerance given."""
+    starts = {".png": b"\x89PNG", ".svg": b"<?xml", ".pdf": b"%PDF"}
+    stamps = {".png": b"Software", ".svg": b"<dc:date>", ".pdf": b"/CreationDate"}
+    for extension, fmt in output_formats("plot").items():
+        fmt.write(tmp_path / "plain", Products(tent_mesh, 0.05))
+        data = (tmp_path / "plain").read_bytes()
+        assert data.startswith(starts[extension]) and stamps[extension] not in data
+        fmt.write(tmp_path / "default", Products(tent_mesh))
+        assert (tmp_path / "default").read_bytes() != data  # the tolerance reaches the picture
+
+
+def test_the_resolution_is_the_plots_whatever_matplotlib_is_set_to(tent_mesh, tmp_path):
+    with matplotlib.rc_context({"figure.dpi": 72, "savefig.dpi": 72}):
+        assert plot_figure(tent_mesh).dpi == PLOT_DPI
+        write_plot(tent_mesh, tmp_path / "p.png")
+    assert imread(tmp_path / "p.png").shape[:2] == (round(PLOT_SIZE[1] * PLOT_DPI), round(PLOT_SIZE[0] * PLOT_DPI))
