@@ -115,7 +115,8 @@ def test_the_view_of_the_tent(tent_mesh):
 def test_as_many_classes_as_drawn_are_all_drawn_and_the_largest_first_beyond(tent_mesh):
     """max_drawn classes: each its own group; more: the largest ones, and among equal counts the shorter."""
     classes = length_classes(tent_mesh.edge_lengths(), 1.0, 0.01)
-    assert [g.classes for g in class_groups(classes, max_drawn=3)] == [(0,), (1,), (2,)]
+    groups = class_groups(classes, max_drawn=3)
+    assert [g.classes for g in groups] == [(0,), (1,), (2,)] and [g.colour for g in groups] == list(PALETTE[:3])
     middle = length_classes([1.0, 1.1, 1.1, 1.1, 1.2], 1.0, 0.01)  # the largest class is not the first
     assert [g.classes for g in class_groups(middle, max_drawn=2)] == [(1,), (0, 2)]
     ties = length_classes(np.repeat(1.0 + 0.1 * np.arange(20), [1, 2] * 10), 1.0, 0.01)  # ten of 2 members
