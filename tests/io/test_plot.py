@@ -9,6 +9,7 @@ import pytest
 import report_meshes
 from conftest import TentMesh
 from matplotlib.colors import to_rgba
+from matplotlib.font_manager import FontProperties
 from matplotlib.image import imread
 
 from equimesh import OutputPathError
@@ -71,6 +72,11 @@ def title_size(fig):
     return title.get_fontsize()
 
 
+def small_text():
+    """The size of matplotlib's default legend text, which the plot's legends stay below."""
+    return FontProperties(size=matplotlib.rcParams["legend.fontsize"]).get_size_in_points()
+
+
 def legend_corner(axes):
     """Where the legend of ``axes`` is drawn (after a draw), ``("upper", "left")`` and so on; the legend."""
     legend = axes.get_legend()
@@ -92,13 +98,15 @@ def test_each_member_in_its_class_colour_and_the_outline_wider_in_black(square_m
         expected[group.members] = to_rgba(group.colour)
     np.testing.assert_array_equal(members.get_colors(), expected)
     assert (len(boundary.get_segments()), len(openings.get_segments())) == (len(view.boundary), len(view.openings))
+    default = matplotlib.rcParams["lines.linewidth"]
+    assert members.get_linewidths()[0] < default  # members finer than a line of matplotlib's, the outline bolder
     for outline, label in ((boundary, "boundary"), (openings, "openings")):
-        assert outline.get_label() == label and outline.get_linewidths()[0] > members.get_linewidths()[0]
+        assert outline.get_label() == label and outline.get_linewidths()[0] > default
         np.testing.assert_array_equal(outline.get_colors(), [to_rgba(BOUNDARY_COLOUR)])
     assert boundary.get_linestyles()[0][1] is None and openings.get_linestyles()[0][1] is not None  # solid, dashed
     corner, legend = legend_corner(axes)
     assert corner == ("upper", "left") and [t.get_text() for t in legend.get_texts()] == ["boundary", "openings"]
-    assert not legend.get_frame_on() and legend.get_texts()[0].get_fontsize() < title_size(fig)
+    assert not legend.get_frame_on() and legend.get_texts()[0].get_fontsize() < small_text() < title_size(fig)
 
 
 def test_the_mesh_fills_its_box(tent_mesh, square_mesh):
@@ -148,7 +156,7 @@ def test_the_lengths_stacked_by_class_with_the_band_and_the_window():
     assert axes.get_ylabel() == "members (logarithmic above 1)"
     corner, legend = legend_corner(axes)
     assert corner == ("upper", "right") and [t.get_text() for t in legend.get_texts()] == ["[l, 2l]", "l +- 1 %"]
-    assert not legend.get_frame_on() and legend.get_texts()[0].get_fontsize() < title_size(fig)
+    assert not legend.get_frame_on() and legend.get_texts()[0].get_fontsize() < small_text() < title_size(fig)
 
 
 def test_one_member_per_bin_still_gets_a_y_axis_to_1_5():
