@@ -86,7 +86,8 @@ OPTIMIZE_MODULES = {
 }
 MODULES.update(OPTIMIZE_MODULES)
 
-#: The output side of the io layer -> its direct tests, on a mesh of seven nodes made by hand (``tent_mesh``).
+#: The output side of the io layer (and Rhino files in, provenance) -> their direct tests, on meshes of a few nodes
+#: (``tent_mesh``; the report's ``square_mesh``), each writing in the test itself (docs/development.md).
 OUTPUT_MODULES = {
     "src/equimesh/io/_outputs.py": ["tests/io/test_outputs.py"],
     "src/equimesh/io/_schedules.py": ["tests/io/test_schedules.py"],
