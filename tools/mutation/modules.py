@@ -98,6 +98,7 @@ OUTPUT_MODULES = {
     "src/equimesh/io/provenance.py": ["tests/io/test_provenance.py"],
     "src/equimesh/io/_view.py": ["tests/io/test_view.py"],
     "src/equimesh/io/_plot.py": ["tests/io/test_plot.py"],
+    "src/equimesh/io/_report.py": ["tests/io/test_report.py"],
 }
 MODULES.update(OUTPUT_MODULES)
 
