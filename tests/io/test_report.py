@@ -158,19 +158,28 @@ def test_the_view_draws_every_member_once_in_one_line_set_per_class_and_the_outl
     assert scene["aspectmode"] == "manual" and scene["camera"] == {"eye": {"x": 0.85, "y": -0.85, "z": 0.65}}
     assert scene["aspectratio"] == {"x": 1.0, "y": 1.0, "z": 0.05}  # a flat square: a thin box, not a plane
     assert [scene[f"{a}axis"]["title"]["text"] for a in "xyz"] == ["x", "y", "z"]
-    assert layout["template"]["layout"]["paper_bgcolor"] == "white"  # plotly_white
+    assert plotly_white(figure)
+
+
+def plotly_white(figure):
+    """Whether ``figure`` (as the page holds it) is drawn with plotly's "plotly_white" template."""
+    return figure["layout"]["template"] == plotly.io.templates["plotly_white"].to_plotly_json()
 
 
 def test_the_scene_has_the_mesh_proportions(tmp_path):
+    """Whatever the mesh's size: a tenth of the fan is in the same box."""
     mesh = fan()
-    ratio = report_data(page(mesh, tmp_path))["figures"]["view"]["layout"]["scene"]["aspectratio"]
-    span = np.ptp(mesh.points, axis=0)
-    np.testing.assert_allclose([ratio[a] for a in "xyz"], span / span.max())
+    small = SimpleNamespace(**vars(mesh) | {"points": mesh.points / 10, "length": 0.15})
+    for m, name in ((mesh, "fan.html"), (small, "small.html")):
+        ratio = report_data(page(m, tmp_path, name=name))["figures"]["view"]["layout"]["scene"]["aspectratio"]
+        span = np.ptp(m.points, axis=0)
+        np.testing.assert_allclose([ratio[a] for a in "xyz"], span / span.max())
     line = report_data(page(mesh, tmp_path))["figures"]["view"]["data"][0]
     first = decoded(line["x"])[:3], decoded(line["y"])[:3], decoded(line["z"])[:3]
     members = mesh_view(mesh, TOLERANCE).groups[0].members
     i, j = mesh.edges[members[0]]
     np.testing.assert_allclose(np.array(first)[:, :2].T, mesh.points[[i, j]].astype(np.float32))
+    assert all(decoded(line[a]).dtype == np.float32 for a in "xyz")  # as WebGL draws them
 
 
 def test_the_histogram_band_and_windows(tmp_path):
@@ -206,7 +215,7 @@ def test_the_histogram_band_and_windows(tmp_path):
     for a in layout["annotations"]:
         assert (a["y"], a["yref"], a["showarrow"], a["yanchor"]) == (1.0, "paper", False, "bottom")
     assert (layout["barmode"], layout["bargap"], layout["showlegend"], layout["height"]) == ("stack", 0, False, 420)
-    assert layout["margin"] == {"l": 60, "r": 20, "t": 40, "b": 50}
+    assert layout["margin"] == {"l": 60, "r": 20, "t": 40, "b": 50} and plotly_white(lengths)
     title = f"member length (bins of {number(width)}; shaded: [l, 2l] and l +- 2 %)"
     assert layout["xaxis"]["title"]["text"] == title
     assert layout["yaxis"]["title"]["text"] == "members (log scale)" and layout["yaxis"]["type"] == "log"
@@ -229,6 +238,7 @@ def test_the_angles(tmp_path):
     assert (layout["bargap"], layout["height"], layout["margin"]) == (0, 320, {"l": 60, "r": 20, "t": 20, "b": 50})
     assert layout["xaxis"]["title"]["text"] == "interior angle (degrees; dashed: 60)"
     assert layout["xaxis"]["range"] == [0, 180] and layout["yaxis"]["title"]["text"] == "angles"
+    assert plotly_white(angles)
 
 
 def test_the_deviation_colours(tmp_path):
