@@ -17,6 +17,7 @@ import report_meshes
 from equimesh import MissingDependencyError, OutputPathError, length_classes
 from equimesh.errors import number
 from equimesh.io import output_formats, write_report
+from equimesh.io._report import _script_json
 from equimesh.io._view import BOUNDARY_COLOUR, REST_COLOUR, mesh_view
 from equimesh.mesh import G1, OTHER, unique_edges
 from equimesh.metrics import summary_rows
@@ -263,7 +264,9 @@ def test_the_script_data_cannot_end_its_element(tmp_path):
     text = page(fan(), tmp_path)
     raw = re.search(r'<script type="application/json" id="report-data">(.*?)</script>', text, re.S).group(1)
     assert "</" not in raw and "<\\/extra>" in raw  # the hover templates' </extra>, escaped
-    assert "NaN" not in raw
+    assert raw.startswith('{"figures":{"view":{"data":[{')  # compact
+    with pytest.raises(ValueError):
+        _script_json({"limit": float("nan")})  # not JSON: refused, not written as NaN
 
 
 def test_the_classes_table(tmp_path):
@@ -314,15 +317,16 @@ def rows_of(table):
 
 def test_the_run_summary(tmp_path):
     mesh = fan()
+    mesh.length = 1.2345678  # l to the last digit
     view = mesh_view(mesh, TOLERANCE)
     table = section(page(mesh, tmp_path), "Run")
     assert table.startswith('<table class="rows"><tbody>') and table.endswith("</tbody></table>")
-    summary = [(html.escape(k), html.escape(v)) for k, v in summary_rows(view.lengths, 1.5, TOLERANCE)]
+    summary = [(html.escape(k), html.escape(v)) for k, v in summary_rows(view.lengths, 1.2345678, TOLERANCE)]
     angles = [r for r in rows_of(table) if r[0] == "triangle angles"]
     assert rows_of(table) == [
         ("nodes", "13"),
         ("triangles", "12"),
-        ("target length l", "1.5"),
+        ("target length l", "1.2345678"),
         ("in the equal-length group G1", "12"),
         *summary,
         *angles,
@@ -339,6 +343,8 @@ def test_the_run_summary(tmp_path):
 def test_the_provenance(tmp_path):
     mesh = fan()
     table = section(page(mesh, tmp_path), "Provenance")
+    cells = "".join(f"<tr><th>{k}</th><td>{v}</td></tr>" for k, v in rows_of(table))
+    assert table == f'<table class="rows"><tbody>{cells}</tbody></table>'
     assert rows_of(table) == [
         ("parameter: input", "roof.json"),
         ("parameter: length", "1.5"),
@@ -388,3 +394,17 @@ def test_an_unwritable_folder_or_no_plotly_is_refused_before_anything_is_written
         write_report(mesh, tmp_path / "r.html")
     assert str(err.value) == "the report (--report) needs plotly: pip install 'equimesh[report]'"
     assert list(tmp_path.iterdir()) == []
+
+
+def test_one_member_per_bin_gets_a_log_axis_around_1(tmp_path):
+    triangle = SimpleNamespace(
+        points=np.array([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.3, 1.2, 0.0]]),
+        triangles=np.array([[0, 1, 2]]),
+        edges=np.array([[0, 1], [0, 2], [1, 2]]),
+        edge_groups=np.zeros(3, np.int8),
+        length=1.0,
+        n_boundary=3,
+        info={},
+    )
+    layout = report_data(page(triangle, tmp_path, tolerance=0.01))["figures"]["lengths"]["layout"]
+    assert layout["yaxis"]["range"] == pytest.approx([-0.1, 0.1])
