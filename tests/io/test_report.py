@@ -91,16 +91,25 @@ def test_the_page_needs_nothing_but_itself_and_holds_what_its_script_reads(tmp_p
     assert not re.search(r"<script[^>]*\bsrc\s*=", text)  # every script inlined, plotly's included
     assert not re.search(r"<link\b|<img\b|<iframe\b|@import", text)
     assert "Plotly.newPlot" in text and "data-ready" not in text.split("<body>")[0]
-    assert '<meta name="viewport" content="width=device-width, initial-scale=1">' in text
+    assert (
+        '<meta charset="utf-8">\n<meta name="viewport" content="width=device-width, initial-scale=1">\n<title>' in text
+    )
+    assert "</script>\n</head>\n<body>\n<h1>" in text
+    assert (
+        "</section>\n<section><h2>Member lengths</h2>" in text
+        and "</section>\n<section><h2>Triangle angles</h2>" in text
+    )
     assert "<style>\n/* The report's page" in text and "\n<script>\n" in text  # the style and the script inlined
     for ident in ("view", "lengths", "angles"):
         assert f'<div id="{ident}" class="figure"' in text
     assert '<div id="view" class="figure" style="height: 640px"></div>' in text
-    controls = section(text, "The mesh")
-    assert '<input type="radio" name="colour" value="class" checked> length class</label>' in controls
-    assert '<input type="radio" name="colour" value="deviation"> deviation from l</label>' in controls
-    assert controls.startswith('<p class="controls">Colour members by <label>')
-    assert "&middot; drag to rotate, scroll to zoom, click a legend entry to hide it</p>" in controls
+    controls = section(text, "The mesh").split("<div")[0]
+    assert controls == (
+        '<p class="controls">Colour members by '
+        '<label><input type="radio" name="colour" value="class" checked> length class</label> '
+        '<label><input type="radio" name="colour" value="deviation"> deviation from l</label>'
+        " &middot; drag to rotate, scroll to zoom, click a legend entry to hide it</p>"
+    )
     headings = re.findall(r"<section><h2>([^<]*)</h2>", text)
     assert headings == ["The mesh", "Member lengths", "Length classes", "Triangle angles", "Run", "Provenance"]
     assert list(output_formats("report")) == [".html"]
