@@ -58,6 +58,19 @@ def fan(n=12):
     )
 
 
+def triangle(apex):
+    """One triangle on the side from (0, 0, 0) to (1, 0, 0) with its third node at ``apex``, l = 1."""
+    return SimpleNamespace(
+        points=np.array([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], apex]),
+        triangles=np.array([[0, 1, 2]]),
+        edges=np.array([[0, 1], [0, 2], [1, 2]]),
+        edge_groups=np.zeros(3, np.int8),
+        length=1.0,
+        n_boundary=3,
+        info={},
+    )
+
+
 def page(mesh, tmp_path, name="r.html", **kwargs):
     """The text of ``mesh``'s report, written in the test itself (so that mutation testing sees which tests
     write)."""
@@ -256,15 +269,7 @@ def test_the_deviation_colours(tmp_path):
     deviation = report_data(page(mesh, tmp_path))["deviation"]
     assert deviation["colorscale"] == [[0.0, "#2166ac"], [0.5, "#1a9850"], [1.0, "#b2182b"]]
     assert deviation["limit"] == pytest.approx(np.abs(mesh_view(mesh).deviation).max())
-    exact = SimpleNamespace(
-        points=np.array([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.5, np.sqrt(3) / 2, 0.0]]),
-        triangles=np.array([[0, 1, 2]]),
-        edges=np.array([[0, 1], [0, 2], [1, 2]]),
-        edge_groups=np.zeros(3, np.int8),
-        length=1.0,
-        n_boundary=3,
-        info={},
-    )
+    exact = triangle([0.5, np.sqrt(3) / 2, 0.0])
     limit = report_data(page(exact, tmp_path, name="exact.html"))["deviation"]["limit"]
     assert limit == 1e-9  # an equilateral triangle of side l: the floor, not 0
 
@@ -406,14 +411,5 @@ def test_an_unwritable_folder_or_no_plotly_is_refused_before_anything_is_written
 
 
 def test_one_member_per_bin_gets_a_log_axis_around_1(tmp_path):
-    triangle = SimpleNamespace(
-        points=np.array([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.3, 1.2, 0.0]]),
-        triangles=np.array([[0, 1, 2]]),
-        edges=np.array([[0, 1], [0, 2], [1, 2]]),
-        edge_groups=np.zeros(3, np.int8),
-        length=1.0,
-        n_boundary=3,
-        info={},
-    )
-    layout = report_data(page(triangle, tmp_path, tolerance=0.01))["figures"]["lengths"]["layout"]
+    layout = report_data(page(triangle([0.3, 1.2, 0.0]), tmp_path, tolerance=0.01))["figures"]["lengths"]["layout"]
     assert layout["yaxis"]["range"] == pytest.approx([-0.1, 0.1])
