@@ -19,6 +19,8 @@ pytest-xdist the controller draws it and the workers inherit it).
 
 Fixture ``load_experiment``: import ``experiments/<name>.py`` for a smoke test.
 Fixture ``saddle_mesh``: one mesh of a real surface, made once, for the writers of ``equimesh.io``.
+Fixture ``tent_mesh``: seven nodes by hand (a hexagon around a raised apex), three length classes, for the
+writers' direct tests, which mutation testing runs once per mutant.
 
 Conditional properties (:mod:`conditions`): the hook that counts, per test, the conditions it evaluates
 and fails it when one never held or held less often than its ``exercised`` marker says.
@@ -31,6 +33,7 @@ import random
 import sys
 from pathlib import Path
 
+import numpy as np
 import pytest
 from conditions import RUNNING, unexercised
 from hypothesis import HealthCheck, settings
@@ -117,6 +120,39 @@ def saddle_mesh():
     from equimesh import load_surface, mesh_surface
 
     return mesh_surface(load_surface(EXPERIMENTS / "surfaces" / "saddle.json"), 6.0, grid=(8, 8))
+
+
+class TentMesh:
+    """A hexagon of radius 1 (its nodes at heights 0 and 0.2 in turn) around an apex at height 0.5, l = 1.
+
+    The six sides are 1.0198 long, the spokes 1.1180 (to a low node) and 1.0440 (to a high one): three
+    length classes of 6, 3 and 3 members at a tolerance of 1 %; the spokes are G1, the sides not; the first six
+    nodes are the boundary.  It has what the writers, the report and the plot read of a mesh.
+    """
+
+    def __init__(self):
+        from equimesh.mesh import G1, OTHER, unique_edges
+
+        angles = np.arange(6) * np.pi / 3
+        ring = np.column_stack([np.cos(angles), np.sin(angles), np.tile([0.0, 0.2], 3)])
+        self.points = np.vstack([ring, [0.0, 0.0, 0.5]])
+        self.triangles = np.array([[i, (i + 1) % 6, 6] for i in range(6)])
+        self.edges = unique_edges(self.triangles)
+        self.edge_groups = np.where(self.edges[:, 1] == 6, G1, OTHER).astype(np.int8)
+        self.length = 1.0
+        self.n_boundary = 6
+        self.info = {"boundary_rings": [6]}  # one boundary ring, as a PlanarMesh says
+
+    def edge_lengths(self):
+        from equimesh.mesh import edge_lengths
+
+        return edge_lengths(self.points, self.edges)
+
+
+@pytest.fixture(scope="session")
+def tent_mesh():
+    """:class:`TentMesh`."""
+    return TentMesh()
 
 
 # --------------------------------------------------------------------------- conditional properties

@@ -25,6 +25,19 @@ def _large():
     return mesh
 
 
+@functools.cache
+def _square():
+    return equimesh.uniform_triangulation(
+        [[0, 0], [5, 0], [5, 5], [0, 5]], 1.0, holes=[[[2, 2], [3, 2], [3, 3], [2, 3]]]
+    )
+
+
+@pytest.fixture(scope="session")
+def square_mesh():
+    """A planar mesh of a 5 x 5 square with a 1 x 1 opening, l = 1: 28 nodes, 64 members, made in a second."""
+    return _square()
+
+
 @pytest.fixture(scope="session")
 def roof_mesh():
     """A NURBS roof with two openings (``experiments/surfaces/nurbs_roof_openings.json``), l = 3, not optimised."""

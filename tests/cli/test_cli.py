@@ -20,11 +20,14 @@ import pandas as pd
 import pytest
 from hostile_paths import fifo, name_max, unwritable_folder
 from repository import SURFACES
+from surface_invariants import assert_valid_surface_mesh
 from triangle_meshes import bad_meshes, roof
 
 from equimesh import (
     InternalError,
     InvalidLengthError,
+    load_surface,
+    mesh_surface,
 )
 from equimesh._cli import main
 from equimesh.io import _paths as io_paths
@@ -504,6 +507,20 @@ def test_sigint_prints_one_line_exits_130_and_writes_nothing(tmp_path):
 
 
 ROOF_3DM = SURFACES / "roof.3dm"
+
+
+def test_a_rhino_file_meshes_through_the_command_line(tmp_path, capsys):
+    """The roof of experiments/surfaces/roof.3dm through `equimesh mesh` (the INPUT_FORMATS row): the mesh the
+    library makes of that surface, written."""
+    pytest.importorskip("rhino3dm", reason="rhino3dm (the optional extra [rhino]) is not installed")
+    out = tmp_path / "roof.obj"
+    args = ["mesh", ROOF_3DM, "--object", "roof", "--length", 6, "--grid", 8, 8, "--optimize", "none", "-o", out]
+    code, _ = run([*args, "-q"], capsys)
+    assert code == 0
+    roof = load_surface(ROOF_3DM, object="roof")
+    mesh = mesh_surface(roof, 6.0, grid=(8, 8), optimize="none")
+    assert_valid_surface_mesh(mesh, roof)
+    np.testing.assert_array_equal(meshio.read(out).points, mesh.points)
 
 
 @pytest.mark.parametrize("choice, expect", [(None, "holds 2 surfaces"), ("nosuch", "has no surface 'nosuch'")])

@@ -172,3 +172,10 @@ def test_the_readme_comparison_rows_are_rows_of_the_generated_table():
             f"{row['top 10']} %",
             f"{row['min angle']}-{row['max angle']}",
         ), line
+
+
+def test_the_readme_lists_every_output_format():
+    """The README's output table is the one the registry makes (``equimesh.io.output_table``)."""
+    from equimesh.io import output_table
+
+    assert output_table() in (ROOT / "README.md").read_text(encoding="utf-8")

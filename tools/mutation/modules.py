@@ -125,6 +125,22 @@ MODULES.update(OUTPUT_MODULES)
 #: The optimisation's modules with compiled functions.
 _COMPILED_OPTIMIZE = ["jacobian", "solver", "joints", "members"]
 
+#: The output side of the io layer (and Rhino files in, provenance) -> their direct tests, on meshes of a few nodes
+#: (``tent_mesh``; the report's ``square_mesh``), each writing in the test itself (docs/development.md).
+WRITER_MODULES = {
+    "src/equimesh/io/_outputs.py": ["tests/io/test_outputs.py"],
+    "src/equimesh/io/_schedules.py": ["tests/io/test_schedules.py"],
+    "src/equimesh/io/_rhino_out.py": ["tests/io/test_rhino_out.py"],
+    "src/equimesh/io/_compas.py": ["tests/io/test_compas.py"],
+    "src/equimesh/io/_dxf.py": ["tests/io/test_dxf.py"],
+    "src/equimesh/io/_rhino.py": ["tests/io/test_rhino.py"],
+    "src/equimesh/io/provenance.py": ["tests/io/test_provenance.py"],
+    "src/equimesh/io/_view.py": ["tests/io/test_view.py"],
+    "src/equimesh/io/_plot.py": ["tests/io/test_plot.py"],
+    "src/equimesh/io/_report.py": ["tests/io/test_report.py"],
+}
+MODULES.update(WRITER_MODULES)
+
 #: Module -> environment variables of its mutmut run, beyond the caller's.
 ENVIRONMENT = dict.fromkeys(
     [*KERNEL_MODULES, *(f"src/equimesh/surface/optimize/{name}.py" for name in _COMPILED_OPTIMIZE)],

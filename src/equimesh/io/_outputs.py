@@ -21,6 +21,7 @@ them together at the end (:func:`~equimesh.io._atomic.atomic_paths`): a run
 writes every file or none (docs/decisions.md, "Outputs checked first, written all or none").
 """
 
+import functools
 import importlib
 from dataclasses import dataclass
 from pathlib import Path
@@ -33,7 +34,7 @@ from ._compas import write_compas
 from ._dxf import write_dxf
 from ._meshes import meshio_writer
 from ._paths import check_distinct, check_writable
-from ._plot import plot_writer
+from ._plot import write_figure
 from ._report import write_report_html
 from ._rhino_out import write_3dm
 from ._schedules import Products, classes_path, write_classes_csv, write_members_csv, write_nodes_csv
@@ -171,7 +172,11 @@ OUTPUT_FORMATS = (
     ),
     *(
         OutputFormat(
-            "plot", f".{fmt}", name, "the mesh in 3-D by length class, the length histogram beside it", plot_writer(fmt)
+            "plot",
+            f".{fmt}",
+            name,
+            "the mesh in 3-D by length class, the length histogram beside it",
+            functools.partial(write_figure, fmt=fmt),
         )
         for fmt, name in (("png", "PNG"), ("svg", "SVG"), ("pdf", "PDF"))
     ),

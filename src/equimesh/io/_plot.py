@@ -23,18 +23,15 @@ PLOT_SIZE = (12.0, 5.2)
 PLOT_DPI = 100
 
 
-def plot_writer(fmt):
+def write_figure(tmp, products, fmt):
     """The plot's writer in matplotlib's format ``fmt`` (``png``, ``svg``, ``pdf``; a row of
-    :data:`~equimesh.io._outputs.OUTPUT_FORMATS` each): :func:`plot_figure` of ``products.mesh``, with no date."""
+    :data:`~equimesh.io._outputs.OUTPUT_FORMATS` each, with ``fmt`` bound): :func:`plot_figure` of
+    ``products.mesh`` to ``tmp``, with no date."""
+    import matplotlib
 
-    def write(tmp, products):
-        import matplotlib
-
-        with matplotlib.rc_context({"svg.hashsalt": "equimesh"}):  # SVG ids from a fixed salt, not a random one
-            figure = plot_figure(products.mesh, products.tolerance)
-            figure.savefig(tmp, format=fmt, dpi=PLOT_DPI, metadata=_NO_DATE[fmt])
-
-    return write
+    with matplotlib.rc_context({"svg.hashsalt": "equimesh"}):  # SVG ids from a fixed salt, not a random one
+        figure = plot_figure(products.mesh, products.tolerance)
+        figure.savefig(tmp, format=fmt, dpi=PLOT_DPI, metadata=_NO_DATE[fmt])
 
 
 def plot_figure(mesh, tolerance=DEFAULT_TOLERANCE):

@@ -160,8 +160,8 @@ def _view_figure(view):
 
 def _aspect(points):
     """The scene's box: the mesh's extent along x, y and z over its largest, each at least :data:`MIN_ASPECT`."""
-    span = np.ptp(points, axis=0) if len(points) else np.ones(3)
-    ratio = span / max(float(span.max()), 1e-300)
+    span = np.ptp(points, axis=0)
+    ratio = span / float(span.max())
     return dict(zip("xyz", np.maximum(ratio, MIN_ASPECT).tolist()))
 
 

@@ -60,7 +60,6 @@ def write_3dm(tmp, products):
         return a
 
     surface = rhino3dm.Mesh()
-    surface.Vertices.UseDoublePrecisionVertices = True  # the nodes to the last bit, as in the other formats
     for x, y, z in points.tolist():
         surface.Vertices.AddPoint3d(x, y, z)
     for i, j, k in np.asarray(mesh.triangles).tolist():
