@@ -14,7 +14,7 @@ import scipy.sparse
 from optimize_cases import RIM, finite_difference, moved, problem
 
 from equimesh.mesh import edge_lengths
-from equimesh.surface.optimize.members import Members, cauchy, edge_length_terms, scale_rows
+from equimesh.surface.optimize.members import Members, cauchy, edge_length_terms, out_of_reach, scale_rows, short_share
 from equimesh.tolerance import BOUNDED_OFFSET, BOUNDED_PULL, REL_TOL
 
 
@@ -164,3 +164,26 @@ def test_scale_rows_keeps_the_structure():
     expected = [[2.0, 0.0, 4.0, 0.0], [0.0, 0.0, 0.0, 0.0], [-4.0, -5.0, -6.0, 0.0]]
     np.testing.assert_array_equal(scaled.toarray(), expected)
     assert scaled.nnz == jac.nnz and np.array_equal(scaled.indices, jac.indices) and scaled.shape == jac.shape
+
+
+def test_a_start_is_out_of_reach_when_more_than_half_its_members_are_shorter_than_half_l():
+    """Shorter than REACH_LENGTH = 0.5 l strictly, and more than REACH_SHARE = 0.5 of them strictly."""
+    assert short_share(np.array([])) == 0.0
+    assert short_share(np.array([0.4, 0.5, 0.6, 1.0])) == 0.25
+    assert out_of_reach(np.array([0.4, 0.4, 0.6]))
+    assert not out_of_reach(np.array([0.4, 0.6]))
+    assert not out_of_reach(np.array([0.5, 0.5, 0.4]))
+
+
+def test_the_reach_on_the_flat_grid():
+    """With l = 21 the 24 sides (0.476 l) are shorter than l/2, the 9 diagonals (0.673 l) not; with l = 20 the sides
+    are exactly l/2 and count as within reach."""
+    p, _ = problem(rise=0.0, length=21.0)
+    members = Members(p)
+    assert out_of_reach(members.ratio(p.x0))
+    assert members.reach(p.x0) == (
+        "72.7273 % of its 33 members shorter than 0.5 l on the surface (the flattening stretched it), lengths from "
+        "0.47619 l to 0.673435 l"
+    )
+    p, _ = problem(rise=0.0, length=20.0)
+    assert short_share(Members(p).ratio(p.x0)) == 0.0
