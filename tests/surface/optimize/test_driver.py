@@ -35,10 +35,10 @@ UV, TRIANGLES, EDGES, GROUPS = grid()
 FIXED = np.arange(RIM)
 
 
-def record(monkeypatch, name, stages, slides=False, bounds_members=False, sound_joints=False):
+def record(monkeypatch, name, stages, slides=False, bounds_members=False, sound_joints=False, max_jacobians=1000):
     """An objective record of ``stages(problem)`` under ``name`` for the test."""
     record = Objective(
-        name, stages, name, slides, bounds_members, sound_joints, dict.fromkeys(FACTORISATIONS, 100), max_jacobians=1000
+        name, stages, name, slides, bounds_members, sound_joints, dict.fromkeys(FACTORISATIONS, 100), max_jacobians
     )
     monkeypatch.setitem(OBJECTIVES, name, record)
 
@@ -479,3 +479,58 @@ def test_the_fold_over_barrier_by_hand():
     expected = np.maximum(0.0, 1.0 - areas / (0.5 * start)) ** 2
     assert np.count_nonzero(expected) == 2 and np.all(expected < 1.0)
     np.testing.assert_allclose(barrier.residuals(uv), expected, atol=1e-15)
+
+
+@pytest.mark.parametrize("bounds_members", [False, True])
+def test_a_run_within_its_work_bound_keeps_its_bits_and_one_beyond_is_refused(monkeypatch, bounds_members):
+    """The paper's stage takes some Jacobians on the tiny grid: with exactly that bound the same result, bit for bit;
+    with one fewer the solve is cut short and the surface refused, in the terms of the objective."""
+    record(monkeypatch, "free", stages_of(papers()), bounds_members=bounds_members)
+    free = run("free")
+    record(monkeypatch, "exact", stages_of(papers()), bounds_members=bounds_members, max_jacobians=free.njev)
+    exact = run("exact")
+    assert exact.uv.tobytes() == free.uv.tobytes() and exact.njev == free.njev
+    record(monkeypatch, "short", stages_of(papers()), bounds_members=bounds_members, max_jacobians=free.njev - 1)
+    with pytest.raises(InvalidSurfaceError) as refused:
+        run("short", surface=Finer())
+    within = f"within {free.njev - 1} Jacobian evaluations (its work bound)"
+    if bounds_members:
+        assert str(refused.value).startswith(
+            f"optimisation (short): no mesh with every member in [l, 2l] found {within}, "
+        )
+        assert " members outside [l, 2l] (lengths from " in str(refused.value)
+        assert str(refused.value).endswith(
+            "; use a smaller l, a finer control net, or optimize='paper' (which does not "
+            "bound the members on the surface)"
+        )
+    else:
+        assert (
+            str(refused.value) == f"optimisation (short): not converged {within}; use a larger l or a finer control net"
+        )
+
+
+def test_a_bound_leaving_no_iteration_refuses_before_the_first_solve(monkeypatch):
+    """A bound of one Jacobian leaves a solve no iteration: refused before it starts."""
+    record(monkeypatch, "none", stages_of(papers()), max_jacobians=1)
+    with pytest.raises(
+        InvalidSurfaceError, match=r"^optimisation \(none\): not converged within 1 Jacobian evaluations"
+    ):
+        run("none")
+    record(monkeypatch, "two", stages_of(papers()), max_jacobians=2)
+    with pytest.raises(InvalidSurfaceError, match=r"not converged within 2 Jacobian evaluations"):
+        run("two")
+
+
+def test_a_start_out_of_reach_is_refused_before_any_work(monkeypatch):
+    """At l = 21 the tiny flat grid's sides are 0.476 l: more than half the members shorter than l/2, so an objective
+    that bounds the members refuses at once, saying how far they are; one that does not runs."""
+    record(monkeypatch, "reach", stages_of(papers()), bounds_members=True)
+    flat = plane_patch()
+    with pytest.raises(InvalidSurfaceError) as refused:
+        optimize_uv(flat, UV, EDGES, GROUPS, 21.0, triangles=TRIANGLES, objective="reach", fixed=FIXED)
+    assert str(refused.value).startswith(
+        "optimisation (reach): no mesh with every member in [l, 2l] within reach of the remapped mesh: "
+    )
+    assert "members shorter than 0.5 l on the surface (the flattening stretched it)" in str(refused.value)
+    record(monkeypatch, "free", stages_of(papers()))
+    assert optimize_uv(flat, UV, EDGES, GROUPS, 21.0, triangles=TRIANGLES, objective="free", fixed=FIXED).njev > 0
