@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from equimesh.io import output_formats
-from equimesh.io._meshes import meshio_writer, write_meshio
+from equimesh.io._meshes import write_mesh, write_meshio
 
 #: The meshio formats of the mesh outputs: meshio's name -> the extension.
 FORMATS = {"obj": ".obj", "vtk": ".vtk", "vtu": ".vtu", "stl": ".stl", "ply": ".ply", "gmsh22": ".msh"}
@@ -42,7 +42,7 @@ def test_every_meshio_format_reads_back_as_the_same_mesh(fmt, tmp_path, capsys):
 def test_the_writer_of_a_format_writes_the_mesh_of_a_run_in_that_format(fmt, tmp_path):
     """Whatever the extension of the (temporary) file, and with the coordinates of any numeric type."""
     products = SimpleNamespace(mesh=SimpleNamespace(points=POINTS, triangles=TRIANGLES))
-    meshio_writer(fmt)(tmp_path / f"m{FORMATS[fmt]}", products)
+    write_mesh(tmp_path / f"m{FORMATS[fmt]}", products, fmt)
     write_meshio(tmp_path / "m.out", fmt, POINTS, TRIANGLES)
     assert (tmp_path / f"m{FORMATS[fmt]}").read_bytes() == (tmp_path / "m.out").read_bytes()
     write_meshio(tmp_path / "whole.out", fmt, np.round(POINTS).astype(np.int64), TRIANGLES)

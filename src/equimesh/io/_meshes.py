@@ -21,13 +21,10 @@ _STAMP = re.compile(rb"(Created by meshio v[^,\n]*), [^\n]*")
 _STAMP_LINES = 3
 
 
-def meshio_writer(fmt):
-    """The writer of the registry for the meshio format ``fmt``: ``write(tmp, products)``."""
-
-    def write(tmp, products):
-        write_meshio(tmp, fmt, products.mesh.points, products.mesh.triangles)
-
-    return write
+def write_mesh(tmp, products, fmt):
+    """The registry's writer for the meshio format ``fmt`` (bound per row of
+    :data:`~equimesh.io._outputs.OUTPUT_FORMATS`): ``products.mesh`` to ``tmp`` by :func:`write_meshio`."""
+    write_meshio(tmp, fmt, products.mesh.points, products.mesh.triangles)
 
 
 def write_meshio(path, fmt, points, triangles):

@@ -32,7 +32,7 @@ from ..errors import MissingDependencyError, OutputPathError
 from ._atomic import atomic_paths
 from ._compas import write_compas
 from ._dxf import write_dxf
-from ._meshes import meshio_writer
+from ._meshes import write_mesh
 from ._paths import check_distinct, check_writable
 from ._plot import write_figure
 from ._report import write_report_html
@@ -111,7 +111,7 @@ _MESHIO = (
 
 #: Every output format, in the order the help and the README list them.
 OUTPUT_FORMATS = (
-    *(OutputFormat("mesh", ext, name, _MESH, meshio_writer(fmt)) for ext, fmt, name in _MESHIO),
+    *(OutputFormat("mesh", ext, name, _MESH, functools.partial(write_mesh, fmt=fmt)) for ext, fmt, name in _MESHIO),
     OutputFormat(
         "mesh",
         ".3dm",
