@@ -41,7 +41,7 @@ import equimesh.planar.strip
 from equimesh import EquimeshError
 from equimesh._geometry import circumcenters, point_segment_distance
 from equimesh.errors import InternalError
-from equimesh.planar.insertion import Region, fast, insert, reference
+from equimesh.planar.insertion import Region, arrays, fast, insert, reference
 from equimesh.planar.insertion.cdt import adjacency, cavity, locate, walk
 from equimesh.planar.insertion.heap import ENTRY
 from equimesh.planar.insertion.region import constrained_delaunay
@@ -88,26 +88,26 @@ def test_point_segment_distance_by_hand():
 
 def test_grown_pads_with_zeros():
     a = np.array([[1, 2], [3, 4]], dtype=np.int64)
-    g = fast.grown(a, 5)
+    g = arrays.grown(a, 5)
     assert g.dtype == a.dtype and g.tolist() == [[1, 2], [3, 4], [0, 0], [0, 0], [0, 0]]
-    assert fast.grown(np.array([1.5]), 3).tolist() == [1.5, 0.0, 0.0]
+    assert arrays.grown(np.array([1.5]), 3).tolist() == [1.5, 0.0, 0.0]
 
 
 def test_extended_keeps_the_rows():
     a = np.array([[1, 2], [3, 4]], dtype=np.int64)
-    g = fast.extended(a, 5)
+    g = arrays.extended(a, 5)
     assert g.dtype == a.dtype and g.shape == (5, 2) and g[:2].tolist() == [[1, 2], [3, 4]]
 
 
 def test_the_triangle_store_is_one_cache_line_per_triangle():
-    T = fast.triangle_store(5)
-    assert T.shape == (5, fast.ROW) and T.dtype == np.int32 and T.ctypes.data % 64 == 0 and T.strides == (64, 4)
-    V, N, S, mark, ver, alive = fast.store_views(T)
+    T = arrays.triangle_store(5)
+    assert T.shape == (5, arrays.ROW) and T.dtype == np.int32 and T.ctypes.data % 64 == 0 and T.strides == (64, 4)
+    V, N, S, mark, ver, alive = arrays.store_views(T)
     V[2], N[2], S[2], mark[2], ver[2], alive[2] = (1, 2, 3), (4, 5, 6), (7, 8, 9), 10, 11, 12
     assert T[2, :12].tolist() == list(range(1, 13))
     T[:3] = 7
-    grown = fast.grown_store(T, 9, 3)
-    assert grown.shape == (9, fast.ROW) and grown.ctypes.data % 64 == 0 and (grown[:3] == 7).all()
+    grown = arrays.grown_store(T, 9, 3)
+    assert grown.shape == (9, arrays.ROW) and grown.ctypes.data % 64 == 0 and (grown[:3] == 7).all()
 
 
 # --------------------------------------------------------------------------- the engine's candidates

@@ -60,17 +60,12 @@ runtime explicitly (``nrt=True`` in :mod:`._predicates`).  The loop of
 Steps 3-4 (:func:`advance`) is compiled so too: :func:`insert_all` makes
 the arrays, and grows one by doubling whenever the loop stops short of room.
 
-Memory, for the cache: the farthest point jumps across the region, so at a
-million points every insertion reaches its triangles in memory no cache
-holds.  The arrays are made at once for Oler's bound on the points
-(:func:`expected_points`; rows not touched cost nothing), and each triangle
-is one 64-byte row of int32 (:func:`triangle_store`: vertices, neighbours,
-constraints, cavity mark, version, alive), read by one cache line where
-separate int64 arrays took four.
+Memory: the arrays are made at once for Oler's bound on the points
+(:func:`expected_points`), each triangle one cache line (:mod:`.arrays`).
 
 numba's on-disk cache (``cache=True``) is keyed by the source file of each
 compiled function, not by the functions it calls: after an edit of
-:mod:`._cdt` or :mod:`._predicates` alone, the cached :func:`insert_all`
+:mod:`._cdt`, :mod:`._predicates`, :mod:`.heap` or :mod:`.arrays` alone, the cached :func:`insert_all`
 still holds the old code.  Edit this file too (or delete ``__pycache__/*.nb*``)
 whenever one of them changes.
 """
@@ -83,6 +78,7 @@ from ..._jit import compiled
 from ...errors import EquimeshError, InternalError, MeshTooLargeError
 from ...mesh import triangle_orient
 from ...tolerance import REL_TOL, SLIVER_GAP
+from .arrays import extended, grown, grown_store, store_views, triangle_store
 from .cdt import adjacency, cavity, cavity_boundary, fill, locate, segments_touch, walk
 from .heap import ENTRY, MAX_SLOTS, compact, entry_live, pop, push
 from .region import Insertion, constrained_delaunay
@@ -113,8 +109,6 @@ ROOM = -4 - 2**62
 #: the initial points, and after ROOM the array short of room and the rows it needs.
 STATE = ("points", "slots", "segments", "free", "heap", "fan", "stamp", "initial", "short", "need")
 POINTS, SLOTS, SEGMENTS, FREE, HEAP, FAN, STAMP, INITIAL, SHORT, NEED = range(len(STATE))
-#: The columns of the triangle store after V, N and S (0-8): the cavity mark, the version, alive; a row of ROW.
-MARK, VERSION, ALIVE, ROW = 9, 10, 11, 16
 #: What ``state[SHORT]`` names: nothing, the heap, the points, the segments, the cavity, the fan, the triangles.
 SHORT_NONE, SHORT_HEAP, SHORT_POINTS, SHORT_SEGMENTS, SHORT_CAVITY, SHORT_FAN, SHORT_TRIANGLES = range(7)
 
@@ -226,27 +220,6 @@ def visible_circumcentre(P, V, N, S, SA, SB, salive, n_segs, alive, n_slots, t, 
 
 
 visible_circumcentre = compiled(visible_circumcentre, nrt=False)
-
-
-def grown(a, size):
-    """``a`` in a zero-filled array of ``size`` rows."""
-    out = np.zeros((size,) + a.shape[1:], dtype=a.dtype)
-    out[: len(a)] = a
-    return out
-
-
-grown = compiled(grown)
-
-
-def extended(a, size):
-    """``a`` in an array of ``size`` rows, the rows beyond it not initialised (for arrays whose rows are written
-    before they are read: memory never touched costs nothing)."""
-    out = np.empty((size,) + a.shape[1:], dtype=a.dtype)
-    out[: len(a)] = a
-    return out
-
-
-extended = compiled(extended)
 
 
 def grown_heap(H, size):
@@ -383,34 +356,6 @@ def advance(
 
 
 advance = compiled(advance, nrt=False)
-
-
-def triangle_store(rows):
-    """Uninitialised int32 rows of :data:`ROW` columns, the first at a 64-byte boundary: one cache line per triangle."""
-    buf = np.empty((rows + 1) * ROW, dtype=np.int32)
-    skip = (-(buf.ctypes.data // 4)) % ROW
-    return buf[skip : skip + rows * ROW].reshape(rows, ROW)
-
-
-triangle_store = compiled(triangle_store)
-
-
-def store_views(T):
-    """The columns of a triangle store as the arrays of :mod:`.cdt` and the engine: ``(V, N, S, mark, ver, alive)``."""
-    return T[:, 0:3], T[:, 3:6], T[:, 6:9], T[:, MARK], T[:, VERSION], T[:, ALIVE]
-
-
-store_views = compiled(store_views)
-
-
-def grown_store(T, rows, used):
-    """A triangle store of ``rows`` rows holding the first ``used`` rows of ``T``."""
-    out = triangle_store(rows)
-    out[:used] = T[:used]
-    return out
-
-
-grown_store = compiled(grown_store)
 
 
 def insert_all(P0, T0, SEG0, lim, points=0):
