@@ -32,22 +32,47 @@ def unique_edges(triangles):
 
     Sorted through one int64 key ``min * n + max`` per edge (as
     :func:`edge_keys`, built column by column): a 1-D sort, far faster than
-    ``np.unique(..., axis=0)`` at a million points.
+    ``np.unique(..., axis=0)`` at a million points; the keys and the pairs are
+    made by compiled loops (numpy's temporaries cost more than the sort).
     """
     t = np.asarray(triangles, dtype=np.int64).reshape(-1, 3)
     if not t.size:
         return np.empty((0, 2), dtype=np.int64)
     n = int(t.max()) + 1
-    keys = np.empty(3 * len(t), dtype=np.int64)
-    for k, (i, j) in enumerate(((0, 1), (1, 2), (2, 0))):
-        a, b = t[:, i], t[:, j]
-        keys[k * len(t) : (k + 1) * len(t)] = np.minimum(a, b) * n + np.maximum(a, b)
+    keys = _side_keys(t, n)
     keys.sort()
-    keys = keys[np.concatenate([[True], keys[1:] != keys[:-1]])]
-    edges = np.empty((len(keys), 2), dtype=np.int64)
-    edges[:, 0] = keys // n
-    edges[:, 1] = keys - edges[:, 0] * n
+    return _distinct_pairs(keys, n)
+
+
+def _side_keys(t, n):
+    keys = np.empty(3 * len(t), dtype=np.int64)
+    for k in range(3):
+        i, j = (0, 1) if k == 0 else ((1, 2) if k == 1 else (2, 0))
+        for r in range(len(t)):
+            a, b = t[r, i], t[r, j]
+            keys[k * len(t) + r] = min(a, b) * n + max(a, b)
+    return keys
+
+
+_side_keys = compiled(_side_keys)
+
+
+def _distinct_pairs(keys, n):
+    """The rows ``(key // n, key % n)`` of the distinct values of the sorted ``keys``."""
+    count = 0
+    for r in range(len(keys)):
+        count += int(r == 0 or keys[r] != keys[r - 1])
+    edges = np.empty((count, 2), dtype=np.int64)
+    count = 0
+    for r in range(len(keys)):
+        if r == 0 or keys[r] != keys[r - 1]:
+            edges[count, 0] = keys[r] // n
+            edges[count, 1] = keys[r] - edges[count, 0] * n
+            count += 1
     return edges
+
+
+_distinct_pairs = compiled(_distinct_pairs)
 
 
 def edge_lengths(points, edges):

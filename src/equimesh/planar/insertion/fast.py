@@ -91,6 +91,11 @@ _REACH = 2.0
 #: many such triangles (a vertex of high degree next to the circumcentre).
 NEAR_TRIANGLES = 64
 
+#: A squared circumradius computed in floating point (two squares and a sum, relative error at most 3 ulps) below
+#: ``SQUARE_MARGIN`` times the square of the bound has a ``hypot`` (error below an ulp) below the bound: a margin
+#: of 10^-6 against errors of 10^-15.  The circumradii of most new triangles are below l, so they skip ``hypot``.
+SQUARE_MARGIN = 1.0 - 1e-6
+
 #: Starting length of the cavity buffers (grown on demand).
 CAVITY = 64
 
@@ -113,14 +118,16 @@ POINTS, SLOTS, SEGMENTS, FREE, HEAP, FAN, STAMP, INITIAL, SHORT, NEED = range(le
 SHORT_NONE, SHORT_HEAP, SHORT_POINTS, SHORT_SEGMENTS, SHORT_CAVITY, SHORT_FAN, SHORT_TRIANGLES = range(7)
 
 
-def circumcircle(P, a, b, c):
+def circumcircle(P, a, b, c, floor=0.0):
     """Circumcentre and radius of the triangle ``abc`` (vertex indices), exactly as
     :func:`equimesh._geometry.circumcenters`.
 
     Vertices in increasing index order; the operations (relative to the
     first vertex, then ``hypot``) are the reference's, so the bits match.
     ``np.hypot`` is the C library's ``hypot`` compiled and as Python alike
-    (Python's ``math.hypot`` rounds differently).
+    (Python's ``math.hypot`` rounds differently).  The radius is -1 instead
+    when the squared offset of the centre is below ``floor`` (a radius
+    surely too small, without the cost of ``hypot``, :data:`SQUARE_MARGIN`).
     """
     i, j, k = min(a, b, c), max(min(a, b), min(max(a, b), c)), max(a, b, c)
     ax, ay = P[i, 0], P[i, 1]
@@ -133,7 +140,8 @@ def circumcircle(P, a, b, c):
     uy = (bbx * c2 - ccx * b2) / d
     gx = (P[i, 0] + P[j, 0] + P[k, 0]) / 3.0
     gy = (P[i, 1] + P[j, 1] + P[k, 1]) / 3.0
-    return ax + ux, ay + uy, np.hypot(ux, uy), gx, gy
+    r = -1.0 if ux * ux + uy * uy < floor else np.hypot(ux, uy)
+    return ax + ux, ay + uy, r, gx, gy
 
 
 circumcircle = compiled(circumcircle, nrt=False)
@@ -200,9 +208,9 @@ constraint_gap = compiled(constraint_gap, nrt=False)
 def visible_circumcentre(P, V, N, S, SA, SB, salive, n_segs, alive, n_slots, t, lim, seen):
     """Candidate 1 of the reference for triangle ``t``: ``(value, x, y, triangle containing it)`` or value -1.
 
-    ``lim`` = ``(1 - REL_TOL) l, (1 + REL_TOL) l, REL_TOL l, SLIVER_GAP l``, the search reach.
+    ``lim``: :func:`limits`.
     """
-    cx, cy, r, gx, gy = circumcircle(P, V[t, 0], V[t, 1], V[t, 2])
+    cx, cy, r, gx, gy = circumcircle(P, V[t, 0], V[t, 1], V[t, 2], lim[5])
     if not (math.isfinite(r) and r >= lim[0]):
         return -1.0, cx, cy, -1
     status, where = walk(P, V, N, S, t, gx, gy, cx, cy, n_slots + 1)
@@ -430,8 +438,12 @@ insert_all = compiled(insert_all)
 
 def limits(l):
     """The thresholds of the candidate rules for ``l`` and the reach of the distance search, the ``lim`` of
-    :func:`visible_circumcentre`: ``(1 - REL_TOL) l, (1 + REL_TOL) l, REL_TOL l, SLIVER_GAP l, _REACH SLIVER_GAP l``."""
-    return np.array([(1.0 - REL_TOL) * l, (1.0 + REL_TOL) * l, REL_TOL * l, SLIVER_GAP * l, _REACH * SLIVER_GAP * l])
+    :func:`visible_circumcentre`: ``(1 - REL_TOL) l, (1 + REL_TOL) l, REL_TOL l, SLIVER_GAP l, _REACH SLIVER_GAP l``,
+    and the squared circumradius below which no circumcentre is a candidate, ``SQUARE_MARGIN ((1 - REL_TOL) l)^2``."""
+    low = (1.0 - REL_TOL) * l
+    return np.array(
+        [low, (1.0 + REL_TOL) * l, REL_TOL * l, SLIVER_GAP * l, _REACH * SLIVER_GAP * l, SQUARE_MARGIN * low * low]
+    )
 
 
 def expected_points(points, segments, triangles, l):
