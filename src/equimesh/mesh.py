@@ -32,38 +32,73 @@ def unique_edges(triangles):
 
     Sorted through one int64 key ``min * n + max`` per edge (as
     :func:`edge_keys`, built column by column): a 1-D sort, far faster than
-    ``np.unique(..., axis=0)`` at a million points.
+    ``np.unique(..., axis=0)`` at a million points; the keys and the pairs are
+    made by compiled loops (numpy's temporaries cost more than the sort).
     """
     t = np.asarray(triangles, dtype=np.int64).reshape(-1, 3)
     if not t.size:
         return np.empty((0, 2), dtype=np.int64)
     n = int(t.max()) + 1
-    keys = np.empty(3 * len(t), dtype=np.int64)
-    for k, (i, j) in enumerate(((0, 1), (1, 2), (2, 0))):
-        a, b = t[:, i], t[:, j]
-        keys[k * len(t) : (k + 1) * len(t)] = np.minimum(a, b) * n + np.maximum(a, b)
+    keys = _side_keys(t, n)
     keys.sort()
-    keys = keys[np.concatenate([[True], keys[1:] != keys[:-1]])]
-    edges = np.empty((len(keys), 2), dtype=np.int64)
-    edges[:, 0] = keys // n
-    edges[:, 1] = keys - edges[:, 0] * n
+    return _distinct_pairs(keys, n)
+
+
+def _side_keys(t, n):
+    keys = np.empty(3 * len(t), dtype=np.int64)
+    for k in range(3):
+        i, j = (0, 1) if k == 0 else ((1, 2) if k == 1 else (2, 0))
+        for r in range(len(t)):
+            a, b = t[r, i], t[r, j]
+            keys[k * len(t) + r] = min(a, b) * n + max(a, b)
+    return keys
+
+
+_side_keys = compiled(_side_keys)
+
+
+def _distinct_pairs(keys, n):
+    """The rows ``(key // n, key % n)`` of the distinct values of the sorted ``keys``."""
+    count = 0
+    for r in range(len(keys)):
+        count += int(r == 0 or keys[r] != keys[r - 1])
+    edges = np.empty((count, 2), dtype=np.int64)
+    count = 0
+    for r in range(len(keys)):
+        if r == 0 or keys[r] != keys[r - 1]:
+            edges[count, 0] = keys[r] // n
+            edges[count, 1] = keys[r] - edges[count, 0] * n
+            count += 1
     return edges
+
+
+_distinct_pairs = compiled(_distinct_pairs)
 
 
 def edge_lengths(points, edges):
     """Euclidean lengths of ``edges`` (E, 2) between rows of ``points`` (N, d), d = 2 or 3.
 
-    Column by column; the same floats as ``np.linalg.norm(q - p, axis=1)``
-    (the squares summed in coordinate order).
+    The same floats as ``np.linalg.norm(q - p, axis=1)`` (the squares summed
+    in coordinate order), in a compiled loop (gathering the rows took several
+    times longer at a million edges).
     """
     points = np.asarray(points, dtype=float)
-    edges = np.asarray(edges, dtype=np.int64).reshape(-1, 2)
-    total = np.zeros(len(edges))
-    for k in range(points.shape[1]):
-        column = np.ascontiguousarray(points[:, k])
-        d = column[edges[:, 1]] - column[edges[:, 0]]
-        total += d * d
-    return np.sqrt(total)
+    return _edge_lengths(np.ascontiguousarray(points), np.asarray(edges, dtype=np.int64).reshape(-1, 2))
+
+
+def _edge_lengths(points, edges):
+    out = np.empty(len(edges))
+    for k in range(len(edges)):
+        i, j = edges[k, 0], edges[k, 1]
+        total = 0.0
+        for c in range(points.shape[1]):
+            d = points[j, c] - points[i, c]
+            total += d * d
+        out[k] = np.sqrt(total)
+    return out
+
+
+_edge_lengths = compiled(_edge_lengths)
 
 
 def triangle_orient(points, triangles):

@@ -19,6 +19,7 @@ equimesh, never a fault of the input.
 import numpy as np
 
 from .._geometry import signed_area
+from .._jit import compiled
 from ..errors import InternalError
 from ..mesh import edge_lengths, triangle_orient
 from ..tolerance import MIN_TRIANGLE_AREA, REL_TOL, at_least, at_most
@@ -89,7 +90,7 @@ def verify_planar(mesh):
         ring = np.concatenate([np.roll(np.arange(end - size, end), -1) for end, size in zip(ends, sizes)])
         start = np.concatenate([np.arange(end - size, end) for end, size in zip(ends, sizes)])
         bound = angle_bound(float(np.max(np.linalg.norm(points[ring] - points[start], axis=1))) / lp)
-        smallest = np.degrees(np.min(_angles(points, t), axis=1))
+        smallest = np.degrees(smallest_angles(points, t))
         low = np.flatnonzero(smallest < bound - ANGLE_ROUNDING)
         if low.size:
             k = int(low[0])
@@ -112,11 +113,32 @@ def angle_bound(longest_constraint):
     return float(min(30.0, np.degrees(np.arccos(min(1.0, 0.5 * longest_constraint)))))
 
 
-def _angles(points, triangles):
-    """Interior angles in radians, (M, 3), of plane triangles."""
-    p = points[triangles]
-    out = np.empty(triangles.shape)
-    for k in range(3):
-        u, v = p[:, (k + 1) % 3] - p[:, k], p[:, (k + 2) % 3] - p[:, k]
-        out[:, k] = np.arctan2(np.abs(u[:, 0] * v[:, 1] - u[:, 1] * v[:, 0]), np.sum(u * v, axis=1))
+def smallest_angles(points, triangles):
+    """The smallest interior angle of each plane triangle in radians, (M,).
+
+    The angle opposite the shortest edge (law of sines), ``arctan2(|u x v|, u . v)`` with ``u`` and ``v`` the edges
+    from its corner: one ``arctan2`` per triangle, in a compiled loop without the temporaries of gathered rows (those
+    cost a tenth of a Problem 1 run at a million points).  Where two edges are equal to rounding, either corner gives
+    the same angle to a few ulps, as does numpy's vectorised ``arctan2`` against the C library's: far inside
+    :data:`ANGLE_ROUNDING`.
+    """
+    return _smallest_angles(np.asarray(points, dtype=float), np.asarray(triangles, dtype=np.int64).reshape(-1, 3))
+
+
+def _smallest_angles(points, triangles):
+    out = np.empty(len(triangles))
+    for t in range(len(triangles)):
+        k, shortest = 0, np.inf
+        for j in range(3):  # the edge opposite corner j
+            b, c = triangles[t, (j + 1) % 3], triangles[t, (j + 2) % 3]
+            dx, dy = points[c, 0] - points[b, 0], points[c, 1] - points[b, 1]
+            if dx * dx + dy * dy < shortest:
+                k, shortest = j, dx * dx + dy * dy
+        a, b, c = triangles[t, k], triangles[t, (k + 1) % 3], triangles[t, (k + 2) % 3]
+        ux, uy = points[b, 0] - points[a, 0], points[b, 1] - points[a, 1]
+        vx, vy = points[c, 0] - points[a, 0], points[c, 1] - points[a, 1]
+        out[t] = np.arctan2(abs(ux * vy - uy * vx), ux * vx + uy * vy)
     return out
+
+
+_smallest_angles = compiled(_smallest_angles)

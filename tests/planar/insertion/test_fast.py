@@ -4,9 +4,7 @@ the reference.
 What must hold:
 
 * the circumcircle and the distance to a segment are the reference's (``equimesh._geometry``) bit for bit;
-* the heap pops its entries in the reference's order (largest value, then
-  smallest x, then smallest y), compaction keeps exactly the live entries,
-  and the heap's room grows ahead of the pushes to come;
+* the engine's arrays keep their rows when they grow, one cache line per triangle;
 * each triangle's candidates are the reference's, also exactly at the
   thresholds of the rules, and the whole engine inserts the reference's
   points, its triangles in a fixed (slot) order.
@@ -38,11 +36,14 @@ from insertion_cases import (
 from invariants import assert_problem1_invariants
 
 import equimesh
+import equimesh.planar.increment
+import equimesh.planar.strip
 from equimesh import EquimeshError
 from equimesh._geometry import circumcenters, point_segment_distance
 from equimesh.errors import InternalError
-from equimesh.planar.insertion import Region, fast, insert, reference
+from equimesh.planar.insertion import Region, arrays, fast, insert, reference
 from equimesh.planar.insertion.cdt import adjacency, cavity, locate, walk
+from equimesh.planar.insertion.heap import ENTRY
 from equimesh.planar.insertion.region import constrained_delaunay
 from equimesh.testing.generators import rectangle, regular_polygon
 from equimesh.tolerance import REL_TOL, SLIVER_GAP
@@ -82,98 +83,31 @@ def test_point_segment_distance_by_hand():
     assert fast.point_segment_distance(0.25, 1.0, 0.0, 0.0, 0.5, 0.0) == 1.0  # a segment shorter than 1
 
 
-# --------------------------------------------------------------------------- the heap
-
-#: Keys with many ties in value, then in x.
-heap_keys = st.lists(
-    st.tuples(st.sampled_from([1.0, 1.5, 2.0]), st.sampled_from([0.0, 1.0]), st.sampled_from([0.0, 1.0])),
-    min_size=1,
-    max_size=12,
-)
-
-
-def _heap(keys):
-    HK, HI = np.empty((len(keys) + 1, 3)), np.empty((len(keys) + 1, 3), dtype=np.int64)
-    n = 0
-    for i, (value, x, y) in enumerate(keys):
-        n = fast.push(HK, HI, n, value, x, y, i, 10 + i, i % 3 - 1)
-    return HK, HI, n
-
-
-def _pop_all(HK, HI, n):
-    out = []
-    while n:
-        n = fast.pop(HK, HI, n)
-        out.append((-HK[n, 0], HK[n, 1], HK[n, 2], *HI[n]))
-    return out
-
-
-@given(heap_keys)
-def test_heap_pops_the_largest_value_then_smallest_x_then_y(keys):
-    HK, HI, n = _heap(keys)
-    assert n == len(keys)
-    expected = sorted(((*k, i, 10 + i, i % 3 - 1) for i, k in enumerate(keys)), key=lambda e: (-e[0], e[1], e[2], e[3]))
-    popped = _pop_all(HK, HI, n)
-    assert [e[:3] for e in popped] == [e[:3] for e in expected]
-    assert all(keys[e[3]] == e[:3] and e[4] == 10 + e[3] and e[5] == e[3] % 3 - 1 for e in popped)
-
-
-def test_before_is_lexicographic():
-    assert fast.before(-2.0, 5.0, 5.0, -1.0, 0.0, 0.0)
-    assert not fast.before(-1.0, 0.0, 0.0, -2.0, 5.0, 5.0)
-    assert fast.before(-1.0, 0.0, 5.0, -1.0, 1.0, 0.0) and not fast.before(-1.0, 1.0, 0.0, -1.0, 0.0, 5.0)
-    assert fast.before(-1.0, 1.0, 0.0, -1.0, 1.0, 1.0) and not fast.before(-1.0, 1.0, 1.0, -1.0, 1.0, 0.0)
-    assert not fast.before(-1.0, 1.0, 1.0, -1.0, 1.0, 1.0)
-
-
-@given(heap_keys, st.data())
-def test_compact_keeps_exactly_the_live_entries_in_heap_order(keys, data):
-    """An entry lives when its slot's version is current and its segment (if any) is alive."""
-    HK, HI, n = _heap(keys)
-    ver = np.array([10 + i + data.draw(st.sampled_from([0, 0, 1])) for i in range(len(keys))], dtype=np.int64)
-    salive = np.array([data.draw(st.booleans()), data.draw(st.booleans())])
-    live = [i for i in range(len(keys)) if ver[i] == 10 + i and (i % 3 - 1 < 0 or salive[i % 3 - 1])]
-    k = fast.compact(HK, HI, n, ver, salive)
-    assert k == len(live)
-    assert sorted(e[3] for e in _pop_all(HK, HI, k)) == live
-    HK, HI, n = _heap(keys)
-    k = fast.compact(HK, HI, n, ver, salive)
-    popped = _pop_all(HK, HI, k)
-    assert [e[:3] for e in popped] == sorted((keys[i] for i in live), key=lambda e: (-e[0], e[1], e[2]))
-
-
-@given(heap_keys, st.integers(0, 40), st.data())
-def test_room_makes_room_and_keeps_the_live_entries_in_heap_order(keys, need, data):
-    """Both arrays, of one length, have room for need more entries; all entries are kept while there is room
-    already, else exactly the live ones."""
-    HK, HI, n = _heap(keys)
-    ver = np.array([10 + i + data.draw(st.sampled_from([0, 0, 1])) for i in range(len(keys))], dtype=np.int64)
-    salive = np.array([data.draw(st.booleans()), data.draw(st.booleans())])
-    live = [i for i in range(len(keys)) if ver[i] == 10 + i and (i % 3 - 1 < 0 or salive[i % 3 - 1])]
-    room = n + need <= len(HK)
-    HK, HI, k = fast.room(HK, HI, n, need, ver, salive)
-    assert len(HK) == len(HI) >= k + need
-    popped = _pop_all(HK, HI, k)
-    assert sorted(e[3] for e in popped) == (list(range(n)) if room else live)
-    assert [e[:3] for e in popped] == sorted((e[:3] for e in popped), key=lambda e: (-e[0], e[1], e[2]))
+# --------------------------------------------------------------------------- the arrays
 
 
 def test_grown_pads_with_zeros():
     a = np.array([[1, 2], [3, 4]], dtype=np.int64)
-    g = fast.grown(a, 5)
+    g = arrays.grown(a, 5)
     assert g.dtype == a.dtype and g.tolist() == [[1, 2], [3, 4], [0, 0], [0, 0], [0, 0]]
-    assert fast.grown(np.array([1.5]), 3).tolist() == [1.5, 0.0, 0.0]
+    assert arrays.grown(np.array([1.5]), 3).tolist() == [1.5, 0.0, 0.0]
 
 
-@pytest.mark.parametrize("i, j", [(0, 1), (1, 0), (2, 2)])
-def test_swap_exchanges_two_rows(i, j):
-    HK = np.arange(9.0).reshape(3, 3)
-    HI = np.arange(9).reshape(3, 3)
-    fast.swap(HK, HI, i, j)
-    order = list(range(3))
-    order[i], order[j] = order[j], order[i]
-    assert HK.tolist() == np.arange(9.0).reshape(3, 3)[order].tolist()
-    assert HI.tolist() == np.arange(9).reshape(3, 3)[order].tolist()
+def test_extended_keeps_the_rows():
+    a = np.array([[1, 2], [3, 4]], dtype=np.int64)
+    g = arrays.extended(a, 5)
+    assert g.dtype == a.dtype and g.shape == (5, 2) and g[:2].tolist() == [[1, 2], [3, 4]]
+
+
+def test_the_triangle_store_is_one_cache_line_per_triangle():
+    T = arrays.triangle_store(5)
+    assert T.shape == (5, arrays.ROW) and T.dtype == np.int32 and T.ctypes.data % 64 == 0 and T.strides == (64, 4)
+    V, N, S, mark, ver, alive = arrays.store_views(T)
+    V[2], N[2], S[2], mark[2], ver[2], alive[2] = (1, 2, 3), (4, 5, 6), (7, 8, 9), 10, 11, 12
+    assert T[2, :12].tolist() == list(range(1, 13))
+    T[:3] = 7
+    grown = arrays.grown_store(T, 9, 3)
+    assert grown.shape == (9, arrays.ROW) and grown.ctypes.data % 64 == 0 and (grown[:3] == 7).all()
 
 
 # --------------------------------------------------------------------------- the engine's candidates
@@ -189,7 +123,7 @@ def _assert_candidates(P, V, SA, SB, l):
     lim, seen = fast.limits(l), np.empty(fast.NEAR_TRIANGLES, dtype=np.int64)
     centres, radii = reference.circle_candidates(P, V, segments, l)
     listed = {(x, y): r for (x, y), r in zip(centres.tolist(), radii.tolist())}
-    HK, HI = np.empty((4 * len(V), 3)), np.empty((4 * len(V), 3), dtype=np.int64)
+    H = np.empty(4 * len(V) + 1, dtype=ENTRY)
     nh = 0
     for t in range(len(V)):
         r, cx, cy, where = fast.visible_circumcentre(P, V, N, S, SA, SB, salive, len(SA), alive, len(V), t, lim, seen)
@@ -198,16 +132,17 @@ def _assert_candidates(P, V, SA, SB, l):
             assert r == listed[(cx, cy)] and contains(P, V, where, cx, cy)
         assert fast.visible_circumcentre(P, V, N, S, SA, SB, salive, len(SA), alive, len(V), t, lim, seen[:1])[0] == r
         nh = fast.push_candidates(
-            P, V, N, S, SA, SB, salive, len(SA), alive, np.arange(len(V)), len(V), t, lim, seen, HK, HI, nh
+            P, V, N, S, SA, SB, salive, len(SA), alive, np.arange(len(V)), len(V), t, lim, seen, H, nh
         )
     mids, values, split = reference.midpoint_candidates(P, V, segments, l)
     expected = sorted(
         [(-r, x, y, -1) for (x, y), r in zip(centres.tolist(), radii.tolist())]
         + [(-v, x, y, s) for (x, y), v, s in zip(mids.tolist(), values.tolist(), split.tolist()) if v >= lim[0]]
     )
-    pushed = sorted((*HK[i], HI[i, 2]) for i in range(nh))
+    tags = [(int(H[i]["tag"]) >> 2, (int(H[i]["tag"]) & 3) - 1) for i in range(nh)]
+    pushed = sorted((H[i]["key"], H[i]["x"], H[i]["y"], S[t, e] if e >= 0 else -1) for i, (t, e) in enumerate(tags))
     assert pushed == expected
-    assert all(HI[i, 1] == HI[i, 0] for i in range(nh))  # each entry carries its triangle's version
+    assert all(H[i]["version"] == t for i, (t, _) in enumerate(tags))  # each entry carries its triangle's version
 
 
 @given(square_rings(), st.floats(0.3, 2.0), st.data())
@@ -359,7 +294,7 @@ def test_the_triangles_come_out_in_slot_order_the_cavitys_slots_first():
 def test_a_broken_cavity_is_an_internal_error(monkeypatch):
     """When the compiled loop reports a cavity it could not re-triangulate (a bug), run raises InternalError, never
     returns the mesh."""
-    monkeypatch.setattr(fast, "insert_all", lambda P0, T0, SEG0, lim: (fast.BROKEN, P0, T0, SEG0, np.empty(0)))
+    monkeypatch.setattr(fast, "insert_all", lambda P0, T0, SEG0, *_: (fast.BROKEN, P0, T0, SEG0, np.empty(0)))
     with pytest.raises(InternalError) as caught:
         fast.run(Region(rectangle(2.0, 2.0), np.array([[0, 1], [1, 2], [2, 3], [3, 0]]), np.empty((0, 2))), 1.0)
     assert str(caught.value) == "fast engine: a Bowyer-Watson cavity did not re-triangulate (broken triangulation)"
@@ -401,9 +336,11 @@ def _thresholds():
 
 
 def test_every_limit_is_a_multiple_of_l():
-    """Scaling l by a power of two scales every threshold and the search reach by it exactly."""
+    """Scaling l by a power of two scales every threshold and the search reach by it exactly, the squared floor of
+    the circumradii by its square."""
     for k in (-7, 1, 30):
-        assert fast.limits(math.ldexp(1.3, k)).tolist() == [math.ldexp(x, k) for x in fast.limits(1.3)]
+        scaled = fast.limits(math.ldexp(1.3, k)).tolist()
+        assert scaled == [math.ldexp(x, k) for x in fast.limits(1.3)[:5]] + [math.ldexp(fast.limits(1.3)[5], 2 * k)]
 
 
 @pytest.mark.parametrize("points, l", _thresholds())
@@ -454,3 +391,40 @@ def test_a_circumcentre_refused_when_it_surfaces_is_skipped_and_the_insertion_go
     got, expected = fast.run(region, l), reference.run(region, l)
     assert got.points.tobytes() == expected.points.tobytes() and got.values.tobytes() == expected.values.tobytes()
     assert len(got.points) == 13 and [cx, cy] not in got.points.tolist()
+
+
+@pytest.mark.parametrize(
+    "module, call",
+    [
+        (equimesh.planar.increment, lambda: equimesh.increment(regular_polygon(7, 6.0), 0.8)),
+        (
+            equimesh.planar.strip,
+            lambda: equimesh.uniform_triangulation(
+                [(0.0, 0.0), (14.2, 0.6), (14.8, 6.4), (6.6, 7.2), (6.2, 14.6), (-0.4, 14.0)], 0.7, angle=17.0
+            ),
+        ),
+    ],
+)
+def test_growing_from_no_room_changes_nothing(monkeypatch, module, call):
+    """Arrays made for the expected points, or grown by doubling from the input alone (every array short of room in
+    turn): the same points, triangles, segments and values, bit for bit, for Problems 1 and 2."""
+    regions = []
+    monkeypatch.setattr(module, "insert", lambda region, l, engine: regions.append((region, l)) or insert(region, l))
+    call()
+    region, l = regions[0]
+    points = np.array(region.points, dtype=float).reshape(-1, 2)
+    segments = np.array(region.segments, dtype=np.int64).reshape(-1, 2)
+    triangles = np.ascontiguousarray(constrained_delaunay(points, segments, region.holes), dtype=np.int64)
+    expected = fast.expected_points(points, segments, triangles, l)
+    ahead = fast.insert_all(points, triangles, segments, fast.limits(l), expected)
+    grown = fast.insert_all(points, triangles, segments, fast.limits(l))
+    assert ahead[0] == grown[0] == fast.OK and len(ahead[1]) > len(points) + 1  # the points grew
+    for a, b in zip(ahead[1:], grown[1:]):
+        assert a.dtype == b.dtype and np.array_equal(a, b)
+
+
+def test_a_region_beyond_the_tags_is_refused(monkeypatch):
+    """When the triangulation would outgrow the heap's tags, run raises MeshTooLargeError naming the limits."""
+    monkeypatch.setattr(fast, "insert_all", lambda P0, T0, SEG0, *_: (fast.TOO_LARGE, P0, T0, SEG0, np.empty(0)))
+    with pytest.raises(equimesh.errors.MeshTooLargeError, match=r"at most 268435456 points and 536870912 triangles"):
+        fast.run(Region(rectangle(2.0, 2.0), np.array([[0, 1], [1, 2], [2, 3], [3, 0]]), np.empty((0, 2))), 1.0)

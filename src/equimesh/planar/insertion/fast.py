@@ -13,11 +13,10 @@ its docstring first); only the bookkeeping differs.
   ``min(|ab|/2, |m - apex|)`` with that triangle's apex).  Inserting a point
   changes exactly the triangles of its cavity, so only their candidates die
   and only the fan's are new; a surviving triangle keeps its vertices, hence
-  the same circumcentre bits and the same apex.  Candidates go into a
-  max-heap keyed by ``(value, -x, -y)``, stored as a min-heap on
-  ``(-value, x, y)``, with the triangle slot's version: an entry whose
-  triangle died (or whose segment was split) is skipped when it surfaces
-  (lazy deletion).
+  the same circumcentre bits and the same apex.  Candidates go into the
+  heap of :mod:`.heap`, largest value first, then smallest x, then smallest
+  y, with the triangle slot's version: an entry whose triangle died (or
+  whose segment was split) is skipped when it surfaces (lazy deletion).
 
 Why the heap top is the farthest point of Step 3.  The live entries are the
 candidates of the current triangles, and those are exactly the candidates
@@ -57,12 +56,16 @@ with it, every call increments and decrements the count of each array
 argument atomically, which dominated the calls of these helpers (docs/decisions.md,
 "Kernels compiled by a call").  numba hands that flag down to the functions they
 call, so the predicates, whose exact fallback allocates, ask for the
-runtime explicitly (``nrt=True`` in :mod:`._predicates`).  The heap's
-sift loops call no helper that takes an array for the same reason.
+runtime explicitly (``nrt=True`` in :mod:`._predicates`).  The loop of
+Steps 3-4 (:func:`advance`) is compiled so too: :func:`insert_all` makes
+the arrays, and grows one by doubling whenever the loop stops short of room.
+
+Memory: the arrays are made at once for Oler's bound on the points
+(:func:`expected_points`), each triangle one cache line (:mod:`.arrays`).
 
 numba's on-disk cache (``cache=True``) is keyed by the source file of each
 compiled function, not by the functions it calls: after an edit of
-:mod:`._cdt` or :mod:`._predicates` alone, the cached :func:`insert_all`
+:mod:`._cdt`, :mod:`._predicates`, :mod:`.heap` or :mod:`.arrays` alone, the cached :func:`insert_all`
 still holds the old code.  Edit this file too (or delete ``__pycache__/*.nb*``)
 whenever one of them changes.
 """
@@ -72,9 +75,12 @@ import math
 import numpy as np
 
 from ..._jit import compiled
-from ...errors import EquimeshError, InternalError
+from ...errors import EquimeshError, InternalError, MeshTooLargeError
+from ...mesh import triangle_orient
 from ...tolerance import REL_TOL, SLIVER_GAP
+from .arrays import extended, grown, grown_store, store_views, triangle_store
 from .cdt import adjacency, cavity, cavity_boundary, fill, locate, segments_touch, walk
+from .heap import ENTRY, MAX_SLOTS, compact, entry_live, pop, push
 from .region import Insertion, constrained_delaunay
 
 #: The distance from a circumcentre to the constraints is searched among the
@@ -85,24 +91,43 @@ _REACH = 2.0
 #: many such triangles (a vertex of high degree next to the circumcentre).
 NEAR_TRIANGLES = 64
 
+#: A squared circumradius computed in floating point (two squares and a sum, relative error at most 3 ulps) below
+#: ``SQUARE_MARGIN`` times the square of the bound has a ``hypot`` (error below an ulp) below the bound: a margin
+#: of 10^-6 against errors of 10^-15.  The circumradii of most new triangles are below l, so they skip ``hypot``.
+SQUARE_MARGIN = 1.0 - 1e-6
+
 #: Starting length of the cavity buffers (grown on demand).
 CAVITY = 64
 
 #: Returned by the compiled loop: done; else ``-2 - s`` for the first
 #: segment ``s`` that is not an edge of exactly one triangle ...
 OK = -1
-#: ... or a Bowyer-Watson cavity produced a non-counter-clockwise fan (a bug).
+#: ... or a Bowyer-Watson cavity produced a non-counter-clockwise fan (a bug) ...
 BROKEN = -2 - 2**62
+#: ... or the triangulation outgrew the heap's tags (:data:`.heap.MAX_SLOTS`).
+TOO_LARGE = -3 - 2**62
+#: :func:`advance` stopped short of room (never returned by :func:`insert_all`).
+ROOM = -4 - 2**62
+
+#: The scalars of :func:`advance` between its calls, one row each of an int64 array: points, triangle slots,
+#: segments, free slots, heap entries, the new triangles whose candidates are still to be pushed, the cavity stamp,
+#: the initial points, and after ROOM the array short of room and the rows it needs.
+STATE = ("points", "slots", "segments", "free", "heap", "fan", "stamp", "initial", "short", "need")
+POINTS, SLOTS, SEGMENTS, FREE, HEAP, FAN, STAMP, INITIAL, SHORT, NEED = range(len(STATE))
+#: What ``state[SHORT]`` names: nothing, the heap, the points, the segments, the cavity, the fan, the triangles.
+SHORT_NONE, SHORT_HEAP, SHORT_POINTS, SHORT_SEGMENTS, SHORT_CAVITY, SHORT_FAN, SHORT_TRIANGLES = range(7)
 
 
-def circumcircle(P, a, b, c):
+def circumcircle(P, a, b, c, floor=0.0):
     """Circumcentre and radius of the triangle ``abc`` (vertex indices), exactly as
     :func:`equimesh._geometry.circumcenters`.
 
     Vertices in increasing index order; the operations (relative to the
     first vertex, then ``hypot``) are the reference's, so the bits match.
     ``np.hypot`` is the C library's ``hypot`` compiled and as Python alike
-    (Python's ``math.hypot`` rounds differently).
+    (Python's ``math.hypot`` rounds differently).  The radius is -1 instead
+    when the squared offset of the centre is below ``floor`` (a radius
+    surely too small, without the cost of ``hypot``, :data:`SQUARE_MARGIN`).
     """
     i, j, k = min(a, b, c), max(min(a, b), min(max(a, b), c)), max(a, b, c)
     ax, ay = P[i, 0], P[i, 1]
@@ -115,7 +140,8 @@ def circumcircle(P, a, b, c):
     uy = (bbx * c2 - ccx * b2) / d
     gx = (P[i, 0] + P[j, 0] + P[k, 0]) / 3.0
     gy = (P[i, 1] + P[j, 1] + P[k, 1]) / 3.0
-    return ax + ux, ay + uy, np.hypot(ux, uy), gx, gy
+    r = -1.0 if ux * ux + uy * uy < floor else np.hypot(ux, uy)
+    return ax + ux, ay + uy, r, gx, gy
 
 
 circumcircle = compiled(circumcircle, nrt=False)
@@ -182,9 +208,9 @@ constraint_gap = compiled(constraint_gap, nrt=False)
 def visible_circumcentre(P, V, N, S, SA, SB, salive, n_segs, alive, n_slots, t, lim, seen):
     """Candidate 1 of the reference for triangle ``t``: ``(value, x, y, triangle containing it)`` or value -1.
 
-    ``lim`` = ``(1 - REL_TOL) l, (1 + REL_TOL) l, REL_TOL l, SLIVER_GAP l``, the search reach.
+    ``lim``: :func:`limits`.
     """
-    cx, cy, r, gx, gy = circumcircle(P, V[t, 0], V[t, 1], V[t, 2])
+    cx, cy, r, gx, gy = circumcircle(P, V[t, 0], V[t, 1], V[t, 2], lim[5])
     if not (math.isfinite(r) and r >= lim[0]):
         return -1.0, cx, cy, -1
     status, where = walk(P, V, N, S, t, gx, gy, cx, cy, n_slots + 1)
@@ -204,130 +230,21 @@ def visible_circumcentre(P, V, N, S, SA, SB, salive, n_segs, alive, n_slots, t, 
 visible_circumcentre = compiled(visible_circumcentre, nrt=False)
 
 
-def before(a0, a1, a2, b0, b1, b2):
-    """Heap order: key ``(a0, a1, a2)`` before ``(b0, b1, b2)``, lexicographically on ``(-value, x, y)``."""
-    if a0 != b0:
-        return a0 < b0
-    if a1 != b1:
-        return a1 < b1
-    return a2 < b2
-
-
-before = compiled(before, nrt=False)
-
-
-def swap(HK, HI, a, b):
-    for c in range(3):
-        HK[a, c], HK[b, c] = HK[b, c], HK[a, c]
-        HI[a, c], HI[b, c] = HI[b, c], HI[a, c]
-
-
-swap = compiled(swap, nrt=False)
-
-
-def _sift_down(HK, HI, n, i):
-    """Move the entry at ``i`` down to its place among ``[:n]``.
-
-    The entries it passes move up one level each and it is written once at
-    the end: the same array as swapping it down level by level.
-    """
-    k0, k1, k2 = HK[i, 0], HK[i, 1], HK[i, 2]
-    t, version, s = HI[i, 0], HI[i, 1], HI[i, 2]
-    while True:
-        c = 2 * i + 1
-        if c >= n:
-            break
-        if c + 1 < n and before(HK[c + 1, 0], HK[c + 1, 1], HK[c + 1, 2], HK[c, 0], HK[c, 1], HK[c, 2]):
-            c += 1
-        if not before(HK[c, 0], HK[c, 1], HK[c, 2], k0, k1, k2):
-            break
-        for q in range(3):  # (no helper call in the loop: numba would count references to HK and HI)
-            HK[i, q], HI[i, q] = HK[c, q], HI[c, q]
-        i = c
-    HK[i, 0], HK[i, 1], HK[i, 2] = k0, k1, k2
-    HI[i, 0], HI[i, 1], HI[i, 2] = t, version, s
-
-
-_sift_down = compiled(_sift_down, nrt=False)
-
-
-def push(HK, HI, n, value, x, y, t, version, s):
-    """Add an entry to the heap ``[:n]``, moving the entries above it down as in :func:`_sift_down`; the new size."""
-    i = n
-    while i > 0:
-        parent = (i - 1) // 2
-        if not before(-value, x, y, HK[parent, 0], HK[parent, 1], HK[parent, 2]):
-            break
-        for q in range(3):
-            HK[i, q], HI[i, q] = HK[parent, q], HI[parent, q]
-        i = parent
-    HK[i, 0], HK[i, 1], HK[i, 2] = -value, x, y
-    HI[i, 0], HI[i, 1], HI[i, 2] = t, version, s
-    return n + 1
-
-
-push = compiled(push, nrt=False)
-
-
-def pop(HK, HI, n):
-    """Remove the top (it is copied to row ``n - 1``); the new size."""
-    swap(HK, HI, 0, n - 1)
-    _sift_down(HK, HI, n - 1, 0)
-    return n - 1
-
-
-pop = compiled(pop, nrt=False)
-
-
-def compact(HK, HI, n, ver, salive):
-    """Drop the dead entries of the heap ``[:n]`` (lazy deletion's garbage) and restore the heap order; the new size."""
-    k = 0
-    for i in range(n):
-        t, s = HI[i, 0], HI[i, 2]
-        if ver[t] == HI[i, 1] and (s < 0 or salive[s]):
-            HK[k], HI[k] = HK[i], HI[i]
-            k += 1
-    for i in range(k // 2 - 1, -1, -1):
-        _sift_down(HK, HI, k, i)
-    return k
-
-
-compact = compiled(compact)
-
-
-def grown(a, size):
-    """``a`` in a zero-filled array of ``size`` rows."""
-    out = np.zeros((size,) + a.shape[1:], dtype=a.dtype)
-    out[: len(a)] = a
+def grown_heap(H, size):
+    """The heap array ``H`` in a zero-filled one of ``size`` rows."""
+    out = np.zeros(size, dtype=ENTRY)
+    out[: len(H)] = H
     return out
 
 
-grown = compiled(grown)
+grown_heap = compiled(grown_heap)
 
 
-def room(HK, HI, n, need, ver, salive):
-    """The heap ``[:n]`` with room for ``need`` more entries: ``(HK, HI, n)``.
-
-    When it is short of room, drops the dead entries (:func:`compact`), and
-    if they still fill more than half of it, grows both arrays to twice their
-    length plus ``need``.
-    """
-    if n + need > len(HK):
-        n = compact(HK, HI, n, ver, salive)
-        if 2 * (n + need) > len(HK):
-            size = 2 * len(HK) + need
-            HK, HI = grown(HK, size), grown(HI, size)
-    return HK, HI, n
-
-
-room = compiled(room)
-
-
-def push_candidates(P, V, N, S, SA, SB, salive, n_segs, alive, ver, n_slots, t, lim, seen, HK, HI, nh):
+def push_candidates(P, V, N, S, SA, SB, salive, n_segs, alive, ver, n_slots, t, lim, seen, H, nh):
     """Push the candidates of triangle ``t`` (its circumcentre, its constraint midpoints); the new heap size."""
     r, cx, cy, _ = visible_circumcentre(P, V, N, S, SA, SB, salive, n_segs, alive, n_slots, t, lim, seen)
     if r >= 0.0:
-        nh = push(HK, HI, nh, r, cx, cy, t, ver[t], -1)
+        nh = push(H, nh, r, cx, cy, 4 * t, ver[t])
     for e in range(3):
         s = S[t, e]
         if s < 0:
@@ -342,100 +259,92 @@ def push_candidates(P, V, N, S, SA, SB, salive, n_segs, alive, ver, n_slots, t, 
         ex, ey = mx - P[apex, 0], my - P[apex, 1]
         value = min(half, math.sqrt(ex * ex + ey * ey))
         if value >= lim[0]:
-            nh = push(HK, HI, nh, value, mx, my, t, ver[t], s)
+            nh = push(H, nh, value, mx, my, 4 * t + e + 1, ver[t])
     return nh
 
 
 push_candidates = compiled(push_candidates, nrt=False)
 
 
-def insert_all(P0, T0, SEG0, lim):
-    """Steps 3-4 on the CDT ``T0`` of ``P0`` with constraints ``SEG0``: ``(status, P, triangles, segments, values)``."""
-    n = len(P0)
-    SA, SB = SEG0[:, 0].copy(), SEG0[:, 1].copy()
-    N, S, count = adjacency(T0, SA, SB, n)
-    for s in range(len(SA)):
-        if count[s] != 1:
-            return -2 - s, P0, T0, SEG0, np.empty(0)
-    P, V, n_slots, n_segs = P0.copy(), T0.copy(), len(T0), len(SA)
-    salive = np.ones(len(SA), dtype=np.bool_)
-    alive = np.ones(n_slots, dtype=np.bool_)
-    ver = np.zeros(n_slots, dtype=np.int64)
-    mark = np.zeros(n_slots, dtype=np.int64)
-    free = np.empty(n_slots, dtype=np.int64)
-    n_free = 0
-    vfan = np.zeros(n, dtype=np.int64)
-    vstamp = np.zeros(n, dtype=np.int64)
-    values = np.zeros(n)
-    cav = np.empty(CAVITY, dtype=np.int64)
-    edges = np.empty((CAVITY + 2, 4), dtype=np.int64)
-    slots = np.arange(n_slots)
-    seen = np.empty(NEAR_TRIANGLES, dtype=np.int64)
-    HK, HI = np.empty((0, 3)), np.empty((0, 3), dtype=np.int64)
-    nh, m, stamp = 0, n_slots, 0
+def advance(
+    P, V, N, S, SA, SB, salive, alive, ver, mark, free, vfan, vstamp, values, cav, edges, slots, seen, H, lim, state
+):
+    """Steps 3-4 from ``state`` (:data:`STATE`) until no candidate is left: OK, BROKEN, or ROOM.
+
+    ROOM: an array is too short for the next step, which is not taken (its
+    candidate goes back into the heap); ``state[SHORT]`` names the array and
+    ``state[NEED]`` the rows it needs, and the caller grows it and calls again.
+    Compiled without reference counting, so the loop allocates nothing.
+    """
+    n, n_slots, n_segs, n_free = state[POINTS], state[SLOTS], state[SEGMENTS], state[FREE]
+    nh, m, stamp, n0 = state[HEAP], state[FAN], state[STAMP], state[INITIAL]
+    status = OK
     while True:
-        # Push the candidates of the new triangles slots[:m] (at first: every triangle), at most four each
-        # (room only when short of room: a call at every pop made the engine 5 % slower).
-        if nh + 4 * m > len(HK):
-            HK, HI, nh = room(HK, HI, nh, 4 * m, ver, salive)
+        # Push the candidates of the new triangles slots[:m] (at first: every triangle), at most four each.
+        if nh + 4 * m >= len(H):
+            nh = compact(H, nh, ver, S, salive)
+            if 2 * (nh + 4 * m) >= len(H):
+                status, state[SHORT], state[NEED] = ROOM, SHORT_HEAP, 2 * len(H) + 4 * m
+                break
         for f in range(m):
-            nh = push_candidates(
-                P, V, N, S, SA, SB, salive, n_segs, alive, ver, n_slots, slots[f], lim, seen, HK, HI, nh
-            )
+            nh = push_candidates(P, V, N, S, SA, SB, salive, n_segs, alive, ver, n_slots, slots[f], lim, seen, H, nh)
         m = 0
         if nh == 0:
             break
-        nh = pop(HK, HI, nh)
-        t, version, s = HI[nh, 0], HI[nh, 1], HI[nh, 2]
-        if ver[t] != version or (s >= 0 and not salive[s]):
+        nh = pop(H, nh)
+        if not entry_live(H, nh, ver, S, salive):
             continue
-        x, y = HK[nh, 1], HK[nh, 2]
+        tag, version, value, x, y = H[nh]["tag"], H[nh]["version"], -H[nh]["key"], H[nh]["x"], H[nh]["y"]
+        t, e = tag >> 2, (tag & 3) - 1
+        s = S[t, e] if e >= 0 else -1
         start = t
         if s < 0:
             r, _, _, start = visible_circumcentre(P, V, N, S, SA, SB, salive, n_segs, alive, n_slots, t, lim, seen)
             if r < 0.0:
                 continue
+        stamp += 1
+        k = cavity(P, V, N, S, start, x, y, mark, stamp, cav) if n < len(P) and n_segs + 2 <= len(SA) else 0
+        short, need = SHORT_NONE, 0
         if n == len(P):
-            P, values = grown(P, 2 * n), grown(values, 2 * n)
-            vfan, vstamp = grown(vfan, 2 * n), grown(vstamp, 2 * n)
-        if n_segs + 2 > len(SA):
-            SA, SB, salive = grown(SA, 2 * len(SA) + 2), grown(SB, 2 * len(SB) + 2), grown(salive, 2 * len(SA) + 2)
+            short, need = SHORT_POINTS, 2 * n
+        elif n_segs + 2 > len(SA):
+            short, need = SHORT_SEGMENTS, 2 * len(SA) + 2
+        elif k < 0:
+            short, need = SHORT_CAVITY, 2 * len(cav)
+        elif k + 2 > len(edges) or k + 2 > len(slots):
+            short, need = SHORT_FAN, 2 * k + 2
+        else:
+            m = cavity_boundary(V, N, S, cav, k, s, mark, stamp, edges)
+            if m < 0:
+                status = BROKEN
+                break
+            if m > n_free + k + len(V) - n_slots:
+                short, need, m = SHORT_TRIANGLES, 2 * len(V) + m, 0
+        if short != SHORT_NONE:
+            nh = push(H, nh, value, x, y, tag, version)
+            status, state[SHORT], state[NEED] = ROOM, short, need
+            break
         p = n
         P[p, 0], P[p, 1] = x, y
-        values[p - len(P0)] = -HK[nh, 0]
+        values[p - n0] = value
         n += 1
-        stamp += 1
-        k = cavity(P, V, N, S, start, x, y, mark, stamp, cav)
-        while k < 0:
-            cav = grown(cav, 2 * len(cav))
-            stamp += 1
-            k = cavity(P, V, N, S, start, x, y, mark, stamp, cav)
-        if k + 2 > len(edges):
-            edges = grown(edges, 2 * k + 2)
-        if k + 2 > len(slots):
-            slots = grown(slots, 2 * k + 2)
-        m = cavity_boundary(V, N, S, cav, k, s, mark, stamp, edges)
-        if m < 0:
-            return BROKEN, P, V, SEG0, values
         for i in range(k):
             alive[cav[i]] = False
             ver[cav[i]] += 1
             free[n_free] = cav[i]
             n_free += 1
-        if m > n_free + len(V) - n_slots:
-            size = 2 * len(V) + m
-            V, N, S = grown(V, size), grown(N, size), grown(S, size)
-            alive, ver, mark, free = grown(alive, size), grown(ver, size), grown(mark, size), grown(free, size)
         for f in range(m):
             if n_free > 0:
                 n_free -= 1
                 slots[f] = free[n_free]
             else:
                 slots[f] = n_slots
+                mark[n_slots], ver[n_slots] = 0, 0
                 n_slots += 1
             alive[slots[f]] = True
         if not fill(P, V, N, S, edges, m, p, slots, vfan, vstamp, stamp):
-            return BROKEN, P, V, SEG0, values
+            status = BROKEN
+            break
         if s >= 0:
             a, b = SA[s], SB[s]
             salive[s] = False
@@ -449,11 +358,79 @@ def insert_all(P0, T0, SEG0, lim):
                     elif w == b:
                         S[t, e] = n_segs + 1
             n_segs += 2
+    state[POINTS], state[SLOTS], state[SEGMENTS], state[FREE] = n, n_slots, n_segs, n_free
+    state[HEAP], state[FAN], state[STAMP] = nh, m, stamp
+    return status
+
+
+advance = compiled(advance, nrt=False)
+
+
+def insert_all(P0, T0, SEG0, lim, points=0):
+    """Steps 3-4 on the CDT ``T0`` of ``P0`` with constraints ``SEG0``: ``(status, P, triangles, segments, values)``.
+
+    ``points``: the expected number of points at the end, for which the
+    arrays are made at once (they grow by doubling beyond it).  Rows of
+    triangles and points are written in full when first used, so the arrays
+    are not initialised beyond the input.
+    """
+    n = len(P0)
+    SA0, SB0 = SEG0[:, 0].copy(), SEG0[:, 1].copy()
+    N0, S0, count = adjacency(T0, SA0, SB0, n)
+    for s in range(len(SA0)):
+        if count[s] != 1:
+            return -2 - s, P0, T0, SEG0, np.empty(0)
+    points = max(points, n + 1)
+    rows = len(T0) + 2 * (points - n)  # an insertion adds two triangles (one on a constraint)
+    T = triangle_store(rows)
+    V, N, S, mark, ver, alive = store_views(T)
+    V[: len(T0)], N[: len(T0)], S[: len(T0)] = T0, N0, S0
+    mark[: len(T0)], ver[: len(T0)], alive[: len(T0)] = 0, 0, 1
+    P, free = extended(P0, points), np.empty(rows, dtype=np.int64)
+    W, values = np.zeros((points, 2), dtype=np.int64), np.empty(points)  # per point: its fan triangle, its stamp
+    SA, SB = extended(SA0, 2 * len(SA0) + 2), extended(SB0, 2 * len(SA0) + 2)
+    salive = grown(np.ones(len(SA0), dtype=np.bool_), len(SA))
+    cav = np.empty(CAVITY, dtype=np.int64)
+    edges = np.empty((max(CAVITY, len(T0)) + 2, 4), dtype=np.int64)
+    slots = extended(np.arange(len(T0)), len(edges))
+    seen = np.empty(NEAR_TRIANGLES, dtype=np.int64)
+    H = np.empty(max(4 * len(T0), points) + 1, dtype=ENTRY)
+    state = np.zeros(len(STATE), dtype=np.int64)
+    state[POINTS], state[SLOTS], state[SEGMENTS], state[FAN], state[INITIAL] = n, len(T0), len(SA0), len(T0), n
+    status = ROOM
+    while status == ROOM:
+        work = (P, V, N, S, SA, SB, salive, alive, ver, mark, free, W[:, 0], W[:, 1], values, cav, edges, slots)
+        status = advance(*work, seen, H, lim, state)
+        short, need = state[SHORT], state[NEED]
+        if status != ROOM:
+            break
+        if short == SHORT_HEAP:
+            H = grown_heap(H, need)
+        elif short == SHORT_POINTS:
+            if need > MAX_SLOTS // 2:
+                return TOO_LARGE, P0, T0, SEG0, values
+            P, W, values = extended(P, need), grown(W, need), extended(values, need)
+        elif short == SHORT_SEGMENTS:
+            SA, SB, salive = extended(SA, need), extended(SB, need), grown(salive, need)
+        elif short == SHORT_CAVITY:
+            cav = extended(cav, need)
+        elif short == SHORT_FAN:
+            edges, slots = extended(edges, need), extended(slots, need)
+        else:
+            if need > MAX_SLOTS:
+                return TOO_LARGE, P0, T0, SEG0, values
+            T, free = grown_store(T, need, state[SLOTS]), extended(free, need)
+            V, N, S, mark, ver, alive = store_views(T)
+    n, n_slots, n_segs = state[POINTS], state[SLOTS], state[SEGMENTS]
+    if status == BROKEN:
+        return BROKEN, P0, T0, SEG0, values
     live = np.flatnonzero(alive[:n_slots])
     segs = np.flatnonzero(salive[:n_segs])
     out_segments = np.empty((len(segs), 2), dtype=np.int64)
     out_segments[:, 0], out_segments[:, 1] = SA[segs], SB[segs]
-    return OK, P[:n].copy(), V[live].copy(), out_segments, values[: n - len(P0)].copy()
+    triangles = np.empty((len(live), 3), dtype=np.int64)
+    triangles[:] = V[live]
+    return OK, P[:n].copy(), triangles, out_segments, values[: n - len(P0)].copy()
 
 
 insert_all = compiled(insert_all)
@@ -461,8 +438,22 @@ insert_all = compiled(insert_all)
 
 def limits(l):
     """The thresholds of the candidate rules for ``l`` and the reach of the distance search, the ``lim`` of
-    :func:`visible_circumcentre`: ``(1 - REL_TOL) l, (1 + REL_TOL) l, REL_TOL l, SLIVER_GAP l, _REACH SLIVER_GAP l``."""
-    return np.array([(1.0 - REL_TOL) * l, (1.0 + REL_TOL) * l, REL_TOL * l, SLIVER_GAP * l, _REACH * SLIVER_GAP * l])
+    :func:`visible_circumcentre`: ``(1 - REL_TOL) l, (1 + REL_TOL) l, REL_TOL l, SLIVER_GAP l, _REACH SLIVER_GAP l``,
+    and the squared circumradius below which no circumcentre is a candidate, ``SQUARE_MARGIN ((1 - REL_TOL) l)^2``."""
+    low = (1.0 - REL_TOL) * l
+    return np.array(
+        [low, (1.0 + REL_TOL) * l, REL_TOL * l, SLIVER_GAP * l, _REACH * SLIVER_GAP * l, SQUARE_MARGIN * low * low]
+    )
+
+
+def expected_points(points, segments, triangles, l):
+    """Oler's bound on points pairwise ``l`` apart (:func:`equimesh.planar.limits.node_estimate`) for the region
+    triangulated by ``triangles``, bounded by ``segments``: the engine's arrays are made for this many points."""
+    from ..limits import node_estimate  # (here: the limits import the engines)
+
+    area = 0.5 * float(np.sum(np.abs(triangle_orient(points, triangles))))
+    perimeter = float(np.sum(np.linalg.norm(points[segments[:, 1]] - points[segments[:, 0]], axis=1)))
+    return int(min(node_estimate(area, perimeter, l), MAX_SLOTS // 2))
 
 
 def run(region, l):
@@ -471,10 +462,19 @@ def run(region, l):
     segments = np.array(region.segments, dtype=np.int64).reshape(-1, 2)
     triangles = constrained_delaunay(points, segments, region.holes)
     status, points, triangles, segments, values = insert_all(
-        points, np.ascontiguousarray(triangles, dtype=np.int64), segments, limits(l)
+        points,
+        np.ascontiguousarray(triangles, dtype=np.int64),
+        segments,
+        limits(l),
+        expected_points(points, segments, triangles, l),
     )
     if status == BROKEN:
         raise InternalError("fast engine: a Bowyer-Watson cavity did not re-triangulate (broken triangulation)")
+    if status == TOO_LARGE:
+        raise MeshTooLargeError(
+            f"the fast engine holds at most {MAX_SLOTS // 2} points and {MAX_SLOTS} triangles, "
+            "and this region needs more; use a larger l"
+        )
     if status != OK:
         raise EquimeshError(
             f"the fast engine needs every constraint to bound the region, but segment {-2 - status} "
