@@ -77,6 +77,13 @@ KERNEL_MODULES = {
         "tests/planar/insertion/test_cdt.py",
         "tests/planar/insertion/test_fast.py",
     ],
+    "src/equimesh/planar/insertion/heap.py": [
+        "tests/planar/insertion/test_heap.py",
+        "tests/planar/insertion/test_fast.py",
+    ],
+    "src/equimesh/planar/insertion/arrays.py": [
+        "tests/planar/insertion/test_fast.py",
+    ],
 }
 MODULES.update(KERNEL_MODULES)
 
