@@ -53,17 +53,27 @@ def unique_edges(triangles):
 def edge_lengths(points, edges):
     """Euclidean lengths of ``edges`` (E, 2) between rows of ``points`` (N, d), d = 2 or 3.
 
-    Column by column; the same floats as ``np.linalg.norm(q - p, axis=1)``
-    (the squares summed in coordinate order).
+    The squares summed in coordinate order, from 0: the same floats as
+    ``np.linalg.norm(q - p, axis=1)``, in a compiled loop (the final
+    optimisation measures its members at every step).
     """
-    points = np.asarray(points, dtype=float)
-    edges = np.asarray(edges, dtype=np.int64).reshape(-1, 2)
-    total = np.zeros(len(edges))
-    for k in range(points.shape[1]):
-        column = np.ascontiguousarray(points[:, k])
-        d = column[edges[:, 1]] - column[edges[:, 0]]
-        total += d * d
-    return np.sqrt(total)
+    points = np.ascontiguousarray(points, dtype=float)
+    return _edge_lengths(points, np.asarray(edges, dtype=np.int64).reshape(-1, 2))
+
+
+def _edge_lengths(points, edges):
+    out = np.empty(len(edges))
+    for k in range(len(edges)):
+        a, b = edges[k, 0], edges[k, 1]
+        total = 0.0
+        for c in range(points.shape[1]):
+            d = points[b, c] - points[a, c]
+            total += d * d
+        out[k] = np.sqrt(total)
+    return out
+
+
+_edge_lengths = compiled(_edge_lengths)
 
 
 def triangle_orient(points, triangles):

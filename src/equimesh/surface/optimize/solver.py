@@ -214,13 +214,15 @@ class NormalEquations:
         ):
             self._analyse(jac)
         values = np.zeros(len(self._rows))
-        for left, right, slot in self._groups:
-            _sum_products(jac.data, left, right, slot, values)
+        data = jac.data
+        for starts, first, second, slot in self._groups:
+            _sum_products(data, starts, first, second, slot, values)
         diagonal = values[self._diagonal]
         self._damping = np.maximum(diagonal, LM_DIAGONAL_FLOOR * max(float(diagonal.max(initial=0.0)), 1.0))
-        values[held[self._rows] | held[self._cols]] = 0.0
-        self._damping[held] = 0.0
-        values[self._diagonal[held]] = 1.0
+        if held.any():
+            values[held[self._rows] | held[self._cols]] = 0.0
+            self._damping[held] = 0.0
+            values[self._diagonal[held]] = 1.0
         self._values = values
 
     def solve(self, lam, rhs):
@@ -243,38 +245,42 @@ class NormalEquations:
         factorisation.
 
         Rows are grouped by their number ``k`` of entries; a group keeps, per
-        row, the positions in ``jac.data`` of the two factors of each of its
-        ``k (k + 1) / 2`` products ``J_rp J_rq`` (positions ``p <= q``), and the
-        slot of the pattern each product is summed into.  The structure is
-        taken as it comes (no sort per iteration: the Jacobians of
+        row, the position in ``jac.data`` of its first entry, the offsets from
+        there of the two factors of each of its ``k (k + 1) / 2`` products
+        ``J_rp J_rq`` (positions ``p <= q``, the same for every row of the
+        group), and the slot of the pattern each product is summed into.  The
+        structure is taken as it comes (no sort per iteration: the Jacobians of
         :class:`~equimesh.surface.optimize.jacobian.ElementJacobian` list a row's
         columns by corner): a row's columns may be in any order, and a column
         may appear twice (entries to be summed): the product of its two
         entries then counts twice, ``(J_rp + J_rq)^2 = J_rp^2 + J_rq^2 + 2 J_rp J_rq``,
-        so it forms one more group.
+        so it forms one more group, of one product per pair (its first
+        factor's position, and the offset of the second per pair).
         """
         n = jac.shape[1]
         counts = np.diff(jac.indptr)
         groups, keys = [], [np.arange(n, dtype=np.int64) * (n + 1)]  # the whole diagonal, even where no row reaches
         twice = ([], [], [])  # the positions and keys of the products of a column's two entries in a row
         for k in np.unique(counts[counts > 0]):
-            entries = jac.indptr[:-1][counts == k][:, None] + np.arange(k)
+            starts = jac.indptr[:-1][counts == k].astype(np.int64)
             i, j = np.triu_indices(k)
-            left, right = entries[:, i], entries[:, j]
+            left, right = starts[:, None] + i, starts[:, None] + j
             a, b = jac.indices[left].astype(np.int64), jac.indices[right].astype(np.int64)
             keys.append((np.minimum(a, b) * n + np.maximum(a, b)).ravel())
-            groups.append((left, right))
+            groups.append((starts, i[None, :], j[None, :], left.size))
             repeated = (a == b) & (left != right)
-            for part, value in zip(twice, (left, right, a * (n + 1))):
+            for part, value in zip(twice, (left, right - left, a * (n + 1))):
                 part.append(value[repeated])
         if sum(len(key) for key in twice[2]):
             keys.append(np.concatenate(twice[2]))
-            groups.append((np.concatenate(twice[0])[:, None], np.concatenate(twice[1])[:, None]))
+            pairs = np.concatenate(twice[0])
+            groups.append((pairs, np.zeros((1, 1), dtype=np.int64), np.concatenate(twice[1])[:, None], pairs.size))
         unique, slots = np.unique(np.concatenate(keys), return_inverse=True)
-        offsets = np.cumsum([n] + [left.size for left, _ in groups])
+        slots = slots.astype(np.int32 if len(unique) <= np.iinfo(np.int32).max else np.int64)
+        offsets = np.cumsum([n] + [size for *_, size in groups])
         self._groups = [
-            (left, right, slots[offsets[g] - left.size : offsets[g]].reshape(left.shape))
-            for g, (left, right) in enumerate(groups, start=1)
+            (starts, first, second, slots[offsets[g] - size : offsets[g]].reshape(len(starts), -1))
+            for g, (starts, first, second, size) in enumerate(groups, start=1)
         ]
         self._rows, self._cols = unique // n, unique % n
         self._diagonal = np.flatnonzero(self._rows == self._cols)
@@ -448,20 +454,26 @@ def factorisation_name(factorisation=None):
     return name
 
 
-def _sum_products(data, left, right, slot, values):
-    """``values[slot[r, p]] += data[left[r, p]] * data[right[r, p]]`` for every row ``r`` and product ``p``, in order.
+def _sum_products(data, starts, first, second, slot, values):
+    """``values[slot[r, p]] += data[starts[r] + first[r, p]] * data[starts[r] + second[r, p]]`` for every row ``r``
+    and product ``p``, in order.
 
     The products ``J_ri J_rj`` of one group of rows summed into the normal
     matrix (:meth:`NormalEquations.assemble`), compiled: one pass without
     the temporary arrays of a vectorised ``np.bincount`` (which summed the
-    same terms in the same order, so the bits are the same).  A zero product
-    is not added (the rows of inactive barrier terms are stored zeros): the
-    sums start at +0, and adding a zero changes no sum but -0, which they
-    never are.
+    same terms in the same order, so the bits are the same).  The offsets
+    ``first`` and ``second`` of a row's two factors from its first entry
+    broadcast over the rows: one row of them for the whole group (its rows
+    have the same number of entries), or one per row (the products of a
+    column's two entries).  A zero product is not added (the rows of
+    inactive barrier terms are stored zeros): the sums start at +0, and
+    adding a zero changes no sum but -0, which they never are.
     """
-    for r in range(left.shape[0]):
-        for p in range(left.shape[1]):
-            product = data[left[r, p]] * data[right[r, p]]
+    for r in range(slot.shape[0]):
+        base = starts[r]
+        a, b = min(r, first.shape[0] - 1), min(r, second.shape[0] - 1)
+        for p in range(slot.shape[1]):
+            product = data[base + first[a, p]] * data[base + second[b, p]]
             if product != 0.0:
                 values[slot[r, p]] += product
 
