@@ -59,6 +59,7 @@ import scipy.sparse.linalg
 from ..._jit import compiled
 from ...errors import EquimeshError
 from ...tolerance import LM_BACKTRACKS, LM_DIAGONAL_FLOOR, LM_INITIAL_DAMPING
+from .ordering import DISSECT_FROM, nested_dissection
 
 try:
     from cvxopt import cholmod as _cvxopt_cholmod
@@ -289,21 +290,28 @@ class NormalEquations:
 
 
 class _SuperLU:
-    """SuperLU in symmetric mode on the full symmetric matrix, in a minimum-degree order computed once.
+    """SuperLU in symmetric mode on the full symmetric matrix, in a fill-reducing order computed once.
 
-    SuperLU's ``MMD_AT_PLUS_A`` order of the pattern is taken at
-    construction and the permuted matrix factorised in its natural order at
-    every call (measured on the reference dome at 101,654 members: the
-    ordering was about a third of each factorisation's time).
+    The order is taken at construction and the permuted matrix factorised in
+    its natural order at every call (measured on the reference dome at
+    101,654 members: SuperLU's ordering was about a third of each
+    factorisation's time).  ``ordering``: ``"nested dissection"``
+    (:func:`~equimesh.surface.optimize.ordering.nested_dissection`), or one
+    of SuperLU's own (its ``permc_spec``); by default the first from
+    :data:`~equimesh.surface.optimize.ordering.DISSECT_FROM` variables on,
+    else ``MMD_AT_PLUS_A`` (docs/decisions.md, "SuperLU in a nested-dissection order").
     """
 
-    def __init__(self, rows, cols, n):
+    def __init__(self, rows, cols, n, ordering=None):
+        if ordering is None:
+            ordering = "nested dissection" if n >= DISSECT_FROM else "MMD_AT_PLUS_A"
         off = rows != cols
         entry_rows, entry_cols = np.concatenate([rows, cols[off]]), np.concatenate([cols, rows[off]])
         pattern = scipy.sparse.csc_matrix((np.ones(len(entry_rows)), (entry_rows, entry_cols)), shape=(n, n))
-        self._order = np.argsort(
-            _factorise(pattern + n * scipy.sparse.identity(n, format="csc"), "MMD_AT_PLUS_A").perm_c
-        )
+        if ordering == "nested dissection":
+            self._order = nested_dissection(pattern)
+        else:
+            self._order = np.argsort(_factorise(pattern + n * scipy.sparse.identity(n, format="csc"), ordering).perm_c)
         position = np.empty(n, dtype=np.int64)
         position[self._order] = np.arange(n)
         # Which upper entry each entry of the permuted full CSC matrix takes its value from.
