@@ -218,7 +218,7 @@ def optimize_uv(
             "or optimize='paper' (which does not bound the angles)"
         )
     return UVOptimization(
-        problem.uv_of(x),
+        np.array(problem.uv_of(x)),  # a copy: the problem keeps the one it shares
         problem.offsets_of(x),
         _cost(stage, x0),
         _cost(stage, x),

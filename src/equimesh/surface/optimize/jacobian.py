@@ -38,15 +38,19 @@ class ElementJacobian:
         column = np.full(dim * n_nodes, -1, dtype=np.int64)
         column[free] = np.arange(int(free.sum()))
         cols = column[(dim * e[:, :, None] + np.arange(dim)).reshape(len(e), e.shape[1] * dim)]
-        self._keep = cols >= 0
-        self._indices = cols[self._keep]
-        self._indptr = np.concatenate([[0], np.cumsum(self._keep.sum(axis=1))])
+        keep = cols >= 0
+        # The index arrays in the type scipy would convert them to at every call (after a scan of them to decide).
+        index = np.int32 if max(cols.size, len(column)) <= np.iinfo(np.int32).max else np.int64
+        self._keep = None if keep.all() else np.flatnonzero(keep.ravel())
+        self._indices = cols[keep].astype(index)
+        self._indptr = np.concatenate([[0], np.cumsum(keep.sum(axis=1))]).astype(index)
         self.shape = (len(e), int(free.sum()))
 
     def __call__(self, *grads):
         """The Jacobian from ``grads[c] = d r / d x_{corner c}``, each (E, dim), or from one (E, k dim) array of them
         side by side."""
-        data = (np.concatenate(grads, axis=1) if len(grads) > 1 else grads[0])[self._keep]
+        data = (np.concatenate(grads, axis=1) if len(grads) > 1 else np.ascontiguousarray(grads[0])).ravel()
+        data = data if self._keep is None else data[self._keep]
         return scipy.sparse.csr_matrix((data, self._indices, self._indptr), shape=self.shape)
 
 

@@ -147,7 +147,7 @@ class Members:
 
         def jacobian(x):
             length, jac = length_jacobian(x)
-            jac = jac / l
+            jac = scipy.sparse.csr_matrix((jac.data * (1.0 / l), jac.indices, jac.indptr), shape=jac.shape)  # jac / l
             rows = scale_rows(weight, jac)
             return (
                 rows

@@ -16,6 +16,7 @@ import numpy as np
 import scipy.optimize
 import scipy.sparse
 
+from ..._jit import compiled
 from ..charts.chart import domain_of
 from ..regularity import derivatives, evaluate
 
@@ -106,8 +107,30 @@ class UVProblem:
             [self.uv.ravel()[self.variables], *(slide.s for slide in self.slides), np.zeros(len(self.offset_nodes))]
         )
 
+    @cached_property
+    def _last(self):
+        """The quantities computed at the last ``x`` asked for (:meth:`_at`)."""
+        return {}
+
+    def _at(self, x, name, compute):
+        """``compute(x)``, once per ``x``: the residuals, the Jacobian, the guards and the rounds of one iteration
+        ask for the nodes' (u, v), points and tangents at the same ``x``.  Read-only, since shared."""
+        last = self._last
+        if "x" not in last or not np.array_equal(last["x"], x):
+            last.clear()
+            last["x"] = np.array(x)
+        if name not in last:
+            value = compute(x)
+            for array in value if isinstance(value, tuple) else (value,):
+                array.flags.writeable = False
+            last[name] = value
+        return last[name]
+
     def uv_of(self, x):
-        """All nodes' (u, v) with the free ones taken from the variable vector ``x``."""
+        """All nodes' (u, v) with the free ones taken from the variable vector ``x`` (read-only)."""
+        return self._at(x, "uv", self._uv_of)
+
+    def _uv_of(self, x):
         variables = self.variables
         full = self.uv.ravel().copy()
         n = int(variables.sum())
@@ -127,7 +150,10 @@ class UVProblem:
         return offsets
 
     def points_of(self, x):
-        """(N, 3) the nodes' points: ``X^s(u, v)``, plus ``h N(u, v)`` with a surface tolerance."""
+        """(N, 3) the nodes' points: ``X^s(u, v)``, plus ``h N(u, v)`` with a surface tolerance (read-only)."""
+        return self._at(x, "points", self._points_of)
+
+    def _points_of(self, x):
         return offset_points(self.surface, self.uv_of(x), self.offsets_of(x) if len(self.offset_nodes) else None)
 
     def tangents(self, x):
@@ -135,8 +161,11 @@ class UVProblem:
 
         ``N_u = (n_u - N (N . n_u)) / |n|`` for ``n = X^s_u x X^s_v``,
         ``n_u = X^s_uu x X^s_v + X^s_u x X^s_uv``; a chart without
-        ``second_derivatives`` (a triangle mesh's, piecewise linear) has ``N_u = 0``.
+        ``second_derivatives`` (a triangle mesh's, piecewise linear) has ``N_u = 0``.  Read-only.
         """
+        return self._at(x, "tangents", self._tangents)
+
+    def _tangents(self, x):
         uv = self.uv_of(x)
         su, sv = derivatives(self.surface, uv)
         if not len(self.offset_nodes) or not hasattr(self.surface, "second_derivatives"):
@@ -183,23 +212,39 @@ class UVProblem:
             if not offsets:
                 return jacobian
             return scipy.sparse.hstack([jacobian, scipy.sparse.csr_matrix((jacobian.shape[0], offsets))], format="csr")
+        column, along, n = self._chain_maps
+        starts = self._slide_starts
+        directions = np.concatenate(
+            [slide.direction(x[start : start + len(slide.nodes)]) for slide, start in zip(self.slides, starts)]
+        ).ravel()
+        jacobian = jacobian.tocsr()
+        data, indices = _chain_entries(jacobian.data, jacobian.indices, column, along, directions)
+        return scipy.sparse.csr_matrix((data, indices, jacobian.indptr), shape=(jacobian.shape[0], n + offsets))
+
+    @cached_property
+    def _slide_starts(self):
+        """Each slide's first variable (its arc positions follow the free parameters, slide by slide)."""
+        return np.cumsum([int(self.variables.sum())] + [len(slide.nodes) for slide in self.slides])[:-1]
+
+    @cached_property
+    def _chain_maps(self):
+        """For :meth:`chain`, per column of a Jacobian over the :attr:`moving` entries: its variable's column, and
+        the entry of the sliding nodes' flattened directions ``d uv / d s`` that scales it (-1: none); and the number
+        of parameter variables."""
         moving, variables = self.moving, self.variables
         n = int(variables.sum())
-        entry = np.cumsum(moving) - 1  # column of each moving entry in ``jacobian``
-        column, factor = np.empty(int(moving.sum()), dtype=np.int64), np.ones(int(moving.sum()))
+        entry = np.cumsum(moving) - 1  # column of each moving entry in a Jacobian over them
+        column = np.empty(int(moving.sum()), dtype=np.int32 if len(moving) < np.iinfo(np.int32).max else np.int64)
+        along = np.full(int(moving.sum()), -1, dtype=np.int64)
         column[entry[variables]] = np.arange(n)
+        done = 0
         for slide in self.slides:
             k = len(slide.nodes)
-            direction = slide.direction(x[n : n + k])
             for axis in (0, 1):
                 column[entry[2 * slide.nodes + axis]] = np.arange(n, n + k)
-                factor[entry[2 * slide.nodes + axis]] = direction[:, axis]
-            n += k
-        jacobian = jacobian.tocsr()
-        return scipy.sparse.csr_matrix(
-            (jacobian.data * factor[jacobian.indices], column[jacobian.indices], jacobian.indptr),
-            shape=(jacobian.shape[0], n + offsets),
-        )
+                along[entry[2 * slide.nodes + axis]] = 2 * np.arange(done, done + k) + axis
+            n, done = n + k, done + k
+        return column, along, n
 
     def step_limit(self, radius):
         """A trust region per node: ``direction -> step`` with every node's move on the surface at most ``radius``.
@@ -244,6 +289,21 @@ class UVProblem:
             np.concatenate([np.tile(lower, len(self.uv))[variables], *(slide.lower for slide in self.slides), -d]),
             np.concatenate([np.tile(upper, len(self.uv))[variables], *(slide.upper for slide in self.slides), d]),
         )
+
+
+def _chain_entries(data, indices, column, along, directions):
+    """The entries of :meth:`UVProblem.chain`: each column ``c`` of ``indices`` mapped to ``column[c]``, its value
+    multiplied by ``directions[along[c]]`` where ``along[c] >= 0`` and kept as it is elsewhere (the product by 1 of
+    a vectorised version, the same bits), in one compiled pass."""
+    out_data, out_indices = np.empty(len(data)), np.empty(len(indices), dtype=column.dtype)
+    for e in range(len(data)):
+        c = indices[e]
+        out_indices[e] = column[c]
+        out_data[e] = data[e] * directions[along[c]] if along[c] >= 0 else data[e]
+    return out_data, out_indices
+
+
+_chain_entries = compiled(_chain_entries)
 
 
 def offset_points(surface, uv, offsets=None):

@@ -59,6 +59,7 @@ import scipy.sparse.linalg
 from ..._jit import compiled
 from ...errors import EquimeshError
 from ...tolerance import LM_BACKTRACKS, LM_DIAGONAL_FLOOR, LM_INITIAL_DAMPING
+from .ordering import DISSECT_FROM, nested_dissection
 
 try:
     from cvxopt import cholmod as _cvxopt_cholmod
@@ -214,13 +215,15 @@ class NormalEquations:
         ):
             self._analyse(jac)
         values = np.zeros(len(self._rows))
-        for left, right, slot in self._groups:
-            _sum_products(jac.data, left, right, slot, values)
+        data = jac.data
+        for starts, first, second, slot in self._groups:
+            _sum_products(data, starts, first, second, slot, values)
         diagonal = values[self._diagonal]
         self._damping = np.maximum(diagonal, LM_DIAGONAL_FLOOR * max(float(diagonal.max(initial=0.0)), 1.0))
-        values[held[self._rows] | held[self._cols]] = 0.0
-        self._damping[held] = 0.0
-        values[self._diagonal[held]] = 1.0
+        if held.any():
+            values[held[self._rows] | held[self._cols]] = 0.0
+            self._damping[held] = 0.0
+            values[self._diagonal[held]] = 1.0
         self._values = values
 
     def solve(self, lam, rhs):
@@ -243,38 +246,42 @@ class NormalEquations:
         factorisation.
 
         Rows are grouped by their number ``k`` of entries; a group keeps, per
-        row, the positions in ``jac.data`` of the two factors of each of its
-        ``k (k + 1) / 2`` products ``J_rp J_rq`` (positions ``p <= q``), and the
-        slot of the pattern each product is summed into.  The structure is
-        taken as it comes (no sort per iteration: the Jacobians of
+        row, the position in ``jac.data`` of its first entry, the offsets from
+        there of the two factors of each of its ``k (k + 1) / 2`` products
+        ``J_rp J_rq`` (positions ``p <= q``, the same for every row of the
+        group), and the slot of the pattern each product is summed into.  The
+        structure is taken as it comes (no sort per iteration: the Jacobians of
         :class:`~equimesh.surface.optimize.jacobian.ElementJacobian` list a row's
         columns by corner): a row's columns may be in any order, and a column
         may appear twice (entries to be summed): the product of its two
         entries then counts twice, ``(J_rp + J_rq)^2 = J_rp^2 + J_rq^2 + 2 J_rp J_rq``,
-        so it forms one more group.
+        so it forms one more group, of one product per pair (its first
+        factor's position, and the offset of the second per pair).
         """
         n = jac.shape[1]
         counts = np.diff(jac.indptr)
         groups, keys = [], [np.arange(n, dtype=np.int64) * (n + 1)]  # the whole diagonal, even where no row reaches
         twice = ([], [], [])  # the positions and keys of the products of a column's two entries in a row
         for k in np.unique(counts[counts > 0]):
-            entries = jac.indptr[:-1][counts == k][:, None] + np.arange(k)
+            starts = jac.indptr[:-1][counts == k].astype(np.int64)
             i, j = np.triu_indices(k)
-            left, right = entries[:, i], entries[:, j]
+            left, right = starts[:, None] + i, starts[:, None] + j
             a, b = jac.indices[left].astype(np.int64), jac.indices[right].astype(np.int64)
             keys.append((np.minimum(a, b) * n + np.maximum(a, b)).ravel())
-            groups.append((left, right))
+            groups.append((starts, i[None, :], j[None, :], left.size))
             repeated = (a == b) & (left != right)
-            for part, value in zip(twice, (left, right, a * (n + 1))):
+            for part, value in zip(twice, (left, right - left, a * (n + 1))):
                 part.append(value[repeated])
         if sum(len(key) for key in twice[2]):
             keys.append(np.concatenate(twice[2]))
-            groups.append((np.concatenate(twice[0])[:, None], np.concatenate(twice[1])[:, None]))
+            pairs = np.concatenate(twice[0])
+            groups.append((pairs, np.zeros((1, 1), dtype=np.int64), np.concatenate(twice[1])[:, None], pairs.size))
         unique, slots = np.unique(np.concatenate(keys), return_inverse=True)
-        offsets = np.cumsum([n] + [left.size for left, _ in groups])
+        slots = slots.astype(np.int32 if len(unique) <= np.iinfo(np.int32).max else np.int64)
+        offsets = np.cumsum([n] + [size for *_, size in groups])
         self._groups = [
-            (left, right, slots[offsets[g] - left.size : offsets[g]].reshape(left.shape))
-            for g, (left, right) in enumerate(groups, start=1)
+            (starts, first, second, slots[offsets[g] - size : offsets[g]].reshape(len(starts), -1))
+            for g, (starts, first, second, size) in enumerate(groups, start=1)
         ]
         self._rows, self._cols = unique // n, unique % n
         self._diagonal = np.flatnonzero(self._rows == self._cols)
@@ -283,21 +290,28 @@ class NormalEquations:
 
 
 class _SuperLU:
-    """SuperLU in symmetric mode on the full symmetric matrix, in a minimum-degree order computed once.
+    """SuperLU in symmetric mode on the full symmetric matrix, in a fill-reducing order computed once.
 
-    SuperLU's ``MMD_AT_PLUS_A`` order of the pattern is taken at
-    construction and the permuted matrix factorised in its natural order at
-    every call (measured on the reference dome at 101,654 members: the
-    ordering was about a third of each factorisation's time).
+    The order is taken at construction and the permuted matrix factorised in
+    its natural order at every call (measured on the reference dome at
+    101,654 members: SuperLU's ordering was about a third of each
+    factorisation's time).  ``ordering``: ``"nested dissection"``
+    (:func:`~equimesh.surface.optimize.ordering.nested_dissection`), or one
+    of SuperLU's own (its ``permc_spec``); by default the first from
+    :data:`~equimesh.surface.optimize.ordering.DISSECT_FROM` variables on,
+    else ``MMD_AT_PLUS_A`` (docs/decisions.md, "SuperLU in a nested-dissection order").
     """
 
-    def __init__(self, rows, cols, n):
+    def __init__(self, rows, cols, n, ordering=None):
+        if ordering is None:
+            ordering = "nested dissection" if n >= DISSECT_FROM else "MMD_AT_PLUS_A"
         off = rows != cols
         entry_rows, entry_cols = np.concatenate([rows, cols[off]]), np.concatenate([cols, rows[off]])
         pattern = scipy.sparse.csc_matrix((np.ones(len(entry_rows)), (entry_rows, entry_cols)), shape=(n, n))
-        self._order = np.argsort(
-            _factorise(pattern + n * scipy.sparse.identity(n, format="csc"), "MMD_AT_PLUS_A").perm_c
-        )
+        if ordering == "nested dissection":
+            self._order = nested_dissection(pattern)
+        else:
+            self._order = np.argsort(_factorise(pattern + n * scipy.sparse.identity(n, format="csc"), ordering).perm_c)
         position = np.empty(n, dtype=np.int64)
         position[self._order] = np.arange(n)
         # Which upper entry each entry of the permuted full CSC matrix takes its value from.
@@ -448,20 +462,26 @@ def factorisation_name(factorisation=None):
     return name
 
 
-def _sum_products(data, left, right, slot, values):
-    """``values[slot[r, p]] += data[left[r, p]] * data[right[r, p]]`` for every row ``r`` and product ``p``, in order.
+def _sum_products(data, starts, first, second, slot, values):
+    """``values[slot[r, p]] += data[starts[r] + first[r, p]] * data[starts[r] + second[r, p]]`` for every row ``r``
+    and product ``p``, in order.
 
     The products ``J_ri J_rj`` of one group of rows summed into the normal
     matrix (:meth:`NormalEquations.assemble`), compiled: one pass without
     the temporary arrays of a vectorised ``np.bincount`` (which summed the
-    same terms in the same order, so the bits are the same).  A zero product
-    is not added (the rows of inactive barrier terms are stored zeros): the
-    sums start at +0, and adding a zero changes no sum but -0, which they
-    never are.
+    same terms in the same order, so the bits are the same).  The offsets
+    ``first`` and ``second`` of a row's two factors from its first entry
+    broadcast over the rows: one row of them for the whole group (its rows
+    have the same number of entries), or one per row (the products of a
+    column's two entries).  A zero product is not added (the rows of
+    inactive barrier terms are stored zeros): the sums start at +0, and
+    adding a zero changes no sum but -0, which they never are.
     """
-    for r in range(left.shape[0]):
-        for p in range(left.shape[1]):
-            product = data[left[r, p]] * data[right[r, p]]
+    for r in range(slot.shape[0]):
+        base = starts[r]
+        a, b = min(r, first.shape[0] - 1), min(r, second.shape[0] - 1)
+        for p in range(slot.shape[1]):
+            product = data[base + first[a, p]] * data[base + second[b, p]]
             if product != 0.0:
                 values[slot[r, p]] += product
 
