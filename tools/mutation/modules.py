@@ -94,6 +94,7 @@ OPTIMIZE_MODULES = {
     "src/equimesh/surface/optimize/slide.py": ["tests/surface/optimize/test_slide.py"],
     "src/equimesh/surface/optimize/jacobian.py": ["tests/surface/optimize/test_jacobian.py"],
     "src/equimesh/surface/optimize/solver.py": ["tests/surface/optimize/test_solver.py"],
+    "src/equimesh/surface/optimize/ordering.py": ["tests/surface/optimize/test_ordering.py"],
     "src/equimesh/surface/optimize/joints.py": ["tests/surface/optimize/test_joints.py"],
     "src/equimesh/surface/optimize/members.py": ["tests/surface/optimize/test_members.py"],
     "src/equimesh/surface/optimize/problem.py": [
@@ -130,7 +131,7 @@ OUTPUT_MODULES = {
 MODULES.update(OUTPUT_MODULES)
 
 #: The optimisation's modules with compiled functions.
-_COMPILED_OPTIMIZE = ["jacobian", "solver", "joints", "members"]
+_COMPILED_OPTIMIZE = ["jacobian", "solver", "joints", "members", "problem"]
 
 #: The output side of the io layer (and Rhino files in, provenance) -> their direct tests, on meshes of a few nodes
 #: (``tent_mesh``; the report's ``square_mesh``), each writing in the test itself (docs/development.md).
