@@ -47,7 +47,7 @@ from .flatten import flatten
 from .mesh_outline import boundary_uv, check_feature_angle, check_open, mesh_outline, restate_mesh_error
 from .messages import restate_polygon_error
 from .optimize import OBJECTIVES, optimize_uv
-from .optimize.joints import joint_bounds
+from .optimize.joints import joint_bounds, joint_spacing
 from .optimize.problem import offset_points
 from .outline import resample_outline
 from .output_checks import (
@@ -100,7 +100,7 @@ class Stages:
     plane : PlanarMesh, the triangulation on the plane with G1 labels (step 3).
     remapped_uv, remapped_points : (N, 2) and (N, 3), step 4.
     optimization : UVOptimization or None (final step).
-    seconds : dict, wall time of each stage.
+    seconds : dict, wall time of each stage (summed when it ran twice).
     """
 
     grid: object
@@ -206,7 +206,9 @@ def mesh_surface(
         many as possible at one length, boundary nodes sliding along their
         side, loop or hole edge; "classes" (beyond) seeks the fewest length
         classes at ``tolerance`` with every angle at least 30 degrees
-        (:mod:`~equimesh.surface.optimize.joints`); "paper" is the paper's.
+        (:mod:`~equimesh.surface.optimize.joints`; steps 3 to 4 run again at
+        a larger spacing when the remapped mesh lacks the area that needs,
+        :func:`~equimesh.surface.optimize.joints.joint_spacing`); "paper" is the paper's.
     placement : "best", "default" or "classes"
         Lattice placement of Problem 2 (:data:`PLACEMENTS`).
     boundary_spacing : float
@@ -274,33 +276,15 @@ def mesh_surface(
     clock = _Clock(seconds, progress)
     angle = check_feature_angle(feature_angle, meshed=isinstance(surface, TriangulatedSurface))
     front = _chart_front if angle is None else partial(_mesh_front, feature_angle=angle)
-    steps = front(surface, grid, l, limit, boundary_spacing, clock)
-
-    try:
-        # The size guard (surface/size.py: before and after the flattening) bounds the planar stage too.
-        holes, vertices = steps.holes, steps.outline.vertices
-        chosen = None if placement == "default" else best_lattice_placement(vertices, l, holes=holes, max_nodes=None)
-        if placement == "classes":
-            options = dict(holes=holes, boundary_spacing=boundary_spacing, tolerance=tolerance, engine=engine)
-            chosen = fewest_classes_placement(vertices, l, start=chosen, **options)
-        angle, offset = (chosen.angle, chosen.offset) if chosen else (0.0, (0.0, 0.0))
-        plane = uniform_triangulation(
-            vertices,
-            l,
-            holes=holes,
-            angle=angle,
-            offset=offset,
-            boundary_spacing=boundary_spacing,
-            engine=engine,
-            max_nodes=None,
-        )
-    except InvalidPolygonError as exc:
-        raise steps.restate(exc) from None
-    clock("planar triangulation (Problem 2)")
-
-    mapped_uv, mapped_points = steps.place(plane)
-    check_remapped(mapped_uv, plane)
-    clock("remapping (eqs. 2-3)")
+    steps, chosen, plane, mapped_uv, mapped_points = _remapped_plane(
+        front, surface, grid, l, limit, boundary_spacing, placement, tolerance, engine, clock
+    )
+    if optimize in OBJECTIVES and OBJECTIVES[optimize].sound_joints:
+        spacing = joint_spacing(mapped_points, plane.triangles, l)  # the plane again, if the start lacks area
+        if spacing > 1.0:
+            steps, chosen, plane, mapped_uv, mapped_points = _remapped_plane(
+                front, surface, grid, l * spacing, limit, boundary_spacing, placement, tolerance, engine, clock
+            )
 
     result = None
     chart = steps.chart
@@ -379,6 +363,39 @@ class _Front:
     place: Callable
     restate: Callable
     holes: list | None
+
+
+def _remapped_plane(front, surface, grid, l, limit, boundary_spacing, placement, tolerance, engine, clock):
+    """Steps 1 to 4 at the spacing ``l``: the front (``front``), Problem 2's plane mesh of its outline (in the lattice
+    placement chosen) and the remap; ``(steps, placement, plane, mapped_uv, mapped_points)``."""
+    steps = front(surface, grid, l, limit, boundary_spacing, clock)
+
+    try:
+        # The size guard (surface/size.py: before and after the flattening) bounds the planar stage too.
+        holes, vertices = steps.holes, steps.outline.vertices
+        chosen = None if placement == "default" else best_lattice_placement(vertices, l, holes=holes, max_nodes=None)
+        if placement == "classes":
+            options = dict(holes=holes, boundary_spacing=boundary_spacing, tolerance=tolerance, engine=engine)
+            chosen = fewest_classes_placement(vertices, l, start=chosen, **options)
+        angle, offset = (chosen.angle, chosen.offset) if chosen else (0.0, (0.0, 0.0))
+        plane = uniform_triangulation(
+            vertices,
+            l,
+            holes=holes,
+            angle=angle,
+            offset=offset,
+            boundary_spacing=boundary_spacing,
+            engine=engine,
+            max_nodes=None,
+        )
+    except InvalidPolygonError as exc:
+        raise steps.restate(exc) from None
+    clock("planar triangulation (Problem 2)")
+
+    mapped_uv, mapped_points = steps.place(plane)
+    check_remapped(mapped_uv, plane)
+    clock("remapping (eqs. 2-3)")
+    return steps, chosen, plane, mapped_uv, mapped_points
 
 
 def _chart_front(surface, grid, l, limit, spacing, clock):
@@ -461,7 +478,7 @@ class _Clock:
 
     def __call__(self, stage):
         now = time.perf_counter()
-        self.seconds[stage] = now - self.last
+        self.seconds[stage] = self.seconds.get(stage, 0.0) + now - self.last  # a stage run twice: the sum
         self.last = now
         if self.progress is not None:
             self.progress(stage, self.seconds[stage])

@@ -21,7 +21,7 @@ which the solver's acceptance keeps once an iterate meets it.
 import numpy as np
 
 from ..._jit import compiled
-from ...tolerance import JOINT_ANGLE, JOINT_MARGIN
+from ...tolerance import JOINT_ANGLE, JOINT_DEFICIT, JOINT_MARGIN
 from ..regularity import evaluate
 from .jacobian import ElementJacobian
 
@@ -92,6 +92,29 @@ def joint_bounds(surface, uv, triangles):
     angles = surface_angles(evaluate(surface, uv), triangles)
     total = np.bincount(triangles.ravel(), angles.ravel(), len(uv))
     return np.minimum(np.radians(JOINT_ANGLE), total - JOINT_MARGIN)[triangles]
+
+
+def joint_spacing(points, triangles, l):
+    """Problem 2's spacing over ``l`` that gives sound joints room: ``1 + D`` if ``D`` exceeds
+    :data:`~equimesh.tolerance.JOINT_DEFICIT`, else 1 (the paper's).
+
+    ``D`` is the area the ``triangles`` at ``points`` (the remapped mesh)
+    lack, summed, over their count times ``sqrt(3) / 4 l^2``: a triangle
+    whose members are at least l and whose angles are at most
+    ``180 - 2 JOINT_ANGLE = 120`` degrees has at least that area
+    (``a b sin C / 2`` with ``C``, its largest angle, in [60, 120]), so under
+    sound joints no thin triangle can absorb what a shrunk part of the
+    remapped mesh lacks; the plane meshed at ``(1 + D) l`` gives each
+    triangle about ``1 + 2 D`` times the area, room for the deficit twice
+    over (``sqrt(1 + D) l``, once over, left the reference dome refused at
+    l = 1.24 and 0.88; docs/decisions.md, "Sound joints").
+    """
+    p = np.asarray(points, dtype=float)
+    t = np.asarray(triangles, dtype=np.int64).reshape(-1, 3)
+    area = 0.5 * np.linalg.norm(np.cross(p[t[:, 1]] - p[t[:, 0]], p[t[:, 2]] - p[t[:, 0]]), axis=1)
+    need = np.sqrt(3.0) / 4.0 * float(l) ** 2
+    deficit = float(np.sum(np.maximum(0.0, need - area)) / (max(len(t), 1) * need))
+    return 1.0 + deficit if deficit > JOINT_DEFICIT else 1.0
 
 
 class Joints:
