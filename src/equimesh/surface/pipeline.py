@@ -373,21 +373,12 @@ def _remapped_plane(front, surface, grid, l, limit, boundary_spacing, placement,
     try:
         # The size guard (surface/size.py: before and after the flattening) bounds the planar stage too.
         holes, vertices = steps.holes, steps.outline.vertices
+        options = dict(holes=holes, boundary_spacing=boundary_spacing, engine=engine)
         chosen = None if placement == "default" else best_lattice_placement(vertices, l, holes=holes, max_nodes=None)
         if placement == "classes":
-            options = dict(holes=holes, boundary_spacing=boundary_spacing, tolerance=tolerance, engine=engine)
-            chosen = fewest_classes_placement(vertices, l, start=chosen, **options)
+            chosen = fewest_classes_placement(vertices, l, start=chosen, tolerance=tolerance, **options)
         angle, offset = (chosen.angle, chosen.offset) if chosen else (0.0, (0.0, 0.0))
-        plane = uniform_triangulation(
-            vertices,
-            l,
-            holes=holes,
-            angle=angle,
-            offset=offset,
-            boundary_spacing=boundary_spacing,
-            engine=engine,
-            max_nodes=None,
-        )
+        plane = uniform_triangulation(vertices, l, angle=angle, offset=offset, max_nodes=None, **options)
     except InvalidPolygonError as exc:
         raise steps.restate(exc) from None
     clock("planar triangulation (Problem 2)")
