@@ -406,13 +406,14 @@ class Objective:
 #: ``EQUIMESH_FACTORISATION=F python experiments/optimisation_timing.py --length L --objective bounded`` on the
 #: reference dome (docs/performance.md, "The final optimisation"; CPU seconds, the machine shared): "bounded" took
 #: 46 s (CHOLMOD) and 40 s (PARDISO) at 34,031 nodes, 165 s and 207 s at 67,371 nodes, so 50,000 nodes for
-#: both; SuperLU 201 s at 34,031 and 125 s at 23,916 nodes, so 24,000.  "paper" took 59.2 s with SuperLU, the
-#: slowest, at 34,031 nodes, so 34,000 with each.
+#: both; SuperLU, in its nested-dissection order (:mod:`~equimesh.surface.optimize.ordering`), 128.5 s at 34,031
+#: nodes, so 34,000.  "paper" took 59.2 s with SuperLU, the slowest, at 34,031 nodes, so 34,000 with each.
 _PAPER_MAX_NODES = {"pardiso": 34_000, "cholmod": 34_000, "superlu": 34_000}
-_BOUNDED_MAX_NODES = {"pardiso": 50_000, "cholmod": 50_000, "superlu": 24_000}
-#: "classes" is not measured at scale: it runs bounded's rounds and its own with the angle guards, which found no
-#: mesh in [l, 2l] on the reference dome at 3,800 nodes (docs/decisions.md, "Sound joints"), so it keeps the limit
-#: bounded had before the fast factorisations, 6,000 nodes, with each.
+_BOUNDED_MAX_NODES = {"pardiso": 50_000, "cholmod": 50_000, "superlu": 34_000}
+#: "classes" (``equimesh mesh experiments/surfaces/reference_dome.json --optimize classes --max-nodes none -l L``,
+#: PARDISO, CPU seconds, the machine shared): meshed at about 5,900 nodes (l = 1.24) in 26 s and 11,700 (l = 0.88) in
+#: 45 s, refused by its work bound at about 23,000 (l = 0.62) after 442 s; a run refused by the work bound costs
+#: about 2,600 Jacobians whatever it meshes, so 6,000 nodes, with each: about two minutes at the bound.
 _CLASSES_MAX_NODES = {"pardiso": 6_000, "cholmod": 6_000, "superlu": 6_000}
 #: The work bounds in Jacobian evaluations (docs/decisions.md, "A work bound for the optimisation"), measured by
 #: ``python experiments/optimisation_work.py`` (results/optimisation_work.md: the reference dome at l = 0.5 to 2, the
