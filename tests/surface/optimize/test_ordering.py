@@ -72,3 +72,66 @@ def test_superlu_solves_alike_in_either_order(k, seed):
         for ordering in ("nested dissection", "MMD_AT_PLUS_A")
     ]
     assert np.linalg.norm(solutions[0] - solutions[1]) <= 1e-12 * np.linalg.norm(solutions[1])
+
+
+def _graph(n, pairs, values=None):
+    """The symmetric adjacency matrix of ``n`` nodes and the undirected edges ``pairs``, of ``values`` (ones)."""
+    pairs = np.asarray(pairs, dtype=np.int64).reshape(-1, 2)
+    values = np.ones(len(pairs)) if values is None else np.asarray(values, dtype=float)
+    rows, cols = np.concatenate([pairs[:, 0], pairs[:, 1]]), np.concatenate([pairs[:, 1], pairs[:, 0]])
+    return scipy.sparse.csr_matrix((np.concatenate([values, values]), (rows, cols)), shape=(n, n))
+
+
+def _path(nodes):
+    """The edges of the path through ``nodes`` in their order."""
+    return list(zip(nodes[:-1], nodes[1:], strict=True))
+
+
+def test_a_path_is_cut_at_its_middle_level_from_its_far_end():
+    """The path 0-1-...-5: from node 0 the far node is 5, whose levels are 5 - i; the sorted levels' entry 6 // 2 = 3
+    is level 3, node 2, the separator, last; below it {3, 4, 5}, cut at node 4 (levels 2, 1, 0 from node 5, entry 1),
+    then above it {0, 1}, cut at node 0 (levels 1, 0 from node 1, entry 1)."""
+    assert nested_dissection(_graph(6, _path(range(6))), leaf=1).tolist() == [5, 3, 4, 1, 0, 2]
+
+
+def test_the_far_node_is_the_last_reached_from_node_0():
+    """The path 2-0-3-4-5-1: from node 0 the last node reached is 1 (from node 1 it would be 2); the levels from node
+    1 are 4, 0, 5, 3, 2, 1, the separator is node 3 (level 3), below it {1, 4, 5} and above it {0, 2}."""
+    order = nested_dissection(_graph(6, _path([2, 0, 3, 4, 5, 1])), leaf=3)
+    assert order.tolist() == [1, 4, 5, 0, 2, 3]
+
+
+def test_a_part_of_leaf_nodes_keeps_its_order():
+    """The path 0-1-2-3 stays whole with leaf = 4; with leaf = 3 it is cut at node 1 (levels 3, 2, 1, 0 from node 3,
+    entry 2)."""
+    graph = _graph(4, _path(range(4)))
+    assert nested_dissection(graph, leaf=4).tolist() == [0, 1, 2, 3]
+    assert nested_dissection(graph, leaf=3).tolist() == [2, 3, 0, 1]
+
+
+def test_components_are_ordered_one_after_the_other_each_dissected():
+    """The paths 0-2-4 and 1-3-5: the component of node 0 first, each cut at its middle node (placed last)."""
+    order = nested_dissection(_graph(6, _path([0, 2, 4]) + _path([1, 3, 5])), leaf=1)
+    assert order.tolist() == [4, 0, 2, 5, 1, 3]
+
+
+def test_the_separator_is_not_dissected():
+    """Node 0 joined to the path 1-2-3, joined to node 4: from node 4 (the far node from 0) the level of 5 // 2 = 2
+    sorted is 1, the path, which stays whole and last, though longer than the leaf."""
+    graph = _graph(5, [(0, 1), (0, 2), (0, 3), (1, 4), (2, 4), (3, 4)] + _path([1, 2, 3]))
+    assert nested_dissection(graph, leaf=1).tolist() == [4, 0, 1, 2, 3]
+
+
+@settings(deadline=None)
+@given(
+    n=st.integers(1, 60),
+    edges=st.lists(st.tuples(st.integers(0, 59), st.integers(0, 59), st.floats(0.01, 100.0)), max_size=200),
+    leaf=st.integers(1, 8),
+)
+def test_only_the_pattern_counts(n, edges, leaf):
+    """Levels count edges: any positive values, and a diagonal, give the order of the pattern's ones."""
+    pairs = [(a % n, b % n) for a, b, _ in edges]
+    weighted = _graph(n, pairs, [value for *_, value in edges]) + scipy.sparse.identity(n)
+    pattern = _graph(n, [(a, b) for a, b in pairs if a != b])
+    pattern.data[:] = 1.0
+    assert np.array_equal(nested_dissection(weighted, leaf), nested_dissection(pattern, leaf))

@@ -3,16 +3,20 @@
 import os
 import subprocess
 import sys
+import types
+from pathlib import Path
 
 import numpy as np
 import pytest
 import scipy.optimize
 import scipy.sparse
+import scipy.sparse.linalg
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from equimesh.errors import EquimeshError
 from equimesh.surface.optimize import solver as _solver
+from equimesh.surface.optimize.ordering import DISSECT_FROM, nested_dissection
 from equimesh.surface.optimize.solver import FACTORISATIONS, INSTALLED, NormalEquations, least_squares
 
 #: The optional extra that installs each factorisation's library.
@@ -517,3 +521,72 @@ def test_a_step_that_does_not_lower_the_cost_is_not_taken():
         xtol=1e-3,
     )
     assert solution.x.tolist() == [0.5] and solution.message == "no further reduction: step below xtol"
+
+
+def test_superlu_keeps_the_natural_order_and_the_diagonal_pivots():
+    """A positive definite matrix whose column 0 has an entry below the diagonal larger than it (partial pivoting
+    would swap rows 0 and 3) and whose order SuperLU's own orders change: both permutations stay the identity."""
+    dense = 10.0 * np.eye(6)
+    dense[0, 0] = 1.0
+    for i, j, value in ((0, 3, 2.0), (1, 4, 1.0), (2, 5, 1.0), (3, 5, 1.0), (4, 5, 1.0)):
+        dense[i, j] = dense[j, i] = value
+    assert np.all(np.linalg.eigvalsh(dense) > 0)
+    lu = _solver._factorise(scipy.sparse.csc_matrix(dense), "NATURAL")
+    assert np.array_equal(lu.perm_r, np.arange(6)) and np.array_equal(lu.perm_c, np.arange(6))
+
+
+def _path_pattern(n):
+    """The upper-triangular pattern (diagonal included) of a tridiagonal matrix of ``n`` variables."""
+    rows = np.concatenate([np.arange(n), np.arange(n - 1)])
+    cols = np.concatenate([np.arange(n), np.arange(1, n)])
+    key = np.lexsort((cols, rows))
+    return rows[key], cols[key]
+
+
+def test_superlu_orders_by_dissection_from_dissect_from_variables_on():
+    """From DISSECT_FROM variables on the order is the nested dissection of the pattern; one variable fewer, SuperLU's
+    MMD_AT_PLUS_A in symmetric mode (its order without it differs on this pattern); an order asked for is taken
+    whatever the size."""
+    for n in (DISSECT_FROM - 1, DISSECT_FROM):
+        rows, cols = _path_pattern(n)
+        full = scipy.sparse.csc_matrix((np.ones(2 * n - 1), (rows, cols)), shape=(n, n))
+        full = full + full.T
+        dissected = nested_dissection(full)
+        options = {"SymmetricMode": True}
+        diagonal = full + n * scipy.sparse.identity(n, format="csc")
+        lu = scipy.sparse.linalg.splu(diagonal, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0, options=options)
+        minimum_degree = np.argsort(lu.perm_c)
+        assert not np.array_equal(dissected, minimum_degree)
+        expected = dissected if n >= DISSECT_FROM else minimum_degree
+        assert np.array_equal(FACTORISATIONS["superlu"](rows, cols, n)._order, expected)
+        assert np.array_equal(FACTORISATIONS["superlu"](rows, cols, n, ordering="MMD_AT_PLUS_A")._order, minimum_degree)
+        assert np.array_equal(FACTORISATIONS["superlu"](rows, cols, n, ordering="nested dissection")._order, dissected)
+
+
+def test_the_openblas_bundled_beside_a_package_is_kept_to_one_thread(tmp_path, monkeypatch):
+    """Each OpenBLAS in ``<package>.libs``, ``<package>/.libs`` and ``<package>/.dylibs`` is loaded and its setter,
+    under either name it has, called with 1; other libraries and other folders are left alone."""
+    files = {
+        "pkg.libs/libopenblas64_p-r0.so": "openblas_set_num_threads",
+        "pkg/.libs/libscipy_openblas64_.so": "scipy_openblas_set_num_threads64_",
+        "pkg/.dylibs/libopenblas.0.dylib": "openblas_set_num_threads",
+        "pkg/.libs/libgfortran.so": None,
+        "pkg/lib/libopenblas.so": None,
+    }
+    for name in files:
+        (tmp_path / name).parent.mkdir(parents=True, exist_ok=True)
+        (tmp_path / name).touch()
+    (tmp_path / "pkg/__init__.py").touch()
+    calls = []
+
+    def library(path):
+        setter = files[str(Path(path).relative_to(tmp_path.resolve()))]
+        return types.SimpleNamespace(**{setter: lambda threads: calls.append((Path(path).name, setter, threads))})
+
+    monkeypatch.setattr(_solver.ctypes, "CDLL", library)
+    _solver._one_blas_thread(types.SimpleNamespace(__file__=str(tmp_path / "pkg/__init__.py")))
+    assert calls == [
+        ("libopenblas64_p-r0.so", "openblas_set_num_threads", 1),
+        ("libscipy_openblas64_.so", "scipy_openblas_set_num_threads64_", 1),
+        ("libopenblas.0.dylib", "openblas_set_num_threads", 1),
+    ]
