@@ -229,6 +229,9 @@ def main(argv=None):
     except MemoryError:
         return _fail(EXIT_USAGE, "error: out of memory; use a larger --length, a smaller --grid or a lower --max-nodes")
     except KeyboardInterrupt:
+        # An interrupt can leave a library's object half-built (llvmlite's, while numba compiles a kernel), whose
+        # finaliser then raises as the interpreter ends: after the one line, such noise is not printed.
+        sys.unraisablehook = _quiet
         return _fail(EXIT_INTERRUPTED, "interrupted")
     except Exception as exc:  # InternalError, or any other bug: one line, not a traceback
         if show_traceback:
@@ -239,6 +242,10 @@ def main(argv=None):
             f"internal error: {type(exc).__name__}: {exc} ({'' if asks else 'please report this; '}"
             "--traceback shows the details)",
         )
+
+
+def _quiet(unraisable):
+    """An unraisable-exception hook that prints nothing (:data:`sys.unraisablehook`)."""
 
 
 def _fail(code, message):

@@ -11,6 +11,7 @@ import shutil
 import signal
 import subprocess
 import sys
+import types
 import warnings
 from pathlib import Path
 
@@ -410,6 +411,24 @@ def test_every_failure_is_one_line_with_its_exit_code(exc, code, message, tmp_pa
     assert got == code
     assert captured.err.count("\n") == 1 and captured.err.startswith(message), captured.err
     assert list(tmp_path.iterdir()) == []
+
+
+def test_an_interrupt_silences_the_finalisers_it_broke(tmp_path, capsys, monkeypatch):
+    """After Ctrl-C, an exception a half-built object's finaliser raises (llvmlite's, when numba was compiling) is
+    not printed: the one line stays the only one."""
+    before = sys.unraisablehook
+    monkeypatch.setattr(sys, "unraisablehook", before)  # restored after the test
+    monkeypatch.setattr(pipeline, "mesh_surface", _raising(KeyboardInterrupt()))
+    code, captured = run(["mesh", SADDLE, "--length", 5, "-o", tmp_path / "m.obj", "-q"], capsys)
+    assert code == 130 and captured.err == "equimesh: interrupted\n"
+    assert sys.unraisablehook is not before
+    error = AttributeError("'ValueRef' object has no attribute '_as_parameter_'")
+    sys.unraisablehook(
+        types.SimpleNamespace(
+            exc_type=AttributeError, exc_value=error, exc_traceback=None, err_msg="Exception ignored in", object=None
+        )
+    )
+    assert capsys.readouterr().err == ""
 
 
 def test_an_internal_error_asks_for_a_report_once(tmp_path, capsys, monkeypatch):
