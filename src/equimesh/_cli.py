@@ -25,6 +25,7 @@ import contextlib
 import importlib.util
 import os
 import re
+import signal
 import sys
 import warnings
 from pathlib import Path
@@ -244,6 +245,48 @@ def main(argv=None):
         )
 
 
+class _Interrupt:
+    """Ctrl-C kept until the run sees it.
+
+    Python raises ``KeyboardInterrupt`` wherever the program is; one raised
+    inside a finaliser (llvmlite's, while numba compiles a kernel) goes to
+    :data:`sys.unraisablehook` and is dropped, and the run would go on to
+    write its outputs.  Inside this context a SIGINT is also recorded, such
+    unraisable interrupts are not printed, and :meth:`check` (after each
+    stage and before the outputs are written) raises the one recorded.
+    """
+
+    def __init__(self):
+        self.seen = False
+
+    def _handler(self, signum, frame):
+        self.seen = True
+        raise KeyboardInterrupt
+
+    def _unraisable(self, unraisable):
+        if not issubclass(unraisable.exc_type, KeyboardInterrupt):
+            self._hook(unraisable)
+
+    def __enter__(self):
+        self._hook, sys.unraisablehook = sys.unraisablehook, self._unraisable
+        try:
+            self._signal = signal.signal(signal.SIGINT, self._handler)
+        except ValueError:  # not the main thread: signals go to the main thread's handler
+            self._signal = None
+        return self
+
+    def __exit__(self, *exc):
+        if self._signal is not None:
+            signal.signal(signal.SIGINT, self._signal)
+        if sys.unraisablehook == self._unraisable:
+            sys.unraisablehook = self._hook
+
+    def check(self):
+        """Raise the recorded interrupt, if any."""
+        if self.seen:
+            raise KeyboardInterrupt
+
+
 def _quiet(unraisable):
     """An unraisable-exception hook that prints nothing (:data:`sys.unraisablehook`)."""
 
@@ -355,11 +398,12 @@ def _run_mesh(args):
         print(f"equimesh: warning: {warning.message}", file=sys.stderr)
 
     def progress(stage, seconds):
+        interrupt.check()
         if not args.quiet:
             print(f"  {stage}: {seconds:.2f} s", file=sys.stderr)
 
     given = {name: getattr(args, name) for name in ("max_nodes", "feature_angle") if name in args}
-    with _library_quiet():
+    with _library_quiet(), _Interrupt() as interrupt:
         mesh = mesh_surface(
             surface,
             args.length,
@@ -373,6 +417,7 @@ def _run_mesh(args):
             surface_tolerance=args.surface_tolerance,
             **given,
         )
+        interrupt.check()
     write(mesh, args.tolerance)
     if not args.quiet:
         n_g1 = int(mesh.g1_mask.sum())

@@ -406,6 +406,7 @@ def _raising(exc):
     ],
 )
 def test_every_failure_is_one_line_with_its_exit_code(exc, code, message, tmp_path, capsys, monkeypatch):
+    monkeypatch.setattr(sys, "unraisablehook", sys.unraisablehook)  # an interrupt changes it
     monkeypatch.setattr(pipeline, "mesh_surface", _raising(exc))
     got, captured = run(["mesh", SADDLE, "--length", 5, "-o", tmp_path / "m.obj", "-q"], capsys)
     assert got == code
@@ -416,7 +417,7 @@ def test_every_failure_is_one_line_with_its_exit_code(exc, code, message, tmp_pa
 def test_an_interrupt_silences_the_finalisers_it_broke(tmp_path, capsys, monkeypatch):
     """After Ctrl-C, an exception a half-built object's finaliser raises (llvmlite's, when numba was compiling) is
     not printed: the one line stays the only one."""
-    before = sys.unraisablehook
+    before = sys.__unraisablehook__
     monkeypatch.setattr(sys, "unraisablehook", before)  # restored after the test
     monkeypatch.setattr(pipeline, "mesh_surface", _raising(KeyboardInterrupt()))
     code, captured = run(["mesh", SADDLE, "--length", 5, "-o", tmp_path / "m.obj", "-q"], capsys)
@@ -429,6 +430,26 @@ def test_an_interrupt_silences_the_finalisers_it_broke(tmp_path, capsys, monkeyp
         )
     )
     assert capsys.readouterr().err == ""
+
+
+def test_an_interrupt_a_finaliser_swallowed_stops_the_run(tmp_path, capsys, monkeypatch):
+    """A SIGINT whose KeyboardInterrupt is raised inside a finaliser (and so dropped by Python) still ends the run
+    at the next stage: exit 130, one line, nothing written."""
+    monkeypatch.setattr(sys, "unraisablehook", sys.unraisablehook)
+
+    class Finalised:
+        def __del__(self):
+            signal.raise_signal(signal.SIGINT)  # its KeyboardInterrupt is raised here, and dropped
+
+    def mesh_surface(*args, progress, **kwargs):
+        Finalised()
+        progress("auxiliary triangulation", 0.0)
+        raise AssertionError("the run went on past the interrupt")
+
+    monkeypatch.setattr(pipeline, "mesh_surface", mesh_surface)
+    code, captured = run(["mesh", SADDLE, "--length", 5, "-o", tmp_path / "m.obj"], capsys)
+    assert code == 130 and captured.err == "equimesh: interrupted\n", captured.err
+    assert list(tmp_path.iterdir()) == []
 
 
 def test_an_internal_error_asks_for_a_report_once(tmp_path, capsys, monkeypatch):
