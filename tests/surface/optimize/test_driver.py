@@ -29,7 +29,8 @@ from equimesh.surface.optimize.objectives import paper_stage
 from equimesh.surface.optimize.problem import free_nodes
 from equimesh.surface.optimize.slide import along_polygon
 from equimesh.surface.optimize.solver import FACTORISATIONS
-from equimesh.tolerance import PAPER_FTOL
+from equimesh.tolerance import JOINT_MARGIN as MARGIN
+from equimesh.tolerance import JOINT_WEIGHT, PAPER_FTOL
 
 UV, TRIANGLES, EDGES, GROUPS = grid()
 FIXED = np.arange(RIM)
@@ -466,6 +467,25 @@ def test_the_barriers_are_appended_with_a_weight_above_the_cost():
     np.testing.assert_allclose(both.jacobian(y).toarray(), finite_difference(both.residuals, y), atol=1e-5)
     only_folds = with_barriers(p, stage, folds, None, x)
     np.testing.assert_allclose(only_folds.residuals(y), expected[: len(stage.residuals(y)) + 18], rtol=1e-12)
+
+
+def test_the_angle_barrier_weighs_joint_weight_once_every_angle_meets_its_bound():
+    """Where the acceptance test already keeps every angle at its bound, the angle barrier only shows the model the
+    bounds (weight ``JOINT_WEIGHT``); one angle below its bound gives it the fold-over barrier's weight again."""
+    p, triangles = problem(seed=1)
+    stage, x = paper_stage(p), p.x0
+    weight = 1.0 + 2.0 * np.sqrt(0.5 * float(np.sum(stage.residuals(x) ** 2)))
+    angles = surface_angles(p.points_of(x), triangles)
+    n = len(stage.residuals(x))
+    sound = Joints(p, triangles, angles - 0.5 * MARGIN)  # every angle half a margin above its bound: all active
+    tail = with_barriers(p, stage, None, sound, x).residuals(x)[n:]
+    np.testing.assert_allclose(tail, sound.barrier(JOINT_WEIGHT)[0](x), rtol=1e-14)
+    assert JOINT_WEIGHT < weight and np.all(tail > 0)
+    bounds = angles - 0.5 * MARGIN
+    bounds[3, 1] = np.nextafter(angles[3, 1], np.inf)  # one angle a rounding below its bound
+    unsound = Joints(p, triangles, bounds)
+    tail = with_barriers(p, stage, None, unsound, x).residuals(x)[n:]
+    np.testing.assert_allclose(tail, unsound.barrier(weight)[0](x), rtol=1e-14)
 
 
 def test_the_fold_over_barrier_by_hand():

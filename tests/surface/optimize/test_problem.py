@@ -221,6 +221,30 @@ def test_free_nodes_are_those_neither_fixed_nor_sliding():
     np.testing.assert_array_equal(free_nodes(4, np.array([1, 2]), ()), [True, False, False, True])
 
 
+def test_with_joints_the_members_and_the_angles_share_one_evaluation_per_x():
+    """The joints of :meth:`UVProblem.with_joints` work on the problem they belong to: at one ``x`` the points the
+    members see and those the angles see are one evaluation of the surface (the angles too are computed once)."""
+    p, triangles = problem(seed=1)
+    calls = []
+
+    class Counted:
+        def __getattr__(self, name):
+            return getattr(p.surface, name)
+
+        def evaluate(self, u, v):
+            calls.append(len(u))
+            return p.surface.evaluate(u, v)
+
+    q = replace(p, surface=Counted()).with_joints(triangles, np.zeros(triangles.shape))
+    assert q.joints.problem is q and q.joints is not None
+    x = moved(q, 3)
+    q.points_of(x)
+    first = q.joints.angles(x)
+    assert q.joints.angles(x) is first and q.sound(x)
+    assert len(calls) == 1
+    np.testing.assert_array_equal(first, surface_angles(q.points_of(x), triangles))
+
+
 def test_sound_asks_the_joints():
     p, triangles = problem(seed=1)
     angles = surface_angles(p.points_of(p.x0), triangles)

@@ -37,9 +37,9 @@ import scipy.sparse
 
 from ...classes import DEFAULT_TOLERANCE
 from ...errors import EquimeshError, InvalidSurfaceError
-from ...tolerance import JOINT_ANGLE, LM_INITIAL_DAMPING, PAPER_FTOL
+from ...tolerance import JOINT_ANGLE, JOINT_WEIGHT, LM_INITIAL_DAMPING, PAPER_FTOL
 from .jacobian import AreaBarrier, signed_areas
-from .joints import Joints, joint_bounds
+from .joints import joint_bounds
 from .members import Members, out_of_reach
 from .objectives import OBJECTIVES, Stage
 from .problem import UVProblem, free_nodes, parameter_box
@@ -178,7 +178,7 @@ def optimize_uv(
     )
     tri = None if triangles is None else np.asarray(triangles, dtype=np.int64).reshape(-1, 3)
     if record.sound_joints and tri is not None:
-        problem = replace(problem, joints=Joints(problem, tri, joint_bounds(surface, uv, tri)))
+        problem = problem.with_joints(tri, joint_bounds(surface, uv, tri))
     stages = record.stages(problem)
     stage = next(stages)
     x0 = problem.x0
@@ -354,7 +354,9 @@ def with_barriers(problem, obj, barrier, joints, x):
     (:meth:`~equimesh.surface.optimize.joints.Joints.barrier`, if the problem has joints) to ``obj``.
 
     Their weight ``w`` has ``w^2 / 2`` above the objective's cost at ``x``: a
-    folded triangle, or an angle at its bound, alone costs more than the start of the solve.
+    folded triangle, or an angle at its bound, alone costs more than the start of the solve.  Once every angle at
+    ``x`` meets its bound the acceptance test keeps them all (:class:`_Guard`), so the angle barrier only has to
+    show the model where the bounds are, with the weight :data:`~equimesh.tolerance.JOINT_WEIGHT`.
     """
     weight = 1.0 + 2.0 * np.sqrt(_cost(obj, x))
     terms = [(obj.residuals, obj.jacobian)]
@@ -364,7 +366,7 @@ def with_barriers(problem, obj, barrier, joints, x):
             (lambda y: folds.residuals(problem.uv_of(y)), lambda y: problem.chain(folds.jacobian(problem.uv_of(y)), y))
         )
     if joints is not None:
-        terms.append(joints.barrier(weight))
+        terms.append(joints.barrier(JOINT_WEIGHT if joints.sound(x) else weight))
     if len(terms) == 1:
         return obj
 

@@ -28,13 +28,29 @@ from .jacobian import ElementJacobian
 
 def surface_angles(points, triangles):
     """Interior angles in radians, (M, 3), angle k at vertex ``triangles[:, k]`` (``atan2(|u x v|, u . v)``)."""
-    p = np.asarray(points, dtype=float)
-    t = np.asarray(triangles, dtype=np.int64).reshape(-1, 3)
-    angles = np.empty(t.shape)
-    for k in range(3):
-        u, v = p[t[:, (k + 1) % 3]] - p[t[:, k]], p[t[:, (k + 2) % 3]] - p[t[:, k]]
-        angles[:, k] = np.arctan2(np.linalg.norm(np.cross(u, v), axis=1), np.sum(u * v, axis=1))
-    return angles
+    sines, cosines = _corner_products(
+        np.ascontiguousarray(points, dtype=float), np.ascontiguousarray(triangles, dtype=np.int64).reshape(-1, 3)
+    )
+    return np.arctan2(sines, cosines)
+
+
+def _corner_products(points, triangles):
+    """``|u x v|`` and ``u . v`` at each corner (``u = p_b - p_a``, ``v = p_c - p_a`` at corner ``a``), compiled, in
+    NumPy's order of operations (``np.cross``, then the sums over the coordinates in order, from 0), so the
+    angles are NumPy's to the bit."""
+    sines, cosines = np.empty(triangles.shape), np.empty(triangles.shape)
+    for t in range(len(triangles)):
+        for k in range(3):
+            a, b, c = triangles[t, k], triangles[t, (k + 1) % 3], triangles[t, (k + 2) % 3]
+            u0, u1, u2 = points[b, 0] - points[a, 0], points[b, 1] - points[a, 1], points[b, 2] - points[a, 2]
+            v0, v1, v2 = points[c, 0] - points[a, 0], points[c, 1] - points[a, 1], points[c, 2] - points[a, 2]
+            w0, w1, w2 = u1 * v2 - u2 * v1, u2 * v0 - u0 * v2, u0 * v1 - u1 * v0
+            sines[t, k] = np.sqrt(w0 * w0 + w1 * w1 + w2 * w2)
+            cosines[t, k] = 0.0 + u0 * v0 + u1 * v1 + u2 * v2  # from +0, as NumPy's sum: the sign of a zero
+    return sines, cosines
+
+
+_corner_products = compiled(_corner_products)
 
 
 def _angle_gradients(points, triangles, corner, scale):
@@ -133,11 +149,12 @@ class Joints:
         self.problem = problem
         self.triangles = np.asarray(triangles, dtype=np.int64).reshape(-1, 3)
         self.bounds = np.asarray(bounds, dtype=float).reshape(-1, 3)
-        self._assemble = ElementJacobian(np.tile(self.triangles, (3, 1)), len(problem.uv), 2, problem.moving)
+        self._elements = np.tile(self.triangles, (3, 1))  # one barrier residual per angle, corner-major
+        self._assemble = ElementJacobian(self._elements, len(problem.uv), 2, problem.moving)
 
     def angles(self, x):
-        """(M, 3) angles in radians at the variables ``x``."""
-        return surface_angles(self.problem.points_of(x), self.triangles)
+        """(M, 3) angles in radians at the variables ``x`` (once per ``x``: the barrier and the guard share them)."""
+        return self.problem.at(x, "angles", lambda y: surface_angles(self.problem.points_of(y), self.triangles))
 
     def sound(self, x):
         """Every angle at least its bound."""
@@ -174,11 +191,12 @@ class Joints:
             grads = np.concatenate(
                 [_angle_gradients(points, self.triangles, k, slope[k * m : (k + 1) * m]) for k in range(3)]
             )
-            elements = np.tile(self.triangles, (3, 1))
-            uv_grads = np.stack(
-                [np.einsum("jcd,jcd->jc", grads, su[elements]), np.einsum("jcd,jcd->jc", grads, sv[elements])], axis=2
-            ).reshape(len(elements), 6)
-            jac = problem.chain(self._assemble(uv_grads), x)
+            # The chain rule to (u, v) for the active angles only: an inactive one's row is zero (slope 0).
+            active, elements = np.flatnonzero(slope), self._elements
+            uv_grads = np.zeros((len(elements), 3, 2))
+            for d, tangent in enumerate((su, sv)):
+                uv_grads[active, :, d] = np.einsum("jcd,jcd->jc", grads[active], tangent[elements[active]])
+            jac = problem.chain(self._assemble(uv_grads.reshape(len(elements), 6)), x)
             return jac + problem.offset_columns(elements, grads, x) if len(problem.offset_nodes) else jac
 
         return residuals, jacobian

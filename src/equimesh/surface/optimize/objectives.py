@@ -191,7 +191,7 @@ def bounded_stages(problem):
     def keep_best(x, ratio, stage):
         """Remember ``x`` (``ratio = L / l``), where ``stage``'s solve ended, if in [l, 2l] with the largest share so
         far."""
-        if inside(ratio) and share(ratio) > best["share"]:
+        if inside(ratio) and share(ratio) > best["share"] and problem.sound(x):
             best.update(x=np.array(x), share=share(ratio), stage=stage)
 
     def round_stage(k, x_start, restart):
@@ -252,9 +252,9 @@ def bounded_stages(problem):
     yield from series(problem.x0)
     # The paper's optimum, boundary held (the paper's problem, as optimize="paper"), then rounds from it if it has
     # the larger share: the boundary released (the paper's objective solved on) first.
-    x = yield replace(paper_stage(problem), start=problem.x0, hold=problem.sliding_variables)
+    x = yield replace(paper_stage(problem), start=problem.x0, hold=problem.sliding_variables, joints=False)
     if share(lengths(x) / l) > best["share"]:
-        x = yield paper_stage(problem)
+        x = yield replace(paper_stage(problem), joints=False)
         yield from series(x)
     if best["x"] is not None:
         return best["x"], best["stage"]
@@ -410,11 +410,13 @@ class Objective:
 #: nodes, so 34,000.  "paper" took 59.2 s with SuperLU, the slowest, at 34,031 nodes, so 34,000 with each.
 _PAPER_MAX_NODES = {"pardiso": 34_000, "cholmod": 34_000, "superlu": 34_000}
 _BOUNDED_MAX_NODES = {"pardiso": 50_000, "cholmod": 50_000, "superlu": 34_000}
-#: "classes" (``equimesh mesh experiments/surfaces/reference_dome.json --optimize classes --max-nodes none -l L``,
-#: PARDISO, CPU seconds, the machine shared): meshed at about 5,900 nodes (l = 1.24) in 26 s and 11,700 (l = 0.88) in
-#: 45 s, refused by its work bound at about 23,000 (l = 0.62) after 442 s; a run refused by the work bound costs
-#: about 2,600 Jacobians whatever it meshes, so 6,000 nodes, with each: about two minutes at the bound.
-_CLASSES_MAX_NODES = {"pardiso": 6_000, "cholmod": 6_000, "superlu": 6_000}
+#: "classes" (``/usr/bin/time equimesh mesh experiments/surfaces/reference_dome.json --optimize classes --max-nodes
+#: none -l L``, CPU seconds, the machine shared): with PARDISO 9.0 s at 5,716 nodes (l = 1.24), 17.9 s at 11,357
+#: (l = 0.88) and 56.4 s at 22,911 (l = 0.62); at 11,357 nodes 21.6 s with CHOLMOD and 50.0 s with SuperLU
+#: (``EQUIMESH_FACTORISATION``).  A run refused by the work bound costs its 2,600 Jacobians whatever it meshes, about
+#: 5.7 times the 455 of l = 0.88 (``mesh_surface(...).stages.optimization.njev``): about 100 s with PARDISO and 120 s
+#: with CHOLMOD at 11,357 nodes, so 12,000 nodes with both; about 285 s with SuperLU there, so 6,000 with it.
+_CLASSES_MAX_NODES = {"pardiso": 12_000, "cholmod": 12_000, "superlu": 6_000}
 #: The work bounds in Jacobian evaluations (docs/decisions.md, "A work bound for the optimisation"), measured by
 #: ``python experiments/optimisation_work.py`` (results/optimisation_work.md: the reference dome at l = 0.5 to 2, the
 #: examples of experiments/surfaces at two l each, the 101 domes of experiments/bounded_sweep.py, closed-ended tubes and

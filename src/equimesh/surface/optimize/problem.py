@@ -9,7 +9,7 @@ tolerance ``D > 0`` every node that moves also has an offset ``h`` in
 ``X^s(u, v) + h N(u, v)`` (docs/decisions.md, "Nodes off the surface within a tolerance").
 """
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import cached_property
 
 import numpy as np
@@ -19,6 +19,7 @@ import scipy.sparse
 from ..._jit import compiled
 from ..charts.chart import domain_of
 from ..regularity import derivatives, evaluate
+from .joints import Joints
 
 
 @dataclass(frozen=True)
@@ -61,6 +62,14 @@ class UVProblem:
     surface_tolerance: float = 0.0
     tolerance: float = 0.005
     catalogue: np.ndarray = None
+
+    def with_joints(self, triangles, bounds):
+        """This problem keeping the angle ``bounds`` (radians, one per corner) of ``triangles``: its :attr:`joints`
+        a :class:`~equimesh.surface.optimize.joints.Joints` on the new problem itself, so that the members and the
+        angles at an ``x`` share one evaluation of the surface (:meth:`at`)."""
+        problem = replace(self, joints=None)
+        object.__setattr__(problem, "joints", Joints(problem, triangles, bounds))
+        return problem
 
     def sound(self, x):
         """Every triangle angle at ``x`` at least its bound (:attr:`joints`; True without bounds)."""
@@ -112,9 +121,10 @@ class UVProblem:
         """The quantities computed at the last ``x`` asked for (:meth:`_at`)."""
         return {}
 
-    def _at(self, x, name, compute):
+    def at(self, x, name, compute):
         """``compute(x)``, once per ``x``: the residuals, the Jacobian, the guards and the rounds of one iteration
-        ask for the nodes' (u, v), points and tangents at the same ``x``.  Read-only, since shared."""
+        ask for the nodes' (u, v), points and tangents (and the joints for the angles) at the same ``x``.  Read-only,
+        since shared."""
         last = self._last
         if "x" not in last or not np.array_equal(last["x"], x):
             last.clear()
@@ -128,7 +138,7 @@ class UVProblem:
 
     def uv_of(self, x):
         """All nodes' (u, v) with the free ones taken from the variable vector ``x`` (read-only)."""
-        return self._at(x, "uv", self._uv_of)
+        return self.at(x, "uv", self._uv_of)
 
     def _uv_of(self, x):
         variables = self.variables
@@ -151,7 +161,7 @@ class UVProblem:
 
     def points_of(self, x):
         """(N, 3) the nodes' points: ``X^s(u, v)``, plus ``h N(u, v)`` with a surface tolerance (read-only)."""
-        return self._at(x, "points", self._points_of)
+        return self.at(x, "points", self._points_of)
 
     def _points_of(self, x):
         return offset_points(self.surface, self.uv_of(x), self.offsets_of(x) if len(self.offset_nodes) else None)
@@ -163,7 +173,7 @@ class UVProblem:
         ``n_u = X^s_uu x X^s_v + X^s_u x X^s_uv``; a chart without
         ``second_derivatives`` (a triangle mesh's, piecewise linear) has ``N_u = 0``.  Read-only.
         """
-        return self._at(x, "tangents", self._tangents)
+        return self.at(x, "tangents", self._tangents)
 
     def _tangents(self, x):
         uv = self.uv_of(x)
