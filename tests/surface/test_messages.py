@@ -9,7 +9,7 @@ from surface_cases import plane_patch, refuse, waist_net
 
 import equimesh
 from equimesh.errors import InvalidPolygonError, InvalidSurfaceError
-from equimesh.surface import pipeline
+from equimesh.surface import front
 
 
 def test_narrow_side_is_named_with_the_largest_l_that_fits():
@@ -25,7 +25,7 @@ def located_refusals(monkeypatch):
     Until it does, the closest pair of outline vertices, not neighbours, is attached here, so that the
     restatement in surface terms is tested on every branch.
     """
-    real = pipeline.uniform_triangulation
+    real = front.uniform_triangulation
 
     def located(vertices, l, **kwargs):
         try:
@@ -41,7 +41,7 @@ def located_refusals(monkeypatch):
             a, b = np.unravel_index(np.argmin(d), d.shape)
             raise InvalidPolygonError(str(exc), points=[v[a], v[b]]) from None
 
-    monkeypatch.setattr(pipeline, "uniform_triangulation", located)
+    monkeypatch.setattr(front, "uniform_triangulation", located)
 
 
 def test_sharp_corner_is_named_with_the_largest_l_that_fits(located_refusals):
@@ -68,6 +68,6 @@ def test_problem2_refusal_without_points_is_still_in_surface_terms(monkeypatch):
     def refusing(vertices, l, **kwargs):
         raise InvalidPolygonError("polygon is too narrow for l = 3: boundary points on edge (1, 2) and edge (7, 0)")
 
-    monkeypatch.setattr(pipeline, "uniform_triangulation", refusing)
+    monkeypatch.setattr(front, "uniform_triangulation", refusing)
     message = refuse(InvalidSurfaceError, plane_patch(), 3.0, "cannot be meshed with l = 3")
     assert "edge (" not in message

@@ -36,7 +36,7 @@ from .._geometry import Polyline, between
 from ..errors import EquimeshError, InvalidSurfaceError, coordinates, number
 from ..tolerance import REL_TOL
 from .optimize.slide import between_corners
-from .outline import round_down
+from .plane_length import PlaneLength, round_down
 from .ring import reach, resample_ring
 
 #: The feature angle of a triangle mesh's loops when none is given
@@ -119,7 +119,8 @@ class MeshOutline:
 def mesh_outline(chart, l, spacing, feature_angle=DEFAULT_FEATURE_ANGLE):
     """Step 3: the flattened loops of ``chart`` (a :class:`~equimesh.surface.charts.mesh_chart.MeshChart`) as rings.
 
-    ``feature_angle`` (degrees) decides the corners of the loops (:func:`loop_corners`).
+    ``feature_angle`` (degrees) decides the corners of the loops (:func:`loop_corners`); ``l`` is the caller's l, or
+    the :class:`~equimesh.surface.plane_length.PlaneLength` the refusals name.
 
     Raises
     ------
@@ -127,13 +128,17 @@ def mesh_outline(chart, l, spacing, feature_angle=DEFAULT_FEATURE_ANGLE):
         A loop is too small for l, narrower than l at a corner, or a part
         of it between two corners is shorter than l (:func:`loop_ring`).
     """
+    length = PlaneLength.of(l)
+    l = length.value
     order = [chart.outer] + [k for k in range(len(chart.surface.loops)) if k != chart.outer]
     loops = [Polyline(chart.plane[chart.surface.loops[k]]) for k in order]
     rings, arcs, corner_arcs = [], [], []
     for k, loop in enumerate(loops):
         xy, arc = loop.points, loop.arc
         name = ring_name(chart, order, k)
-        corners, ring = loop_ring(xy, l, spacing, feature_angle, _refusals(chart, xy, name, l, spacing, feature_angle))
+        corners, ring = loop_ring(
+            xy, l, spacing, feature_angle, _refusals(chart, xy, name, length, spacing, feature_angle)
+        )
         at = loop.project(ring)[2]
         at[1:] += arc[-1] * np.cumsum(np.diff(at) < 0)  # the ring starts at a corner: unwrap past the loop's start
         rings.append(ring)
@@ -400,16 +405,20 @@ def largest_fitting_length(xy, l, spacing, feature_angle):
     return round_down(low) if low > 0.0 else None
 
 
-def _refusals(chart, xy, name, l, spacing, feature_angle):
-    """The refusals of :func:`loop_ring` on the loop ``xy`` called ``name``, in the surface's terms."""
+def _refusals(chart, xy, name, length, spacing, feature_angle):
+    """The refusals of :func:`loop_ring` on the loop ``xy`` called ``name``, in the surface's terms, at the
+    :class:`~equimesh.surface.plane_length.PlaneLength` ``length``."""
+    l = length.value
+
+    def use(fit):
+        return f"l <= {number(length.suggest(fit))}" if fit else "a smaller l"
 
     def too_small():
         rim = Polyline(xy).length
         fit = largest_fitting_length(xy, l, spacing, feature_angle)
         return InvalidSurfaceError(
-            f"{name} of the mesh is too small for l = {number(l)}: no ring of 3 or more parts of at least l follows "
-            f"its rim, {number(rim)} long on the flattened surface; use "
-            + (f"l <= {number(fit)}" if fit else "a smaller l")
+            f"{name} of the mesh is too small for {length}: no ring of 3 or more parts of at least {length.symbol} "
+            f"follows its rim, {number(rim)} long on the flattened surface; use {use(fit)}"
         )
 
     def refuse(kind, *details):
@@ -419,7 +428,7 @@ def _refusals(chart, xy, name, l, spacing, feature_angle):
             _, arc, chord, _ = details
             return InvalidSurfaceError(
                 f"{name} of the mesh has a part {number(arc)} long between two corners {number(chord)} apart on the "
-                f"flattened surface, shorter than l = {number(l)}; use l <= {number(round_down(chord))}"
+                f"flattened surface, shorter than {length}; use {use(round_down(chord))}"
             )
         i, gap = details
         turn = scale_turns(xy, l)
@@ -427,9 +436,9 @@ def _refusals(chart, xy, name, l, spacing, feature_angle):
             return too_small()
         fit = largest_fitting_length(xy, l, spacing, feature_angle)
         return InvalidSurfaceError(
-            f"{name} of the mesh is narrower than l = {number(l)} on the flattened surface at its corner "
-            f"{coordinates(chart.evaluate(xy[i, 0], xy[i, 1]))}: a ring of parts of at least l passes "
-            f"{number(gap)} from it; use " + (f"l <= {number(fit)}" if fit else "a smaller l")
+            f"{name} of the mesh is narrower than {length} on the flattened surface at its corner "
+            f"{coordinates(chart.evaluate(xy[i, 0], xy[i, 1]))}: a ring of parts of at least {length.symbol} passes "
+            f"{number(gap)} from it; use {use(fit)}"
         )
 
     return refuse
@@ -470,18 +479,19 @@ def restate_mesh_error(exc, chart, outline, l):
     The two boundary points at fault (if named) are given in space; the gap
     between them on the flattened surface bounds the l that can pass there.
     Otherwise Problem 2's message is kept, with its holes located in space.
+    ``l`` is the caller's l, or the :class:`~equimesh.surface.plane_length.PlaneLength` Problem 2 meshed at.
     """
+    l = PlaneLength.of(l)
     if not exc.points or len(exc.points) != 2:
         holes = "; ".join(ring_name(chart, outline.order, k) for k in range(1, len(outline.rings)))
         return InvalidSurfaceError(
-            f"the triangle mesh cannot be meshed with l = {number(l)}: {exc}"
-            + (f" ({holes})" if "hole" in str(exc) else "")
+            f"the triangle mesh cannot be meshed with {l}: {exc}" + (f" ({holes})" if "hole" in str(exc) else "")
         )
     xy = np.asarray(exc.points, dtype=float)
     where = " and ".join(coordinates(p) for p in chart.evaluate(xy[:, 0], xy[:, 1]))
     gap = float(np.linalg.norm(xy[1] - xy[0]))
     return InvalidSurfaceError(
-        f"the triangle mesh cannot be meshed with l = {number(l)}: its boundary points at {where} are {number(gap)} "
-        "apart on the flattened surface, closer than l (a neck, an opening near the boundary or another opening, "
-        f"or a corner too sharp for its sides); try l <= {number(round_down(gap))}"
+        f"the triangle mesh cannot be meshed with {l}: its boundary points at {where} are {number(gap)} apart on the "
+        f"flattened surface, closer than {l.symbol} (a neck, an opening near the boundary or another opening, or a "
+        f"corner too sharp for its sides); try l <= {number(l.suggest(round_down(gap)))}"
     )

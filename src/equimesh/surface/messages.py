@@ -23,7 +23,8 @@ from ..errors import InvalidSurfaceError, at, number
 from ..planar.boundary.sides import SHARP_CORNER, stagger_reach
 from .charts.chart import corner_name, side_name
 from .charts.openings import holes_of
-from .outline import hole_image, round_down
+from .outline import hole_image
+from .plane_length import PlaneLength, round_down
 from .regularity import evaluate
 
 
@@ -37,14 +38,16 @@ def restate_polygon_error(exc, surface, flat_points, grid, outline, l):
         are points of the outline's plane.
     surface, flat_points, grid, outline, l
         The pipeline's surface, flattened auxiliary nodes (step 2), auxiliary
-        grid (step 1), outline (step 3) and target length.
+        grid (step 1), outline (step 3) and target length (a float, or the
+        :class:`~equimesh.surface.plane_length.PlaneLength` Problem 2 meshed at).
     """
+    l = PlaneLength.of(l)
     named = re.match(r"hole (\d+)(?: and hole (\d+))?", str(exc))  # Problem 2's refusals of the holes themselves
     if named and outline.holes:
         return _hole_too_close([int(k) for k in named.groups() if k], surface, flat_points, grid, outline, l)
     if not exc.points or len(exc.points) != 2:
         return InvalidSurfaceError(
-            f"the surface cannot be meshed with l = {number(l)}: somewhere it is narrower than l or has a corner "
+            f"the surface cannot be meshed with {l}: somewhere it is narrower than {l.symbol} or has a corner "
             f"sharper than about {SHARP_CORNER:.0f} degrees on the flattened surface; try a smaller l"
         )
     xy = np.asarray(exc.points, dtype=float)
@@ -55,14 +58,11 @@ def restate_polygon_error(exc, surface, flat_points, grid, outline, l):
     gap = float(np.linalg.norm(xy[1] - xy[0]))
     places = [_place(outline, k, r) for k, r in zip(seg, rings)]
     one, two = (f"{name} at {at(p, x)}" for name, p, x in zip(places, uv, space))
-    close = (
-        f"boundary points on {one} and on {two} are {number(gap)} apart on the flattened surface, "
-        f"closer than l = {number(l)}"
-    )
+    close = f"boundary points on {one} and on {two} are {number(gap)} apart on the flattened surface, closer than {l}"
     if any(rings):
         return InvalidSurfaceError(
             f"{close}: a hole is too narrow there or has a corner too sharp for its edges' length on the flattened "
-            f"surface; try l < {number(round_down(gap))}"
+            f"surface; try l < {number(l.suggest(round_down(gap)))}"
         )
     sides = outline.side[seg]
     if sides[0] // 2 != sides[1] // 2:  # adjacent sides: the corner between them
@@ -76,16 +76,17 @@ def restate_polygon_error(exc, surface, flat_points, grid, outline, l):
             return InvalidSurfaceError(
                 f"the {name} is {angle:.1f} degrees on the flattened surface: {close}; next to corners sharper than "
                 f"{SHARP_CORNER:.0f} degrees the staggered boundary points need {side_name(side, domain)} at least "
-                f"{number(need)} l long (docs/proofs.md, 'Sharp corners'), it is {number(length)} on the flattened "
-                f"surface; use l <= {number(round_down(length / need))}"
+                f"{number(need * l.factor)} l long (docs/proofs.md, 'Sharp corners'), it is {number(length)} on the "
+                f"flattened surface; use l <= {number(l.suggest(round_down(length / need)))}"
             )
         return InvalidSurfaceError(
-            f"near the {name} ({angle:.1f} degrees on the flattened surface) {close}; try l < {number(round_down(gap))}"
+            f"near the {name} ({angle:.1f} degrees on the flattened surface) {close}; try l < "
+            f"{number(l.suggest(round_down(gap)))}"
         )
     width = _side_distance(flat_points, grid, sides) if sides[0] != sides[1] else gap
     return InvalidSurfaceError(
         f"the surface is only {number(width)} wide on the flattened surface there: {close}; use l <= "
-        f"{number(round_down(width))}"
+        f"{number(l.suggest(round_down(width)))}"
     )
 
 
@@ -120,7 +121,7 @@ def _hole_too_close(named, surface, flat_points, grid, outline, l):
     gap = min(gaps)
     return InvalidSurfaceError(
         f"hole {k} comes within {number(gap)} of {what} on the flattened surface, at {at(uv[0])} on hole {k} and "
-        f"{at(uv[1])}, closer than l = {number(l)} (Lemma 3 (1)); move it or try l < {number(round_down(gap))}"
+        f"{at(uv[1])}, closer than {l} (Lemma 3 (1)); move it or try l < {number(l.suggest(round_down(gap)))}"
     )
 
 

@@ -21,6 +21,7 @@ from ..errors import SurfaceTooSmallError, number
 from ..tolerance import REL_TOL
 from .charts.chart import Domain, corner_name, side_name
 from .optimize.slide import along_polygon
+from .plane_length import PlaneLength, round_down
 from .remap import Loop, to_plane
 from .ring import resample_ring
 
@@ -98,7 +99,8 @@ class Outline:
 def resample_outline(plane, grid, l, spacing, holes=()):
     """Resample the flattened boundary ``plane[grid.boundary]`` into a polygon (:func:`resample_ring`).
 
-    ``plane`` holds the flattened nodes of the auxiliary grid ``grid`` (step
+    ``l`` is the caller's l, or a :class:`~equimesh.surface.plane_length.PlaneLength` (the spacing the refusals
+    name).  ``plane`` holds the flattened nodes of the auxiliary grid ``grid`` (step
     2); the corners are the images of the corners of the grid's domain, in
     the counter-clockwise order of ``grid.boundary``.  ``holes`` are the
     openings' rings in (u, v) (:func:`resample_holes`).
@@ -109,6 +111,8 @@ def resample_outline(plane, grid, l, spacing, holes=()):
         A side whose corners are closer than ``l`` on the plane, named by its
         side and corners of the parameter rectangle.
     """
+    length = PlaneLength.of(l)
+    l = length.value
     loop, uv, domain = grid.boundary, grid.uv[grid.boundary], grid.domain
     corners = np.flatnonzero(grid.boundary_corner)
     ends = [(uv[c0], uv[c1]) for c0, c1 in zip(corners, np.roll(corners, -1))]
@@ -118,7 +122,7 @@ def resample_outline(plane, grid, l, spacing, holes=()):
         return SurfaceTooSmallError(
             f"{side_name(side_index(a, b, domain), domain)} of the surface, from {corner_name(a)} to {corner_name(b)}, "
             f"is {number(arc)} long on the flattened surface (its corners {number(chord)} apart), "
-            f"shorter than l = {number(l)}; use l <= {number(round_down(chord))}"
+            f"shorter than {length}; use l <= {number(length.suggest(round_down(chord)))}"
         )
 
     ring = resample_ring(plane[loop], uv, corners, l, spacing, too_short)
@@ -129,13 +133,15 @@ def resample_outline(plane, grid, l, spacing, holes=()):
         ring.params,
         sides[ring.side],
         domain,
-        resample_holes(holes, plane, grid, l, spacing),
+        resample_holes(holes, plane, grid, length, spacing),
         tuple(polygon for polygon, _ in holes),
     )
 
 
 def resample_holes(rings, plane, grid, l, spacing):
     """The openings on the plane: each hole's (u, v) polyline mapped and resampled (:func:`resample_ring`).
+
+    ``l`` is as in :func:`resample_outline`.
 
     ``rings`` are the holes clockwise in (u, v) with the caller's vertex
     indices (:attr:`~equimesh.surface.charts.openings.Perforated.rings`).  A hole's
@@ -152,6 +158,8 @@ def resample_holes(rings, plane, grid, l, spacing):
         A hole's edge too short on the flattened surface for l, named by the
         hole, its vertices (the caller's indices) and their (u, v).
     """
+    length = PlaneLength.of(l)
+    l = length.value
     holes = []
     for k, (uv, index) in enumerate(rings):
         dense, corners = densify(uv, grid)
@@ -161,8 +169,8 @@ def resample_holes(rings, plane, grid, l, spacing):
             return SurfaceTooSmallError(
                 f"edge ({index[a]}, {index[b]}) of hole {k}, from (u, v) = ({number(uv[a, 0])}, {number(uv[a, 1])}) "
                 f"to ({number(uv[b, 0])}, {number(uv[b, 1])}), is {number(arc)} long on the flattened surface "
-                f"(its ends {number(chord)} apart), too short for l = {number(l)}; use l <= "
-                f"{number(round_down(chord))} "
+                f"(its ends {number(chord)} apart), too short for {length}; use l <= "
+                f"{number(length.suggest(round_down(chord)))} "
                 "or give the hole with fewer vertices"
             )
 
@@ -209,11 +217,3 @@ def side_index(uv_a, uv_b, domain):
     """Index into :data:`~equimesh.surface.charts.chart.SIDES` of the side of ``domain`` through two of its points."""
     axis = 0 if uv_a[0] == uv_b[0] else 1
     return 2 * axis + int(uv_a[axis] == domain.upper[axis])
-
-
-def round_down(x, digits=4):
-    """``x`` rounded down to ``digits`` significant digits, so that a suggested bound ``l <= x`` is safe."""
-    if x <= 0:
-        return 0.0
-    scale = 10.0 ** (np.floor(np.log10(x)) - digits + 1)
-    return float(np.floor(x / scale) * scale)

@@ -20,36 +20,35 @@ chart (:mod:`equimesh.surface.charts.mesh_chart`) and its boundary loops the out
 4. remapping to (u, v) by eqs. (2)-(3) and to the surface (:mod:`equimesh.surface.remap`);
 5. optimisation of the (u, v) of the inner nodes (:mod:`equimesh.surface.optimize`).
 
+Steps 1-4 are :mod:`equimesh.surface.front`'s.  Under sound joints, when the
+remapped mesh lacks area (:func:`~equimesh.surface.optimize.joints.joint_spacing`),
+steps 3-4 run again at ``(1 + D) l`` on the same flattening (steps 1-2 do
+not depend on l), and their refusals name that spacing and the l given
+(:mod:`equimesh.surface.plane_length`).
+
 Every stage is kept in :class:`SurfaceMesh.stages` for tables and figures.
 """
 
 import time
 from dataclasses import dataclass, field
-from functools import partial
-from typing import Callable
 
 import numpy as np
 
 from .._checks import check_length
 from ..classes import DEFAULT_TOLERANCE, check_tolerance
-from ..errors import EquimeshError, InvalidPolygonError, InvalidSurfaceError
+from ..errors import EquimeshError, InvalidSurfaceError
 from ..mesh import G1, edge_lengths
 from ..planar.insertion import DEFAULT_ENGINE, check_engine
 from ..planar.limits import check_max_nodes
-from ..planar.placement import best_lattice_placement, fewest_classes_placement
-from ..planar.strip import BOUNDARY_SPACING, check_spacing, uniform_triangulation
-from .auxiliary import auxiliary_grid, check_grid_size
-from .charts.chart import domain_of
-from .charts.mesh_chart import MeshChart, flatten_mesh
-from .charts.openings import Perforated, holes_of
+from ..planar.strip import BOUNDARY_SPACING, check_spacing
+from .auxiliary import check_grid_size
+from .charts.openings import Perforated
 from .charts.triangulated import TriangulatedSurface
-from .flatten import flatten
-from .mesh_outline import boundary_uv, check_feature_angle, check_open, mesh_outline, restate_mesh_error
-from .messages import restate_polygon_error
+from .front import chart_front, mesh_front
+from .mesh_outline import check_feature_angle
 from .optimize import OBJECTIVES, optimize_uv
 from .optimize.joints import joint_bounds, joint_spacing
 from .optimize.problem import offset_points
-from .outline import resample_outline
 from .output_checks import (
     check_catalogue_holds,
     check_deviation,
@@ -58,9 +57,8 @@ from .output_checks import (
     check_members,
     check_orientation,
 )
-from .regularity import check_regular, evaluate
-from .remap import check_remapped, remap
-from .size import check_plane_size, check_surface_size
+from .plane_length import PlaneLength
+from .regularity import evaluate
 
 #: Default limit on the node count of a surface mesh without the final
 #: optimisation (``optimize="none"``); :func:`mesh_surface` refuses, before any
@@ -100,7 +98,8 @@ class Stages:
     plane : PlanarMesh, the triangulation on the plane with G1 labels (step 3).
     remapped_uv, remapped_points : (N, 2) and (N, 3), step 4.
     optimization : UVOptimization or None (final step).
-    seconds : dict, wall time of each stage (summed when it ran twice).
+    seconds : dict, wall time of each stage (steps 3-4 summed over both planes when sound joints mesh the plane
+        again at a larger spacing; steps 1-2 run once).
     """
 
     grid: object
@@ -275,23 +274,29 @@ def mesh_surface(
     seconds = {}
     clock = _Clock(seconds, progress)
     angle = check_feature_angle(feature_angle, meshed=isinstance(surface, TriangulatedSurface))
-    front = _chart_front if angle is None else partial(_mesh_front, feature_angle=angle)
-    steps, chosen, plane, mapped_uv, mapped_points = _remapped_plane(
-        front, surface, grid, l, limit, boundary_spacing, placement, tolerance, engine, clock
+    if angle is None:
+        front = chart_front(surface, *_grid_pair(grid), l, limit, clock)
+    else:
+        _check_triangle_count(surface)
+        front = mesh_front(surface, l, limit, clock, angle)
+    outlined, chosen, plane, mapped_uv, mapped_points = front.remapped(
+        PlaneLength(l), limit, boundary_spacing, placement, tolerance, engine, clock
     )
     if optimize in OBJECTIVES and OBJECTIVES[optimize].sound_joints:
-        spacing = joint_spacing(mapped_points, plane.triangles, l)  # the plane again, if the start lacks area
-        if spacing > 1.0:
-            steps, chosen, plane, mapped_uv, mapped_points = _remapped_plane(
-                front, surface, grid, l * spacing, limit, boundary_spacing, placement, tolerance, engine, clock
+        factor = joint_spacing(mapped_points, plane.triangles, l)  # the plane again, if the start lacks area
+        if factor > 1.0:  # steps 3-4 only, unguarded: Problem 2 has meshed the plane at l already, with more nodes
+            outlined, chosen, plane, mapped_uv, mapped_points = front.remapped(
+                PlaneLength(l, factor), None, boundary_spacing, placement, tolerance, engine, clock
             )
 
     result = None
-    chart = steps.chart
+    chart = front.chart
     final_uv, final_points, offsets = mapped_uv, mapped_points, np.zeros(len(mapped_uv))
     if optimize != "none":
         record = OBJECTIVES[optimize]
-        slides, fixed = steps.outline.slides(plane, mapped_uv) if record.slides else ((), np.arange(plane.n_boundary))
+        slides, fixed = (
+            outlined.outline.slides(plane, mapped_uv) if record.slides else ((), np.arange(plane.n_boundary))
+        )
         if catalogue is not None:
             check_catalogue_holds(catalogue, mapped_points, plane, fixed, l, tolerance)
         result = optimize_uv(
@@ -319,10 +324,10 @@ def mesh_surface(
         clock("optimisation of inner nodes")
 
     stages = Stages(
-        steps.grid,
-        steps.points,
-        steps.flattening,
-        steps.outline,
+        front.grid,
+        front.points,
+        front.flattening,
+        outlined.outline,
         chosen,
         plane,
         mapped_uv,
@@ -343,124 +348,6 @@ def mesh_surface(
     )
 
 
-@dataclass(frozen=True)
-class _Front:
-    """Steps 1-3 done one way or another, and how to do step 4 (:func:`mesh_surface`).
-
-    ``chart`` is what the optimisation moves the nodes on; ``place(plane)``
-    gives the remapped ``(uv, points)`` of a plane mesh; ``restate(exc)``
-    turns Problem 2's refusal of the outline into the surface's terms;
-    ``holes`` are the rings of the openings (``holes=`` of Problem 2);
-    ``outline.slides(plane, uv)`` says how the boundary nodes slide under an
-    objective whose boundary slides.
-    """
-
-    chart: object
-    grid: object
-    points: np.ndarray
-    flattening: object
-    outline: object
-    place: Callable
-    restate: Callable
-    holes: list | None
-
-
-def _remapped_plane(front, surface, grid, l, limit, boundary_spacing, placement, tolerance, engine, clock):
-    """Steps 1 to 4 at the spacing ``l``: the front (``front``), Problem 2's plane mesh of its outline (in the lattice
-    placement chosen) and the remap; ``(steps, placement, plane, mapped_uv, mapped_points)``."""
-    steps = front(surface, grid, l, limit, boundary_spacing, clock)
-
-    try:
-        # The size guard (surface/size.py: before and after the flattening) bounds the planar stage too.
-        holes, vertices = steps.holes, steps.outline.vertices
-        options = dict(holes=holes, boundary_spacing=boundary_spacing, engine=engine)
-        chosen = None if placement == "default" else best_lattice_placement(vertices, l, holes=holes, max_nodes=None)
-        if placement == "classes":
-            chosen = fewest_classes_placement(vertices, l, start=chosen, tolerance=tolerance, **options)
-        angle, offset = (chosen.angle, chosen.offset) if chosen else (0.0, (0.0, 0.0))
-        plane = uniform_triangulation(vertices, l, angle=angle, offset=offset, max_nodes=None, **options)
-    except InvalidPolygonError as exc:
-        raise steps.restate(exc) from None
-    clock("planar triangulation (Problem 2)")
-
-    mapped_uv, mapped_points = steps.place(plane)
-    check_remapped(mapped_uv, plane)
-    clock("remapping (eqs. 2-3)")
-    return steps, chosen, plane, mapped_uv, mapped_points
-
-
-def _chart_front(surface, grid, l, limit, spacing, clock):
-    """Steps 1-3 for a chart: auxiliary grid of its domain, eq. (1), the outline of the flattened rectangle (its size
-    estimated again, :func:`~equimesh.surface.size.check_plane_size`)."""
-    n_u, n_v = _grid_pair(grid)
-    if not (hasattr(surface, "evaluate") and hasattr(surface, "derivatives")):
-        raise InvalidSurfaceError(
-            "surface must provide evaluate(u, v) and derivatives(u, v), or be a TriangulatedSurface"
-        )
-    aux = auxiliary_grid(n_u, n_v, domain_of(surface))
-    x_s0 = evaluate(surface, aux.uv)
-    check_regular(surface, aux)
-    check_surface_size(x_s0, aux.triangles, l, limit)
-    clock("auxiliary triangulation")
-
-    flat = flatten(x_s0, aux.triangles, uv=aux.uv)
-    clock("flattening (eq. 1)")
-
-    outline = resample_outline(flat.points, aux, l, spacing, holes_of(surface))
-    check_plane_size(x_s0, aux.triangles, outline, l, limit)
-
-    def place(plane):
-        mapped = remap(
-            surface, plane.points, flat.points, aux, on_boundary=np.arange(plane.n_boundary), outline=outline
-        )
-        return mapped.uv, mapped.points
-
-    def restate(exc):
-        return restate_polygon_error(exc, surface, flat.points, aux, outline, l)
-
-    return _Front(surface, aux, x_s0, flat, outline, place, restate, [hole.points for hole in outline.holes])
-
-
-def _mesh_front(surface, grid, l, limit, spacing, clock, feature_angle):
-    """Steps 1-3 for a triangle mesh (:mod:`equimesh.surface.charts.triangulated`): it is the auxiliary triangulation.
-
-    ``grid`` is not used; ``feature_angle`` decides the loops' corners.  The
-    flattening starts from the projection onto the best-fit plane, or a
-    conformal map or Tutte's embedding if that folds, with the openings capped
-    (:func:`~equimesh.surface.charts.mesh_chart.flatten_mesh`; the size is
-    estimated again on the flattened triangles, :func:`~equimesh.surface.size.check_surface_size`); the flattened
-    mesh is the chart
-    (:class:`~equimesh.surface.charts.mesh_chart.MeshChart`) and its loops the
-    outline (:mod:`equimesh.surface.mesh_outline`).
-    """
-    if len(surface.triangles) > 2 * MAX_GRID_CELLS:
-        raise EquimeshError(
-            f"the triangle mesh has {len(surface.triangles)} triangles, more than the limit of {2 * MAX_GRID_CELLS} "
-            f"(those of a {MAX_GRID_CELLS}-cell auxiliary grid: flattening time and memory grow with them); "
-            "coarsen it first"
-        )
-    check_surface_size(surface.vertices, surface.triangles, l, limit)
-    clock("auxiliary triangulation")
-
-    flat = flatten_mesh(surface)
-    check_open(surface, flat.points)
-    check_surface_size(surface.vertices, surface.triangles, l, limit, flattened=flat.points)
-    chart = MeshChart(surface, flat.points)
-    clock("flattening (eq. 1)")
-
-    outline = mesh_outline(chart, l, spacing, feature_angle)
-
-    def place(plane):
-        uv = plane.points.copy()
-        uv[: plane.n_boundary] = boundary_uv(outline, plane)
-        return uv, evaluate(chart, uv)
-
-    def restate(exc):
-        return restate_mesh_error(exc, chart, outline, l)
-
-    return _Front(chart, surface, surface.vertices, flat, outline, place, restate, outline.holes)
-
-
 class _Clock:
     """Records the wall time of consecutive stages and reports each to ``progress``."""
 
@@ -473,6 +360,16 @@ class _Clock:
         self.last = now
         if self.progress is not None:
             self.progress(stage, self.seconds[stage])
+
+
+def _check_triangle_count(surface):
+    """Refuse a triangle mesh with more triangles than a :data:`MAX_GRID_CELLS`-cell auxiliary grid has."""
+    if len(surface.triangles) > 2 * MAX_GRID_CELLS:
+        raise EquimeshError(
+            f"the triangle mesh has {len(surface.triangles)} triangles, more than the limit of {2 * MAX_GRID_CELLS} "
+            f"(those of a {MAX_GRID_CELLS}-cell auxiliary grid: flattening time and memory grow with them); "
+            "coarsen it first"
+        )
 
 
 def _grid_pair(grid):

@@ -7,6 +7,7 @@ keeps that start's result unless a round does better).
 """
 
 import os
+import re
 from dataclasses import replace
 
 import numpy as np
@@ -16,14 +17,18 @@ from hypothesis import strategies as st
 from repository import SURFACES
 from section4_standin import parabolic_vault
 
+from equimesh import TriangulatedSurface
 from equimesh.classes import length_classes
+from equimesh.errors import InvalidPolygonError, InvalidSurfaceError, SurfaceTooSmallError
 from equimesh.io import load_surface
 from equimesh.mesh import G1, edge_lengths
 from equimesh.metrics import triangle_angles
+from equimesh.surface import front
 from equimesh.surface.optimize import OBJECTIVES
 from equimesh.surface.optimize.joints import joint_spacing
 from equimesh.surface.pipeline import mesh_surface
 from equimesh.surface.regularity import evaluate
+from equimesh.surface.remap import locate
 from equimesh.testing.surfaces import dome
 
 #: Generated patches per run: each costs a "classes" and a "bounded" mesh (about 5 s together).
@@ -112,6 +117,63 @@ def test_sound_joints_mesh_the_plane_again_where_the_start_lacks_area(name, obje
     )
     ratio = mesh.edge_lengths() / l
     assert np.all((ratio >= 1.0 - 1e-12) & (ratio <= 2.0 + 1e-12))
+
+
+def saddle_as_mesh():
+    """The saddle as a triangle mesh: its 15 x 15 auxiliary grid on the surface (it lacks 1.1 % at l = 5 too)."""
+    stages = mesh_surface(load_surface(SURFACES / "saddle.json"), 5.0, optimize="none").stages
+    return TriangulatedSurface(stages.auxiliary_points, stages.grid.triangles)
+
+
+@pytest.mark.parametrize("meshed", [False, True])
+def test_the_plane_meshed_again_reuses_the_flattening(meshed):
+    """Steps 1-2 do not depend on l: meshing the plane again for sound joints repeats steps 3-4 only."""
+    surface = saddle_as_mesh() if meshed else load_surface(SURFACES / "saddle.json")
+    stages = []
+    mesh_surface(surface, 5.0, optimize=SOUND_BOUNDED, progress=lambda stage, seconds: stages.append(stage))
+    steps = ["planar triangulation (Problem 2)", "remapping (eqs. 2-3)"]
+    assert stages == ["auxiliary triangulation", "flattening (eq. 1)", *steps, *steps, "optimisation of inner nodes"]
+
+
+def test_a_refusal_of_the_plane_meshed_again_names_its_spacing_and_the_l_given():
+    """A hole whose edges are 5.02 long on the flattened saddle passes at l = 5, but not at the 1.01 l the plane is
+    meshed again at under sound joints: the refusal says so, and at the l it suggests the spacing fits the edge."""
+    surface = load_surface(SURFACES / "saddle.json")
+    first = mesh_surface(surface, 5.0, optimize="none").stages  # the flattening depends on neither l nor holes
+    flat = first.flattening.points
+    turns = np.radians([90.0, 330.0, 210.0])
+    corners = flat.mean(axis=0) + 5.02 / np.sqrt(3.0) * np.column_stack([np.cos(turns), np.sin(turns)])
+    hole = locate(corners, flat, first.grid).uv
+    mesh_surface(surface, 5.0, optimize="none", holes=[hole])
+    with pytest.raises(SurfaceTooSmallError) as info:
+        mesh_surface(surface, 5.0, optimize=SOUND_BOUNDED, holes=[hole])
+    message = str(info.value)
+    assert re.search(r"too short for the spacing 1\.01 l = 5\.05\d* meshed for sound joints \(l = 5\)", message)
+    suggested = float(re.search(r"use l <= ([\d.]+) ", message).group(1))
+    again = mesh_surface(surface, suggested, optimize="none", holes=[hole]).stages
+    factor = joint_spacing(again.remapped_points, again.plane.triangles, suggested)
+    assert factor > 1.0 and factor * suggested <= 5.02
+
+
+def test_problem2s_refusal_of_the_plane_meshed_again_names_its_spacing_and_the_l_given(monkeypatch):
+    """Problem 2 refusing only the larger spacing (two boundary points closer than it, the first two of the
+    outline): a triangle mesh's refusal names the spacing and the l given, and suggests an l below the gap over the
+    factor."""
+    real = front.uniform_triangulation
+
+    def refusing(vertices, l, **kwargs):
+        if l > 5.0:
+            raise InvalidPolygonError("boundary points too close", points=vertices[:2])
+        return real(vertices, l, **kwargs)
+
+    monkeypatch.setattr(front, "uniform_triangulation", refusing)
+    with pytest.raises(InvalidSurfaceError) as info:
+        mesh_surface(saddle_as_mesh(), 5.0, optimize=SOUND_BOUNDED)
+    message = str(info.value)
+    factor, spacing = (float(x) for x in re.search(r"the spacing ([\d.]+) l = ([\d.]+) meshed", message).groups())
+    gap, suggested = (float(x) for x in re.search(r"are ([\d.]+) apart .* try l <= ([\d.]+)$", message).groups())
+    assert "meshed for sound joints (l = 5)" in message and f"closer than {factor:g} l " in message
+    assert 1.0 < factor and spacing == pytest.approx(5.0 * factor, rel=1e-3) and suggested <= gap / factor
 
 
 @given(
