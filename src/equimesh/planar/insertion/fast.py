@@ -63,6 +63,10 @@ the arrays, and grows one by doubling whenever the loop stops short of room.
 
 Memory: the arrays are made at once for Oler's bound on the points
 (:func:`expected_points`), each triangle one cache line (:mod:`.arrays`).
+The farthest point jumps across the region, so the next candidate's
+triangle, then its points and neighbours, are prefetched while the current
+point is inserted (:func:`.arrays.prefetch`; the heap's top is most likely
+the next candidate).
 
 numba's on-disk cache (``cache=True``) is keyed by the source file of each
 compiled function, not by the functions it calls: after an edit of
@@ -80,7 +84,7 @@ from ..._jit import compiled
 from ...errors import EquimeshError, InternalError, MeshTooLargeError
 from ...mesh import triangle_orient
 from ...tolerance import REL_TOL, SLIVER_GAP
-from .arrays import extended, grown, grown_store, store_views, triangle_store
+from .arrays import extended, grown, grown_store, prefetch, store_views, triangle_store
 from .buckets import CHUNK, empty_queue, offer, refill, spare_chunks
 from .cdt import adjacency, cavity, cavity_boundary, fill, locate, segments_touch, walk
 from .heap import ENTRY, MAX_SLOTS, compact, entry_live, pop, push
@@ -328,6 +332,8 @@ def advance(
             if nh == 0:
                 break
         nh = pop(H, nh)
+        if nh > 0:  # most likely the next candidate: its triangle's row, while this one is inserted
+            prefetch(V, H[0]["tag"] >> 2)
         if not entry_live(H, nh, ver, S, salive):
             continue
         tag, version, value, x, y = H[nh]["tag"], H[nh]["version"], -H[nh]["key"], H[nh]["x"], H[nh]["y"]
@@ -394,6 +400,12 @@ def advance(
                     elif w == b:
                         S[t, e] = n_segs + 1
             n_segs += 2
+        if nh > 0:  # the next candidate's triangle has arrived by now: ask for its points and neighbours
+            t = H[0]["tag"] >> 2
+            for e in range(3):
+                prefetch(P, V[t, e])
+                if N[t, e] >= 0:
+                    prefetch(V, N[t, e])
     state[POINTS], state[SLOTS], state[SEGMENTS], state[FREE] = n, n_slots, n_segs, n_free
     state[HEAP], state[FAN], state[STAMP] = nh, m, stamp
     return status
