@@ -77,6 +77,10 @@ KERNEL_MODULES = {
         "tests/planar/insertion/test_cdt.py",
         "tests/planar/insertion/test_fast.py",
     ],
+    "src/equimesh/planar/insertion/buckets.py": [
+        "tests/planar/insertion/test_buckets.py",
+        "tests/planar/insertion/test_fast.py",
+    ],
     "src/equimesh/planar/insertion/heap.py": [
         "tests/planar/insertion/test_heap.py",
         "tests/planar/insertion/test_fast.py",

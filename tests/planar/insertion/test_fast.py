@@ -42,8 +42,8 @@ from equimesh import EquimeshError
 from equimesh._geometry import circumcenters, point_segment_distance
 from equimesh.errors import InternalError
 from equimesh.planar.insertion import Region, arrays, fast, insert, reference
+from equimesh.planar.insertion.buckets import empty_queue
 from equimesh.planar.insertion.cdt import adjacency, cavity, locate, walk
-from equimesh.planar.insertion.heap import ENTRY
 from equimesh.planar.insertion.region import constrained_delaunay
 from equimesh.testing.generators import rectangle, regular_polygon
 from equimesh.tolerance import REL_TOL, SLIVER_GAP
@@ -66,21 +66,27 @@ def test_circumcircle_is_the_reference_bit_for_bit(triangle, order):
     assert (gx, gy) == tuple((P[0] + P[1] + P[2]) / 3.0)
 
 
-@given(st.tuples(finite, finite), st.tuples(finite, finite), st.tuples(finite, finite))
-def test_point_segment_distance_is_the_reference_bit_for_bit(x, a, b):
+def _edge_distance(x, a, b, bound=np.inf):
+    return fast.edge_distance_within(np.array([a, b], dtype=float), 0, 1, *x, bound)
+
+
+@given(st.tuples(finite, finite), st.tuples(finite, finite), st.tuples(finite, finite), st.floats(0, 1e6))
+def test_edge_distance_within_a_bound_is_the_reference_bit_for_bit(x, a, b, bound):
+    """At most the bound, the distance is the reference's bit for bit; above it, a number above the bound (so every
+    comparison with the bound decides as the reference's distance)."""
     expected = point_segment_distance(np.array(x), np.array(a), np.array(b))
-    assert fast.point_segment_distance(*x, *a, *b) == expected
-    P = np.array([a, b])
-    assert fast.edge_distance(P, 0, 1, *x) == expected
+    assert _edge_distance(x, a, b) == expected
+    got = _edge_distance(x, a, b, bound)
+    assert got == expected if expected <= bound else got > bound
 
 
-def test_point_segment_distance_by_hand():
+def test_edge_distance_by_hand():
     """Beyond either end the distance is to the end; over the segment, to the line; a point segment is a point."""
-    assert fast.point_segment_distance(5.0, 4.0, 0.0, 0.0, 2.0, 0.0) == 5.0
-    assert fast.point_segment_distance(-3.0, 4.0, 0.0, 0.0, 2.0, 0.0) == 5.0
-    assert fast.point_segment_distance(1.5, -2.0, 0.0, 0.0, 2.0, 0.0) == 2.0
-    assert fast.point_segment_distance(4.0, 5.0, 1.0, 1.0, 1.0, 1.0) == 5.0
-    assert fast.point_segment_distance(0.25, 1.0, 0.0, 0.0, 0.5, 0.0) == 1.0  # a segment shorter than 1
+    assert _edge_distance((5.0, 4.0), (0.0, 0.0), (2.0, 0.0)) == 5.0
+    assert _edge_distance((-3.0, 4.0), (0.0, 0.0), (2.0, 0.0)) == 5.0
+    assert _edge_distance((1.5, -2.0), (0.0, 0.0), (2.0, 0.0)) == 2.0
+    assert _edge_distance((4.0, 5.0), (1.0, 1.0), (1.0, 1.0)) == 5.0
+    assert _edge_distance((0.25, 1.0), (0.0, 0.0), (0.5, 0.0)) == 1.0  # a segment shorter than 1
 
 
 # --------------------------------------------------------------------------- the arrays
@@ -123,7 +129,9 @@ def _assert_candidates(P, V, SA, SB, l):
     lim, seen = fast.limits(l), np.empty(fast.NEAR_TRIANGLES, dtype=np.int64)
     centres, radii = reference.circle_candidates(P, V, segments, l)
     listed = {(x, y): r for (x, y), r in zip(centres.tolist(), radii.tolist())}
-    H = np.empty(4 * len(V) + 1, dtype=ENTRY)
+    queue = empty_queue(4 * len(V) + 1, 1, lim[0])
+    H, q = queue[0], queue[4]
+    q[0] = 0  # the lowest bucket the current one: every candidate goes into the heap
     nh = 0
     for t in range(len(V)):
         r, cx, cy, where = fast.visible_circumcentre(P, V, N, S, SA, SB, salive, len(SA), alive, len(V), t, lim, seen)
@@ -132,7 +140,7 @@ def _assert_candidates(P, V, SA, SB, l):
             assert r == listed[(cx, cy)] and contains(P, V, where, cx, cy)
         assert fast.visible_circumcentre(P, V, N, S, SA, SB, salive, len(SA), alive, len(V), t, lim, seen[:1])[0] == r
         nh = fast.push_candidates(
-            P, V, N, S, SA, SB, salive, len(SA), alive, np.arange(len(V)), len(V), t, lim, seen, H, nh
+            P, V, N, S, SA, SB, salive, len(SA), alive, np.arange(len(V)), len(V), t, lim, seen, queue, nh
         )
     mids, values, split = reference.midpoint_candidates(P, V, segments, l)
     expected = sorted(
@@ -162,10 +170,10 @@ def test_candidates_are_the_reference_candidates(ring, l, data):
     x, y = data.draw(st.tuples(st.floats(0.0, 6.0), st.floats(0.0, 6.0)))
     t = locate(P, V, N, np.ones(len(V), dtype=np.bool_), len(V), 0, x, y, len(V) + 1)
     if t >= 0:
-        nearest = min(fast.point_segment_distance(x, y, *P[a], *P[b]) for a, b in zip(SA, SB))
+        nearest = min(_edge_distance((x, y), P[a], P[b]) for a, b in zip(SA, SB))
         for reach, buffer in ((lim[4], seen), (lim[4], seen[:1]), (0.0, seen)):
             gap = fast.constraint_gap(P, V, N, S, SA, SB, salive, len(SA), t, x, y, reach, buffer)
-            assert gap >= nearest and (gap == nearest or nearest > reach / 2.0)
+            assert gap == nearest if nearest <= reach / 2.0 else gap > reach / 2.0
 
 
 def test_a_circumcentre_the_walks_cannot_reach_is_found_by_the_scan():
@@ -201,7 +209,8 @@ def test_candidates_where_every_boundary_midpoint_counts(hole):
 @pytest.mark.parametrize("hole", [False, True])
 def test_gap_is_the_nearest_constraint_within_half_its_reach(hole):
     """From the triangle containing each point of a grid, for reaches from a fraction of a triangle to most of the
-    region: the distance to the nearest constraint, exact whenever it is at most half the reach."""
+    region: the distance to the nearest constraint, exact whenever it is at most half the reach, else a number above
+    half the reach."""
     P, V, SA, SB = square_ring(6.0, 1.0, hole, [(0.5, 4.3), (5.2, 1.1), (3.1, 5.4), (2.5, 0.6)])
     N, S, _ = adjacency(V, SA, SB, len(P))
     salive, seen = np.ones(len(SA), dtype=np.bool_), np.empty(len(V), dtype=np.int64)
@@ -209,10 +218,10 @@ def test_gap_is_the_nearest_constraint_within_half_its_reach(hole):
         t = locate(P, V, N, np.ones(len(V), dtype=np.bool_), len(V), 0, x, y, len(V) + 1)
         if t < 0:
             continue
-        nearest = min(fast.point_segment_distance(x, y, *P[a], *P[b]) for a, b in zip(SA, SB))
+        nearest = min(_edge_distance((x, y), P[a], P[b]) for a, b in zip(SA, SB))
         for reach in (0.3, 1.0, 2.0, 6.0):
             gap = fast.constraint_gap(P, V, N, S, SA, SB, salive, len(SA), t, x, y, reach, seen)
-            assert gap >= nearest and (gap == nearest or nearest > reach / 2.0)
+            assert gap == nearest if nearest <= reach / 2.0 else gap > reach / 2.0
 
 
 def test_a_cavity_larger_than_its_buffer():
@@ -382,8 +391,8 @@ def test_a_circumcentre_refused_when_it_surfaces_is_skipped_and_the_insertion_go
     cx, cy, _, _, _ = fast.circumcircle(points, 0, 3, 4)
     a, b = points[0], points[1]
     p = 0.5 * (a + b)
-    before = fast.point_segment_distance(cx, cy, *a, *b)
-    after = min(fast.point_segment_distance(cx, cy, *a, *p), fast.point_segment_distance(cx, cy, *p, *b))
+    before = _edge_distance((cx, cy), a, b)
+    after = min(_edge_distance((cx, cy), a, p), _edge_distance((cx, cy), p, b))
     l = np.nextafter(_l_at(before, REL_TOL), 0.0)
     assert after <= REL_TOL * l < before and abs(l - 0.7) < 1e-6
     region = Region(points, np.array([[i, (i + 1) % 5] for i in range(5)]), np.empty((0, 2)))

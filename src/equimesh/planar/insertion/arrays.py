@@ -7,9 +7,15 @@ neighbours and constraint segments (``V``, ``N``, ``S`` of :mod:`.cdt`, as
 column views, :func:`store_views`), its cavity mark, version and whether it
 is alive, read by one cache line where separate int64 arrays took four.
 Rows not yet used are not initialised: memory never touched costs nothing.
+The engine asks for the rows of its next candidate ahead of time
+(:func:`prefetch`), so that they arrive while the current point is inserted.
 """
 
 import numpy as np
+from llvmlite import ir
+from numba import config, types
+from numba.core import cgutils
+from numba.extending import intrinsic
 
 from ..._jit import compiled
 
@@ -64,3 +70,32 @@ def grown_store(T, rows, used):
 
 
 grown_store = compiled(grown_store)
+
+
+def prefetch(array, row):
+    """Ask the processor to bring row ``row`` of ``array`` into its caches (LLVM's ``llvm.prefetch``, for a read, into
+    every level): it changes no value, only when the memory arrives.  Run as Python, it does nothing."""
+
+
+def _prefetch(typingctx, array, row):
+    """:func:`prefetch` compiled: the address of ``array[row, 0, ..]`` handed to ``llvm.prefetch``."""
+
+    def codegen(context, builder, signature, args):
+        kind = signature.args[0]
+        view = context.make_array(kind)(context, builder, args[0])
+        index = [args[1]] + [context.get_constant(types.intp, 0)] * (kind.ndim - 1)
+        shape, strides = cgutils.unpack_tuple(builder, view.shape), cgutils.unpack_tuple(builder, view.strides)
+        address = cgutils.get_item_pointer2(context, builder, view.data, shape, strides, kind.layout, index)
+        byte = builder.bitcast(address, ir.IntType(8).as_pointer())
+        word = ir.IntType(32)
+        hint = cgutils.get_or_insert_function(
+            builder.module, ir.FunctionType(ir.VoidType(), [byte.type, word, word, word]), "llvm.prefetch.p0"
+        )
+        builder.call(hint, [byte, ir.Constant(word, 0), ir.Constant(word, 3), ir.Constant(word, 1)])
+        return context.get_dummy_value()
+
+    return types.void(array, types.intp), codegen
+
+
+if not config.DISABLE_JIT:
+    prefetch = intrinsic(_prefetch)

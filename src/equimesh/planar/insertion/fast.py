@@ -1,4 +1,4 @@
-"""Fast engine: Steps 3-4 of Algorithm INCREMENT with an incremental CDT and a heap, compiled.
+"""Fast engine: Steps 3-4 of Algorithm INCREMENT with an incremental CDT and a queue of candidates, compiled.
 
 Same candidates, values, rules and tie-breaking as :mod:`.reference` (read
 its docstring first); only the bookkeeping differs.
@@ -14,18 +14,19 @@ its docstring first); only the bookkeeping differs.
   changes exactly the triangles of its cavity, so only their candidates die
   and only the fan's are new; a surviving triangle keeps its vertices, hence
   the same circumcentre bits and the same apex.  Candidates go into the
-  heap of :mod:`.heap`, largest value first, then smallest x, then smallest
-  y, with the triangle slot's version: an entry whose triangle died (or
-  whose segment was split) is skipped when it surfaces (lazy deletion).
+  queue of :mod:`.buckets` and :mod:`.heap`, largest value first, then
+  smallest x, then smallest y, with the triangle slot's version: an entry
+  whose triangle died (or whose segment was split) is skipped when it
+  surfaces (lazy deletion).
 
-Why the heap top is the farthest point of Step 3.  The live entries are the
+Why the queue's first entry is the farthest point of Step 3.  The live entries are the
 candidates of the current triangles, and those are exactly the candidates
 the reference engine lists after re-triangulating from scratch (the CDT is
 unique without four cocircular points, and circumcentres are computed by the
 same float operations from the vertices in increasing index order, so they
-have the same bits).  The heap's order is the reference's lexsort order:
-largest value, then smallest x, then smallest y.  So the top live entry is
-the reference's choice, and Step 4 stops when the heap holds no live entry:
+have the same bits).  The queue's order is the reference's lexsort order:
+largest value, then smallest x, then smallest y.  So the first live entry is
+the reference's choice, and Step 4 stops when the queue holds no live entry:
 only candidates of value at least ``(1 - REL_TOL) l`` are pushed.  A
 circumcentre's visibility and its distance to the constraints (the
 REL_TOL and SLIVER_GAP rules) are decided when it is pushed and decided
@@ -62,10 +63,15 @@ the arrays, and grows one by doubling whenever the loop stops short of room.
 
 Memory: the arrays are made at once for Oler's bound on the points
 (:func:`expected_points`), each triangle one cache line (:mod:`.arrays`).
+The farthest point jumps across the region, so the next candidate's
+triangle, then its points and neighbours, are prefetched while the current
+point is inserted (:func:`.arrays.prefetch`; the heap's top is most likely
+the next candidate).
 
 numba's on-disk cache (``cache=True``) is keyed by the source file of each
 compiled function, not by the functions it calls: after an edit of
-:mod:`._cdt`, :mod:`._predicates`, :mod:`.heap` or :mod:`.arrays` alone, the cached :func:`insert_all`
+:mod:`._cdt`, :mod:`._predicates`, :mod:`.buckets`, :mod:`.heap` or :mod:`.arrays` alone, the cached
+:func:`insert_all`
 still holds the old code.  Edit this file too (or delete ``__pycache__/*.nb*``)
 whenever one of them changes.
 """
@@ -78,7 +84,8 @@ from ..._jit import compiled
 from ...errors import EquimeshError, InternalError, MeshTooLargeError
 from ...mesh import triangle_orient
 from ...tolerance import REL_TOL, SLIVER_GAP
-from .arrays import extended, grown, grown_store, store_views, triangle_store
+from .arrays import extended, grown, grown_store, prefetch, store_views, triangle_store
+from .buckets import CHUNK, empty_queue, offer, refill, spare_chunks
 from .cdt import adjacency, cavity, cavity_boundary, fill, locate, segments_touch, walk
 from .heap import ENTRY, MAX_SLOTS, compact, entry_live, pop, push
 from .region import Insertion, constrained_delaunay
@@ -91,9 +98,11 @@ _REACH = 2.0
 #: many such triangles (a vertex of high degree next to the circumcentre).
 NEAR_TRIANGLES = 64
 
-#: A squared circumradius computed in floating point (two squares and a sum, relative error at most 3 ulps) below
-#: ``SQUARE_MARGIN`` times the square of the bound has a ``hypot`` (error below an ulp) below the bound: a margin
-#: of 10^-6 against errors of 10^-15.  The circumradii of most new triangles are below l, so they skip ``hypot``.
+#: A squared circumradius or distance computed in floating point (two squares and a sum, relative error at most 3
+#: ulps) below ``SQUARE_MARGIN`` times the square of a bound has a ``hypot`` (error below an ulp) below the bound, and
+#: one above the square over ``SQUARE_MARGIN`` a ``hypot`` above it: a margin of 10^-6 against errors of 10^-15.
+#: The circumradii of most new triangles are below l, and the edges near a circumcentre are mostly farther than
+#: the constraint search's reach, so they skip ``hypot``.
 SQUARE_MARGIN = 1.0 - 1e-6
 
 #: Starting length of the cavity buffers (grown on demand).
@@ -114,8 +123,9 @@ ROOM = -4 - 2**62
 #: the initial points, and after ROOM the array short of room and the rows it needs.
 STATE = ("points", "slots", "segments", "free", "heap", "fan", "stamp", "initial", "short", "need")
 POINTS, SLOTS, SEGMENTS, FREE, HEAP, FAN, STAMP, INITIAL, SHORT, NEED = range(len(STATE))
-#: What ``state[SHORT]`` names: nothing, the heap, the points, the segments, the cavity, the fan, the triangles.
-SHORT_NONE, SHORT_HEAP, SHORT_POINTS, SHORT_SEGMENTS, SHORT_CAVITY, SHORT_FAN, SHORT_TRIANGLES = range(7)
+#: What ``state[SHORT]`` names: nothing, the heap, the points, the segments, the cavity, the fan, the triangles,
+#: the buckets' chunks.
+SHORT_NONE, SHORT_HEAP, SHORT_POINTS, SHORT_SEGMENTS, SHORT_CAVITY, SHORT_FAN, SHORT_TRIANGLES, SHORT_CHUNKS = range(8)
 
 
 def circumcircle(P, a, b, c, floor=0.0):
@@ -147,32 +157,47 @@ def circumcircle(P, a, b, c, floor=0.0):
 circumcircle = compiled(circumcircle, nrt=False)
 
 
-def point_segment_distance(x, y, ax, ay, bx, by):
-    """:func:`equimesh._geometry.point_segment_distance` for one point and segment, same operations."""
+def segment_offset(x, y, ax, ay, bx, by):
+    """The offset of ``(x, y)`` from its nearest point on the segment ``ab``: the operations of
+    :func:`equimesh._geometry.point_segment_distance` before its ``hypot``."""
     abx, aby = bx - ax, by - ay
     denom = abx * abx + aby * aby
     t = ((x - ax) * abx + (y - ay) * aby) / (denom if denom > 0 else 1.0)
     t = min(max(t, 0.0), 1.0)
-    return np.hypot(x - (ax + t * abx), y - (ay + t * aby))
+    return x - (ax + t * abx), y - (ay + t * aby)
 
 
-point_segment_distance = compiled(point_segment_distance, nrt=False)
+segment_offset = compiled(segment_offset, nrt=False)
 
 
-def edge_distance(P, a, b, x, y):
-    return point_segment_distance(x, y, P[a, 0], P[a, 1], P[b, 0], P[b, 1])
+def edge_distance_within(P, a, b, x, y, bound):
+    """The distance from ``(x, y)`` to the edge ``ab`` bit for bit as
+    :func:`equimesh._geometry.point_segment_distance` where it is at most ``bound``, else a number above ``bound``.
+
+    A squared distance above ``bound^2 / SQUARE_MARGIN`` has a ``hypot`` above
+    ``bound``; its square root is returned then, without the cost of ``hypot``.
+    So a comparison with ``bound`` or less decides as the distance would.
+    """
+    dx, dy = segment_offset(x, y, P[a, 0], P[a, 1], P[b, 0], P[b, 1])
+    d2 = dx * dx + dy * dy
+    if SQUARE_MARGIN * d2 > bound * bound:
+        return math.sqrt(d2)
+    return np.hypot(dx, dy)
 
 
-edge_distance = compiled(edge_distance, nrt=False)
+edge_distance_within = compiled(edge_distance_within, nrt=False)
 
 
 def constraint_gap(P, V, N, S, SA, SB, salive, n_segs, start, x, y, reach, seen):
-    """Distance from ``(x, y)`` to the nearest constraint, exact whenever it is at most ``reach / 2``.
+    """Distance from ``(x, y)`` to the nearest constraint, exact whenever it is at most ``reach / 2`` (else a
+    number above it).
 
     Searches the triangles within ``reach`` of the point, from the triangle
     ``start`` containing it, across non-constraint edges; if there are more
-    than ``len(seen)`` of them, every constraint is measured.
+    than ``len(seen)`` of them, every constraint is measured.  Distances are
+    :func:`edge_distance_within` these bounds, which decide as the exact ones.
     """
+    near = 0.5 * reach
     best = np.inf
     seen[0] = start
     k, i = 1, 0
@@ -182,10 +207,10 @@ def constraint_gap(P, V, N, S, SA, SB, salive, n_segs, start, x, y, reach, seen)
         for e in range(3):
             s = S[t, e]
             if s >= 0:
-                best = min(best, edge_distance(P, SA[s], SB[s], x, y))
+                best = min(best, edge_distance_within(P, SA[s], SB[s], x, y, near))
                 continue
             n = N[t, e]
-            if n < 0 or edge_distance(P, V[t, e], V[t, (e + 1) % 3], x, y) > reach:
+            if n < 0 or edge_distance_within(P, V[t, e], V[t, (e + 1) % 3], x, y, reach) > reach:
                 continue
             known = False
             for j in range(k):
@@ -195,7 +220,7 @@ def constraint_gap(P, V, N, S, SA, SB, salive, n_segs, start, x, y, reach, seen)
                     best = np.inf
                     for s in range(n_segs):
                         if salive[s]:
-                            best = min(best, edge_distance(P, SA[s], SB[s], x, y))
+                            best = min(best, edge_distance_within(P, SA[s], SB[s], x, y, near))
                     return best
                 seen[k] = n
                 k += 1
@@ -240,11 +265,15 @@ def grown_heap(H, size):
 grown_heap = compiled(grown_heap)
 
 
-def push_candidates(P, V, N, S, SA, SB, salive, n_segs, alive, ver, n_slots, t, lim, seen, H, nh):
-    """Push the candidates of triangle ``t`` (its circumcentre, its constraint midpoints); the new heap size."""
+def push_candidates(P, V, N, S, SA, SB, salive, n_segs, alive, ver, n_slots, t, lim, seen, queue, nh):
+    """Queue the candidates of triangle ``t`` (its circumcentre, its constraint midpoints); the new heap size.
+
+    ``queue``: ``(H, pool, link, table, q)`` of :func:`.buckets.offer`.
+    """
+    H, pool, link, table, q = queue
     r, cx, cy, _ = visible_circumcentre(P, V, N, S, SA, SB, salive, n_segs, alive, n_slots, t, lim, seen)
     if r >= 0.0:
-        nh = push(H, nh, r, cx, cy, 4 * t, ver[t])
+        nh = offer(H, nh, pool, link, table, q, r, cx, cy, 4 * t, ver[t])
     for e in range(3):
         s = S[t, e]
         if s < 0:
@@ -259,7 +288,7 @@ def push_candidates(P, V, N, S, SA, SB, salive, n_segs, alive, ver, n_slots, t, 
         ex, ey = mx - P[apex, 0], my - P[apex, 1]
         value = min(half, math.sqrt(ex * ex + ey * ey))
         if value >= lim[0]:
-            nh = push(H, nh, value, mx, my, 4 * t + e + 1, ver[t])
+            nh = offer(H, nh, pool, link, table, q, value, mx, my, 4 * t + e + 1, ver[t])
     return nh
 
 
@@ -267,7 +296,7 @@ push_candidates = compiled(push_candidates, nrt=False)
 
 
 def advance(
-    P, V, N, S, SA, SB, salive, alive, ver, mark, free, vfan, vstamp, values, cav, edges, slots, seen, H, lim, state
+    P, V, N, S, SA, SB, salive, alive, ver, mark, free, vfan, vstamp, values, cav, edges, slots, seen, queue, lim, state
 ):
     """Steps 3-4 from ``state`` (:data:`STATE`) until no candidate is left: OK, BROKEN, or ROOM.
 
@@ -278,20 +307,33 @@ def advance(
     """
     n, n_slots, n_segs, n_free = state[POINTS], state[SLOTS], state[SEGMENTS], state[FREE]
     nh, m, stamp, n0 = state[HEAP], state[FAN], state[STAMP], state[INITIAL]
+    H, pool, link, table, q = queue
     status = OK
     while True:
-        # Push the candidates of the new triangles slots[:m] (at first: every triangle), at most four each.
+        # Queue the candidates of the new triangles slots[:m] (at first: every triangle), at most four each.
         if nh + 4 * m >= len(H):
             nh = compact(H, nh, ver, S, salive)
             if 2 * (nh + 4 * m) >= len(H):
                 status, state[SHORT], state[NEED] = ROOM, SHORT_HEAP, 2 * len(H) + 4 * m
                 break
+        if spare_chunks(link, q) < 4 * m:
+            status, state[SHORT], state[NEED] = ROOM, SHORT_CHUNKS, 2 * len(link) + 4 * m
+            break
         for f in range(m):
-            nh = push_candidates(P, V, N, S, SA, SB, salive, n_segs, alive, ver, n_slots, slots[f], lim, seen, H, nh)
+            nh = push_candidates(
+                P, V, N, S, SA, SB, salive, n_segs, alive, ver, n_slots, slots[f], lim, seen, queue, nh
+            )
         m = 0
         if nh == 0:
-            break
+            nh, need = refill(H, pool, link, table, q, ver, S, salive)
+            if need > 0:
+                status, state[SHORT], state[NEED] = ROOM, SHORT_HEAP, max(2 * len(H), need)
+                break
+            if nh == 0:
+                break
         nh = pop(H, nh)
+        if nh > 0:  # most likely the next candidate: its triangle's row, while this one is inserted
+            prefetch(V, H[0]["tag"] >> 2)
         if not entry_live(H, nh, ver, S, salive):
             continue
         tag, version, value, x, y = H[nh]["tag"], H[nh]["version"], -H[nh]["key"], H[nh]["x"], H[nh]["y"]
@@ -358,6 +400,12 @@ def advance(
                     elif w == b:
                         S[t, e] = n_segs + 1
             n_segs += 2
+        if nh > 0:  # the next candidate's triangle has arrived by now: ask for its points and neighbours
+            t = H[0]["tag"] >> 2
+            for e in range(3):
+                prefetch(P, V[t, e])
+                if N[t, e] >= 0:
+                    prefetch(V, N[t, e])
     state[POINTS], state[SLOTS], state[SEGMENTS], state[FREE] = n, n_slots, n_segs, n_free
     state[HEAP], state[FAN], state[STAMP] = nh, m, stamp
     return status
@@ -394,18 +442,20 @@ def insert_all(P0, T0, SEG0, lim, points=0):
     edges = np.empty((max(CAVITY, len(T0)) + 2, 4), dtype=np.int64)
     slots = extended(np.arange(len(T0)), len(edges))
     seen = np.empty(NEAR_TRIANGLES, dtype=np.int64)
-    H = np.empty(max(4 * len(T0), points) + 1, dtype=ENTRY)
+    H, pool, link, table, q = empty_queue(4 * len(T0) + 4 * CAVITY + 1, (4 * len(T0) + 2 * points) // CHUNK + 1, lim[0])
     state = np.zeros(len(STATE), dtype=np.int64)
     state[POINTS], state[SLOTS], state[SEGMENTS], state[FAN], state[INITIAL] = n, len(T0), len(SA0), len(T0), n
     status = ROOM
     while status == ROOM:
         work = (P, V, N, S, SA, SB, salive, alive, ver, mark, free, W[:, 0], W[:, 1], values, cav, edges, slots)
-        status = advance(*work, seen, H, lim, state)
+        status = advance(*work, seen, (H, pool, link, table, q), lim, state)
         short, need = state[SHORT], state[NEED]
         if status != ROOM:
             break
         if short == SHORT_HEAP:
             H = grown_heap(H, need)
+        elif short == SHORT_CHUNKS:
+            pool, link = extended(pool, need * CHUNK), extended(link, need)
         elif short == SHORT_POINTS:
             if need > MAX_SLOTS // 2:
                 return TOO_LARGE, P0, T0, SEG0, values

@@ -12,9 +12,10 @@ among them, and the top is the reference's choice (when two candidates have
 the same value and point, the lower ``tag`` first: either inserts the same
 point).
 
-Layout, for the cache: a million points keep about a million entries, and a
-pop descends the whole height.  Each record holds everything the pop reads
-(one array, not one for keys and one for the rest), the four children of an
+The heap holds the entries of one bucket of values at a time (:mod:`.buckets`
+keeps the others), a few thousand at a million points.  Layout, for the
+cache: each record holds everything the pop reads (one array, not one for
+keys and one for the rest), the four children of an
 entry are adjacent (128 bytes), and a 4-ary heap is half as tall as a binary
 one.  A pop moves the hole left by the top down along the smaller children to
 a leaf and then lifts the last entry from there (Floyd's "bottom-up" pop:
