@@ -77,6 +77,11 @@ KERNEL_MODULES = {
         "tests/planar/insertion/test_cdt.py",
         "tests/planar/insertion/test_fast.py",
     ],
+    "src/equimesh/planar/insertion/candidates.py": [
+        "tests/planar/insertion/test_predicates.py",
+        "tests/planar/insertion/test_cdt.py",
+        "tests/planar/insertion/test_fast.py",
+    ],
     "src/equimesh/planar/insertion/buckets.py": [
         "tests/planar/insertion/test_buckets.py",
         "tests/planar/insertion/test_fast.py",

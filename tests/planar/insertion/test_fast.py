@@ -41,7 +41,7 @@ import equimesh.planar.strip
 from equimesh import EquimeshError
 from equimesh._geometry import circumcenters, point_segment_distance
 from equimesh.errors import InternalError
-from equimesh.planar.insertion import Region, arrays, fast, insert, reference
+from equimesh.planar.insertion import Region, arrays, candidates, fast, insert, reference
 from equimesh.planar.insertion.buckets import empty_queue
 from equimesh.planar.insertion.cdt import adjacency, cavity, locate, walk
 from equimesh.planar.insertion.region import constrained_delaunay
@@ -60,14 +60,14 @@ triangles = st.lists(st.tuples(finite, finite), min_size=3, max_size=3).filter(l
 def test_circumcircle_is_the_reference_bit_for_bit(triangle, order):
     """Centre and radius are :func:`circumcenters` of the vertices in index order; g is their centroid."""
     P = np.array(triangle)
-    cx, cy, r, gx, gy = fast.circumcircle(P, *order)
+    cx, cy, r, gx, gy = candidates.circumcircle(P, *order)
     centre, radius = circumcenters(P[0], P[1], P[2])
     assert [cx, cy, r] == [*centre, radius]
     assert (gx, gy) == tuple((P[0] + P[1] + P[2]) / 3.0)
 
 
 def _edge_distance(x, a, b, bound=np.inf):
-    return fast.edge_distance_within(np.array([a, b], dtype=float), 0, 1, *x, bound)
+    return candidates.edge_distance_within(np.array([a, b], dtype=float), 0, 1, *x, bound)
 
 
 @given(st.tuples(finite, finite), st.tuples(finite, finite), st.tuples(finite, finite), st.floats(0, 1e6))
@@ -126,7 +126,7 @@ def _assert_candidates(P, V, SA, SB, l):
     N, S, _ = adjacency(V, SA, SB, len(P))
     segments = np.column_stack([SA, SB])
     salive, alive = np.ones(len(SA), dtype=np.bool_), np.ones(len(V), dtype=np.bool_)
-    lim, seen = fast.limits(l), np.empty(fast.NEAR_TRIANGLES, dtype=np.int64)
+    lim, seen = candidates.limits(l), np.empty(candidates.NEAR_TRIANGLES, dtype=np.int64)
     centres, radii = reference.circle_candidates(P, V, segments, l)
     listed = {(x, y): r for (x, y), r in zip(centres.tolist(), radii.tolist())}
     queue = empty_queue(4 * len(V) + 1, 1, lim[0])
@@ -134,12 +134,17 @@ def _assert_candidates(P, V, SA, SB, l):
     q[0] = 0  # the lowest bucket the current one: every candidate goes into the heap
     nh = 0
     for t in range(len(V)):
-        r, cx, cy, where = fast.visible_circumcentre(P, V, N, S, SA, SB, salive, len(SA), alive, len(V), t, lim, seen)
+        r, cx, cy, where = candidates.visible_circumcentre(
+            P, V, N, S, SA, SB, salive, len(SA), alive, len(V), t, lim, seen
+        )
         assert (r >= 0.0) == ((cx, cy) in listed)
         if r >= 0.0:
             assert r == listed[(cx, cy)] and contains(P, V, where, cx, cy)
-        assert fast.visible_circumcentre(P, V, N, S, SA, SB, salive, len(SA), alive, len(V), t, lim, seen[:1])[0] == r
-        nh = fast.push_candidates(
+        assert (
+            candidates.visible_circumcentre(P, V, N, S, SA, SB, salive, len(SA), alive, len(V), t, lim, seen[:1])[0]
+            == r
+        )
+        nh = candidates.push_candidates(
             P, V, N, S, SA, SB, salive, len(SA), alive, np.arange(len(V)), len(V), t, lim, seen, queue, nh
         )
     mids, values, split = reference.midpoint_candidates(P, V, segments, l)
@@ -164,15 +169,15 @@ def test_candidates_are_the_reference_candidates(ring, l, data):
     N, S, _ = adjacency(V, SA, SB, len(P))
     salive, lim, seen = (
         np.ones(len(SA), dtype=np.bool_),
-        fast.limits(l),
-        np.empty(fast.NEAR_TRIANGLES, dtype=np.int64),
+        candidates.limits(l),
+        np.empty(candidates.NEAR_TRIANGLES, dtype=np.int64),
     )
     x, y = data.draw(st.tuples(st.floats(0.0, 6.0), st.floats(0.0, 6.0)))
     t = locate(P, V, N, np.ones(len(V), dtype=np.bool_), len(V), 0, x, y, len(V) + 1)
     if t >= 0:
         nearest = min(_edge_distance((x, y), P[a], P[b]) for a, b in zip(SA, SB))
         for reach, buffer in ((lim[4], seen), (lim[4], seen[:1]), (0.0, seen)):
-            gap = fast.constraint_gap(P, V, N, S, SA, SB, salive, len(SA), t, x, y, reach, buffer)
+            gap = candidates.constraint_gap(P, V, N, S, SA, SB, salive, len(SA), t, x, y, reach, buffer)
             assert gap == nearest if nearest <= reach / 2.0 else gap > reach / 2.0
 
 
@@ -188,7 +193,7 @@ def test_a_circumcentre_the_walks_cannot_reach_is_found_by_the_scan():
     N, S, _ = adjacency(V, SA, SB, len(P))
     assert walk(P, V, N, S, 0, 0.0, 1.0 / 3.0, 0.0, -4.0, len(V) + 1) == (-1, -1)
     _assert_candidates(P, V, SA, SB, 4.0)
-    status, points, _, _, values = fast.insert_all(P, V, np.column_stack([SA, SB]), fast.limits(4.0))
+    status, points, _, _, values = fast.insert_all(P, V, np.column_stack([SA, SB]), candidates.limits(4.0))
     assert status == fast.OK and points[len(P)].tolist() == [0.0, -4.0] and values[0] == 5.0
 
 
@@ -220,7 +225,7 @@ def test_gap_is_the_nearest_constraint_within_half_its_reach(hole):
             continue
         nearest = min(_edge_distance((x, y), P[a], P[b]) for a, b in zip(SA, SB))
         for reach in (0.3, 1.0, 2.0, 6.0):
-            gap = fast.constraint_gap(P, V, N, S, SA, SB, salive, len(SA), t, x, y, reach, seen)
+            gap = candidates.constraint_gap(P, V, N, S, SA, SB, salive, len(SA), t, x, y, reach, seen)
             assert gap == nearest if nearest <= reach / 2.0 else gap > reach / 2.0
 
 
@@ -339,7 +344,7 @@ def _thresholds():
         cases += [(points, l), (points, np.nextafter(l, 0.0) * (1.0 - 4.0 * REL_TOL))]
     for gap, radius, factor in [(0.5, 1.5, 1.0 - REL_TOL), (0.5 * SLIVER_GAP, 1.0, 1.0 + REL_TOL)]:
         points = circle_triangle(gap, radius)[0]
-        cases.append((points, _l_at(fast.circumcircle(points, 0, 1, 2)[2], factor)))
+        cases.append((points, _l_at(candidates.circumcircle(points, 0, 1, 2)[2], factor)))
     cases.append((np.array([[-1.0, 0.0], [1.0, 0.0], [0.0, 5.0]]), _l_at(1.0, 1.0 - REL_TOL)))
     return cases
 
@@ -348,8 +353,10 @@ def test_every_limit_is_a_multiple_of_l():
     """Scaling l by a power of two scales every threshold and the search reach by it exactly, the squared floor of
     the circumradii by its square."""
     for k in (-7, 1, 30):
-        scaled = fast.limits(math.ldexp(1.3, k)).tolist()
-        assert scaled == [math.ldexp(x, k) for x in fast.limits(1.3)[:5]] + [math.ldexp(fast.limits(1.3)[5], 2 * k)]
+        scaled = candidates.limits(math.ldexp(1.3, k)).tolist()
+        assert scaled == [math.ldexp(x, k) for x in candidates.limits(1.3)[:5]] + [
+            math.ldexp(candidates.limits(1.3)[5], 2 * k)
+        ]
 
 
 @pytest.mark.parametrize("points, l", _thresholds())
@@ -388,7 +395,7 @@ def test_a_circumcentre_refused_when_it_surfaces_is_skipped_and_the_insertion_go
         tuple(centre + radius * np.array([-0.6, 0.8])),
     ]
     points = np.array([turn @ np.array(p) + (0.1, 0.0) for p in frame])
-    cx, cy, _, _, _ = fast.circumcircle(points, 0, 3, 4)
+    cx, cy, _, _, _ = candidates.circumcircle(points, 0, 3, 4)
     a, b = points[0], points[1]
     p = 0.5 * (a + b)
     before = _edge_distance((cx, cy), a, b)
@@ -425,8 +432,8 @@ def test_growing_from_no_room_changes_nothing(monkeypatch, module, call):
     segments = np.array(region.segments, dtype=np.int64).reshape(-1, 2)
     triangles = np.ascontiguousarray(constrained_delaunay(points, segments, region.holes), dtype=np.int64)
     expected = fast.expected_points(points, segments, triangles, l)
-    ahead = fast.insert_all(points, triangles, segments, fast.limits(l), expected)
-    grown = fast.insert_all(points, triangles, segments, fast.limits(l))
+    ahead = fast.insert_all(points, triangles, segments, candidates.limits(l), expected)
+    grown = fast.insert_all(points, triangles, segments, candidates.limits(l))
     assert ahead[0] == grown[0] == fast.OK and len(ahead[1]) > len(points) + 1  # the points grew
     for a, b in zip(ahead[1:], grown[1:]):
         assert a.dtype == b.dtype and np.array_equal(a, b)
