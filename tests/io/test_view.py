@@ -53,6 +53,17 @@ def test_bins_hold_every_length_and_lie_on_l_plus_whole_multiples_of_the_toleran
     assert len(set(np.diff(np.round(k)).tolist())) == 1  # one width
 
 
+@given(lengths_st, tolerances, st.integers(2, 40))
+def test_bins_never_exceed_their_limit(lengths, tolerance, max_bins):
+    """Rounding the ends out to whole steps never adds a bin beyond ``max_bins``; the bins still hold every length
+    and lie on 1 + whole multiples of the tolerance."""
+    edges = length_bins(lengths, 1.0, tolerance, max_bins=max_bins)
+    assert 1 <= len(edges) - 1 <= max_bins
+    assert edges[0] <= min(lengths) and max(lengths) <= edges[-1]
+    k = (edges - 1.0) / tolerance
+    assert np.allclose(k, np.round(k), rtol=0, atol=1e-6 * max(1.0, np.abs(k).max()))
+
+
 def test_the_outline_is_the_outer_boundary_and_the_openings(square_mesh):
     """The planar mesh's info says how many nodes the outer ring has; a surface mesh's plane says it; without
     rings every boundary node is on the outer ring."""
@@ -139,3 +150,5 @@ def test_length_bins_by_hand():
     np.testing.assert_array_equal(length_bins(np.array([]), 1.0, 0.25), [1.0, 1.25])
     np.testing.assert_array_equal(length_bins([0, 3], 1.0, 0.25, max_bins=6), np.arange(7) / 2)
     np.testing.assert_array_equal(length_bins([0, 3], 1.0, 0.25, max_bins=12), np.arange(-4, 9) / 4 + 1)
+    # Steps 1 and 2 round out to 3 bins; a step of 3 (0.75) gives 2: [0.25, 1.0, 1.75].
+    np.testing.assert_allclose(length_bins([0.8, 1.7], 1.0, 0.25, max_bins=2), [0.25, 1.0, 1.75])

@@ -157,10 +157,13 @@ def class_groups(classes, max_drawn=MAX_DRAWN_CLASSES):
 
 
 def length_bins(lengths, l, tolerance, max_bins=MAX_BINS):
-    """Bin edges of member length: ``tolerance l`` wide (or a whole multiple of it), with l an edge.
+    """Bin edges of member length: ``tolerance l`` wide (or a whole multiple of it), with l an edge; at most
+    ``max_bins`` (at least 2) bins.
 
     The window ``l +- tolerance l`` of the run's tolerance is then two whole
-    bins (one, when the width had to be widened to keep ``max_bins``).
+    bins (one, when the width had to be widened to keep ``max_bins``).  The
+    ends are rounded out to whole steps, which can add a bin: the step grows
+    until they fit (a step as wide as the span leaves two bins at most).
     """
     lengths = np.asarray(lengths, dtype=float)
     lo, hi = (float(lengths.min()), float(lengths.max())) if lengths.size else (l, l)
@@ -168,6 +171,8 @@ def length_bins(lengths, l, tolerance, max_bins=MAX_BINS):
     first, last = math.floor((lo - l) / width), math.ceil((hi - l) / width)
     last = max(last, first + 1)
     step = max(1, math.ceil((last - first) / max_bins))
+    while (step * math.ceil(last / step) - step * math.floor(first / step)) // step > max_bins:
+        step += 1
     first, last = step * math.floor(first / step), step * math.ceil(last / step)
     return l + width * np.arange(first, last + 1, step)
 
