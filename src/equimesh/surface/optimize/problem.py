@@ -118,7 +118,7 @@ class UVProblem:
 
     @cached_property
     def _last(self):
-        """The quantities computed at the last ``x`` asked for (:meth:`_at`)."""
+        """The quantities computed at the last ``x`` asked for (:meth:`at`)."""
         return {}
 
     def at(self, x, name, compute):
