@@ -47,7 +47,7 @@ import compare_peers  # noqa: E402
 
 from equimesh.classes import length_classes  # noqa: E402
 from equimesh.mesh import edge_lengths, unique_edges  # noqa: E402
-from equimesh.metrics import COMPARISON_COLUMNS, comparison_figures  # noqa: E402
+from equimesh.metrics import COMPARISON_COLUMNS, MEMBER_KINDS, classes_by_kind, comparison_figures  # noqa: E402
 from equimesh.surface.charts.bezier import BezierSurface  # noqa: E402
 from equimesh.surface.pipeline import mesh_surface  # noqa: E402
 
@@ -142,13 +142,20 @@ def measure(task):
         (points, triangles, (dev_max, dev_mean)), seconds = _common.timed(methods()[0][method], entry[1], l)
     except Exception as exc:  # a method failing on a surface is a result, not a crash
         reason = f"failed: {type(exc).__name__}: {' '.join(str(exc).split())[:160]}"
-        return {**row, **dict.fromkeys(COMPARISON_COLUMNS, np.nan), "status": reason}, np.zeros(0, dtype=np.int64)
+        return {**row, **dict.fromkeys((*COMPARISON_COLUMNS, *KIND_COLUMNS), np.nan), "status": reason}, np.zeros(
+            0, dtype=np.int64
+        )
     figures = comparison_figures(points, triangles, l)
+    for kind, (members, need, in_top) in classes_by_kind(points, triangles, l).items():
+        figures.update({f"{kind}_members": members, f"{kind}_classes": need, f"{kind}_in_top10": in_top})
     sizes = np.sort(length_classes(edge_lengths(points, unique_edges(triangles)), l, 0.005).count)[::-1]
     extra = {"deviation_max": dev_max, "deviation_mean": dev_mean, "seconds": seconds, "status": "ok"}
     return {**row, **figures, **extra}, sizes
 
 
+#: Per kind of member (:func:`equimesh.metrics.classes_by_kind`): its members, the classes it needs alone, its share in
+#: the mesh's 10 largest classes.
+KIND_COLUMNS = tuple(f"{kind}_{figure}" for kind in MEMBER_KINDS for figure in ("members", "classes", "in_top10"))
 COLUMNS = [
     "surface",
     "developable",
@@ -156,6 +163,7 @@ COLUMNS = [
     "divisor",
     "method",
     *COMPARISON_COLUMNS,
+    *KIND_COLUMNS,
     "deviation_max",
     "deviation_mean",
     "seconds",
@@ -193,6 +201,7 @@ def markdown(df, skipped, record):
             f"| {r.angle_min:.1f} | {r.angle_max:.1f} | {_pct(r.below_30deg)} | {dev} | {r.seconds:.2f} |"
         )
     body += ["", "## The targets of the fewest-classes objective", "", *targets(df)]
+    body += ["", "## Where the classes go", "", *kinds(df)]
     if skipped:
         body += ["", "Not compared on this machine:", ""] + [f"- {k}: {v}" for k, v in skipped.items()]
     return _common.markdown_report("Fewest member types and sound joints", f"experiments/{NAME}.py", body, record)
@@ -227,6 +236,31 @@ def targets(df):
             f"| {r['angle_min']:.1f}-{r['angle_max']:.1f} ({mark(r['angle_min'] >= 30 - 1e-9)}) "
             f"| {int(r['classes_05'])}{gmsh} ({mark(half)}) | {_pct(r['top10_05'])} % ({mark(r['top10_05'] >= 0.95)}) "
             f"| {_pct(r['within_05'])} % ({mark(r['within_05'] >= need)}) |"
+        )
+    return lines
+
+
+def kinds(df):
+    """One line per (surface, l, method) of equimesh classes (D = 0) and gmsh Frontal-Delaunay: per kind of member
+    (:func:`equimesh.metrics.classes_by_kind`) its members, the classes it needs alone and its share in the mesh's
+    10 largest classes."""
+    lines = [
+        "Per kind of member (equimesh.metrics.classes_by_kind): along the outline, in the boundary strip (the other "
+        "members with a node on the outline) and inside; each cell: members / the classes at 0.5 % they need alone "
+        "/ their share in the mesh's 10 largest classes.",
+        "",
+        "| surface | l | method | classes | along the outline | strip | inside |",
+        "|---|---|---|---|---|---|---|",
+    ]
+    shown = df[(df["status"] == "ok") & df["method"].isin(["equimesh classes", "gmsh Frontal-Delaunay"])]
+    for r in shown.to_dict("records"):
+        cells = [
+            f"{int(r[f'{k}_members'])} / {int(r[f'{k}_classes'])} / {_pct(r[f'{k}_in_top10'])} %" for k in MEMBER_KINDS
+        ]
+        lines.append(
+            f"| {r['surface']} | span / {r['divisor']} | {r['method']} | {int(r['classes_05'])} | "
+            + " | ".join(cells)
+            + " |"
         )
     return lines
 

@@ -2,15 +2,21 @@
 
 import numpy as np
 import pytest
+from hypothesis import assume, given
+from hypothesis import strategies as st
+from scipy.spatial import ConvexHull, Delaunay
 
 from equimesh.mesh import unique_edges
 from equimesh.metrics import (
     COMPARISON_COLUMNS,
     FABRICATION_COLUMNS,
+    MEMBER_KINDS,
     SUMMARY_KEYS,
     TABLE1_COLUMNS,
     TABLE1_HEADINGS,
     angle_range,
+    boundary_edges,
+    classes_by_kind,
     comparison_figures,
     distinct_lengths,
     edge_lengths,
@@ -290,3 +296,50 @@ def test_node_figures_of_one_triangle_and_of_none():
     np.testing.assert_allclose([f["min_angle"], f["max_angle"]], 60.0, atol=1e-12)
     none = node_figures(np.zeros((0, 3)), np.zeros((0, 3), dtype=np.int64), np.zeros((0, 2), dtype=np.int64))
     assert all(len(v) == 0 for v in none.values())
+
+
+def _grid(n):
+    """An n x n grid of unit squares, each split by the diagonal from its lower left corner."""
+    points = np.array([[x, y, 0.0] for y in range(n + 1) for x in range(n + 1)])
+    a = np.array([j * (n + 1) + i for j in range(n) for i in range(n)])
+    return points, np.concatenate([np.column_stack([a, a + 1, a + n + 2]), np.column_stack([a, a + n + 2, a + n + 1])])
+
+
+def test_classes_by_kind_counts_the_members_and_classes_of_each_kind():
+    """3 x 3 squares: 12 members along the outline (length 1), 16 in the strip (8 sides, 8 diagonals), 5 inside (4
+    sides, 1 diagonal); the largest class, length 1, holds 8 of the strip's and 4 of the interior's."""
+    points, triangles = _grid(3)
+    assert classes_by_kind(points, triangles, 1.0) == {
+        "boundary": (12, 1, 1.0),
+        "strip": (16, 2, 1.0),
+        "interior": (5, 2, 1.0),
+    }
+    assert classes_by_kind(points, triangles, 1.0, k=1) == {
+        "boundary": (12, 1, 1.0),
+        "strip": (16, 2, 0.5),
+        "interior": (5, 2, 0.8),
+    }
+    assert tuple(classes_by_kind(points, triangles, 1.0)) == MEMBER_KINDS
+
+
+def test_classes_by_kind_of_one_triangle_has_no_strip_or_interior():
+    out = classes_by_kind([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]], [[0, 1, 2]], 1.0)
+    assert out["boundary"] == (3, 2, 1.0)
+    assert out["strip"][:2] == (0, 0) and np.isnan(out["strip"][2])
+    assert out["interior"][:2] == (0, 0) and np.isnan(out["interior"][2])
+
+
+@given(st.lists(st.tuples(st.integers(0, 1000), st.integers(0, 1000)), min_size=8, max_size=40, unique=True))
+def test_boundary_edges_of_a_delaunay_triangulation_are_its_hull(raw):
+    """The edges of one triangle of a Delaunay triangulation are the sides of the convex hull (general position
+    assumed: skipped where the hull has collinear points); every member is of exactly one kind."""
+    points = np.array(raw, dtype=float)
+    assume(np.linalg.matrix_rank(points - points[0]) == 2)
+    hull = ConvexHull(points, qhull_options="Qc")
+    assume(not hull.coplanar.size)
+    triangles = Delaunay(points).simplices
+    sides = {tuple(sorted(e)) for e in hull.simplices.tolist()}
+    assert {tuple(e) for e in boundary_edges(triangles).tolist()} == sides
+    kinds = classes_by_kind(points, triangles, 100.0)
+    assert kinds["boundary"][0] == len(sides)
+    assert sum(members for members, _, _ in kinds.values()) == len(unique_edges(triangles))

@@ -270,6 +270,52 @@ def quality_summary(points, triangles, edges, l, groups=None):
 NODE_COLUMNS = ("boundary", "valence", "min_angle", "max_angle")
 
 
+def boundary_edges(triangles):
+    """The edges ``(B, 2)`` of one triangle only (the mesh's boundary), sorted by :func:`~equimesh.mesh.edge_keys`."""
+    keys, base = edge_keys(half_edges(triangles))
+    key, uses = np.unique(keys, return_counts=True)
+    key = key[uses == 1]
+    return np.column_stack([key // base, key % base])
+
+
+#: The kinds of member of :func:`classes_by_kind`.
+MEMBER_KINDS = ("boundary", "strip", "interior")
+
+
+def classes_by_kind(points, triangles, l, tolerance=DEFAULT_TOLERANCE, k=TOP_CLASSES):
+    """Where a mesh's length classes go: per kind of member, ``{kind: (members, classes, in_top)}``.
+
+    The kinds (:data:`MEMBER_KINDS`): ``boundary``, the members along the
+    outline (edges of one triangle); ``strip``, the other members with a node
+    on the outline (the spokes of Problem 2's boundary strip, and any chord);
+    ``interior``, the rest.  ``classes`` is the fewest classes the kind's
+    members need alone at ``tolerance`` (:func:`~equimesh.classes.length_classes`;
+    a class two kinds share counts for each), ``in_top`` the share of the
+    kind's members in the ``k`` largest classes of the whole mesh (``nan``
+    for a kind without members): which kind keeps the mesh's top-``k`` share
+    below 1.
+    """
+    edges = unique_edges(triangles)
+    lengths = edge_lengths(np.asarray(points, dtype=float), edges)
+    outline = boundary_edges(triangles)
+    keys, n = edge_keys(edges)
+    on_outline = np.zeros(n, dtype=bool)
+    on_outline[outline.ravel()] = True
+    along = np.isin(keys, outline[:, 0] * n + outline[:, 1])
+    kind = np.where(along, 0, np.where(on_outline[edges].any(axis=1), 1, 2))
+    classes = length_classes(lengths, l, tolerance)
+    top = np.zeros(len(classes), dtype=bool)
+    top[np.argsort(-classes.count, kind="stable")[:k]] = True
+    out = {}
+    for index, name in enumerate(MEMBER_KINDS):
+        mine = kind == index
+        count = int(np.count_nonzero(mine))
+        need = len(length_classes(lengths[mine], l, tolerance)) if count else 0
+        share = float(np.mean(top[classes.member_class[mine]])) if count else float("nan")
+        out[name] = (count, need, share)
+    return out
+
+
 def node_figures(points, triangles, edges):
     """What a connector designer needs at each node, keyed by :data:`NODE_COLUMNS`, one (N,) array each.
 
@@ -284,10 +330,8 @@ def node_figures(points, triangles, edges):
     p = np.column_stack([p, np.zeros(len(p))]) if p.shape[1] == 2 else p
     e = np.asarray(edges, dtype=np.int64).reshape(-1, 2)
     n = len(p)
-    keys, base = edge_keys(half_edges(triangles))
-    key, uses = np.unique(keys, return_counts=True)
     boundary = np.zeros(n, dtype=bool)
-    boundary[np.concatenate([key[uses == 1] // base, key[uses == 1] % base])] = True
+    boundary[boundary_edges(triangles).ravel()] = True
     valence = np.bincount(e.ravel(), minlength=n)
     # Every member twice, as a vector leaving each of its nodes, grouped by node: the pairs of members at a node
     # are the pairs (k, k + a) of one group, for a = 1 up to the largest valence minus one.

@@ -28,7 +28,10 @@ def test_fabrication_writes_table_targets_classes_figures_and_provenance(fabrica
     sizes = pd.read_csv(out / "fabrication_classes.csv")
     for row in df.itertuples():
         assert sizes[sizes["method"] == row.method]["count"].sum() == row.members
+    kinds = df[[f"{k}_members" for k in ("boundary", "strip", "interior")]].sum(axis=1)
+    assert (kinds == df["members"]).all()
     report = (out / "fabrication.md").read_text()
+    assert "## Where the classes go" in report
     assert "| cylinder vault | span / 16 | equimesh classes |" in report and "## Provenance" in report
     assert "## The targets of the fewest-classes objective" in report
     record = json.loads((out / "fabrication.provenance.json").read_text())

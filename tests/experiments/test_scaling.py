@@ -75,12 +75,15 @@ def test_a_pipeline_run_predicted_over_the_limit_is_skipped(load_experiment, mon
     """A method whose time, scaled from its last size as members^PIPELINE_EXPONENT, passes the limit is not run."""
     scaling = load_experiment("scaling")
     seconds = {"equimesh slow": 10.0, "equimesh quick": 0.1}
+    calls = []
 
     def fake(method, members):
+        calls.append((method, members))
         return {"method": method, "n_target": members, "seconds": seconds[method] * members / 1000}
 
     monkeypatch.setattr(scaling, "pipeline_methods", lambda: list(seconds))
     monkeypatch.setattr(scaling, "_run_pipeline", fake)
     frame = scaling.pipeline_sweep([1000, 10000, 100000], limit=400.0, progress=lambda _: None)
+    assert calls[0] == ("equimesh slow", scaling.PIPELINE_WARM_UP) and len(frame) == len(calls) - 1  # untimed
     assert list(frame[frame["method"] == "equimesh slow"]["n_target"]) == [1000, 10000]
     assert list(frame[frame["method"] == "equimesh quick"]["n_target"]) == [1000, 10000, 100000]

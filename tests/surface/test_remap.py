@@ -13,6 +13,7 @@ from equimesh.mesh import PlanarMesh
 from equimesh.surface.auxiliary import auxiliary_grid
 from equimesh.surface.charts.chart import Domain
 from equimesh.surface.flatten import flatten
+from equimesh.surface.plane_length import PlaneLength
 from equimesh.surface.remap import Loop, barycentric, check_remapped, locate, remap, to_plane
 from equimesh.testing.surfaces import dome
 
@@ -255,7 +256,7 @@ def _fan():
 
 def test_check_remapped_passes_an_unfolded_mesh():
     plane = _fan()
-    assert check_remapped(plane.points, plane) is None
+    assert check_remapped(plane.points, plane, PlaneLength(1.0)) is None
 
 
 @pytest.mark.parametrize(
@@ -274,8 +275,20 @@ def test_check_remapped_refuses_folded_or_flat_triangles_naming_the_first(inner,
     plane = _fan()
     uv = plane.points.copy()
     uv[4] = inner
-    with pytest.raises(InvalidSurfaceError, match=message + r".*smaller l or a finer auxiliary grid$"):
-        check_remapped(uv, plane)
+    with pytest.raises(
+        InvalidSurfaceError, match=message + r".*length at l = 1; use a smaller l or a finer auxiliary grid$"
+    ):
+        check_remapped(uv, plane, PlaneLength(1.0))
+
+
+def test_check_remapped_names_the_spacing_meshed_for_sound_joints():
+    plane = _fan()
+    uv = plane.points.copy()
+    uv[4] = [2.0, -1.0]
+    with pytest.raises(
+        InvalidSurfaceError, match=r"at the spacing 1\.25 l = 1\.25 meshed for sound joints \(l = 1\); use a smaller l"
+    ):
+        check_remapped(uv, plane, PlaneLength(1.0, 1.25))
 
 
 #: Meshes with ears: plane points, triangles, boundary nodes, (u, v) of the nodes, the ears' count and first centre.
@@ -301,9 +314,9 @@ def test_check_remapped_refuses_flat_ears_of_boundary_nodes(case):
     with pytest.raises(
         InvalidSurfaceError,
         match=r"^the flattened boundary bends so sharply near \(u, v\) = \(1, 0\) that Problem 2 joins three boundary "
-        rf"nodes there in a triangle \({count} such in all\), flat in \(u, v\), .*another l$",
+        rf"nodes there in a triangle \({count} such in all\), flat in \(u, v\), .*straight, at l = 1; .*another l$",
     ):
-        check_remapped(np.array(uv, dtype=float), plane)
+        check_remapped(np.array(uv, dtype=float), plane, PlaneLength(1.0))
 
 
 def test_to_plane_maps_the_auxiliary_nodes_to_their_flattened_points_and_back():

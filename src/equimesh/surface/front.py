@@ -79,7 +79,7 @@ class Front:
         clock("planar triangulation (Problem 2)")
 
         mapped_uv, mapped_points = outlined.place(plane)
-        check_remapped(mapped_uv, plane)
+        check_remapped(mapped_uv, plane, length)
         clock("remapping (eqs. 2-3)")
         return outlined, chosen, plane, mapped_uv, mapped_points
 

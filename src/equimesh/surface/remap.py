@@ -255,8 +255,9 @@ def barycentric(x, corners):
 __all__ = ["Loop", "Remap", "barycentric", "locate", "remap", "to_plane"]
 
 
-def check_remapped(uv, plane):
-    """Refuse a plane triangle that eqs. (2)-(3) map to a flat or inverted triangle in (u, v).
+def check_remapped(uv, plane, length):
+    """Refuse a plane triangle that eqs. (2)-(3) map to a flat or inverted triangle in (u, v), naming the spacing
+    ``length`` (a :class:`~equimesh.surface.plane_length.PlaneLength`) the plane was meshed at.
 
     Eqs. (2)-(3) map each node through the flattening's piecewise-linear
     inverse, which keeps every auxiliary triangle's orientation, but a mesh
@@ -277,12 +278,12 @@ def check_remapped(uv, plane):
         raise InvalidSurfaceError(
             f"the flattened boundary bends so sharply near {at(uv[triangles[ears[0]]].mean(axis=0))} that Problem 2 "
             f"joins three boundary nodes there in a triangle ({ears.size} such in all), flat in (u, v), where the "
-            "boundary is straight; use a finer auxiliary grid or another l"
+            f"boundary is straight, at {length}; use a finer auxiliary grid or another l"
         )
     bad = np.flatnonzero(bad)
     if bad.size:
         raise InvalidSurfaceError(
             f"mapping the plane mesh back onto the surface (eqs. 2-3) folds {bad.size} of {len(triangles)} triangles, "
             f"first near {at(uv[triangles[bad[0]]].mean(axis=0))}: the flattening's distortion turns there within a "
-            "member's length; use a smaller l or a finer auxiliary grid"
+            f"member's length at {length}; use a smaller l or a finer auxiliary grid"
         )

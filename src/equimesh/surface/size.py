@@ -61,14 +61,19 @@ def _stretched(plane, surface):
     )
 
 
+def triangle_areas(points, triangles):
+    """The area of each triangle, ``|(b - a) x (c - a)| / 2``, of ``points`` (2-D or 3-D) indexed by ``triangles``."""
+    p = points[triangles]
+    if p.shape[-1] == 2:
+        p = np.concatenate([p, np.zeros(p.shape[:-1] + (1,))], axis=-1)
+    return 0.5 * np.linalg.norm(np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]), axis=1)
+
+
 def surface_area(points, triangles):
     """``(area, scale)``: the area of the triangles (2-D or 3-D points) in units of the points' extent, and that
     power of two."""
     scale = power_of_two_scale(float(np.max(np.ptp(points, axis=0))))
-    p = points[triangles] * scale
-    if p.shape[-1] == 2:
-        p = np.concatenate([p, np.zeros(p.shape[:-1] + (1,))], axis=-1)
-    return 0.5 * float(np.linalg.norm(np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]), axis=1).sum()), scale
+    return float(triangle_areas(points * scale, triangles).sum()), scale
 
 
 def node_count_estimate(area, scale, l):

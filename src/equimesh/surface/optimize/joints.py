@@ -23,6 +23,7 @@ import numpy as np
 from ..._jit import compiled
 from ...tolerance import JOINT_ANGLE, JOINT_DEFICIT, JOINT_MARGIN
 from ..regularity import evaluate
+from ..size import triangle_areas
 from .jacobian import ElementJacobian
 
 
@@ -125,9 +126,8 @@ def joint_spacing(points, triangles, l):
     over (``sqrt(1 + D) l``, once over, left the reference dome refused at
     l = 1.24 and 0.88; docs/decisions.md, "Sound joints").
     """
-    p = np.asarray(points, dtype=float)
     t = np.asarray(triangles, dtype=np.int64).reshape(-1, 3)
-    area = 0.5 * np.linalg.norm(np.cross(p[t[:, 1]] - p[t[:, 0]], p[t[:, 2]] - p[t[:, 0]]), axis=1)
+    area = triangle_areas(np.asarray(points, dtype=float), t)
     need = np.sqrt(3.0) / 4.0 * float(l) ** 2
     deficit = float(np.sum(np.maximum(0.0, need - area)) / (max(len(t), 1) * need))
     return 1.0 + deficit if deficit > JOINT_DEFICIT else 1.0
