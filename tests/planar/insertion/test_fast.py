@@ -477,6 +477,19 @@ def test_growing_every_array_from_one_triangle_changes_nothing(corners, l):
     assert ahead[1].tobytes() == expected.points.tobytes() and ahead[4].tobytes() == expected.values.tobytes()
 
 
+def test_values_in_the_octave_below_l_come_last():
+    """l = 1, so the values pushed, from (1 - REL_TOL) l on, start in the octave below 1: an equilateral triangle of
+    circumradius 1 - 5e-10 (its circumcentre such a value) beside a long one with larger candidates.  The
+    reference's insertion bit for bit, that circumcentre among its points."""
+    r = 1.0 - 5e-10
+    a, b, c = [(r * math.cos(t), r * math.sin(t)) for t in (math.pi / 2, 7 * math.pi / 6, 11 * math.pi / 6)]
+    region = Region(np.array([b, c, (4.0, 0.3), a]), np.array([[0, 1], [1, 2], [2, 3], [3, 0]]), np.empty((0, 2)))
+    assert candidates.limits(1.0)[0] < 1.0 <= candidates.limits(1.0)[1]
+    got, expected = fast.run(region, 1.0), reference.run(region, 1.0)
+    assert got.points.tobytes() == expected.points.tobytes() and got.values.tobytes() == expected.values.tobytes()
+    assert min(got.values) < 1.0
+
+
 def test_a_clockwise_triangle_is_a_broken_cavity():
     """A 2 x 2 square whose first triangle is listed clockwise: the fan over the cavity of the centre is not
     counter-clockwise, and insert_all reports BROKEN with the input arrays."""
