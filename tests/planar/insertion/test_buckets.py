@@ -133,3 +133,71 @@ def test_a_bucket_too_large_for_the_heap_waits_and_its_chunks_are_reused():
         xs.append(H[nh]["x"])
     assert xs == [float(k) for k in range(40)]
     assert buckets.refill(H, pool, link, table, q, ver, S, salive) == (0, 0)
+
+
+def _queue(rows, chunks, low, slots):
+    """An empty queue and the slots' versions, segments and segment flags of :func:`buckets.refill`."""
+    ver, S, salive = np.zeros(slots, dtype=np.int64), np.full((slots, 3), -1, dtype=np.int64), np.ones(1, dtype=bool)
+    return buckets.empty_queue(rows, chunks, low), ver, S, salive
+
+
+def test_bucket_size_counts_every_chunk():
+    """Offered one at a time, 33 entries fill chunk 0 (the first taken), then chunk 1, then one in chunk 2: the size
+    counts each of them; a bucket never offered to holds none."""
+    (H, pool, link, table, q), _, _, _ = _queue(4, 3, LOW, 40)
+    b = buckets.bucket_of(1.5, q[4])
+    sizes = [buckets.bucket_size(link, table, b)]
+    for k in range(2 * buckets.CHUNK + 1):
+        buckets.offer(H, 0, pool, link, table, q, 1.5, float(k), 0.0, 4 * k, 0)
+        sizes.append(buckets.bucket_size(link, table, b))
+    assert table[b, 0] == 2 and sizes == list(range(34)) and buckets.bucket_size(link, table, b - 1) == 0
+
+
+def test_a_chunk_freed_by_a_refill_is_taken_again():
+    """A queue of one chunk: 1.5 fills it, the refill frees it (one spare), and 1.0, below the current bucket then,
+    takes that chunk again (none spare), and comes out after 1.5."""
+    (H, pool, link, table, q), ver, S, salive = _queue(4, 1, LOW, 2)
+    assert buckets.offer(H, 0, pool, link, table, q, 1.5, 0.0, 0.0, 0, 0) == 0 and buckets.spare_chunks(link, q) == 0
+    assert buckets.refill(H, pool, link, table, q, ver, S, salive) == (1, 0) and buckets.spare_chunks(link, q) == 1
+    assert buckets.offer(H, 1, pool, link, table, q, 1.0, 0.0, 0.0, 4, 0) == 1
+    assert buckets.spare_chunks(link, q) == 0 and table[buckets.bucket_of(1.0, q[4]), 0] == 0
+    got, nh = _next_live((H, pool, link, table, q), 1, ver, S, salive)
+    assert got[0] == 1.5 and _next_live((H, pool, link, table, q), nh, ver, S, salive)[0][0] == 1.0
+    assert buckets.spare_chunks(link, q) == 1
+
+
+def test_a_bucket_needs_a_row_beyond_its_entries():
+    """A heap of 4 rows takes a bucket of 3 entries (the pop's scratch row beyond them) but not one of 4: that one
+    needs 5 rows."""
+    for size, answer in [(3, (3, 0)), (4, (0, 5))]:
+        (H, pool, link, table, q), ver, S, salive = _queue(4, 1, LOW, size)
+        for k in range(size):
+            buckets.offer(H, 0, pool, link, table, q, 1.5, float(k), 0.0, 4 * k, 0)
+        assert buckets.refill(H, pool, link, table, q, ver, S, salive) == answer
+
+
+def test_a_bucket_of_dead_entries_is_passed_over():
+    """Three buckets, the top one's entries all dead and one of the middle one's: the refill drops them (the chunks
+    free again), the middle bucket's live entry is the heap, then the lowest's entry; nothing after."""
+    (H, pool, link, table, q), ver, S, salive = _queue(8, 3, LOW, 6)
+    for k, value in enumerate([3.0, 3.0, 2.0, 2.0, 1.0]):
+        buckets.offer(H, 0, pool, link, table, q, value, 0.0, float(k), 4 * k, 0)
+    ver[[0, 1, 2]] = 1
+    assert buckets.refill(H, pool, link, table, q, ver, S, salive) == (1, 0)
+    assert q[0] == buckets.bucket_of(2.0, q[4]) and buckets.spare_chunks(link, q) == 2
+    got, nh = _next_live((H, pool, link, table, q), 1, ver, S, salive)
+    assert got == (2.0, 0.0, 3.0, 12, 0)
+    assert _next_live((H, pool, link, table, q), nh, ver, S, salive)[0] == (1.0, 0.0, 4.0, 16, 0)
+    assert _next_live((H, pool, link, table, q), 0, ver, S, salive) == (None, 0)
+    assert buckets.spare_chunks(link, q) == 3
+
+
+def test_the_lowest_bucket_and_a_queue_run_dry():
+    """The lowest value 1 is bucket 0: its entry comes out of the refill; once the queue is empty, every bucket is
+    at least the current one, so an entry offered then goes into the heap."""
+    (H, pool, link, table, q), ver, S, salive = _queue(4, 1, 1.0, 2)
+    assert buckets.bucket_of(1.0, q[4]) == 0
+    assert buckets.offer(H, 0, pool, link, table, q, 1.0, 0.0, 0.0, 0, 0) == 0
+    got, nh = _next_live((H, pool, link, table, q), 0, ver, S, salive)
+    assert got == (1.0, 0.0, 0.0, 0, 0) and _next_live((H, pool, link, table, q), nh, ver, S, salive) == (None, 0)
+    assert buckets.offer(H, 0, pool, link, table, q, 1.0, 1.0, 0.0, 4, 0) == 1

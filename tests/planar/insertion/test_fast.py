@@ -44,7 +44,9 @@ from equimesh.errors import InternalError
 from equimesh.planar.insertion import Region, arrays, candidates, fast, insert, reference
 from equimesh.planar.insertion.buckets import empty_queue
 from equimesh.planar.insertion.cdt import adjacency, cavity, locate, walk
+from equimesh.planar.insertion.heap import MAX_SLOTS
 from equimesh.planar.insertion.region import constrained_delaunay
+from equimesh.planar.limits import node_estimate
 from equimesh.testing.generators import rectangle, regular_polygon
 from equimesh.tolerance import REL_TOL, SLIVER_GAP
 
@@ -423,7 +425,8 @@ def test_a_circumcentre_refused_when_it_surfaces_is_skipped_and_the_insertion_go
 )
 def test_growing_from_no_room_changes_nothing(monkeypatch, module, call):
     """Arrays made for the expected points, or grown by doubling from the input alone (every array short of room in
-    turn): the same points, triangles, segments and values, bit for bit, for Problems 1 and 2."""
+    turn), also from cavity buffers of one triangle: the same points, triangles, segments and values, bit for bit,
+    for Problems 1 and 2."""
     regions = []
     monkeypatch.setattr(module, "insert", lambda region, l, engine: regions.append((region, l)) or insert(region, l))
     call()
@@ -433,14 +436,87 @@ def test_growing_from_no_room_changes_nothing(monkeypatch, module, call):
     triangles = np.ascontiguousarray(constrained_delaunay(points, segments, region.holes), dtype=np.int64)
     expected = fast.expected_points(points, segments, triangles, l)
     ahead = fast.insert_all(points, triangles, segments, candidates.limits(l), expected)
-    grown = fast.insert_all(points, triangles, segments, candidates.limits(l))
-    assert ahead[0] == grown[0] == fast.OK and len(ahead[1]) > len(points) + 1  # the points grew
-    for a, b in zip(ahead[1:], grown[1:]):
-        assert a.dtype == b.dtype and np.array_equal(a, b)
+    assert ahead[0] == fast.OK and len(ahead[1]) > len(points) + 1  # the points grew
+    for grown in (
+        fast.insert_all(points, triangles, segments, candidates.limits(l)),
+        fast.insert_all(points, triangles, segments, candidates.limits(l), 0, 1),
+    ):
+        assert grown[0] == fast.OK
+        for a, b in zip(ahead[1:], grown[1:]):
+            assert a.dtype == b.dtype and np.array_equal(a, b)
+
+
+#: Regions of a few corners, so that the triangles of one cavity outnumber those of the input: a thin quadrilateral
+#: of long constraints, a convex pentagon and a square (candidates of equal value by the hundred: a bucket larger
+#: than the heap).
+_FEW_CORNERS = [
+    (_QUADRILATERAL, 0.6),
+    ([(0.0, 0.0), (10.6, 0.8), (12.2, 7.4), (4.4, 11.8), (-1.6, 6.2)], 0.7),
+    ([(0.0, 0.0), (6.0, 0.0), (6.0, 6.0), (0.0, 6.0)], 0.5),
+]
+
+
+@pytest.mark.parametrize("corners, l", _FEW_CORNERS, ids=["quadrilateral", "pentagon", "square"])
+def test_growing_every_array_from_one_triangle_changes_nothing(corners, l):
+    """From no expected points and cavity buffers (and heap room beyond the input's candidates) of 1, 2 or 3
+    triangles the arrays grow, the points, segments, triangles and the buckets' chunks several times each, the heap
+    after compaction (and in the square when a bucket comes in), the cavity buffer and, but in the square, the fan's:
+    the insertion of arrays made at once for all, bit for bit, and the reference's points and values."""
+    points = np.array(corners)
+    segments = np.array([[i, (i + 1) % len(corners)] for i in range(len(corners))])
+    triangles = np.ascontiguousarray(constrained_delaunay(points, segments, np.empty((0, 2))), dtype=np.int64)
+    lim = candidates.limits(l)
+    ahead = fast.insert_all(points, triangles, segments, lim, 4 * fast.expected_points(points, segments, triangles, l))
+    assert ahead[0] == fast.OK
+    for room in (1, 2, 3):
+        grown = fast.insert_all(points, triangles, segments, lim, 0, room)
+        assert grown[0] == fast.OK
+        for a, b in zip(ahead[1:], grown[1:]):
+            assert a.dtype == b.dtype and np.array_equal(a, b)
+    expected = reference.run(Region(points, segments, np.empty((0, 2))), l)
+    assert ahead[1].tobytes() == expected.points.tobytes() and ahead[4].tobytes() == expected.values.tobytes()
+
+
+def test_values_in_the_octave_below_l_come_last():
+    """l = 1, so the values pushed, from (1 - REL_TOL) l on, start in the octave below 1: an equilateral triangle of
+    circumradius 1 - 5e-10 (its circumcentre such a value) beside a long one with larger candidates.  The
+    reference's insertion bit for bit, that circumcentre among its points."""
+    r = 1.0 - 5e-10
+    a, b, c = [(r * math.cos(t), r * math.sin(t)) for t in (math.pi / 2, 7 * math.pi / 6, 11 * math.pi / 6)]
+    region = Region(np.array([b, c, (4.0, 0.3), a]), np.array([[0, 1], [1, 2], [2, 3], [3, 0]]), np.empty((0, 2)))
+    assert candidates.limits(1.0)[0] < 1.0 <= candidates.limits(1.0)[1]
+    got, expected = fast.run(region, 1.0), reference.run(region, 1.0)
+    assert got.points.tobytes() == expected.points.tobytes() and got.values.tobytes() == expected.values.tobytes()
+    assert min(got.values) < 1.0
+
+
+def test_a_clockwise_triangle_is_a_broken_cavity():
+    """A 2 x 2 square whose first triangle is listed clockwise: the fan over the cavity of the centre is not
+    counter-clockwise, and insert_all reports BROKEN with the input arrays."""
+    square = np.array([(0.0, 0.0), (2.0, 0.0), (2.0, 2.0), (0.0, 2.0)])
+    segments = np.array([[0, 1], [1, 2], [2, 3], [3, 0]])
+    triangles = np.array([[3, 1, 0], [1, 2, 3]])
+    status, points, out, out_segments, _ = fast.insert_all(square, triangles, segments, candidates.limits(1.4))
+    assert status == fast.BROKEN and points is square and out is triangles and out_segments is segments
+
+
+def test_the_arrays_are_made_for_olers_bound():
+    """expected_points is node_estimate of the region's area (the triangles' areas, an L of area 3 whichever way
+    its triangles turn) and perimeter (8), and at most half the slots the tags can name."""
+    corners = np.array([(0.0, 0.0), (2.0, 0.0), (2.0, 1.0), (1.0, 1.0), (1.0, 2.0), (0.0, 2.0)])
+    segments = np.array([[i, (i + 1) % 6] for i in range(6)])
+    triangles = np.array([[0, 1, 2], [0, 3, 2], [0, 3, 4], [0, 4, 5]])
+    for l in (0.3, 1.0):
+        assert fast.expected_points(corners, segments, triangles, l) == int(node_estimate(3.0, 8.0, l))
+    assert fast.expected_points(corners, segments, triangles, 1e-4) == MAX_SLOTS // 2
 
 
 def test_a_region_beyond_the_tags_is_refused(monkeypatch):
     """When the triangulation would outgrow the heap's tags, run raises MeshTooLargeError naming the limits."""
     monkeypatch.setattr(fast, "insert_all", lambda P0, T0, SEG0, *_: (fast.TOO_LARGE, P0, T0, SEG0, np.empty(0)))
-    with pytest.raises(equimesh.errors.MeshTooLargeError, match=r"at most 268435456 points and 536870912 triangles"):
+    with pytest.raises(equimesh.errors.MeshTooLargeError) as caught:
         fast.run(Region(rectangle(2.0, 2.0), np.array([[0, 1], [1, 2], [2, 3], [3, 0]]), np.empty((0, 2))), 1.0)
+    assert str(caught.value) == (
+        "the fast engine holds at most 268435456 points and 536870912 triangles, and this region needs more; "
+        "use a larger l"
+    )

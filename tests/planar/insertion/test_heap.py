@@ -4,6 +4,7 @@ What must hold:
 
 * the heap pops its entries in the reference's order (largest value, then smallest x, then smallest y), the tag
   last, with every field of an entry kept, whatever the order of the pushes;
+* after every push every entry comes no earlier than its parent, entry ``(i - 1) // 4`` (the order pop relies on);
 * compaction keeps exactly the live entries (current version, live segment), in heap order.
 
 Small inputs with many ties, run compiled and as Python (``NUMBA_DISABLE_JIT=1``, ``tools/mutation``).
@@ -29,7 +30,13 @@ def _heap(keys):
     n = 0
     for i, (value, x, y) in enumerate(keys):
         n = heap.push(H, n, value, x, y, 4 * i + i % 4, 10 + i)
+        _assert_heap_order(H, n)
     return H, n
+
+
+def _assert_heap_order(H, n):
+    """No entry of ``H[:n]`` comes before its parent ``(i - 1) // ARITY``."""
+    assert not any(heap.earlier(H, i, (i - 1) // heap.ARITY) for i in range(1, n))
 
 
 def _pop_all(H, n):
@@ -50,6 +57,15 @@ def test_heap_pops_the_largest_value_then_smallest_x_then_y_then_tag(keys):
     assert n == len(keys)
     popped = _pop_all(H, n)
     assert popped == sorted(((*k, 4 * i + i % 4, 10 + i) for i, k in enumerate(keys)), key=_order)
+
+
+def test_an_entry_is_lifted_along_its_parents():
+    """Ten distinct values: 9, pushed eighth, starts in row 7, whose parent is row 1 ((7 - 1) // 4), and is lifted
+    through it to the top; the heap order holds after each push, and the pops give the values in decreasing order."""
+    values = [5.0, 7.0, 8.0, 3.0, 1.0, 2.0, 6.0, 9.0, 0.0, 4.0]
+    H, n = _heap([(v, 0.0, 0.0) for v in values])
+    assert -H[0]["key"] == 9.0
+    assert [e[0] for e in _pop_all(H, n)] == sorted(values, reverse=True)
 
 
 def test_earlier_is_lexicographic():

@@ -161,7 +161,6 @@ def refill(H, pool, link, table, q, ver, S, salive):
             link[c], q[1] = q[1], c
             q[2] += 1
             c, fill = after, CHUNK
-        table[b, 0], table[b, 1] = -1, 0
         q[0] = b
         k = compact(H, k, ver, S, salive)
         if k > 0:

@@ -234,13 +234,15 @@ def advance(
 advance = compiled(advance, nrt=False)
 
 
-def insert_all(P0, T0, SEG0, lim, points=0):
+def insert_all(P0, T0, SEG0, lim, points=0, room=CAVITY):
     """Steps 3-4 on the CDT ``T0`` of ``P0`` with constraints ``SEG0``: ``(status, P, triangles, segments, values)``.
 
     ``points``: the expected number of points at the end, for which the
-    arrays are made at once (they grow by doubling beyond it).  Rows of
-    triangles and points are written in full when first used, so the arrays
-    are not initialised beyond the input.
+    arrays are made at once (they grow by doubling beyond it).  ``room``
+    (at least 1): the triangles a cavity may hold before its buffers grow, and in the heap
+    four candidates each beyond those of ``T0``.  Rows of triangles and
+    points are written in full when first used, so the arrays are not
+    initialised beyond the input.
     """
     n = len(P0)
     SA0, SB0 = SEG0[:, 0].copy(), SEG0[:, 1].copy()
@@ -258,11 +260,11 @@ def insert_all(P0, T0, SEG0, lim, points=0):
     W, values = np.zeros((points, 2), dtype=np.int64), np.empty(points)  # per point: its fan triangle, its stamp
     SA, SB = extended(SA0, 2 * len(SA0) + 2), extended(SB0, 2 * len(SA0) + 2)
     salive = grown(np.ones(len(SA0), dtype=np.bool_), len(SA))
-    cav = np.empty(CAVITY, dtype=np.int64)
-    edges = np.empty((max(CAVITY, len(T0)) + 2, 4), dtype=np.int64)
+    cav = np.empty(room, dtype=np.int64)
+    edges = np.empty((max(room, len(T0)) + 2, 4), dtype=np.int64)
     slots = extended(np.arange(len(T0)), len(edges))
     seen = np.empty(NEAR_TRIANGLES, dtype=np.int64)
-    H, pool, link, table, q = empty_queue(4 * len(T0) + 4 * CAVITY + 1, (4 * len(T0) + 2 * points) // CHUNK + 1, lim[0])
+    H, pool, link, table, q = empty_queue(4 * len(T0) + 4 * room + 1, (4 * len(T0) + 2 * points) // CHUNK + 1, lim[0])
     state = np.zeros(len(STATE), dtype=np.int64)
     state[POINTS], state[SLOTS], state[SEGMENTS], state[FAN], state[INITIAL] = n, len(T0), len(SA0), len(T0), n
     status = ROOM
