@@ -32,6 +32,7 @@ from ...tolerance import (
     BOUNDED_ROUND_ITERATIONS,
     BOUNDED_ROUNDS,
     BOUNDED_SCALE,
+    BOUNDED_START_FTOL,
     BOUNDED_STEP,
     CLASSES_MERGE_EVERY,
     CLASSES_ROUNDS,
@@ -147,7 +148,8 @@ def bounded_stages(problem):
     * two starts, because the rounds are a local method: first the remapped
       mesh; then the optimum of the paper's objective (Section 4's last step,
       :func:`paper_stage`, solved from the remapped mesh with the
-      boundary nodes held, so that it is the paper's problem).  If its share
+      boundary nodes held, so that it is the paper's problem, to
+      :data:`~equimesh.tolerance.BOUNDED_START_FTOL`: only a start).  If its share
       of members within :data:`~equimesh.tolerance.BOUNDED_BAND` of l beats
       every point in [l, 2l] kept so far, the boundary nodes are released
       (the paper's objective solved on) and a second series of rounds starts
@@ -252,7 +254,9 @@ def bounded_stages(problem):
     yield from series(problem.x0)
     # The paper's optimum, boundary held (the paper's problem, as optimize="paper"), then rounds from it if it has
     # the larger share: the boundary released (the paper's objective solved on) first.
-    x = yield replace(paper_stage(problem), start=problem.x0, hold=problem.sliding_variables, joints=False)
+    x = yield replace(
+        paper_stage(problem), start=problem.x0, hold=problem.sliding_variables, joints=False, ftol=BOUNDED_START_FTOL
+    )
     if share(lengths(x) / l) > best["share"]:
         x = yield replace(paper_stage(problem), joints=False)
         yield from series(x)
