@@ -322,6 +322,28 @@ def test_classes_by_kind_counts_the_members_and_classes_of_each_kind():
     assert tuple(classes_by_kind(points, triangles, 1.0)) == MEMBER_KINDS
 
 
+def test_classes_by_kind_reads_the_tolerance():
+    """Stretched by 0.4 % along x, the grid's sides are 1 and 1.004 long: one class at 0.5 %, two at 0.1 %."""
+    points, triangles = _grid(3)
+    points[:, 0] *= 1.004
+    assert classes_by_kind(points, triangles, 1.0)["boundary"][1] == 1
+    assert classes_by_kind(points, triangles, 1.0, tolerance=0.001)["boundary"][1] == 2
+
+
+def test_classes_by_kind_breaks_ties_to_the_shorter_class():
+    """Two triangles ABC, ACD: AB = BC = 1 and DA = AC = sqrt(3) (two classes of 2, one of them the strip's AC), CD =
+    1.4; the largest class is the shorter of the two."""
+    a, c = np.array([0.0, 0.0]), np.array([1.5, np.sqrt(0.75)])
+    r, s, d = np.sqrt(3.0), 1.4, np.sqrt(3.0)
+    along = (r**2 - s**2 + d**2) / (2 * d)  # D from A along AC, then to its left
+    u = (c - a) / d
+    point = a + along * u + np.sqrt(r**2 - along**2) * np.array([-u[1], u[0]])
+    points = np.array([a, [1.0, 0.0], c, point])
+    out = classes_by_kind(points, [[0, 1, 2], [0, 2, 3]], 1.0, k=1)
+    assert out == {"boundary": (4, 3, 0.5), "strip": (1, 1, 0.0), "interior": (0, 0, out["interior"][2])}
+    assert np.isnan(out["interior"][2])
+
+
 def test_classes_by_kind_of_one_triangle_has_no_strip_or_interior():
     out = classes_by_kind([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]], [[0, 1, 2]], 1.0)
     assert out["boundary"] == (3, 2, 1.0)

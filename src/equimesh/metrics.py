@@ -291,28 +291,25 @@ def classes_by_kind(points, triangles, l, tolerance=DEFAULT_TOLERANCE, k=TOP_CLA
     ``interior``, the rest.  ``classes`` is the fewest classes the kind's
     members need alone at ``tolerance`` (:func:`~equimesh.classes.length_classes`;
     a class two kinds share counts for each), ``in_top`` the share of the
-    kind's members in the ``k`` largest classes of the whole mesh (``nan``
-    for a kind without members): which kind keeps the mesh's top-``k`` share
-    below 1.
+    kind's members in the ``k`` largest classes of the whole mesh (ties to the
+    shorter nominal length; ``nan`` for a kind without members): which kind
+    keeps the mesh's top-``k`` share below 1.
     """
     edges = unique_edges(triangles)
     lengths = edge_lengths(np.asarray(points, dtype=float), edges)
     outline = boundary_edges(triangles)
     keys, n = edge_keys(edges)
-    on_outline = np.zeros(n, dtype=bool)
-    on_outline[outline.ravel()] = True
     along = np.isin(keys, outline[:, 0] * n + outline[:, 1])
-    kind = np.where(along, 0, np.where(on_outline[edges].any(axis=1), 1, 2))
+    kind = np.where(along, 0, np.where(np.isin(edges, outline).any(axis=1), 1, 2))
     classes = length_classes(lengths, l, tolerance)
-    top = np.zeros(len(classes), dtype=bool)
-    top[np.argsort(-classes.count, kind="stable")[:k]] = True
+    # The k largest classes, ties to the shorter nominal length.
+    top = np.isin(classes.member_class, np.lexsort((np.arange(len(classes)), -classes.count))[:k])
     out = {}
     for index, name in enumerate(MEMBER_KINDS):
         mine = kind == index
         count = int(np.count_nonzero(mine))
-        need = len(length_classes(lengths[mine], l, tolerance)) if count else 0
-        share = float(np.mean(top[classes.member_class[mine]])) if count else float("nan")
-        out[name] = (count, need, share)
+        share = np.count_nonzero(top[mine]) / count if count else np.nan
+        out[name] = (count, len(length_classes(lengths[mine], l, tolerance)), share)
     return out
 
 
