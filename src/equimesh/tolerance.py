@@ -154,8 +154,8 @@ PAPER_FTOL = 1e-8
 #: The paper's optimum that ``"bounded"`` takes as its second start is solved, boundary held, to ``BOUNDED_START_FTOL``
 #: only: it is a start, compared once by its share, and lost to the first series on every surface measured
 #: (docs/decisions.md, "Two starts for bounded, and the best point kept").  ``python experiments/bounded_sweep.py``
-#: against ``PAPER_FTOL`` there, in one session: the same mean share 0.7223, smallest margin over the paper +0.0061
-#: and none below it on the 101 domes, one dome 0.0019 lower, 1.47 times fewer Jacobians in all (mean 93.6 to 63.5);
+#: against ``PAPER_FTOL`` there, side by side: the same mean share 0.7223, smallest margin over the paper +0.0061 and
+#: none below it on the 101 domes, one dome 0.0019 lower, 1.47 times fewer Jacobians in all (mean 93.6 to 63.5);
 #: on the reference dome the stage's factorisations fell from 32 to 19 (l = 0.9) and from 72 to 43 (l = 0.5), the
 #: mesh unchanged in its share, its classes and its band.  The released stage, when it runs, solves to ``PAPER_FTOL``.
 BOUNDED_START_FTOL = 1e-3
