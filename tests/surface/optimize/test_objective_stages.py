@@ -87,6 +87,7 @@ def test_a_series_ends_at_a_settled_round_inside_and_keeps_the_start():
     step[0] = 1.0  # node 12 along u: 30 per unit, limited to 0.1 l = 0.8
     np.testing.assert_allclose(first.limit(step), step * 0.8 / 30.0, rtol=1e-12)
     assert papers.description == paper_stage(p).description and papers.ftol == BOUNDED_START_FTOL
+    assert papers.joints is False  # the paper's problem, without the angle barrier
     np.testing.assert_array_equal(papers.start, p.x0)
     np.testing.assert_array_equal(papers.hold, p.sliding_variables)
     assert last is first and np.array_equal(end, p.x0)
@@ -103,7 +104,7 @@ def test_the_papers_start_is_taken_when_its_share_is_larger():
     assert len(seen) == 4
     released, second = seen[2], seen[3]
     assert released.description == paper_stage(p).description and released.start is None and released.hold is None
-    assert released.ftol == PAPER_FTOL
+    assert released.ftol == PAPER_FTOL and released.joints is False
     assert second.description.endswith("round 1") and second.start is None
     assert last is second and np.array_equal(end, better)
 
