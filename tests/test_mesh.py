@@ -6,7 +6,15 @@ from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
 
 from equimesh._geometry import orient
-from equimesh.mesh import counter_clockwise, edge_lengths, half_edges, triangle_orient, unique_edges
+from equimesh.mesh import (
+    counter_clockwise,
+    edge_keys,
+    edge_lengths,
+    half_edges,
+    single_edges,
+    triangle_orient,
+    unique_edges,
+)
 
 coordinates = st.floats(-1e3, 1e3, allow_nan=False, allow_infinity=False)
 
@@ -57,3 +65,15 @@ def test_compiled_orientation_is_the_floats_of_orient(seed):
     p = rng.standard_normal((200, 2)) * np.exp(rng.uniform(-30.0, 30.0, (200, 1)))
     t = rng.integers(0, 200, (500, 3))
     assert np.array_equal(triangle_orient(p, t), orient(p[t[:, 0]], p[t[:, 1]], p[t[:, 2]]))
+
+
+def test_single_edges_by_hand():
+    """Two triangles sharing edge 1-2: its two half-edges are dropped, the four others kept in their direction."""
+    edges = single_edges(np.array([[0, 1, 2], [2, 1, 3]]))
+    assert sorted(map(tuple, edges.tolist())) == [(0, 1), (1, 3), (2, 0), (3, 2)]
+
+
+def test_edge_keys_take_a_common_base():
+    """Keys of a subset of edges in the base of the whole set: equal keys for equal edges, in either direction."""
+    keys, n = edge_keys([[0, 1], [1, 5], [2, 3]])
+    assert n == 6 and np.array_equal(edge_keys([[3, 2], [1, 0]], n)[0], keys[[2, 0]])

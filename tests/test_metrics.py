@@ -8,7 +8,7 @@ from hypothesis import assume, given
 from hypothesis import strategies as st
 from scipy.spatial import ConvexHull, Delaunay
 
-from equimesh.mesh import unique_edges
+from equimesh.mesh import single_edges, unique_edges
 from equimesh.metrics import (
     COMPARISON_COLUMNS,
     FABRICATION_COLUMNS,
@@ -17,7 +17,6 @@ from equimesh.metrics import (
     TABLE1_COLUMNS,
     TABLE1_HEADINGS,
     angle_range,
-    boundary_edges,
     classes_by_kind,
     comparison_figures,
     distinct_lengths,
@@ -359,7 +358,7 @@ def test_classes_by_kind_of_one_triangle_has_no_strip_or_interior():
 
 
 @given(st.lists(st.tuples(st.integers(0, 1000), st.integers(0, 1000)), min_size=8, max_size=40, unique=True))
-def test_boundary_edges_of_a_delaunay_triangulation_are_its_hull(raw):
+def test_single_edges_of_a_delaunay_triangulation_are_its_hull(raw):
     """The edges of one triangle of a Delaunay triangulation are the sides of the convex hull (general position
     assumed: skipped where the hull has collinear points); every member is of exactly one kind."""
     points = np.array(raw, dtype=float)
@@ -368,7 +367,7 @@ def test_boundary_edges_of_a_delaunay_triangulation_are_its_hull(raw):
     assume(not hull.coplanar.size)
     triangles = Delaunay(points).simplices
     sides = {tuple(sorted(e)) for e in hull.simplices.tolist()}
-    assert {tuple(e) for e in boundary_edges(triangles).tolist()} == sides
+    assert {tuple(sorted(e)) for e in single_edges(triangles).tolist()} == sides
     kinds = classes_by_kind(points, triangles, 100.0)
     assert kinds["boundary"][0] == len(sides)
     assert sum(members for members, _, _ in kinds.values()) == len(unique_edges(triangles))

@@ -19,12 +19,21 @@ def half_edges(triangles):
     return np.concatenate([t[:, [0, 1]], t[:, [1, 2]], t[:, [2, 0]]])
 
 
-def edge_keys(edges):
-    """``(keys, n)``: one int64 ``min * n + max`` per edge ``(E, 2)`` (``n`` above every index), ordered like the sorted
-    rows."""
+def edge_keys(edges, n=None):
+    """``(keys, n)``: one int64 ``min * n + max`` per edge ``(E, 2)`` (``n`` above every index, by default the largest
+    index plus one), ordered like the sorted rows."""
     e = np.asarray(edges, dtype=np.int64).reshape(-1, 2)
-    n = int(e.max()) + 1 if e.size else 1
+    if n is None:
+        n = int(e.max()) + 1 if e.size else 1
     return np.minimum(e[:, 0], e[:, 1]) * n + np.maximum(e[:, 0], e[:, 1]), n
+
+
+def single_edges(triangles):
+    """Directed edges ``(B, 2)`` of ``triangles`` that belong to exactly one triangle (the boundary), in the order of
+    :func:`half_edges`, each as its triangle runs it."""
+    directed = half_edges(triangles)
+    _, inverse, counts = np.unique(edge_keys(directed)[0], return_inverse=True, return_counts=True)
+    return directed[counts[inverse] == 1]
 
 
 def unique_edges(triangles):

@@ -25,7 +25,7 @@ import numpy as np
 
 from .classes import DEFAULT_TOLERANCE, TOP_CLASSES, catalogue_classes, length_classes
 from .errors import number
-from .mesh import G1, edge_keys, edge_lengths, half_edges, unique_edges
+from .mesh import G1, edge_keys, edge_lengths, single_edges, unique_edges
 from .tolerance import at_least, at_most
 
 #: Keys of :func:`length_stats`, in the column order of Table 1.
@@ -270,14 +270,6 @@ def quality_summary(points, triangles, edges, l, groups=None):
 NODE_COLUMNS = ("boundary", "valence", "min_angle", "max_angle")
 
 
-def boundary_edges(triangles):
-    """The edges ``(B, 2)`` of one triangle only (the mesh's boundary), sorted by :func:`~equimesh.mesh.edge_keys`."""
-    keys, base = edge_keys(half_edges(triangles))
-    key, uses = np.unique(keys, return_counts=True)
-    key = key[uses == 1]
-    return np.column_stack([key // base, key % base])
-
-
 #: The kinds of member of :func:`classes_by_kind`.
 MEMBER_KINDS = ("boundary", "strip", "interior")
 
@@ -297,9 +289,9 @@ def classes_by_kind(points, triangles, l, tolerance=DEFAULT_TOLERANCE, k=TOP_CLA
     """
     edges = unique_edges(triangles)
     lengths = edge_lengths(np.asarray(points, dtype=float), edges)
-    outline = boundary_edges(triangles)
+    outline = single_edges(triangles)
     keys, n = edge_keys(edges)
-    along = np.isin(keys, outline[:, 0] * n + outline[:, 1])
+    along = np.isin(keys, edge_keys(outline, n)[0])
     kind = np.where(along, 0, np.where(np.isin(edges, outline).any(axis=1), 1, 2))
     classes = length_classes(lengths, l, tolerance)
     # The k largest classes, ties to the shorter nominal length.
@@ -328,7 +320,7 @@ def node_figures(points, triangles, edges):
     e = np.asarray(edges, dtype=np.int64).reshape(-1, 2)
     n = len(p)
     boundary = np.zeros(n, dtype=bool)
-    boundary[boundary_edges(triangles).ravel()] = True
+    boundary[single_edges(triangles).ravel()] = True
     valence = np.bincount(e.ravel(), minlength=n)
     # Every member twice, as a vector leaving each of its nodes, grouped by node: the pairs of members at a node
     # are the pairs (k, k + a) of one group, for a = 1 up to the largest valence minus one.

@@ -239,12 +239,6 @@ def test_square_lattice_part_by_hand():
     np.testing.assert_allclose(part.holes, [part.points[part.triangles[0]].mean(axis=0)])
 
 
-def test_single_edges_by_hand():
-    """Two triangles sharing edge 1-2: its two half-edges are dropped, the four others kept in their direction."""
-    edges = lattice.single_edges(np.array([[0, 1, 2], [2, 1, 3]]))
-    assert sorted(map(tuple, edges.tolist())) == [(0, 1), (1, 3), (2, 0), (3, 2)]
-
-
 def test_component_seeds_by_hand():
     """Triangles touching at a vertex only are two components; the seed is the centroid of each first triangle."""
     points = np.array([[0, 0], [3, 0], [0, 3], [3, 3], [6, 3], [3, 6], [6, 0]], float)

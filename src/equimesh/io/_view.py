@@ -17,7 +17,7 @@ import numpy as np
 
 from ..classes import DEFAULT_TOLERANCE, LengthClasses, length_classes
 from ..errors import number
-from ..mesh import G1, edge_lengths, half_edges
+from ..mesh import G1, edge_lengths, single_edges
 from ..metrics import triangle_angles
 
 #: Classes drawn each as one line set in a colour of its own (the largest by member count); the other classes are
@@ -185,9 +185,7 @@ def boundary_edges(triangles, outer_ring_size):
     so an edge of one triangle whose two nodes are among them is on the outer
     boundary, and any other on an opening.
     """
-    sides = np.sort(half_edges(triangles), axis=1)
-    unique, count = np.unique(sides, axis=0, return_counts=True)
-    border = unique[count == 1]
+    border = np.unique(np.sort(single_edges(triangles), axis=1), axis=0)
     outer = (border < outer_ring_size).all(axis=1)
     return border[outer], border[~outer]
 

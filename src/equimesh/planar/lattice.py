@@ -35,7 +35,7 @@ import numpy as np
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 
-from ..mesh import edge_keys, half_edges
+from ..mesh import half_edges, single_edges
 from .clearance import clear_of_boundary
 
 #: Lattice steps (di, dj) between neighbouring vertices, in the basis
@@ -158,13 +158,6 @@ def lattice_part(poly, l, angle=0.0, offset=(0.0, 0.0), clearance=1.0):
     boundary_edges = single_edges(tri)
     holes = component_seeds(points, tri)
     return LatticePart(points, ij, tri, boundary_edges, holes)
-
-
-def single_edges(tri):
-    """Directed edges of ``tri`` that belong to exactly one triangle."""
-    directed = half_edges(tri)
-    _, inverse, counts = np.unique(edge_keys(directed)[0], return_inverse=True, return_counts=True)
-    return directed[counts[inverse] == 1]
 
 
 def component_seeds(points, tri):
