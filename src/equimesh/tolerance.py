@@ -155,9 +155,8 @@ PAPER_FTOL = 1e-8
 #: only: it is a start, compared once by its share, and lost to the first series on every surface measured
 #: (docs/decisions.md, "Two starts for bounded, and the best point kept").  ``python experiments/bounded_sweep.py``
 #: against ``PAPER_FTOL`` there, side by side: the same mean share 0.7223, smallest margin over the paper +0.0061 and
-#: none below it on the 101 domes, one dome 0.0019 lower, 1.47 times fewer Jacobians in all (mean 93.6 to 63.5);
-#: on the reference dome the stage's factorisations fell from 32 to 19 (l = 0.9) and from 72 to 43 (l = 0.5), the
-#: mesh unchanged in its share, its classes and its band.  The released stage, when it runs, solves to ``PAPER_FTOL``.
+#: none below it on the 101 domes, one dome 0.0019 lower, 1.47 times fewer Jacobians in all (mean 93.6 to 63.5;
+#: results/bounded_sweep.md).  The released stage, when it runs, solves to ``PAPER_FTOL``.
 BOUNDED_START_FTOL = 1e-3
 
 #: Beyond the paper (docs/decisions.md, "A work bound for the optimisation"): an objective that bounds the members

@@ -152,3 +152,5 @@ def test_length_bins_by_hand():
     np.testing.assert_array_equal(length_bins([0, 3], 1.0, 0.25, max_bins=12), np.arange(-4, 9) / 4 + 1)
     # Steps 1 and 2 round out to 3 bins; a step of 3 (0.75) gives 2: [0.25, 1.0, 1.75].
     np.testing.assert_allclose(length_bins([0.8, 1.7], 1.0, 0.25, max_bins=2), [0.25, 1.0, 1.75])
+    # Every length above l + tolerance l: 4 bins from 3 to 7 steps above l fit 4, so the step stays one bin.
+    np.testing.assert_array_equal(length_bins([1.75, 2.75], 1.0, 0.25, max_bins=4), [1.75, 2.0, 2.25, 2.5, 2.75])
