@@ -85,9 +85,13 @@ def offer(H, nh, pool, link, table, q, value, x, y, tag, version):
     the current one or above, else onto its bucket; the new heap size.
 
     ``q``: the queue's scalars (:data:`QUEUE_STATE`, in order).  ``table[b]``:
-    bucket ``b``'s newest chunk (-1 none) and that chunk's fill; ``link[c]``:
-    the chunk after ``c`` in its bucket or in the free list.  The caller
-    makes sure a chunk is free or unused (:func:`spare_chunks`).
+    bucket ``b``'s newest chunk (-1 none) and that chunk's fill, for the
+    buckets below the current one only: the rows at or above it are stale
+    (:func:`refill` frees a bucket's chunks as it makes it the current one
+    without clearing its row), and neither function reads them again, since
+    the current bucket never rises.  ``link[c]``: the chunk after ``c`` in its
+    bucket or in the free list.  The caller makes sure a chunk is free or
+    unused (:func:`spare_chunks`).
     """
     b = bucket_of(value, q[4])
     if b >= q[0]:
