@@ -146,16 +146,17 @@ def measure(task):
             0, dtype=np.int64
         )
     figures = comparison_figures(points, triangles, l)
-    for kind, (members, need, in_top) in classes_by_kind(points, triangles, l).items():
-        figures.update({f"{kind}_members": members, f"{kind}_classes": need, f"{kind}_in_top10": in_top})
+    for kind, values in classes_by_kind(points, triangles, l).items():
+        figures.update({f"{kind}_{figure}": value for figure, value in zip(KIND_FIGURES, values)})
     sizes = np.sort(length_classes(edge_lengths(points, unique_edges(triangles)), l, 0.005).count)[::-1]
     extra = {"deviation_max": dev_max, "deviation_mean": dev_mean, "seconds": seconds, "status": "ok"}
     return {**row, **figures, **extra}, sizes
 
 
 #: Per kind of member (:func:`equimesh.metrics.classes_by_kind`): its members, the classes it needs alone, its share in
-#: the mesh's 10 largest classes.
-KIND_COLUMNS = tuple(f"{kind}_{figure}" for kind in MEMBER_KINDS for figure in ("members", "classes", "in_top10"))
+#: the mesh's 10 largest classes, its share within 5 % of l.
+KIND_FIGURES = ("members", "classes", "in_top10", "within_5")
+KIND_COLUMNS = tuple(f"{kind}_{figure}" for kind in MEMBER_KINDS for figure in KIND_FIGURES)
 COLUMNS = [
     "surface",
     "developable",
@@ -242,12 +243,14 @@ def targets(df):
 
 def kinds(df):
     """One line per (surface, l, method) of equimesh classes (D = 0) and gmsh Frontal-Delaunay: per kind of member
-    (:func:`equimesh.metrics.classes_by_kind`) its members, the classes it needs alone and its share in the mesh's
-    10 largest classes."""
+    (:func:`equimesh.metrics.classes_by_kind`) its members, the classes it needs alone, its share in the mesh's
+    10 largest classes and its share within 5 % of l."""
     lines = [
         "Per kind of member (equimesh.metrics.classes_by_kind): along the outline, in the boundary strip (the other "
         "members with a node on the outline) and inside; each cell: members / the classes at 0.5 % they need alone "
-        "/ their share in the mesh's 10 largest classes.",
+        "/ their share in the mesh's 10 largest classes / their share within 5 % of l. The ten largest classes at "
+        "0.5 % cover lengths spanning at most 0.1 l in all: members whose lengths spread over [l, 2l] mostly fall "
+        "outside them unless their lengths repeat.",
         "",
         "| surface | l | method | classes | along the outline | strip | inside |",
         "|---|---|---|---|---|---|---|",
@@ -255,7 +258,9 @@ def kinds(df):
     shown = df[(df["status"] == "ok") & df["method"].isin(["equimesh classes", "gmsh Frontal-Delaunay"])]
     for r in shown.to_dict("records"):
         cells = [
-            f"{int(r[f'{k}_members'])} / {int(r[f'{k}_classes'])} / {_pct(r[f'{k}_in_top10'])} %" for k in MEMBER_KINDS
+            f"{int(r[f'{k}_members'])} / {int(r[f'{k}_classes'])} / {_pct(r[f'{k}_in_top10'])} % / "
+            f"{_pct(r[f'{k}_within_5'])} %"
+            for k in MEMBER_KINDS
         ]
         lines.append(
             f"| {r['surface']} | span / {r['divisor']} | {r['method']} | {int(r['classes_05'])} | "

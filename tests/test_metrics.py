@@ -28,6 +28,7 @@ from equimesh.metrics import (
     quality_summary,
     share_in_bounds,
     share_within,
+    sharp_share,
     summary_rows,
     table1_row,
     triangle_angles,
@@ -86,14 +87,15 @@ def test_fabrication_summary():
         "within_tolerance": 0.6,
         "angle_min": pytest.approx(np.nan, nan_ok=True),
         "angle_max": pytest.approx(np.nan, nan_ok=True),
+        "sharp_share": pytest.approx(np.nan, nan_ok=True),
         "off_catalogue": 0,
     }
     # With a catalogue: 5.0 and 5.02 (within 0.5 % of 5 of 5.0) and 9.0 are stock, 5.3 is off it.
     c = fabrication_summary([5.0, 5.0, 5.02, 5.3, 9.0], 5.0, 0.005, catalogue=[5.0, 9.0])
     assert (c["classes"], c["off_catalogue"], c["largest_class_share"]) == (3, 1, 0.6)
-    # With triangles: the angle range.
+    # With triangles: the angle range, and no joint too sharp.
     t = fabrication_summary([1.0] * 3, 1.0, 0.005, [[0, 0, 0], [1, 0, 0], [0.5, 0.75**0.5, 0]], [[0, 1, 2]])
-    assert (t["angle_min"], t["angle_max"]) == (pytest.approx(60.0), pytest.approx(60.0))
+    assert (t["angle_min"], t["angle_max"], t["sharp_share"]) == (pytest.approx(60.0), pytest.approx(60.0), 0.0)
 
 
 def test_comparison_figures_of_two_triangles():
@@ -166,7 +168,8 @@ def test_node_figures_are_exact_for_collinear_members():
 
 def test_summary_rows():
     """The lines ``equimesh mesh`` prints: lengths 5, 5, 5.02, 5.3, 9 at l = 5 and +-0.5 % (three classes, the
-    largest of three members, 5.3 off the stock lengths 5 and 9), a triangle of 30, 60 and 90 degrees."""
+    largest of three members, 5.3 off the stock lengths 5 and 9), a right triangle of legs 2 and 1 (its angle of
+    26.6 degrees too sharp a joint)."""
     lengths = [5.0, 5.0, 5.02, 5.3, 9.0]
     rows = [
         ("members", "5"),
@@ -178,17 +181,29 @@ def test_summary_rows():
         ("within +-0.5 % of L", "60.0 %"),
     ]
     assert summary_rows(lengths, 5.0, 0.005) == rows
-    points = [[0.0, 0.0, 0.0], [np.sqrt(3.0), 0.0, 0.0], [0.0, 1.0, 0.0]]
+    points = [[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [0.0, 1.0, 0.0]]
     extra = summary_rows(lengths, 5.0, 0.005, points, [[0, 1, 2]], (0.012, 0.0034), [5.0, 9.0])
     assert extra == [
         *rows,
-        ("triangle angles", "30.0 to 90.0 degrees"),
+        ("triangle angles", "26.6 to 90.0 degrees"),
+        ("an angle below 30 degrees", "100.0 % of triangles"),
         ("off the surface", "max 0.012, mean 0.0034"),
         ("off the catalogue", "1 members"),
     ]
     assert summary_rows([1.2, 1.3], 1.0, 0.0125)[1:2] == [
         ("length classes", "2 (every member within +-1.25 % of L of its class's nominal length)")
     ]
+
+
+def test_sharp_share_counts_the_triangles_with_an_angle_below_the_joint_angle():
+    """An equilateral triangle, one of 31, 59 and 90 degrees and one of 29, 61 and 90: one of three is too sharp."""
+    points = [[0.0, 0.0], [1.0, 0.0], [0.5, np.sqrt(0.75)]]
+    for angle in (31.0, 29.0):
+        points += [[0.0, 0.0], [1.0, 0.0], [1.0, np.tan(np.radians(angle))]]
+    angles = triangle_angles(points, [[0, 1, 2], [3, 4, 5], [6, 7, 8]])
+    assert sharp_share(angles) == pytest.approx(1 / 3)
+    assert sharp_share(angles[:2]) == 0.0 and sharp_share(angles[2:]) == 1.0
+    assert np.isnan(sharp_share(np.zeros((0, 3))))
 
 
 def _four_triangles(l):
@@ -308,17 +323,18 @@ def _grid(n):
 
 def test_classes_by_kind_counts_the_members_and_classes_of_each_kind():
     """3 x 3 squares: 12 members along the outline (length 1), 16 in the strip (8 sides, 8 diagonals), 5 inside (4
-    sides, 1 diagonal); the largest class, length 1, holds 8 of the strip's and 4 of the interior's."""
+    sides, 1 diagonal); the largest class, length 1, holds 8 of the strip's and 4 of the interior's, the members
+    within 5 % of l (the diagonals, sqrt(2), are not)."""
     points, triangles = _grid(3)
     assert classes_by_kind(points, triangles, 1.0) == {
-        "boundary": (12, 1, 1.0),
-        "strip": (16, 2, 1.0),
-        "interior": (5, 2, 1.0),
+        "boundary": (12, 1, 1.0, 1.0),
+        "strip": (16, 2, 1.0, 0.5),
+        "interior": (5, 2, 1.0, 0.8),
     }
     assert classes_by_kind(points, triangles, 1.0, k=1) == {
-        "boundary": (12, 1, 1.0),
-        "strip": (16, 2, 0.5),
-        "interior": (5, 2, 0.8),
+        "boundary": (12, 1, 1.0, 1.0),
+        "strip": (16, 2, 0.5, 0.5),
+        "interior": (5, 2, 0.8, 0.8),
     }
     assert tuple(classes_by_kind(points, triangles, 1.0)) == MEMBER_KINDS
 
@@ -344,17 +360,17 @@ def test_classes_by_kind_breaks_ties_to_the_shorter_class():
     point = a + along * u + np.sqrt(r**2 - along**2) * np.array([-u[1], u[0]])
     points = np.array([a, [1.0, 0.0], c, point])
     out = classes_by_kind(points, [[0, 1, 2], [0, 2, 3]], 1.0, k=1)
-    assert out == {"boundary": (4, 3, 0.5), "strip": (1, 1, 0.0), "interior": (0, 0, out["interior"][2])}
-    assert np.isnan(out["interior"][2])
+    assert out["boundary"] == (4, 3, 0.5, 0.5) and out["strip"] == (1, 1, 0.0, 0.0)
+    assert out["interior"][:2] == (0, 0) and np.isnan(out["interior"][2]) and np.isnan(out["interior"][3])
 
 
 def test_classes_by_kind_of_one_triangle_has_no_strip_or_interior():
     with warnings.catch_warnings():
         warnings.simplefilter("error")  # an empty kind is nan without a division by zero
         out = classes_by_kind([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]], [[0, 1, 2]], 1.0)
-    assert out["boundary"] == (3, 2, 1.0)
-    assert out["strip"][:2] == (0, 0) and np.isnan(out["strip"][2])
-    assert out["interior"][:2] == (0, 0) and np.isnan(out["interior"][2])
+    assert out["boundary"] == (3, 2, 1.0, 2 / 3)
+    assert out["strip"][:2] == (0, 0) and np.isnan(out["strip"][2]) and np.isnan(out["strip"][3])
+    assert out["interior"][:2] == (0, 0) and np.isnan(out["interior"][2]) and np.isnan(out["interior"][3])
 
 
 @given(st.lists(st.tuples(st.integers(0, 1000), st.integers(0, 1000)), min_size=8, max_size=40, unique=True))
@@ -370,4 +386,4 @@ def test_single_edges_of_a_delaunay_triangulation_are_its_hull(raw):
     assert {tuple(sorted(e)) for e in single_edges(triangles).tolist()} == sides
     kinds = classes_by_kind(points, triangles, 100.0)
     assert kinds["boundary"][0] == len(sides)
-    assert sum(members for members, _, _ in kinds.values()) == len(unique_edges(triangles))
+    assert sum(members for members, *_ in kinds.values()) == len(unique_edges(triangles))

@@ -26,7 +26,7 @@ import numpy as np
 from .classes import DEFAULT_TOLERANCE, TOP_CLASSES, catalogue_classes, length_classes
 from .errors import number
 from .mesh import G1, edge_keys, edge_lengths, single_edges, unique_edges
-from .tolerance import at_least, at_most
+from .tolerance import JOINT_ANGLE, at_least, at_most
 
 #: Keys of :func:`length_stats`, in the column order of Table 1.
 TABLE1_COLUMNS = ("members", "mean", "min", "max", "std")
@@ -109,6 +109,7 @@ SUMMARY_KEYS = (
     "within_tolerance",
     "angle_min",
     "angle_max",
+    "sharp_share",
     "off_catalogue",
 )
 
@@ -121,12 +122,15 @@ def fabrication_summary(lengths, l, tolerance=DEFAULT_TOLERANCE, points=None, tr
     the share of members in the largest class and in the
     :data:`~equimesh.classes.TOP_CLASSES` largest; the shortest and longest
     member (``nan`` without members); the share within ``tolerance * l`` of l;
-    the smallest and largest triangle angle in degrees (``nan`` without
-    ``triangles``); the members off the catalogue (0 without one).
+    the smallest and largest triangle angle in degrees and the share of
+    triangles with an angle below :data:`~equimesh.tolerance.JOINT_ANGLE`
+    (:func:`sharp_share`; ``nan`` without ``triangles``); the members off the
+    catalogue (0 without one).
     """
     x = np.asarray(lengths, dtype=float).ravel()
     classes = length_classes(x, l, tolerance) if catalogue is None else catalogue_classes(x, l, catalogue, tolerance)
-    lo, hi = (np.nan, np.nan) if triangles is None else angle_range(points, triangles)
+    angles = None if triangles is None else triangle_angles(points, triangles)
+    lo, hi, sharp = (np.nan,) * 3 if angles is None else (float(angles.min()), float(angles.max()), sharp_share(angles))
     return {
         "members": int(x.size),
         "classes": len(classes),
@@ -137,6 +141,7 @@ def fabrication_summary(lengths, l, tolerance=DEFAULT_TOLERANCE, points=None, tr
         "within_tolerance": share_within(x, l, classes.tolerance),
         "angle_min": lo,
         "angle_max": hi,
+        "sharp_share": sharp,
         "off_catalogue": classes.off_catalogue(),
     }
 
@@ -158,6 +163,7 @@ def summary_rows(lengths, l, tolerance=DEFAULT_TOLERANCE, points=None, triangles
     ]
     if triangles is not None:
         rows.append(("triangle angles", f"{s['angle_min']:.1f} to {s['angle_max']:.1f} degrees"))
+        rows.append((f"an angle below {JOINT_ANGLE:g} degrees", f"{100 * s['sharp_share']:.1f} % of triangles"))
     if deviation is not None:
         rows.append(("off the surface", "max {}, mean {}".format(*(number(d) for d in deviation))))
     if catalogue is not None:
@@ -192,7 +198,7 @@ def comparison_figures(points, triangles, l):
     :data:`~equimesh.classes.TOP_CLASSES` largest classes at +-0.5 %;
     ``length_std`` is relative to l (population standard deviation over l);
     ``below_30deg`` the share of triangles with an angle below 30 degrees (a
-    joint that cannot be built, :mod:`equimesh.surface.optimize.joints`).
+    joint that cannot be built, :func:`sharp_share`).
     """
     lengths = edge_lengths(points, unique_edges(triangles))
     angles = triangle_angles(points, triangles)
@@ -210,7 +216,7 @@ def comparison_figures(points, triangles, l):
         "length_std": float(np.std(lengths) / l),
         "angle_min": float(angles.min()),
         "angle_max": float(angles.max()),
-        "below_30deg": float(np.mean(angles.min(axis=1) < 30.0)),
+        "below_30deg": sharp_share(angles),
     }
 
 
@@ -225,6 +231,12 @@ def triangle_angles(points, triangles):
         cos = np.sum(u * v, axis=1) / (np.linalg.norm(u, axis=1) * np.linalg.norm(v, axis=1))
         angles[:, k] = np.degrees(np.arccos(np.clip(cos, -1.0, 1.0)))
     return angles
+
+
+def sharp_share(angles):
+    """The share of triangles (rows of ``angles``, :func:`triangle_angles`) with an angle below
+    :data:`~equimesh.tolerance.JOINT_ANGLE`: joints too sharp to build (:mod:`equimesh.surface.optimize.joints`)."""
+    return float(np.mean(np.asarray(angles).min(axis=1) < JOINT_ANGLE)) if len(angles) else np.nan
 
 
 def angle_range(points, triangles):
@@ -275,7 +287,7 @@ MEMBER_KINDS = ("boundary", "strip", "interior")
 
 
 def classes_by_kind(points, triangles, l, tolerance=DEFAULT_TOLERANCE, k=TOP_CLASSES):
-    """Where a mesh's length classes go: per kind of member, ``{kind: (members, classes, in_top)}``.
+    """Where a mesh's length classes go: per kind of member, ``{kind: (members, classes, in_top, near)}``.
 
     The kinds (:data:`MEMBER_KINDS`): ``boundary``, the members along the
     outline (edges of one triangle); ``strip``, the other members with a node
@@ -285,7 +297,11 @@ def classes_by_kind(points, triangles, l, tolerance=DEFAULT_TOLERANCE, k=TOP_CLA
     a class two kinds share counts for each), ``in_top`` the share of the
     kind's members in the ``k`` largest classes of the whole mesh (ties to the
     shorter nominal length; ``nan`` for a kind without members): which kind
-    keeps the mesh's top-``k`` share below 1.
+    keeps the mesh's top-``k`` share below 1.  ``near`` is the share of the
+    kind's members within 5 % of l (``nan`` likewise), a measure of why: ``k``
+    classes cover lengths spanning at most ``2 k tolerance`` l in all (0.1 l
+    for the ten largest at 0.5 %), so a kind whose lengths spread over
+    [l, 2l] has most of its members outside them unless its lengths repeat.
     """
     edges = unique_edges(triangles)
     lengths = edge_lengths(np.asarray(points, dtype=float), edges)
@@ -301,7 +317,8 @@ def classes_by_kind(points, triangles, l, tolerance=DEFAULT_TOLERANCE, k=TOP_CLA
         mine = kind == index
         count = int(np.count_nonzero(mine))
         share = np.count_nonzero(top[mine]) / count if count else np.nan
-        out[name] = (count, len(length_classes(lengths[mine], l, tolerance)), share)
+        near = share_within(lengths[mine], l, 0.05)
+        out[name] = (count, len(length_classes(lengths[mine], l, tolerance)), share, near)
     return out
 
 

@@ -28,8 +28,10 @@ def test_fabrication_writes_table_targets_classes_figures_and_provenance(fabrica
     sizes = pd.read_csv(out / "fabrication_classes.csv")
     for row in df.itertuples():
         assert sizes[sizes["method"] == row.method]["count"].sum() == row.members
-    kinds = df[[f"{k}_members" for k in ("boundary", "strip", "interior")]].sum(axis=1)
-    assert (kinds == df["members"]).all()
+    kinds = ("boundary", "strip", "interior")
+    assert (df[[f"{k}_members" for k in kinds]].sum(axis=1) == df["members"]).all()
+    near = sum(df[f"{k}_members"] * df[f"{k}_within_5"].fillna(0.0) for k in kinds)
+    assert near.round().astype(int).tolist() == (df["within_5"] * df["members"]).round().astype(int).tolist()
     report = (out / "fabrication.md").read_text()
     assert "## Where the classes go" in report
     assert "| cylinder vault | span / 16 | equimesh classes |" in report and "## Provenance" in report

@@ -27,7 +27,7 @@ import json
 import numpy as np
 
 from ..errors import MissingDependencyError, number
-from ..metrics import angle_range, summary_rows
+from ..metrics import summary_rows
 from ._view import BOUNDARY_COLOUR, mesh_view
 from .provenance import provenance
 
@@ -307,16 +307,14 @@ def _classes_table(view):
 
 
 def _run_rows(view, seconds):
+    triangles = view.triangles if view.triangles.size else None
     rows = [
         ("nodes", f"{len(view.points)}"),
         ("triangles", f"{len(view.triangles)}"),
         ("target length l", number(view.l, None)),
         ("in the equal-length group G1", f"{view.n_g1}"),
-        *summary_rows(view.lengths, view.l, view.tolerance),
+        *summary_rows(view.lengths, view.l, view.tolerance, view.points, triangles),
     ]
-    if view.triangles.size:
-        lo, hi = angle_range(view.points, view.triangles)
-        rows.append(("triangle angles", f"{lo:.1f} to {hi:.1f} degrees"))
     rows += [(f"seconds: {stage}", f"{s:.2f}") for stage, s in seconds.items()]
     return rows
 
