@@ -21,7 +21,7 @@ from surface_cases import Wrapped, plane_patch
 import equimesh
 from equimesh import EquimeshError, InvalidSurfaceError
 from equimesh.surface.charts.chart import Domain
-from equimesh.surface.optimize import OBJECTIVES, Objective, Stage, joints, optimize_uv
+from equimesh.surface.optimize import OBJECTIVES, Objective, Stage, driver, joints, optimize_uv
 from equimesh.surface.optimize.driver import fold_over_barrier, with_barriers
 from equimesh.surface.optimize.jacobian import signed_areas
 from equimesh.surface.optimize.joints import Joints, joint_bounds, surface_angles
@@ -305,12 +305,12 @@ def test_a_stage_ending_outside_its_constraint_is_solved_on(monkeypatch):
 
 
 class Finer:
-    """:func:`patch` that names what refines it."""
+    """:func:`patch` (or ``chart``) that names what refines it."""
 
     finer = "a finer control net"
 
-    def __init__(self):
-        self.chart = patch()
+    def __init__(self, chart=None):
+        self.chart = patch() if chart is None else chart
         self.evaluate, self.derivatives = self.chart.evaluate, self.chart.derivatives
         self.second_derivatives = self.chart.second_derivatives
 
@@ -539,6 +539,12 @@ def test_a_bound_leaving_no_iteration_refuses_before_the_first_solve(monkeypatch
     record(monkeypatch, "two", stages_of(papers()), max_jacobians=2)
     with pytest.raises(InvalidSurfaceError, match=r"not converged within 2 Jacobian evaluations"):
         run("two")
+    # An objective that bounds the members says where the start is: the remapped mesh's members.
+    record(monkeypatch, "bounded one", stages_of(papers()), bounds_members=True, max_jacobians=1)
+    with pytest.raises(InvalidSurfaceError) as refused:
+        run("bounded one")
+    found = "found within 1 Jacobian evaluations (its work bound), "
+    assert found in str(refused.value) and " members outside [l, 2l] (lengths from " in str(refused.value)
 
 
 def test_a_start_out_of_reach_is_refused_before_any_work(monkeypatch):
@@ -552,5 +558,27 @@ def test_a_start_out_of_reach_is_refused_before_any_work(monkeypatch):
         "optimisation (reach): no mesh with every member in [l, 2l] within reach of the remapped mesh: "
     )
     assert "members shorter than 0.5 l on the surface (the flattening stretched it)" in str(refused.value)
+    assert str(refused.value).endswith(
+        "; use a smaller l, a finer auxiliary grid, or optimize='paper' "
+        "(which does not bound the members on the surface)"
+    )
+    with pytest.raises(InvalidSurfaceError, match=r"; use a smaller l, a finer control net, or optimize='paper'"):
+        optimize_uv(Finer(flat), UV, EDGES, GROUPS, 21.0, triangles=TRIANGLES, objective="reach", fixed=FIXED)
     record(monkeypatch, "free", stages_of(papers()))
     assert optimize_uv(flat, UV, EDGES, GROUPS, 21.0, triangles=TRIANGLES, objective="free", fixed=FIXED).njev > 0
+
+
+def test_the_work_bound_gives_each_solve_the_iterations_left():
+    """A solve of k iterations spends k + 1 Jacobians: of a bound of 10, a first solve may take 9 iterations; after
+    5 spent, 4 (or its stage's fewer); after 8, one; after 9 none, and the bound ends the optimisation where the
+    last solve ended."""
+    work, x = driver._Work(10), np.zeros(2)
+    assert work.cap(100, x) == 9 and work.cap(3, x) == 3 and work.cap(0, x) == 0
+    work.spent = 5
+    assert work.cap(100, x) == 4 and work.cap(3, x) == 3
+    work.spent = 8
+    assert work.cap(100, x) == 1
+    work.spent = 9
+    with pytest.raises(driver._OutOfWork) as spent:
+        work.cap(100, x)
+    assert spent.value.x is x
