@@ -156,6 +156,7 @@ def measure(task):
 #: Per kind of member (:func:`equimesh.metrics.classes_by_kind`): its members, the classes it needs alone, its share in
 #: the mesh's 10 largest classes, its share within 5 % of l.
 KIND_FIGURES = ("members", "classes", "in_top10", "within_5")
+#: The CSV columns of :data:`KIND_FIGURES`, per kind.
 KIND_COLUMNS = tuple(f"{kind}_{figure}" for kind in MEMBER_KINDS for figure in KIND_FIGURES)
 COLUMNS = [
     "surface",

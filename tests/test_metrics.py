@@ -203,6 +203,7 @@ def test_sharp_share_counts_the_triangles_with_an_angle_below_the_joint_angle():
     angles = triangle_angles(points, [[0, 1, 2], [3, 4, 5], [6, 7, 8]])
     assert sharp_share(angles) == pytest.approx(1 / 3)
     assert sharp_share(angles[:2]) == 0.0 and sharp_share(angles[2:]) == 1.0
+    assert sharp_share([[30.0, 60.0, 90.0]]) == 0.0  # an angle of 30 degrees is not below 30
     with warnings.catch_warnings():
         warnings.simplefilter("error")  # no triangle: nan without the mean of nothing
         assert np.isnan(sharp_share(np.zeros((0, 3))))
@@ -350,6 +351,16 @@ def test_classes_by_kind_reads_the_tolerance():
     # The largest class: every side at 0.5 %; at 0.1 % the 12 of length 1 (tied with the 12 of 1.004, the shorter).
     assert classes_by_kind(points, triangles, 1.0, k=1)["boundary"][2] == 1.0
     assert classes_by_kind(points, triangles, 1.0, tolerance=0.001, k=1)["boundary"][2] == 0.5
+
+
+def test_classes_by_kind_counts_the_members_within_5_percent_of_l():
+    """Stretched along x by 1.03 every side of the outline is within 5 % of l, by 1.055 only those along y: half of
+    them, whatever the tolerance of the classes."""
+    for stretch, near in ((1.03, 1.0), (1.055, 0.5)):
+        points, triangles = _grid(3)
+        points[:, 0] *= stretch
+        for tolerance in (0.005, 0.06):
+            assert classes_by_kind(points, triangles, 1.0, tolerance=tolerance)["boundary"][3] == near
 
 
 def test_classes_by_kind_breaks_ties_to_the_shorter_class():

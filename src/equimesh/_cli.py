@@ -433,16 +433,22 @@ def _run_mesh(args):
 
 
 def _joints_note(mesh, objective):
-    """Where a mesh has joints too sharp to build and its objective does not keep them sound: which one does."""
+    """Where a mesh has joints too sharp to build and its objective does not keep them sound: which one does
+    (docs/decisions.md, "Sound joints")."""
     from .metrics import sharp_share, triangle_angles
     from .surface.optimize import OBJECTIVES
     from .tolerance import JOINT_ANGLE
 
     record = OBJECTIVES.get(objective)
-    if (record is not None and record.sound_joints) or not sharp_share(triangle_angles(mesh.points, mesh.triangles)):
+    if (record is not None and record.sound_joints) or not sharp_share(
+        triangle_angles(mesh.points, mesh.triangles)
+    ) > 0:
         return None
     sound = ", ".join(name for name, r in OBJECTIVES.items() if r.sound_joints)
-    return f"--optimize {sound} keeps every triangle angle at least {JOINT_ANGLE:g} degrees (joints that can be built)"
+    return (
+        f"--optimize {sound} keeps every triangle angle at least {JOINT_ANGLE:g} degrees, or a sharper input corner's "
+        "own (joints that can be built)"
+    )
 
 
 def _parameters(args):

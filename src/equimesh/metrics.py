@@ -148,8 +148,8 @@ def fabrication_summary(lengths, l, tolerance=DEFAULT_TOLERANCE, points=None, tr
 
 def summary_rows(lengths, l, tolerance=DEFAULT_TOLERANCE, points=None, triangles=None, deviation=None, catalogue=None):
     """:func:`fabrication_summary` as ``(label, text)`` pairs: the summary ``equimesh mesh`` prints and its report
-    shows; with ``triangles`` the angle range, with ``deviation`` (max, mean) the nodes' distance from the surface,
-    with a ``catalogue`` the members off it."""
+    shows; with ``triangles`` the angle range and the share of triangles with a joint too sharp (:func:`sharp_share`),
+    with ``deviation`` (max, mean) the nodes' distance from the surface, with a ``catalogue`` the members off it."""
     s = fabrication_summary(lengths, l, tolerance, points, triangles, catalogue)
     tol = f"+-{100 * tolerance:.3g} %"
     rows = [
@@ -298,9 +298,10 @@ def classes_by_kind(points, triangles, l, tolerance=DEFAULT_TOLERANCE, k=TOP_CLA
     kind's members in the ``k`` largest classes of the whole mesh (ties to the
     shorter nominal length; ``nan`` for a kind without members): which kind
     keeps the mesh's top-``k`` share below 1.  ``near`` is the share of the
-    kind's members within 5 % of l (``nan`` likewise), a measure of why: ``k``
-    classes cover lengths spanning at most ``2 k tolerance`` l in all (0.1 l
-    for the ten largest at 0.5 %), so a kind whose lengths spread over
+    kind's members within 5 % of l (``nan`` likewise): how many lie near l,
+    where a mesh's largest classes are when most of its members are near l;
+    ``k`` classes cover lengths spanning at most ``2 k tolerance`` l in all
+    (0.1 l for the ten largest at 0.5 %), so a kind whose lengths spread over
     [l, 2l] has most of its members outside them unless its lengths repeat.
     """
     edges = unique_edges(triangles)

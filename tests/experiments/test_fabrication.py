@@ -1,6 +1,7 @@
 """Smoke test of experiments/fabrication.py: one developable surface, three methods, every output."""
 
 import json
+import re
 
 import pandas as pd
 import pytest
@@ -34,6 +35,9 @@ def test_fabrication_writes_table_targets_classes_figures_and_provenance(fabrica
     assert near.round().astype(int).tolist() == (df["within_5"] * df["members"]).round().astype(int).tolist()
     report = (out / "fabrication.md").read_text()
     assert "## Where the classes go" in report
+    assert re.search(
+        r"\| cylinder vault \| span / 16 \| equimesh classes \| \d+ \|( \d+ / \d+ / [\d.]+ % / [\d.]+ % \|){3}", report
+    )
     assert "| cylinder vault | span / 16 | equimesh classes |" in report and "## Provenance" in report
     assert "## The targets of the fewest-classes objective" in report
     record = json.loads((out / "fabrication.provenance.json").read_text())
