@@ -307,13 +307,12 @@ def _classes_table(view):
 
 
 def _run_rows(view, seconds):
-    triangles = view.triangles if view.triangles.size else None
     rows = [
         ("nodes", f"{len(view.points)}"),
         ("triangles", f"{len(view.triangles)}"),
         ("target length l", number(view.l, None)),
         ("in the equal-length group G1", f"{view.n_g1}"),
-        *summary_rows(view.lengths, view.l, view.tolerance, view.points, triangles),
+        *summary_rows(view.lengths, view.l, view.tolerance, view.points, view.triangles),
     ]
     rows += [(f"seconds: {stage}", f"{s:.2f}") for stage, s in seconds.items()]
     return rows
