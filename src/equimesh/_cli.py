@@ -384,6 +384,7 @@ def _feature_angle(text):
 
 
 def _run_mesh(args):
+    from ._run_summary import joints_note, summary
     from .io import OUTPUT_SLOTS, load_surface, surface_mesh_writer
     from .surface.pipeline import mesh_surface
 
@@ -426,29 +427,10 @@ def _run_mesh(args):
             f"({n_g1} in the equal-length group G1), {len(mesh.triangles)} triangles",
             file=sys.stderr,
         )
-        print(_summary(mesh, args.tolerance, args.lengths))
-        if note := _joints_note(mesh, args.optimize):
+        print(summary(mesh, args.tolerance, args.lengths))
+        if note := joints_note(mesh, args.optimize):
             print(f"equimesh: note: {note}", file=sys.stderr)
     return 0
-
-
-def _joints_note(mesh, objective):
-    """Where a mesh has joints too sharp to build and its objective does not keep them sound: which one does
-    (docs/decisions.md, "Sound joints")."""
-    from .metrics import sharp_share, triangle_angles
-    from .surface.optimize import OBJECTIVES
-    from .tolerance import JOINT_ANGLE
-
-    record = OBJECTIVES.get(objective)
-    if (record is not None and record.sound_joints) or not sharp_share(
-        triangle_angles(mesh.points, mesh.triangles)
-    ) > 0:
-        return None
-    sound = ", ".join(name for name, r in OBJECTIVES.items() if r.sound_joints)
-    return (
-        f"--optimize {sound} keeps every triangle angle at least {JOINT_ANGLE:g} degrees, or a sharper input corner's "
-        "own (joints that can be built)"
-    )
 
 
 def _parameters(args):
@@ -456,17 +438,6 @@ def _parameters(args):
     keys = ("surface", "object", "length", "grid", "optimize", "placement", "engine", "max_nodes", "feature_angle")
     keys += ("tolerance", "surface_tolerance", "lengths")
     return {("input" if k == "surface" else k): getattr(args, k) for k in keys if getattr(args, k, None)}
-
-
-def _summary(mesh, tolerance, catalogue=None):
-    """The one-screen summary of a run (:func:`equimesh.metrics.summary_rows`)."""
-    from .metrics import summary_rows
-
-    rows = summary_rows(
-        mesh.edge_lengths(), mesh.length, tolerance, mesh.points, mesh.triangles, mesh.deviation(), catalogue
-    )
-    width = max(len(label) for label, _ in rows) + 2
-    return "\n".join(f"{label:<{width}}{value}" for label, value in rows)
 
 
 @contextlib.contextmanager
