@@ -21,7 +21,7 @@ from surface_cases import Wrapped, plane_patch
 import equimesh
 from equimesh import EquimeshError, InvalidSurfaceError
 from equimesh.surface.charts.chart import Domain
-from equimesh.surface.optimize import OBJECTIVES, Objective, Stage, driver, joints, optimize_uv
+from equimesh.surface.optimize import OBJECTIVES, Objective, Stage, driver, joints, objectives, optimize_uv
 from equimesh.surface.optimize.driver import fold_over_barrier, with_barriers
 from equimesh.surface.optimize.jacobian import signed_areas
 from equimesh.surface.optimize.joints import Joints, joint_bounds, surface_angles
@@ -582,3 +582,33 @@ def test_the_work_bound_gives_each_solve_the_iterations_left():
     with pytest.raises(driver._OutOfWork) as spent:
         work.cap(100, x)
     assert spent.value.x is x
+
+
+def test_the_work_bound_ends_where_the_stages_keep_a_point(monkeypatch):
+    """At the bound the driver throws WorkSpent into the objective's stages until they return an end: here they
+    keep the first solve's end, yield one more stage when the bound is first thrown (which gets it too), and return
+    the kept point at the second; the result is that point, not converged.  Stages that let it pass are refused."""
+    first = run("paper")
+    thrown = []
+
+    def keeping(problem):
+        stage = paper_stage(problem)
+        kept = yield stage
+        try:
+            yield replace(stage, start=problem.x0)
+        except objectives.WorkSpent:
+            thrown.append("first")
+            try:
+                yield replace(stage, start=problem.x0)
+            except objectives.WorkSpent:
+                thrown.append("second")
+                return kept, stage
+
+    record(monkeypatch, "keeping", keeping, bounds_members=True, max_jacobians=first.njev + 1)
+    result = run("keeping")
+    assert thrown == ["first", "second"] and result.uv.tobytes() == first.uv.tobytes()
+    assert not result.converged and result.njev == first.njev
+    assert result.message == f"the best point found within {first.njev + 1} Jacobian evaluations (its work bound)"
+    record(monkeypatch, "passing", stages_of(papers(), papers(start="x0")), max_jacobians=first.njev + 1)
+    with pytest.raises(InvalidSurfaceError, match=rf"not converged within {first.njev + 1} Jacobian evaluations"):
+        run("passing")

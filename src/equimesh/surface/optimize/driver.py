@@ -41,7 +41,7 @@ from ...tolerance import JOINT_ANGLE, JOINT_WEIGHT, LM_INITIAL_DAMPING, PAPER_FT
 from .jacobian import AreaBarrier, signed_areas
 from .joints import joint_bounds
 from .members import Members, out_of_reach
-from .objectives import OBJECTIVES, Stage
+from .objectives import OBJECTIVES, Stage, WorkSpent
 from .problem import UVProblem, free_nodes, parameter_box
 from .solver import NormalEquations, inner, least_squares
 
@@ -61,7 +61,8 @@ class UVOptimization:
     nfev, njev : int
         Residual and Jacobian evaluations of the solver (all stages).
     converged : bool, message : str
-        Whether the last stage met a convergence test, and which.
+        Whether the last stage met a convergence test, and which; False where the work bound ended the
+        optimisation at the objective's best point found before it.
     objective : str
     """
 
@@ -153,7 +154,10 @@ def optimize_uv(
         what refines a chart, "a finer auxiliary grid" by default) or
         ``optimize='paper'``.  Also when the solver's Jacobian evaluations would
         exceed the objective's work bound
-        (:attr:`~equimesh.surface.optimize.objectives.Objective.max_jacobians`).
+        (:attr:`~equimesh.surface.optimize.objectives.Objective.max_jacobians`)
+        before its stages kept a point meeting its constraints (bounded's best
+        round end in [l, 2l], the classes objective's fewest classes): such a
+        point is the result, not converged.
     """
     try:
         record = OBJECTIVES[objective]
@@ -198,12 +202,17 @@ def optimize_uv(
             solution = _solve(problem, stage, x, damping, tri, barrier, normal_equations, ftol, xtol, gtol, work)
         except _OutOfWork as spent:
             within = f"within {record.max_jacobians} Jacobian evaluations (its work bound)"
+            kept = _kept(stages)
+            if kept is not None:  # the objective's best point meeting its constraints, found before the bound
+                (x, stage), converged, message = kept, False, f"the best point found {within}"
+                break
             if not record.bounds_members:
                 raise InvalidSurfaceError(
                     f"optimisation ({objective}): not converged {within}; use a larger l or {_finer(surface)}"
                 ) from None
             raise _refusal(objective, surface, f"found {within}, {Members(problem).violation(spent.x)}") from None
         x, nfev, damping = solution.x, nfev + solution.evaluations, solution.damping  # damping: the next solve's start
+        converged, message = solution.converged, solution.message
         try:
             stage = stages.send(x)
         except StopIteration as done:
@@ -224,8 +233,8 @@ def optimize_uv(
         _cost(stage, x),
         nfev,
         work.spent,
-        solution.converged,
-        solution.message,
+        converged,
+        message,
         objective,
     )
 
@@ -261,6 +270,19 @@ def _solve(problem, stage, x, damping, triangles, barrier, normal_equations, fto
         if stage.feasible is None or stage.feasible(x) or tol <= PAPER_FTOL:
             return replace(solution, evaluations=evaluations)
         tol = PAPER_FTOL
+
+
+def _kept(stages):
+    """Where the work bound is reached: the end ``(x, stage)`` the objective's ``stages`` keep (their best point
+    meeting its constraints; :class:`~equimesh.surface.optimize.objectives.WorkSpent` thrown in until they return),
+    or None if they keep none."""
+    try:
+        while True:  # a stage yielded instead of an end (classes after bounded's rounds) gets the bound too
+            stages.throw(WorkSpent())
+    except StopIteration as done:
+        return done.value
+    except WorkSpent:
+        return None
 
 
 class _OutOfWork(Exception):

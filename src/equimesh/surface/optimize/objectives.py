@@ -43,6 +43,13 @@ from .members import Members, cauchy, edge_length_terms
 from .solver import factorisation_name
 
 
+class WorkSpent(Exception):
+    """Thrown into an objective's stages where the optimisation reaches its work bound
+    (:attr:`Objective.max_jacobians`, :func:`~equimesh.surface.optimize.driver.optimize_uv`): stages that keep a
+    point meeting the objective's constraints return it as their end ``(x, stage)``; the others let it pass, and the
+    surface is refused."""
+
+
 @dataclass(frozen=True)
 class Stage:
     """One least-squares solve: residuals ``r(x)`` and their sparse Jacobian ``J(x)``; its cost is ``|r|^2 / 2``.
@@ -159,7 +166,7 @@ def bounded_stages(problem):
       (docs/decisions.md, "Two starts for bounded, and the best point kept");
     * the result is the iterate in [l, 2l] with the largest share of members
       within :data:`~equimesh.tolerance.BOUNDED_BAND` of l seen at the end of
-      any round;
+      any round, also where the work bound ends the rounds (:class:`WorkSpent`);
     * if no round of either series ended in [l, 2l], a last stage restarts
       from the remapped mesh (a member the rounds cannot pull in was
       observed): Cauchy terms plus a smoothed one-sided penalty of slope
@@ -251,15 +258,23 @@ def bounded_stages(problem):
             violation=violation,
         )
 
-    yield from series(problem.x0)
-    # The paper's optimum, boundary held (the paper's problem, as optimize="paper"), then rounds from it if it has
-    # the larger share: the boundary released (the paper's objective solved on) first.
-    x = yield replace(
-        paper_stage(problem), start=problem.x0, hold=problem.sliding_variables, joints=False, ftol=BOUNDED_START_FTOL
-    )
-    if share(lengths(x) / l) > best["share"]:
-        x = yield replace(paper_stage(problem), joints=False)
-        yield from series(x)
+    try:
+        yield from series(problem.x0)
+        # The paper's optimum, boundary held (the paper's problem, as optimize="paper"), then rounds from it if it has
+        # the larger share: the boundary released (the paper's objective solved on) first.
+        x = yield replace(
+            paper_stage(problem),
+            start=problem.x0,
+            hold=problem.sliding_variables,
+            joints=False,
+            ftol=BOUNDED_START_FTOL,
+        )
+        if share(lengths(x) / l) > best["share"]:
+            x = yield replace(paper_stage(problem), joints=False)
+            yield from series(x)
+    except WorkSpent:  # the work bound: the best round end in [l, 2l] so far, if any
+        if best["x"] is None:
+            raise
     if best["x"] is not None:
         return best["x"], best["stage"]
     stage = last_stage()
@@ -296,7 +311,8 @@ def classes_stages(problem):
     * the result is the round end in [l, 2l] with sound joints and the fewest
       classes (:func:`~equimesh.classes.length_classes` at the tolerance),
       then the largest share in the ten largest; with a catalogue, the fewest
-      members off the catalogue first.  So it never has more classes than
+      members off the catalogue first (also where the work bound ends the
+      rounds, :class:`WorkSpent`).  So it never has more classes than
       :func:`bounded_stages` give with the angle guards.
     """
     members = Members(problem)
@@ -322,7 +338,10 @@ def classes_stages(problem):
             start=x if k == 0 else None,  # the driver ended elsewhere: bounded's result is its best round, not its last
             limit=limit,
         )
-        x = yield stage
+        try:
+            x = yield stage
+        except WorkSpent:  # the work bound: the fewest classes so far (bounded's result at least)
+            break
         ratio = members.ratio(x)
         key = _class_key(ratio, tolerance, catalogue)
         if key < best["key"] and members.inside(ratio) and problem.sound(x):
