@@ -21,7 +21,7 @@ from equimesh.mesh import G1, edge_lengths
 from equimesh.surface.optimize import OBJECTIVES, optimize_uv
 from equimesh.surface.optimize.joints import Joints, surface_angles
 from equimesh.surface.optimize.members import Members, cauchy
-from equimesh.surface.optimize.objectives import bounded_stages, classes_stages, paper_stage, paper_stages
+from equimesh.surface.optimize.objectives import WorkSpent, bounded_stages, classes_stages, paper_stage, paper_stages
 from equimesh.surface.optimize.slide import along_polygon
 from equimesh.surface.optimize.solver import DEFAULT_FACTORISATION
 from equimesh.tolerance import (
@@ -458,6 +458,46 @@ def test_a_settled_round_whose_cost_fell_does_not_restart():
         assert loss_change <= BOUNDED_LOSS_TOL * cauchy_loss(ratio(p, p.x0))
         seen, _ = drive(bounded_stages(p), lambda k, stage: x)
         assert seen[1].description.endswith("round 2") and (seen[1].start is not None) == restarts
+
+
+def test_the_work_bound_ends_bounded_at_its_best_round_end_or_passes():
+    """WorkSpent thrown into bounded's stages: at the first round, before any round ended, it passes (nothing kept);
+    at the paper's start, after a first round ended in [l, 2l] (the flat grid at l = 8), that round's end and stage
+    are returned; in the last stage (no round in [l, 2l] at l = 6) it passes."""
+    p, _ = problem(rise=0.0, slides=True, length=8.0)
+    stages = bounded_stages(p)
+    next(stages)
+    with pytest.raises(WorkSpent):
+        stages.throw(WorkSpent())
+    stages = bounded_stages(p)
+    first = next(stages)
+    stages.send(p.x0)  # the first round ends at the start, inside: kept; the paper's start is next
+    with pytest.raises(StopIteration) as done:
+        stages.throw(WorkSpent())
+    end, last = done.value.value
+    assert last is first and np.array_equal(end, p.x0)
+    p, _ = problem(rise=0.0, slides=True, length=6.0)
+    stages = bounded_stages(p)
+    stage = next(stages)
+    while "penalty" not in stage.description:
+        stage = stages.send(p.x0)
+    with pytest.raises(WorkSpent):
+        stages.throw(WorkSpent())
+
+
+def test_the_work_bound_ends_classes_at_its_fewest_classes():
+    """WorkSpent thrown into a round of the classes: the fewest classes so far, here bounded's end (the flat grid at
+    l = 8, moved: more classes than its start), with bounded's stage."""
+    p, _ = problem(rise=0.0, slides=True, length=8.0)
+    messy = moved(p, 4, size=0.004)
+    stages = classes_stages(p)
+    stage = next(stages)
+    while "nominal lengths" not in stage.description:
+        stage = stages.send(messy)
+    with pytest.raises(StopIteration) as done:
+        stages.throw(WorkSpent())
+    end, last = done.value.value
+    assert np.array_equal(end, messy) and "nominal lengths" not in last.description
 
 
 def test_the_records():
