@@ -384,7 +384,7 @@ def _feature_angle(text):
 
 
 def _run_mesh(args):
-    from ._run_summary import joints_note, summary
+    from ._run_summary import joints_note, summary, work_note
     from .io import OUTPUT_SLOTS, load_surface, surface_mesh_writer
     from .surface.pipeline import mesh_surface
 
@@ -428,8 +428,9 @@ def _run_mesh(args):
             file=sys.stderr,
         )
         print(summary(mesh, args.tolerance, args.lengths))
-        if note := joints_note(mesh, args.optimize):
-            print(f"equimesh: note: {note}", file=sys.stderr)
+        for note in (joints_note(mesh, args.optimize), work_note(mesh)):
+            if note:
+                print(f"equimesh: note: {note}", file=sys.stderr)
     return 0
 
 

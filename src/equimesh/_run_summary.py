@@ -1,9 +1,11 @@
-"""What ``equimesh mesh`` prints about the mesh it wrote: the one-screen summary, and a note on joints too sharp.
+"""What ``equimesh mesh`` prints about the mesh it wrote: the one-screen summary, and notes.
 
 The summary's rows are :func:`equimesh.metrics.summary_rows`, which the HTML
-report shows too; the note answers a mesh with an angle below
+report shows too.  One note answers a mesh with an angle below
 :data:`~equimesh.tolerance.JOINT_ANGLE` under an objective that does not keep
-the joints sound with the objectives that do (docs/decisions.md, "Sound joints").
+the joints sound with the objectives that do (docs/decisions.md, "Sound
+joints"); another says when the optimisation ended at its work bound, at the
+best point its objective kept (docs/decisions.md, "A work bound for the optimisation").
 """
 
 from .metrics import sharp_share, summary_rows, triangle_angles
@@ -30,3 +32,10 @@ def joints_note(mesh, objective):
         f"--optimize {', '.join(sound)} keeps every triangle angle at least {JOINT_ANGLE:g} degrees, or a sharper "
         "input corner's own (joints that can be built)"
     )
+
+
+def work_note(mesh):
+    """The note for a ``mesh`` whose optimisation ended at its work bound, at the best point its objective kept
+    (:func:`~equimesh.surface.optimize.driver.optimize_uv`); None otherwise."""
+    message = getattr(getattr(getattr(mesh, "stages", None), "optimization", None), "message", "")
+    return f"the optimisation ended at {message}, not converged" if message.endswith("(its work bound)") else None

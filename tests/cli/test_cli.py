@@ -4,6 +4,7 @@ Exit codes: 0 written, 2 bad input or unwritable output (one line, nothing
 written), 3 internal error (one line asking for a report), 130 interrupted.
 """
 
+import dataclasses
 import json
 import os
 import re
@@ -34,6 +35,7 @@ from equimesh._cli import main
 from equimesh.io import _paths as io_paths
 from equimesh.metrics import triangle_angles
 from equimesh.surface import pipeline
+from equimesh.surface.optimize import OBJECTIVES
 from equimesh.testing.meshes import ellipse, roof_mesh
 
 SADDLE = SURFACES / "saddle.json"
@@ -85,6 +87,21 @@ def test_a_mesh_with_joints_too_sharp_names_the_objective_that_keeps_them_sound(
     if objective == "bounded":
         code, sound = run([*args, "--optimize", "classes"], capsys)
         assert code == 0 and "an angle below 30 degrees  0.0 % of triangles" in sound.out and "note:" not in sound.err
+
+
+def test_a_run_ended_at_its_work_bound_says_so(tmp_path, capsys, monkeypatch):
+    """The saddle at L = 6 takes 50 Jacobian evaluations under bounded: with a bound of 49 its optimisation ends at
+    the best round end kept before it, and a note says so; within its bound, no such note."""
+    args = ["mesh", SADDLE, "--length", 6, "--grid", 8, 8, "-o", tmp_path / "m.obj"]
+    code, free = run(args, capsys)
+    assert code == 0 and "work bound" not in free.err
+    monkeypatch.setitem(OBJECTIVES, "bounded", dataclasses.replace(OBJECTIVES["bounded"], max_jacobians=49))
+    code, bounded = run(args, capsys)
+    note = (
+        "equimesh: note: the optimisation ended at the best point found within 49 Jacobian evaluations (its work "
+        "bound), not converged"
+    )
+    assert code == 0 and note in bounded.err and bounded.out == free.out
 
 
 def test_members_schedule_classes_and_summary(tmp_path, capsys):
