@@ -384,7 +384,7 @@ def _feature_angle(text):
 
 
 def _run_mesh(args):
-    from ._run_summary import joints_note, summary, work_note
+    from ._run_summary import summary
     from .io import OUTPUT_SLOTS, load_surface, surface_mesh_writer
     from .surface.pipeline import mesh_surface
 
@@ -427,10 +427,10 @@ def _run_mesh(args):
             f"({n_g1} in the equal-length group G1), {len(mesh.triangles)} triangles",
             file=sys.stderr,
         )
-        print(summary(mesh, args.tolerance, args.lengths))
-        for note in (joints_note(mesh, args.optimize), work_note(mesh)):
-            if note:
-                print(f"equimesh: note: {note}", file=sys.stderr)
+        text, notes = summary(mesh, args.optimize, args.tolerance, args.lengths)
+        print(text)
+        for note in notes:
+            print(f"equimesh: note: {note}", file=sys.stderr)
     return 0
 
 

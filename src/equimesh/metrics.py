@@ -151,6 +151,12 @@ def summary_rows(lengths, l, tolerance=DEFAULT_TOLERANCE, points=None, triangles
     shows; with ``triangles`` the angle range and the share of triangles with a joint too sharp (:func:`sharp_share`),
     with ``deviation`` (max, mean) the nodes' distance from the surface, with a ``catalogue`` the members off it."""
     s = fabrication_summary(lengths, l, tolerance, points, triangles, catalogue)
+    return rows_of_summary(s, l, tolerance, deviation, catalogue)
+
+
+def rows_of_summary(s, l, tolerance=DEFAULT_TOLERANCE, deviation=None, catalogue=None):
+    """The rows of :func:`summary_rows` from figures ``s`` of :func:`fabrication_summary` already computed (at ``l``,
+    ``tolerance`` and ``catalogue``): the angle rows where ``s`` has angles."""
     tol = f"+-{100 * tolerance:.3g} %"
     rows = [
         ("members", f"{s['members']}"),
@@ -161,7 +167,7 @@ def summary_rows(lengths, l, tolerance=DEFAULT_TOLERANCE, points=None, triangles
         ("longest member", f"{number(s['max_length'])} ({s['max_length'] / l:.4f} L)"),
         (f"within {tol} of L", f"{100 * s['within_tolerance']:.1f} %"),
     ]
-    if triangles is not None:
+    if not np.isnan(s["angle_min"]):
         rows.append(("triangle angles", f"{s['angle_min']:.1f} to {s['angle_max']:.1f} degrees"))
         rows.append((f"an angle below {JOINT_ANGLE:g} degrees", f"{100 * s['sharp_share']:.1f} % of triangles"))
     if deviation is not None:

@@ -607,7 +607,8 @@ def test_the_work_bound_ends_where_the_stages_keep_a_point(monkeypatch):
     record(monkeypatch, "keeping", keeping, bounds_members=True, max_jacobians=first.njev + 1)
     result = run("keeping")
     assert thrown == ["first", "second"] and result.uv.tobytes() == first.uv.tobytes()
-    assert not result.converged and result.njev == first.njev
+    assert not result.converged and result.njev == first.njev and result.work_bound_reached
+    assert not first.work_bound_reached
     assert result.message == f"the best point found within {first.njev + 1} Jacobian evaluations (its work bound)"
     record(monkeypatch, "passing", stages_of(papers(), papers(start="x0")), max_jacobians=first.njev + 1)
     with pytest.raises(InvalidSurfaceError, match=rf"not converged within {first.njev + 1} Jacobian evaluations"):

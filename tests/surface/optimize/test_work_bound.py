@@ -54,6 +54,7 @@ def test_a_bound_at_the_work_of_a_run_changes_nothing_and_one_below_keeps_the_be
     bounded_to(monkeypatch, objective, work)
     again = mesh_surface(surface, 5.0, optimize=objective, placement="default")
     assert np.array_equal(again.points, mesh.points) and again.stages.optimization.njev == work
+    assert not again.stages.optimization.work_bound_reached
     bounded_to(monkeypatch, objective, work - 1)
     jacobians.clear()
     if objective == "paper":
@@ -68,7 +69,7 @@ def test_a_bound_at_the_work_of_a_run_changes_nothing_and_one_below_keeps_the_be
             not result.converged
             and result.message == f"the best point found within {work - 1} Jacobian evaluations (its work bound)"
         )
-        assert result.njev <= work - 1
+        assert result.njev <= work - 1 and result.work_bound_reached
         ratio = short.edge_lengths() / 5.0
         assert np.all((ratio >= 1.0 - 1e-12) & (ratio <= 2.0 + 1e-12))
         if objective == "bounded":  # its last solve was the paper's optimum, which did not beat the best round end

@@ -64,6 +64,8 @@ class UVOptimization:
         Whether the last stage met a convergence test, and which; False where the work bound ended the
         optimisation at the objective's best point found before it.
     objective : str
+    work_bound_reached : bool
+        The work bound ended the optimisation, at that point.
     """
 
     uv: np.ndarray
@@ -75,6 +77,7 @@ class UVOptimization:
     converged: bool
     message: str
     objective: str
+    work_bound_reached: bool = False
 
 
 def optimize_uv(
@@ -204,7 +207,7 @@ def optimize_uv(
             within = f"within {record.max_jacobians} Jacobian evaluations (its work bound)"
             kept = _kept(stages)
             if kept is not None:  # the objective's best point meeting its constraints, found before the bound
-                (x, stage), converged, message = kept, False, f"the best point found {within}"
+                (x, stage), converged, message, reached = kept, False, f"the best point found {within}", True
                 break
             if not record.bounds_members:
                 raise InvalidSurfaceError(
@@ -212,7 +215,7 @@ def optimize_uv(
                 ) from None
             raise _refusal(objective, surface, f"found {within}, {Members(problem).violation(spent.x)}") from None
         x, nfev, damping = solution.x, nfev + solution.evaluations, solution.damping  # damping: the next solve's start
-        converged, message = solution.converged, solution.message
+        converged, message, reached = solution.converged, solution.message, False
         try:
             stage = stages.send(x)
         except StopIteration as done:
@@ -236,6 +239,7 @@ def optimize_uv(
         converged,
         message,
         objective,
+        reached,
     )
 
 
