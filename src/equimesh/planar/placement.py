@@ -182,6 +182,7 @@ def fewest_classes_placement(
     *,
     holes=None,
     boundary_spacing=1.5,
+    boundary="equal",
     tolerance=DEFAULT_TOLERANCE,
     engine=DEFAULT_ENGINE,
     start=None,
@@ -238,6 +239,7 @@ def fewest_classes_placement(
                 angle=angle,
                 offset=offset,
                 boundary_spacing=boundary_spacing,
+                boundary=boundary,
                 engine=engine,
                 max_nodes=None,
             )

@@ -30,6 +30,7 @@ import shapely
 from .._checks import check_length, real_array, real_number
 from ..errors import EquimeshError
 from ..mesh import PlanarMesh, boundary_first, boundary_ring, unique_edges
+from .boundary.phase import in_phase
 from .boundary.resample import resample_boundary
 from .boundary.separation import check_boundary_separation
 from .guarantees import verify_planar
@@ -48,6 +49,9 @@ from .polygon import as_polygon, check_edges_at_least, pinned_vertices
 #: 1.5 the larger smallest angle; we take the angle (docs/decisions.md,
 #: "Boundary parts of at most 1.5 l in Problem 2").
 BOUNDARY_SPACING = 1.5
+#: Step 2's points (``boundary=`` of :func:`uniform_triangulation`): the paper's equal parts, or in phase with the
+#: lattice on straight sides along or across it (beyond the paper).
+BOUNDARIES = ("equal", "lattice")
 
 
 def uniform_triangulation(
@@ -59,6 +63,7 @@ def uniform_triangulation(
     offset=(0.0, 0.0),
     clearance=1.0,
     boundary_spacing=BOUNDARY_SPACING,
+    boundary="equal",
     engine=DEFAULT_ENGINE,
     max_nodes="default",
 ):
@@ -89,6 +94,11 @@ def uniform_triangulation(
     boundary_spacing : float
         Target length, in units of l, of the parts long boundary edges are
         split into (Step 2); kept within [l, 2l].
+    boundary : "equal" or "lattice"
+        Step 2's points: the paper's equal parts, or (beyond the paper) on
+        straight sides along or across a lattice direction the lattice's
+        period, in phase with its first row, so the strip there repeats
+        (:func:`~equimesh.planar.boundary.phase.in_phase`).
     engine : str
         Insertion engine for the boundary strip: "fast" (the default) or
         "reference" (the oracle, slow).
@@ -114,14 +124,20 @@ def uniform_triangulation(
     offset = _check_pair(offset, "offset")
     angle = _check_scalar(angle, "angle")
     spacing = check_spacing(boundary_spacing)
+    if boundary not in BOUNDARIES:
+        raise EquimeshError(f"boundary must be one of {BOUNDARIES}, got {boundary!r}")
     check_engine(engine)
     max_nodes = check_max_nodes(max_nodes, MAX_NODES[engine])
     poly = as_polygon(vertices, l, holes)
     check_edges_at_least(poly, l)
     check_size(*planar_estimate(poly, l, strip_estimate(poly, l, clearance), engine), max_nodes, l)
-    boundary = resample_boundary(poly, l, spacing)
-    check_boundary_separation(poly, boundary, l)
+    boundary_points = resample_boundary(poly, l, spacing)
+    check_boundary_separation(poly, boundary_points, l)
     lat = lattice_part(poly, l, angle, offset, clearance)
+    if boundary == "lattice":
+        boundary = in_phase(poly, boundary_points, lat, l)
+    else:
+        boundary = boundary_points
 
     nb = len(boundary.points)
     lat_boundary = lat.boundary_vertices
@@ -163,6 +179,7 @@ def uniform_triangulation(
             "offset": tuple(offset),
             "clearance": clearance,
             "boundary_rings": rings,
+            "boundary": "equal" if boundary is boundary_points else "lattice",
         },
         frame=poly.frame,
         pinned=pinned_vertices(poly),

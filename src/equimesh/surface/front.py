@@ -57,16 +57,16 @@ class Front:
     flattening: object
     outlined: Callable
 
-    def remapped(self, length, limit, boundary_spacing, placement, tolerance, engine, clock):
-        """Steps 3 and 4 at ``length``: the outline, Problem 2's plane mesh of it (in the lattice ``placement``
-        chosen, :data:`~equimesh.surface.pipeline.PLACEMENTS`) and the remap;
+    def remapped(self, length, limit, boundary_spacing, boundary, placement, tolerance, engine, clock):
+        """Steps 3 and 4 at ``length``: the outline, Problem 2's plane mesh of it (its Step 2 points by ``boundary``,
+        in the lattice ``placement`` chosen, :data:`~equimesh.surface.pipeline.PLACEMENTS`) and the remap;
         ``(outlined, placement, plane, mapped_uv, mapped_points)``."""
         outlined = self.outlined(length, boundary_spacing, limit)
         l = length.value
         try:
             # The size guard (surface/size.py: before and after the flattening) bounds the planar stage too.
             holes, vertices = outlined.holes, outlined.outline.vertices
-            options = dict(holes=holes, boundary_spacing=boundary_spacing, engine=engine)
+            options = dict(holes=holes, boundary_spacing=boundary_spacing, boundary=boundary, engine=engine)
             chosen = (
                 None if placement == "default" else best_lattice_placement(vertices, l, holes=holes, max_nodes=None)
             )

@@ -279,14 +279,15 @@ def mesh_surface(
     else:
         _check_triangle_count(surface)
         front = mesh_front(surface, l, limit, clock, angle)
+    boundary = OBJECTIVES[optimize].boundary if optimize in OBJECTIVES else "equal"
     outlined, chosen, plane, mapped_uv, mapped_points = front.remapped(
-        PlaneLength(l), limit, boundary_spacing, placement, tolerance, engine, clock
+        PlaneLength(l), limit, boundary_spacing, boundary, placement, tolerance, engine, clock
     )
     if optimize in OBJECTIVES and OBJECTIVES[optimize].sound_joints:
         factor = joint_spacing(mapped_points, plane.triangles, l)  # the plane again, if the start lacks area
         if factor > 1.0:  # steps 3-4 only, unguarded: Problem 2 has meshed the plane at l already, with more nodes
             outlined, chosen, plane, mapped_uv, mapped_points = front.remapped(
-                PlaneLength(l, factor), None, boundary_spacing, placement, tolerance, engine, clock
+                PlaneLength(l, factor), None, boundary_spacing, boundary, placement, tolerance, engine, clock
             )
 
     result = None

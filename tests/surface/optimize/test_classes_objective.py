@@ -41,7 +41,9 @@ SOUND_BOUNDED = "bounded with sound joints"
 
 @pytest.fixture(autouse=True, scope="module")
 def sound_bounded():
-    OBJECTIVES[SOUND_BOUNDED] = replace(OBJECTIVES["bounded"], name=SOUND_BOUNDED, sound_joints=True)
+    OBJECTIVES[SOUND_BOUNDED] = replace(
+        OBJECTIVES["bounded"], name=SOUND_BOUNDED, sound_joints=True, boundary=OBJECTIVES["classes"].boundary
+    )
     yield
     del OBJECTIVES[SOUND_BOUNDED]
 
@@ -83,15 +85,26 @@ def test_classes_counts_at_its_own_tolerance(tolerance):
     assert len(classes_of(fewest, tolerance)) <= len(classes_of(start, tolerance))
 
 
-def test_developable_vault_has_one_dominant_class():
-    """On a developable vault the lattice members all reach l (one class holds most members); the boundary strip's
-    members keep lengths of their own, so the count stays well above a handful, and never above its start's."""
+def test_developable_vault_has_one_dominant_class_and_a_strip_that_repeats():
+    """On a developable vault the lattice members all reach l (one class holds most members), never more classes
+    than its start's.  Its flattened sides are straight and the plane's Step 2 points are in phase with the
+    lattice, so the strip repeats: a third fewer classes than the same objective on the paper's equal parts (17
+    against 30 at l = 4: the corners' end parts and the remap's small change of length keep it above a handful)."""
     surface = parabolic_vault()
     fewest, start = (mesh_surface(surface, 4.0, optimize=o) for o in ("classes", SOUND_BOUNDED))
     check_sound(fewest, surface)
     ours = classes_of(fewest)
+    assert fewest.stages.plane.info["boundary"] == "lattice"
     assert len(ours) <= len(classes_of(start))
     assert ours.count.max() >= 0.6 * ours.count.sum()
+    OBJECTIVES["classes on equal parts"] = replace(
+        OBJECTIVES["classes"], name="classes on equal parts", boundary="equal"
+    )
+    try:
+        equal = classes_of(mesh_surface(surface, 4.0, optimize="classes on equal parts"))
+    finally:
+        del OBJECTIVES["classes on equal parts"]
+    assert len(ours) <= 2 * len(equal) / 3
 
 
 def test_classes_is_a_record_with_sound_joints_and_bounded_members():

@@ -21,7 +21,7 @@ from surface_cases import Wrapped, plane_patch
 import equimesh
 from equimesh import EquimeshError, InvalidSurfaceError
 from equimesh.surface.charts.chart import Domain
-from equimesh.surface.optimize import OBJECTIVES, Objective, Stage, driver, joints, objectives, optimize_uv
+from equimesh.surface.optimize import OBJECTIVES, Objective, Stage, driver, joints, optimize_uv
 from equimesh.surface.optimize.driver import fold_over_barrier, with_barriers
 from equimesh.surface.optimize.jacobian import signed_areas
 from equimesh.surface.optimize.joints import Joints, joint_bounds, surface_angles
@@ -29,6 +29,7 @@ from equimesh.surface.optimize.objectives import paper_stage
 from equimesh.surface.optimize.problem import free_nodes
 from equimesh.surface.optimize.slide import along_polygon
 from equimesh.surface.optimize.solver import FACTORISATIONS
+from equimesh.surface.optimize.stage import WorkSpent
 from equimesh.tolerance import JOINT_MARGIN as MARGIN
 from equimesh.tolerance import JOINT_WEIGHT, PAPER_FTOL
 
@@ -596,11 +597,11 @@ def test_the_work_bound_ends_where_the_stages_keep_a_point(monkeypatch):
         kept = yield stage
         try:
             yield replace(stage, start=problem.x0)
-        except objectives.WorkSpent:
+        except WorkSpent:
             thrown.append("first")
             try:
                 yield replace(stage, start=problem.x0)
-            except objectives.WorkSpent:
+            except WorkSpent:
                 thrown.append("second")
                 return kept, stage
 

@@ -21,9 +21,10 @@ from equimesh.mesh import G1, edge_lengths
 from equimesh.surface.optimize import OBJECTIVES, optimize_uv
 from equimesh.surface.optimize.joints import Joints, surface_angles
 from equimesh.surface.optimize.members import Members, cauchy
-from equimesh.surface.optimize.objectives import WorkSpent, bounded_stages, classes_stages, paper_stage, paper_stages
+from equimesh.surface.optimize.objectives import bounded_stages, classes_stages, paper_stage, paper_stages
 from equimesh.surface.optimize.slide import along_polygon
 from equimesh.surface.optimize.solver import DEFAULT_FACTORISATION
+from equimesh.surface.optimize.stage import WorkSpent
 from equimesh.tolerance import (
     BOUNDED_BAND,
     BOUNDED_FTOL,
@@ -512,3 +513,56 @@ def test_the_records():
     assert classes.max_nodes == {"pardiso": 12_000, "cholmod": 12_000, "superlu": 6_000}
     assert bounded.node_limit("superlu") == 34_000 and bounded.node_limit() == bounded.max_nodes[DEFAULT_FACTORISATION]
     assert paper.stages is paper_stages and bounded.stages is bounded_stages and classes.stages is classes_stages
+
+
+def test_classes_runs_a_second_series_from_a_remap_that_kept_the_lattice():
+    """At l = 10 the flat grid's edges are exactly l (24 of 33 members, two classes): bounded ends at a point with
+    more classes, so after the rounds from it come rounds from the remapped start, nominals from its classes; a
+    round of those answered with the start keeps it."""
+    p, _ = problem(rise=0.0, slides=True, length=10.0)
+    messy = moved(p, 4, size=0.004)
+    assert documented_key(p, p.x0)[:2] == (0, 2) and documented_key(p, messy)[1] > 2
+    answer, rounds = answers_for_classes(messy, lambda k: messy if k < CLASSES_ROUNDS else p.x0)
+    seen, (end, last) = drive(classes_stages(p), answer)
+    assert len(rounds) == 2 * CLASSES_ROUNDS
+    np.testing.assert_array_equal(rounds[CLASSES_ROUNDS].start, p.x0)
+    nominal = start_nominals(p, p.x0)
+    np.testing.assert_allclose(nominal, [TARGET, 1.0 + np.sqrt(2.0) - 1.0], rtol=1e-12)
+    np.testing.assert_allclose(
+        rounds[CLASSES_ROUNDS].residuals(p.x0), round_residuals(p, p.x0, nominal), rtol=1e-9, atol=1e-15
+    )
+    assert last is rounds[CLASSES_ROUNDS] and np.array_equal(end, p.x0)
+
+
+def test_classes_keeps_to_one_series_where_the_remap_lost_the_lattice():
+    """At l = 8 no member of the start lies within the tolerance of l: no rounds from it, however few its
+    classes."""
+    p, _ = problem(rise=0.0, slides=True, length=8.0)
+    messy = moved(p, 4, size=0.004)
+    answer, rounds = answers_for_classes(messy, lambda k: messy)
+    drive(classes_stages(p), answer)
+    assert len(rounds) == CLASSES_ROUNDS
+
+
+def test_a_second_series_outside_the_band_is_solved_on_with_the_penalty():
+    """Rounds from the remap all ending a hair below l with its two classes: the first of them, the fewest classes
+    outside [l, 2l], is solved on with the members' band penalty added (a hard constraint), from there; answered
+    with the start, that end is kept."""
+    p, _ = problem(rise=0.0, slides=True, length=10.0)
+    messy, low = moved(p, 4, size=0.004), moved(p, 5, size=1e-5)
+    r = ratio(p, low)
+    assert r.min() < 1.0 - 1e-9 and documented_key(p, low)[:2] == (0, 2)
+    answer, rounds = answers_for_classes(messy, lambda k: messy if k < CLASSES_ROUNDS else low)
+    solved_on = "into [l, 2l] by a penalty"
+    seen, (end, last) = drive(classes_stages(p), lambda k, s: p.x0 if solved_on in s.description else answer(k, s))
+    penalty = seen[-1]
+    assert penalty.description == "members to the nearest of 2 nominal lengths and into [l, 2l] by a penalty"
+    np.testing.assert_array_equal(penalty.start, low)
+    assert penalty.ftol == BOUNDED_FTOL and penalty.feasible(p.x0) and not penalty.feasible(low)
+    low_end, smooth = 1.0 + 0.5 * BOUNDED_OFFSET, 0.25 * BOUNDED_OFFSET
+    depth = np.maximum(0.0, low_end - ratio(p, p.x0))
+    psi = np.where(depth < smooth, depth**2 / (2 * smooth), depth - smooth / 2)
+    nominal = start_nominals(p, p.x0)
+    expected = np.concatenate([round_residuals(p, p.x0, nominal), BOUNDED_PENALTY * psi])
+    np.testing.assert_allclose(penalty.residuals(p.x0), expected, rtol=1e-9, atol=1e-12)
+    assert last is penalty and np.array_equal(end, p.x0)

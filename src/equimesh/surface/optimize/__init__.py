@@ -3,6 +3,7 @@
 * :mod:`.problem`     :class:`~.problem.UVProblem`: the variables (free parameters, arc positions
                       of sliding nodes), their bounds and the trust region;
 * :mod:`.objectives`  what is minimised, one record per objective in :data:`~.objectives.OBJECTIVES`;
+* :mod:`.stage`       :class:`~.stage.Stage`: one least-squares solve an objective yields, and the work bound's signal;
 * :mod:`.driver`      :func:`~.driver.optimize_uv`: the stages of an objective solved in turn,
                       with the fold-over guards;
 * :mod:`.solver`      the sparse bounded Levenberg-Marquardt and its factorisations;
@@ -11,7 +12,8 @@
 """
 
 from .driver import UVOptimization, optimize_uv
-from .objectives import OBJECTIVES, Objective, Stage
+from .objectives import OBJECTIVES, Objective
 from .problem import UVProblem
+from .stage import Stage
 
 __all__ = ["OBJECTIVES", "Objective", "Stage", "UVOptimization", "UVProblem", "optimize_uv"]

@@ -41,9 +41,10 @@ from ...tolerance import JOINT_ANGLE, JOINT_WEIGHT, LM_INITIAL_DAMPING, PAPER_FT
 from .jacobian import AreaBarrier, signed_areas
 from .joints import joint_bounds
 from .members import Members, out_of_reach
-from .objectives import OBJECTIVES, Stage, WorkSpent
+from .objectives import OBJECTIVES
 from .problem import UVProblem, free_nodes, parameter_box
 from .solver import NormalEquations, inner, least_squares
+from .stage import Stage, WorkSpent
 
 
 @dataclass(frozen=True)
@@ -130,7 +131,7 @@ def optimize_uv(
         barrier (the acceptance test still applies).
     ftol, xtol, gtol
         Convergence tolerances of :func:`equimesh.surface.optimize.solver.least_squares`;
-        ``ftol=None`` takes each stage's (:attr:`~equimesh.surface.optimize.objectives.Stage.ftol`).
+        ``ftol=None`` takes each stage's (:attr:`~equimesh.surface.optimize.stage.Stage.ftol`).
     surface_tolerance : float
         ``D >= 0``: every moving node may leave the surface by at most ``D``
         along its unit normal (:class:`~equimesh.surface.optimize.problem.UVProblem`).
@@ -278,7 +279,7 @@ def _solve(problem, stage, x, damping, triangles, barrier, normal_equations, fto
 
 def _kept(stages):
     """Where the work bound is reached: the end ``(x, stage)`` the objective's ``stages`` keep (their best point
-    meeting its constraints; :class:`~equimesh.surface.optimize.objectives.WorkSpent` thrown in until they return),
+    meeting its constraints; :class:`~equimesh.surface.optimize.stage.WorkSpent` thrown in until they return),
     or None if they keep none."""
     try:
         while True:  # a stage yielded instead of an end (classes after bounded's rounds) gets the bound too

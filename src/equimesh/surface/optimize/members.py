@@ -14,7 +14,7 @@ import scipy.sparse
 from ..._jit import compiled
 from ...errors import number
 from ...mesh import edge_lengths
-from ...tolerance import BOUNDED_OFFSET, BOUNDED_PULL, REACH_LENGTH, REACH_SHARE, at_least, at_most
+from ...tolerance import BOUNDED_OFFSET, BOUNDED_PENALTY, BOUNDED_PULL, REACH_LENGTH, REACH_SHARE, at_least, at_most
 from .jacobian import ElementJacobian
 
 
@@ -128,6 +128,22 @@ class Members:
             f"{number(REACH_LENGTH)} l on the surface (the flattening stretched it), "
             f"lengths from {number(ratio.min())} l to {number(ratio.max())} l"
         )
+
+    def band_penalty(self):
+        """The smoothed one-sided penalty of slope ``BOUNDED_PENALTY`` below ``1 + BOUNDED_OFFSET / 2`` and above
+        ``high`` (``extra`` of :meth:`weighted`), pressing every member into [l, 2l]: ``ratio -> (values, slopes)``."""
+        low, high, smooth = 1.0 + 0.5 * BOUNDED_OFFSET, self.high, 0.25 * BOUNDED_OFFSET
+
+        def penalty(ratio):
+            """Smoothed hinge ``psi(h)`` of the depth ``h`` outside ``[low, high]`` and its derivative in ``ratio``."""
+            depth = np.maximum(0.0, low - ratio) + np.maximum(0.0, ratio - high)
+            side = np.where(ratio > high, 1.0, -1.0)
+            inner = depth < smooth
+            value = np.where(inner, depth**2 / (2 * smooth), depth - smooth / 2)
+            slope = np.where(inner, depth / smooth, 1.0) * side
+            return BOUNDED_PENALTY * value, BOUNDED_PENALTY * slope
+
+        return penalty
 
     def pulled(self, ratio, weight, goal):
         """``(weight, goal)`` per member: a member outside ``[target, high]`` pulled to the nearer end with the weight

@@ -27,70 +27,19 @@ from ...tolerance import (
     BOUNDED_BAND,
     BOUNDED_FTOL,
     BOUNDED_LOSS_TOL,
-    BOUNDED_OFFSET,
-    BOUNDED_PENALTY,
     BOUNDED_ROUND_ITERATIONS,
     BOUNDED_ROUNDS,
     BOUNDED_SCALE,
     BOUNDED_START_FTOL,
     BOUNDED_STEP,
     CLASSES_MERGE_EVERY,
+    CLASSES_REMAP_SHARE,
     CLASSES_ROUNDS,
     CLASSES_START,
-    PAPER_FTOL,
 )
 from .members import Members, cauchy, edge_length_terms
 from .solver import factorisation_name
-
-
-class WorkSpent(Exception):
-    """Thrown into an objective's stages where the optimisation reaches its work bound
-    (:attr:`Objective.max_jacobians`, :func:`~equimesh.surface.optimize.driver.optimize_uv`): stages that keep a
-    point meeting the objective's constraints return it as their end ``(x, stage)``; the others let it pass, and the
-    surface is refused."""
-
-
-@dataclass(frozen=True)
-class Stage:
-    """One least-squares solve: residuals ``r(x)`` and their sparse Jacobian ``J(x)``; its cost is ``|r|^2 / 2``.
-
-    Attributes
-    ----------
-    residuals, jacobian : callables of the variable vector
-    description : str
-    ftol : float
-        The solver's relative-reduction tolerance.
-    max_iterations : int
-        The solver's iteration limit (a round of a series need not converge).
-    start : array or None
-        Restart the solve there with the initial damping, instead of going on
-        from where the previous stage ended with its damping.
-    hold : bool array or None
-        Variables kept at their start value by this solve.
-    limit : callable or None
-        Applied to every step (a trust region, :meth:`~.problem.UVProblem.step_limit`).
-    feasible : callable or None
-        A hard constraint ``x -> bool``: once an iterate satisfies it every
-        later one does, and a stage that ends outside it is solved on to
-        ``PAPER_FTOL``; if the point the optimisation ends at is outside, the
-        surface is refused with ``violation(x)``, a phrase naming what is violated.
-    joints : bool
-        Keep the joints sound in this solve (:mod:`~equimesh.surface.optimize.joints`):
-        the driver appends the angle barrier, and an iterate whose every angle
-        meets its bound is followed by such iterates only.
-    """
-
-    residuals: Callable[[np.ndarray], np.ndarray]
-    jacobian: Callable[[np.ndarray], object]
-    description: str = ""
-    ftol: float = PAPER_FTOL
-    max_iterations: int = 500
-    start: np.ndarray = None
-    hold: np.ndarray = None
-    limit: Callable[[np.ndarray], np.ndarray] = None
-    feasible: Callable[[np.ndarray], bool] = None
-    violation: Callable[[np.ndarray], str] = None
-    joints: bool = True
+from .stage import Stage, WorkSpent
 
 
 def paper_stage(problem):
@@ -180,7 +129,7 @@ def bounded_stages(problem):
     """
     l = problem.length
     members = Members(problem)
-    lengths, target, high = members.lengths, members.target, members.high
+    lengths, target = members.lengths, members.target
     limit = problem.step_limit(BOUNDED_STEP * l)  # every round's trust region
     inside, feasible, violation, weighted = members.inside, members.feasible, members.violation, members.weighted
 
@@ -238,19 +187,8 @@ def bounded_stages(problem):
             restart = stalled
 
     def last_stage():
-        low, smooth = 1.0 + 0.5 * BOUNDED_OFFSET, 0.25 * BOUNDED_OFFSET
-
-        def penalty(ratio):
-            """Smoothed hinge ``psi(h)`` of the depth ``h`` outside ``[low, high]`` and its derivative in ``ratio``."""
-            depth = np.maximum(0.0, low - ratio) + np.maximum(0.0, ratio - high)
-            side = np.where(ratio > high, 1.0, -1.0)
-            inner = depth < smooth
-            value = np.where(inner, depth**2 / (2 * smooth), depth - smooth / 2)
-            slope = np.where(inner, depth / smooth, 1.0) * side
-            return BOUNDED_PENALTY * value, BOUNDED_PENALTY * slope
-
         return Stage(
-            *weighted(cauchy_weight(lengths(problem.x0) / l), target, penalty),
+            *weighted(cauchy_weight(lengths(problem.x0) / l), target, members.band_penalty()),
             f"members in [l, 2l] by a penalty, Cauchy loss on L / l - {target:g}",
             BOUNDED_FTOL,
             start=problem.x0,
@@ -292,9 +230,21 @@ def classes_stages(problem):
     2010, Fu et al. 2010: an assignment of the members to nominal lengths
     alternating with a solve towards them), merged step by step:
 
+    * the plane is Problem 2's with its straight sides in phase with the
+      lattice (:attr:`Objective.boundary`, ``"lattice"``), so the strip along
+      them repeats;
     * the start is :func:`bounded_stages`' result (every member in [l, 2l],
       as many as possible at l, the joints sound); its classes are the first
       to beat;
+    * a second series of rounds starts from the remapped mesh when it has
+      fewer classes than that start and holds at least
+      :data:`~equimesh.tolerance.CLASSES_REMAP_SHARE` of its members within
+      the tolerance of l (the plane's lattice survived the remap, as on a
+      developable surface, where bounded's rounds break the repeating strip);
+    * after each series, its round end outside [l, 2l] with fewer classes
+      than the best kept (if any) is solved on with the band penalty of
+      bounded's last stage added (:meth:`~.members.Members.band_penalty`), a
+      hard constraint;
     * the nominal lengths are the :data:`~equimesh.tolerance.CLASSES_START`
       largest classes of that start (``1 + BOUNDED_OFFSET``, the class at l,
       always among them), or the caller's catalogue of stock lengths
@@ -319,6 +269,21 @@ def classes_stages(problem):
     tolerance, catalogue = problem.tolerance, problem.catalogue
     x, stage = yield from bounded_stages(problem)
     best = {"x": x, "stage": stage, "key": _class_key(members.ratio(x), tolerance, catalogue)}
+    starts = [x]
+    remapped = members.ratio(problem.x0)
+    kept = float(np.mean(np.abs(remapped - 1.0) <= tolerance)) >= CLASSES_REMAP_SHARE
+    if kept and _class_key(remapped, tolerance, catalogue)[:2] < best["key"][:2]:
+        starts.append(problem.x0)  # the remap kept the plane's lattice (a developable surface), bounded's rounds not
+    for x in starts:
+        if (yield from _class_rounds(problem, members, x, best)):
+            break
+    return best["x"], best["stage"]
+
+
+def _class_rounds(problem, members, x, best):
+    """:func:`classes_stages`' rounds from ``x``, nominal lengths from its classes (or the catalogue), ``best``
+    updated with every better round end; True when the work bound ended them (:class:`WorkSpent`)."""
+    tolerance, catalogue = problem.tolerance, problem.catalogue
     if catalogue is not None:
         nominal = np.asarray(catalogue, dtype=float)
     else:
@@ -326,6 +291,7 @@ def classes_stages(problem):
         largest = np.argsort(-start.count, kind="stable")[:CLASSES_START]
         nominal = np.unique(np.append(np.clip(start.nominal[largest], members.target, members.high), members.target))
     limit = problem.step_limit(BOUNDED_STEP * problem.length)
+    closest = None  # the round end outside [l, 2l] with the fewest classes, if fewer than the best's
     for k in range(CLASSES_ROUNDS):
         ratio = members.ratio(x)
         goal = nominal[np.argmin(np.abs(ratio[:, None] - nominal[None, :]), axis=1)]
@@ -341,14 +307,38 @@ def classes_stages(problem):
         try:
             x = yield stage
         except WorkSpent:  # the work bound: the fewest classes so far (bounded's result at least)
-            break
+            return True
         ratio = members.ratio(x)
         key = _class_key(ratio, tolerance, catalogue)
-        if key < best["key"] and members.inside(ratio) and problem.sound(x):
-            best.update(x=np.array(x), stage=stage, key=key)
+        if key < best["key"] and problem.sound(x):
+            if members.inside(ratio):
+                best.update(x=np.array(x), stage=stage, key=key)
+            elif closest is None or key < closest[0]:
+                closest = (key, np.array(x), weight, goal, len(nominal))
         if catalogue is None:
             nominal = _merged(nominal, ratio, tolerance, k, members)
-    return best["x"], best["stage"]
+    if closest is None or not closest[0] < best["key"]:
+        return False
+    # A round end outside [l, 2l] beat the best: its members into [l, 2l] by the band penalty.
+    key, x, weight, goal, count = closest
+    stage = Stage(
+        *members.weighted(weight, goal, members.band_penalty()),
+        f"members to the nearest of {count} nominal lengths and into [l, 2l] by a penalty",
+        BOUNDED_FTOL,
+        start=x,
+        limit=limit,
+        feasible=members.feasible,
+        violation=members.violation,
+    )
+    try:
+        x = yield stage
+    except WorkSpent:
+        return True
+    ratio = members.ratio(x)
+    key = _class_key(ratio, tolerance, catalogue)
+    if key < best["key"] and members.inside(ratio) and problem.sound(x):
+        best.update(x=np.array(x), stage=stage, key=key)
+    return False
 
 
 def _class_key(ratio, tolerance, catalogue):
@@ -407,6 +397,10 @@ class Objective:
         The work bound: the Jacobian evaluations of the solver (the result's ``njev``, all stages) after which
         :func:`~equimesh.surface.optimize.driver.optimize_uv` refuses the surface (docs/decisions.md, "A work bound
         for the optimisation").
+    boundary : str
+        Problem 2's Step 2 points for the plane this objective starts from (``boundary=`` of
+        :func:`equimesh.uniform_triangulation`): the paper's "equal" parts, or "lattice", in phase with the
+        lattice on straight sides along or across it (docs/decisions.md, "Boundary points in phase with the lattice").
     """
 
     name: str
@@ -417,6 +411,7 @@ class Objective:
     sound_joints: bool
     max_nodes: dict
     max_jacobians: int
+    boundary: str = "equal"
 
     def node_limit(self, factorisation=None):
         """The default node limit with ``factorisation`` (by default the one the optimisation uses,
@@ -483,6 +478,7 @@ OBJECTIVES = {
             sound_joints=True,
             max_nodes=_CLASSES_MAX_NODES,
             max_jacobians=_CLASSES_MAX_JACOBIANS,
+            boundary="lattice",
         ),
     )
 }

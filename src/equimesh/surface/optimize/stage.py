@@ -1,0 +1,63 @@
+"""One stage of an objective: the least-squares solve the driver runs, and the signal of the work bound.
+
+An objective's stages (:mod:`~equimesh.surface.optimize.objectives`) yield :class:`Stage` records to
+:func:`~equimesh.surface.optimize.driver.optimize_uv`, which solves each from where the last ended and sends back
+the point reached; where the Jacobians would pass the objective's work bound it throws :class:`WorkSpent` in.
+"""
+
+from dataclasses import dataclass
+from typing import Callable
+
+import numpy as np
+
+from ...tolerance import PAPER_FTOL
+
+
+class WorkSpent(Exception):
+    """Thrown into an objective's stages where the optimisation reaches its work bound
+    (:attr:`Objective.max_jacobians`, :func:`~equimesh.surface.optimize.driver.optimize_uv`): stages that keep a
+    point meeting the objective's constraints return it as their end ``(x, stage)``; the others let it pass, and the
+    surface is refused."""
+
+
+@dataclass(frozen=True)
+class Stage:
+    """One least-squares solve: residuals ``r(x)`` and their sparse Jacobian ``J(x)``; its cost is ``|r|^2 / 2``.
+
+    Attributes
+    ----------
+    residuals, jacobian : callables of the variable vector
+    description : str
+    ftol : float
+        The solver's relative-reduction tolerance.
+    max_iterations : int
+        The solver's iteration limit (a round of a series need not converge).
+    start : array or None
+        Restart the solve there with the initial damping, instead of going on
+        from where the previous stage ended with its damping.
+    hold : bool array or None
+        Variables kept at their start value by this solve.
+    limit : callable or None
+        Applied to every step (a trust region, :meth:`~.problem.UVProblem.step_limit`).
+    feasible : callable or None
+        A hard constraint ``x -> bool``: once an iterate satisfies it every
+        later one does, and a stage that ends outside it is solved on to
+        ``PAPER_FTOL``; if the point the optimisation ends at is outside, the
+        surface is refused with ``violation(x)``, a phrase naming what is violated.
+    joints : bool
+        Keep the joints sound in this solve (:mod:`~equimesh.surface.optimize.joints`):
+        the driver appends the angle barrier, and an iterate whose every angle
+        meets its bound is followed by such iterates only.
+    """
+
+    residuals: Callable[[np.ndarray], np.ndarray]
+    jacobian: Callable[[np.ndarray], object]
+    description: str = ""
+    ftol: float = PAPER_FTOL
+    max_iterations: int = 500
+    start: np.ndarray = None
+    hold: np.ndarray = None
+    limit: Callable[[np.ndarray], np.ndarray] = None
+    feasible: Callable[[np.ndarray], bool] = None
+    violation: Callable[[np.ndarray], str] = None
+    joints: bool = True

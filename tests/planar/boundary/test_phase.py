@@ -1,0 +1,149 @@
+"""Step 2 in phase with the lattice (``planar/boundary/phase.py``, beyond the paper): a strip that repeats.
+
+What must hold: on a straight side along a lattice direction the points lie a lattice period apart, half a period from
+the first row's, so every member from a point inside the side to the row has one length; across a lattice direction
+(period sqrt(3) l) two; the end parts lie in [SHORTEST_END l, sqrt(3) l]; a side that is curved, oblique to the
+lattice or next to a corner sharper than 60 degrees keeps the paper's points, as does a boundary that would fail
+Lemma 3 (1); Problem 2's guarantees hold throughout (``verify_planar`` runs on every mesh).
+"""
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from equimesh import uniform_triangulation
+from equimesh.classes import length_classes
+from equimesh.errors import EquimeshError, InvalidPolygonError
+from equimesh.planar.boundary import phase
+from equimesh.planar.boundary.phase import LONGEST_PART, SHORTEST_END
+
+SQRT3 = math.sqrt(3.0)
+
+
+def rectangle(width, height):
+    return np.array([(0.0, 0.0), (width, 0.0), (width, height), (0.0, height)])
+
+
+def side_points(mesh, axis, value):
+    """Indices of the boundary points on the side where coordinate ``axis`` is ``value``, sorted along it."""
+    pts = mesh.points[: mesh.n_boundary]
+    on = np.flatnonzero(np.abs(pts[:, axis] - value) <= 1e-9)
+    return on[np.argsort(pts[on, 1 - axis])]
+
+
+def inner_member_lengths(mesh, side, period):
+    """Lengths of the members to nodes off the boundary from the side's points whose both neighbours on it lie
+    ``period`` away, at least 3 l from its ends (nearer, the strip meets the next side's)."""
+    pts = mesh.points
+    step = np.linalg.norm(np.diff(pts[side], axis=0), axis=1)
+    ends = pts[side[[0, -1]]]
+    regular = [
+        side[k]
+        for k in range(1, len(side) - 1)
+        if all(abs(step[j] - period) <= 1e-9 for j in (k - 1, k))
+        and np.linalg.norm(ends - pts[side[k]], axis=1).min() >= 3.0
+    ]
+    edges = mesh.edges
+    lengths = []
+    for p in regular:
+        other = np.where(edges[:, 0] == p, edges[:, 1], np.where(edges[:, 1] == p, edges[:, 0], -1))
+        other = other[other >= mesh.n_boundary]
+        lengths += list(np.linalg.norm(pts[other] - pts[p], axis=1))
+    return np.array(lengths)
+
+
+def distinct(values, tol=1e-9):
+    values = np.sort(values)
+    return 0 if not len(values) else 1 + int(np.count_nonzero(np.diff(values) > tol))
+
+
+@settings(max_examples=25, deadline=None)
+@given(
+    width=st.floats(6.0, 20.0),
+    height=st.floats(6.0, 20.0),
+    fi=st.floats(0.0, 1.0),
+    fj=st.floats(0.0, 1.0),
+)
+def test_sides_along_and_across_the_lattice_repeat(width, height, fi, fj):
+    """Angle 0 on a rectangle: the bottom and top sides run along the lattice (one member length from their inner
+    points to the first row), the left and right across it (two); the end parts are in [SHORTEST_END, sqrt 3] l."""
+    offset = fi * np.array([1.0, 0.0]) + fj * np.array([0.5, SQRT3 / 2])
+    mesh = uniform_triangulation(rectangle(width, height), 1.0, offset=offset, boundary="lattice")
+    assert mesh.info["boundary"] == "lattice"
+    for axis, value, period, lengths in (
+        (1, 0.0, 1.0, 1),
+        (1, height, 1.0, 1),
+        (0, 0.0, SQRT3, 2),
+        (0, width, SQRT3, 2),
+    ):
+        side = side_points(mesh, axis, value)
+        steps = np.diff(mesh.points[side][:, 1 - axis])
+        inner = np.abs(steps - period) <= 1e-9
+        assert np.all(inner | ((steps >= SHORTEST_END - 1e-9) & (steps <= LONGEST_PART + 1e-9)))
+        members = inner_member_lengths(mesh, side, period)
+        assert distinct(members) <= lengths
+        assert members.size or (height if axis == 0 else width) < 10.0  # a long side has regular points
+
+
+def test_a_rectangle_along_the_lattice_has_few_classes():
+    """The strip repeating is what cuts the classes: 16 x 19.3 l at angle 0, the offsets of one cell in thirds."""
+    cell = np.array([[1.0, 0.0], [0.5, SQRT3 / 2]])
+    counts = {}
+    for boundary in ("equal", "lattice"):
+        counts[boundary] = min(
+            len(length_classes(mesh.edge_lengths(), 1.0, 0.005))
+            for fi in range(3)
+            for fj in range(3)
+            for mesh in [
+                uniform_triangulation(
+                    rectangle(16.0, 19.3), 1.0, offset=np.array([fi, fj]) / 3 @ cell, boundary=boundary
+                )
+            ]
+        )
+    assert counts["lattice"] <= counts["equal"] / 2
+
+
+@pytest.mark.parametrize(
+    "vertices",
+    [
+        rectangle(12.0, 9.0) @ np.array([[math.cos(0.3), math.sin(0.3)], [-math.sin(0.3), math.cos(0.3)]]),
+        np.array([(0.0, 0.0), (14.0, 0.0), (7.0, 7.0 * math.tan(math.radians(50.0)))]),
+    ],
+    ids=["oblique to the lattice", "corners of 50 degrees"],
+)
+def test_sides_that_do_not_qualify_keep_the_papers_points(vertices):
+    equal = uniform_triangulation(vertices, 1.0)
+    phased = uniform_triangulation(vertices, 1.0, boundary="lattice")
+    assert phased.info["boundary"] == "equal"
+    np.testing.assert_array_equal(phased.points, equal.points)
+    np.testing.assert_array_equal(phased.triangles, equal.triangles)
+
+
+def test_a_bent_side_keeps_the_papers_points_and_the_straight_ones_move():
+    vertices = np.array([(0.0, 0.0), (6.0, 0.5), (12.0, 0.0), (12.0, 9.0), (0.0, 9.0)])
+    equal = uniform_triangulation(vertices, 1.0)
+    phased = uniform_triangulation(vertices, 1.0, boundary="lattice")
+    assert phased.info["boundary"] == "lattice"
+    bottom = [m.points[: m.n_boundary][m.points[: m.n_boundary, 1] <= 0.5] for m in (equal, phased)]
+    np.testing.assert_array_equal(*bottom)
+    top = [m.points[: m.n_boundary][m.points[: m.n_boundary, 1] == 9.0] for m in (equal, phased)]
+    assert not np.array_equal(*top)
+
+
+def test_a_boundary_failing_lemma_3_gives_way_to_the_papers(monkeypatch):
+    def refuse(poly, boundary, l):
+        raise InvalidPolygonError("two boundary points closer than l")
+
+    monkeypatch.setattr(phase, "check_boundary_separation", refuse)
+    equal = uniform_triangulation(rectangle(12.0, 9.0), 1.0)
+    phased = uniform_triangulation(rectangle(12.0, 9.0), 1.0, boundary="lattice")
+    assert phased.info["boundary"] == "equal"
+    np.testing.assert_array_equal(phased.points, equal.points)
+
+
+def test_an_unknown_boundary_is_refused_by_name():
+    with pytest.raises(EquimeshError, match="boundary must be one of"):
+        uniform_triangulation(rectangle(12.0, 9.0), 1.0, boundary="periodic")
