@@ -31,6 +31,7 @@ MODULES = {
     "src/equimesh/planar/boundary/resample.py": _POLYGON_TESTS,
     "src/equimesh/planar/boundary/sides.py": _POLYGON_TESTS,
     "src/equimesh/planar/boundary/separation.py": _POLYGON_TESTS,
+    "src/equimesh/planar/boundary/phase.py": ["tests/planar/boundary/test_phase.py"],
     "src/equimesh/planar/increment.py": ["tests/planar/test_increment.py"],
     "src/equimesh/planar/insertion/reference.py": [
         "tests/planar/insertion/test_reference.py",
