@@ -202,7 +202,6 @@ CLASSES_ROUNDS = 60
 CLASSES_MERGE_EVERY = 3
 #: A second series of the ``"classes"`` rounds starts from the remapped mesh when it has fewer classes than
 #: ``"bounded"``'s result and holds at least this share of its members within the tolerance of l: the plane's
-#: lattice survived the remap (``python experiments/fabrication.py``, "Where the classes go", remapped: the
-#: developable vaults REMAP_DEVELOPABLE, the doubly curved REMAP_CURVED, where such rounds trade a third of the
-#: members at l for a class or two).
+#: lattice survived the remap (``python experiments/fabrication.py``, "Where the classes go", remapped: 72-78 % on
+#: the developable vaults, 27-33 % on the doubly curved, whose remap's members spread too far for rounds from it).
 CLASSES_REMAP_SHARE = 0.5

@@ -441,8 +441,8 @@ _CLASSES_MAX_NODES = {"pardiso": 12_000, "cholmod": 12_000, "superlu": 6_000}
 #: spherical caps; with PARDISO).  "paper" is one solve of at most 500 iterations (the solver's guard,
 #: :attr:`Stage.max_iterations`), so 501: the bound it always had (the tubes take it all).  "bounded": at most 381 on
 #: a mesh returned there (the reference dome at 36,848 nodes), 635 in docs/performance.md (67,371 nodes, above its
-#: node limit), so 1,500, 2.4 times the most.  "classes": at most 484 (the reference dome at l = 1, 9,165 nodes),
-#: so 2,600, about five times that, which a run at its node limit spends in about two minutes (``_CLASSES_MAX_NODES``).
+#: node limit), so 1,500, 2.4 times the most.  "classes": at most 448 (the reference dome at l = 1, 9,165 nodes),
+#: so 2,600, about six times that, which a run at its node limit spends in about two minutes (``_CLASSES_MAX_NODES``).
 _PAPER_MAX_JACOBIANS = 501
 _BOUNDED_MAX_JACOBIANS = 1_500
 _CLASSES_MAX_JACOBIANS = 2_600
