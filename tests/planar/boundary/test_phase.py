@@ -8,6 +8,7 @@ Lemma 3 (1); Problem 2's guarantees hold throughout (``verify_planar`` runs on e
 """
 
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -18,7 +19,11 @@ from equimesh import uniform_triangulation
 from equimesh.classes import length_classes
 from equimesh.errors import EquimeshError, InvalidPolygonError
 from equimesh.planar.boundary import phase
-from equimesh.planar.boundary.phase import LONGEST_PART, SHORTEST_END
+from equimesh.planar.boundary.phase import LONGEST_PART, SHORTEST_END, _end, in_phase
+from equimesh.planar.boundary.resample import resample_boundary
+from equimesh.planar.lattice import lattice_part
+from equimesh.planar.polygon import as_polygon
+from equimesh.planar.strip import BOUNDARY_SPACING
 
 SQRT3 = math.sqrt(3.0)
 
@@ -66,13 +71,16 @@ def distinct(values, tol=1e-9):
     height=st.floats(6.0, 20.0),
     fi=st.floats(0.0, 1.0),
     fj=st.floats(0.0, 1.0),
+    l=st.sampled_from([0.4, 1.0, 3.0]),
 )
-def test_sides_along_and_across_the_lattice_repeat(width, height, fi, fj):
-    """Angle 0 on a rectangle: the bottom and top sides run along the lattice (one member length from their inner
-    points to the first row), the left and right across it (two); the end parts are in [SHORTEST_END, sqrt 3] l."""
-    offset = fi * np.array([1.0, 0.0]) + fj * np.array([0.5, SQRT3 / 2])
-    mesh = uniform_triangulation(rectangle(width, height), 1.0, offset=offset, boundary="lattice")
+def test_sides_along_and_across_the_lattice_repeat(width, height, fi, fj, l):
+    """Angle 0 on a rectangle (sides in units of l): the bottom and top sides run along the lattice (one member
+    length from their inner points to the first row), the left and right across it (two); the end parts are in
+    [SHORTEST_END, sqrt 3] l."""
+    offset = l * (fi * np.array([1.0, 0.0]) + fj * np.array([0.5, SQRT3 / 2]))
+    mesh = uniform_triangulation(l * rectangle(width, height), l, offset=offset, boundary="lattice")
     assert mesh.info["boundary"] == "lattice"
+    mesh = replace(mesh, points=mesh.points / l)  # in units of l
     for axis, value, period, lengths in (
         (1, 0.0, 1.0, 1),
         (1, height, 1.0, 1),
@@ -86,6 +94,88 @@ def test_sides_along_and_across_the_lattice_repeat(width, height, fi, fj):
         members = inner_member_lengths(mesh, side, period)
         assert distinct(members) <= lengths
         assert members.size or (height if axis == 0 else width) < 10.0  # a long side has regular points
+
+
+def phased_boundary(vertices, l, angle=0.0):
+    """The paper's Step 2 points of ``vertices`` and the same in phase with the lattice (the polygon, both
+    boundaries), as Problem 2 computes them."""
+    poly = as_polygon(vertices, l, None)
+    boundary = resample_boundary(poly, l, BOUNDARY_SPACING)
+    lattice = lattice_part(poly, l, angle, (0.0, 0.0), 1.0)
+    return poly, boundary, in_phase(poly, boundary, lattice, l)
+
+
+def check_on_their_edges(poly, boundary):
+    """Every point lies on the polygon edge ``edge`` names, and is a vertex exactly where ``is_vertex`` says."""
+    v = poly.local
+    a, b = v[boundary.edge], np.roll(v, -1, axis=0)[boundary.edge]
+    t = np.sum((boundary.points - a) * (b - a), axis=1) / np.sum((b - a) ** 2, axis=1)
+    assert np.all((t >= -1e-12) & (t < 1.0))
+    np.testing.assert_allclose(a + t[:, None] * (b - a), boundary.points, atol=1e-9)
+    np.testing.assert_array_equal(np.all(boundary.points == a, axis=1), boundary.is_vertex)
+
+
+@pytest.mark.parametrize("l", [1.0, 3.0])
+def test_vertices_along_a_side_move_with_its_points(l):
+    """A rectangle whose sides carry vertices of their own (a resampled outline): the same points as the plain
+    rectangle, each on the edge its ``edge`` names, a vertex only at the corners."""
+    w, h = 16.0 * l, 13.0 * l
+    plain = rectangle(w, h)
+    subdivided = np.array(
+        [(0, 0), (2.5 * l, 0), (7 * l, 0), (w, 0), (w, 4 * l), (w, h), (9 * l, h), (0, h), (0, 6.5 * l)],
+        dtype=float,
+    )
+    _, _, reference = phased_boundary(plain, l)
+    poly, equal, phased = phased_boundary(subdivided, l)
+    assert phased is not equal
+    np.testing.assert_allclose(phased.points, reference.points, atol=1e-9 * l)
+    check_on_their_edges(poly, phased)
+
+
+def test_a_side_through_vertex_0_is_two_sides():
+    """Vertex 0 inside a side ends a side: the rest of the ring is phased, the point at vertex 0 kept."""
+    l = 1.0
+    ring = np.array([(8.0, 0.0), (16.0, 0.0), (16.0, 13.0), (0.0, 13.0), (0.0, 0.0)])
+    poly, _, phased = phased_boundary(ring, l)
+    check_on_their_edges(poly, phased)
+    assert phased.is_vertex[0] and np.array_equal(phased.points[0], poly.local[0])
+    steps = np.linalg.norm(np.diff(np.vstack([phased.points, phased.points[:1]]), axis=0), axis=1)
+    assert steps.min() >= 1.0 - 1e-9 and steps.max() <= 2.0
+
+
+def test_the_phase_is_taken_at_the_middle_of_a_side():
+    """A rectangle half a degree off the lattice still counts as along it: the boundary point nearest the middle of
+    its bottom side lies half a period from the first row's point nearest that middle."""
+    turn = math.radians(0.5)
+    rotation = np.array([[math.cos(turn), math.sin(turn)], [-math.sin(turn), math.cos(turn)]])
+    poly, _, phased = phased_boundary(rectangle(17.0, 12.0) @ rotation, 1.0)
+    lattice = lattice_part(poly, 1.0, 0.0, (0.0, 0.0), 1.0)
+    a, b = poly.local[0], poly.local[1]
+    length = float(np.linalg.norm(b - a))
+    d = (b - a) / length
+    normal = np.array([-d[1], d[0]])
+    rows = lattice.points[lattice.boundary_vertices]
+    s, h = (rows - a) @ d, (rows - a) @ normal
+    near = (s > 0) & (s < length) & (h > 0)
+    s, h = s[near], h[near]
+    row = s[h <= h.min() + 0.25]
+    reference = row[np.argmin(np.abs(row - length / 2))]
+    on_side = phased.points[phased.edge == 0]
+    along = (on_side - a) @ d
+    assert np.min(np.abs(along - (reference + 0.5))) <= 1e-9
+
+
+@pytest.mark.parametrize("lp", [1.0, 1.5])
+def test_the_ends_of_a_side(lp):
+    """``_end``: a target closer to the end than SHORTEST_END l goes, as does one leaving a part between sqrt(3) l
+    and 2 SHORTEST_END l; a longer gap is split into equal parts of at most sqrt(3) l."""
+    assert _end([0.5 * lp, 1.5 * lp, 2.5 * lp], lp) == ([1.5 * lp, 2.5 * lp], [])
+    assert _end([1.8 * lp, 2.8 * lp], lp) == ([2.8 * lp], [1.4 * lp])
+    assert _end([1.04 * lp, 2.04 * lp, 3.04 * lp], lp) == ([3.04 * lp], [1.52 * lp])  # 2.04 l < 2.1 l: one more
+    targets, points = _end([3.6 * lp], lp)
+    assert targets == [3.6 * lp] and np.allclose(points, [1.2 * lp, 2.4 * lp])
+    assert _end([1.2 * lp], lp) == ([1.2 * lp], [])
+    assert _end([], lp) == ([], [])
 
 
 def test_a_rectangle_along_the_lattice_has_few_classes():

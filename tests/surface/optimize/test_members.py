@@ -15,7 +15,7 @@ from optimize_cases import RIM, finite_difference, moved, problem
 
 from equimesh.mesh import edge_lengths
 from equimesh.surface.optimize.members import Members, cauchy, edge_length_terms, out_of_reach, scale_rows, short_share
-from equimesh.tolerance import BOUNDED_OFFSET, BOUNDED_PULL, REL_TOL
+from equimesh.tolerance import BOUNDED_OFFSET, BOUNDED_PENALTY, BOUNDED_PULL, REL_TOL
 
 
 def test_lengths_on_the_flat_grid_by_hand():
@@ -187,3 +187,22 @@ def test_the_reach_on_the_flat_grid():
     )
     p, _ = problem(rise=0.0, length=20.0)
     assert short_share(Members(p).ratio(p.x0)) == 0.0
+
+
+def test_the_band_penalty_by_hand():
+    """The smoothed hinge: zero in [1 + BOUNDED_OFFSET / 2, high]; quadratic over the first BOUNDED_OFFSET / 4 of
+    depth, linear of slope BOUNDED_PENALTY beyond; the slope signed towards the band, and the derivative of the
+    value."""
+    p, _ = problem(rise=0.0, length=8.0)
+    members = Members(p)
+    low, high, smooth = 1.0 + 0.5 * BOUNDED_OFFSET, members.high, 0.25 * BOUNDED_OFFSET
+    ratio = np.array([low - 0.1, low - 0.5 * smooth, low, 1.5, high, high + 0.5 * smooth, high + 0.1])
+    value, slope = members.band_penalty()(ratio)
+    depth = np.array([0.1, 0.5 * smooth, 0.0, 0.0, 0.0, 0.5 * smooth, 0.1])
+    psi = np.where(depth < smooth, depth**2 / (2 * smooth), depth - smooth / 2)
+    np.testing.assert_allclose(value, BOUNDED_PENALTY * psi, rtol=1e-9, atol=1e-15)
+    side = np.array([-1, -1, -1, -1, -1, 1, 1])
+    np.testing.assert_allclose(slope, BOUNDED_PENALTY * np.minimum(depth / smooth, 1.0) * side, rtol=1e-9, atol=1e-12)
+    h = 1e-9
+    numeric = (members.band_penalty()(ratio + h)[0] - members.band_penalty()(ratio - h)[0]) / (2 * h)
+    np.testing.assert_allclose(slope[[0, 1, 5, 6]], numeric[[0, 1, 5, 6]], rtol=1e-5)

@@ -9,6 +9,7 @@ comes, how the nominal lengths of the classes merge); the tiny grids of ``optimi
 diagonal 1.7678 l; with l = 6 the diagonals are 2.357 l, outside [l, 2l].
 """
 
+import re
 from dataclasses import replace
 
 import numpy as np
@@ -566,3 +567,98 @@ def test_a_second_series_outside_the_band_is_solved_on_with_the_penalty():
     expected = np.concatenate([round_residuals(p, p.x0, nominal), BOUNDED_PENALTY * psi])
     np.testing.assert_allclose(penalty.residuals(p.x0), expected, rtol=1e-9, atol=1e-12)
     assert last is penalty and np.array_equal(end, p.x0)
+
+
+def classes_answered(p, bounded_end, first, second, solved_on):
+    """Drive classes_stages: bounded's stages with ``bounded_end``, the first series' rounds with ``first(k)``, the
+    second's with ``second(k)`` and a stage solved on with the band penalty with ``solved_on``; the stages seen,
+    the end, and the stages solved on."""
+    rounds, penalties = [], []
+
+    def answer(k, stage):
+        if "into [l, 2l] by a penalty" in stage.description:
+            penalties.append(stage)
+            return solved_on
+        if "nominal lengths" not in stage.description:
+            return bounded_end
+        rounds.append(stage)
+        k = len(rounds) - 1
+        return first(k) if k < CLASSES_ROUNDS else second(k - CLASSES_ROUNDS)
+
+    seen, result = drive(classes_stages(p), answer)
+    return seen, result, rounds, penalties
+
+
+def test_a_round_end_outside_that_a_later_one_inside_matches_is_not_solved_on():
+    """The second series' first round ends a hair below l with the start's two classes, its second at the start
+    itself (two classes, in [l, 2l], the same key): the best is as good, so nothing is solved on."""
+    p, _ = problem(rise=0.0, slides=True, length=10.0)
+    messy, low = moved(p, 4, size=0.004), moved(p, 5, size=1e-5)
+    assert documented_key(p, low) == documented_key(p, p.x0)
+    seen, (end, last), rounds, penalties = classes_answered(
+        p, messy, lambda k: messy, lambda k: low if k == 0 else p.x0, p.x0
+    )
+    assert not penalties and last is rounds[CLASSES_ROUNDS + 1] and np.array_equal(end, p.x0)
+
+
+def test_the_penalty_stage_keeps_the_rounds_trust_region_and_names_its_violation():
+    p, _ = problem(rise=0.0, slides=True, length=10.0)
+    messy, low = moved(p, 4, size=0.004), moved(p, 5, size=1e-5)
+    _, _, rounds, penalties = classes_answered(p, messy, lambda k: messy, lambda k: low, p.x0)
+    (penalty,) = penalties
+    step = np.zeros(len(p.x0))
+    step[0] = 1.0
+    np.testing.assert_array_equal(penalty.limit(step), rounds[0].limit(step))
+    assert re.fullmatch(r"\d+ of 33 members outside \[l, 2l\] \(lengths from .* l to .* l\)", penalty.violation(low))
+
+
+@pytest.mark.parametrize("sound", [True, False])
+def test_a_penalty_solve_that_ends_outside_or_unsound_is_not_kept(sound):
+    """Solved on with the penalty, the end is kept only in [l, 2l] and with sound joints: ending outside (or,
+    with joints that the start breaks, at the start), bounded's result stays the result."""
+    p, triangles = problem(rise=0.0, slides=True, length=10.0)
+    messy, low = moved(p, 4, size=0.004), moved(p, 5, size=1e-5)
+    if sound:
+        end_there = low  # outside [l, 2l]
+    else:
+        p = replace(p, joints=Joints(p, triangles, surface_angles(p.points_of(low), triangles)))
+        assert p.sound(low) and not p.sound(p.x0)  # the start's angles are below low's somewhere
+        end_there = p.x0
+    _, (end, last), _, penalties = classes_answered(p, messy, lambda k: messy, lambda k: low, end_there)
+    assert len(penalties) == 1 and "nominal lengths" not in last.description and np.array_equal(end, messy)
+
+
+def test_the_work_bound_in_the_first_series_ends_the_classes_at_once():
+    """WorkSpent thrown into the first series' round ends the stages there (no second series), at bounded's
+    result."""
+    p, _ = problem(rise=0.0, slides=True, length=10.0)
+    messy = moved(p, 4, size=0.004)
+    stages = classes_stages(p)
+    stage = next(stages)
+    while "nominal lengths" not in stage.description:
+        stage = stages.send(messy)
+    with pytest.raises(StopIteration) as done:
+        stages.throw(WorkSpent())
+    end, last = done.value.value
+    assert np.array_equal(end, messy)
+
+
+def test_the_work_bound_in_the_penalty_solve_ends_the_classes_at_once():
+    p, _ = problem(rise=0.0, slides=True, length=10.0)
+    messy, low = moved(p, 4, size=0.004), moved(p, 5, size=1e-5)
+    stages = classes_stages(p)
+    stage, rounds = next(stages), 0
+    while "into [l, 2l] by a penalty" not in stage.description:
+        if "nominal lengths" in stage.description:
+            rounds += 1
+        stage = stages.send(low if rounds > CLASSES_ROUNDS else messy)
+    with pytest.raises(StopIteration) as done:
+        stages.throw(WorkSpent())
+    assert np.array_equal(done.value.value[0], messy)
+
+
+def test_no_second_series_from_a_remap_with_as_many_classes():
+    """A remap with no fewer classes than bounded's result starts no rounds of its own."""
+    p, _ = problem(rise=0.0, slides=True, length=10.0)
+    _, _, rounds, _ = classes_answered(p, p.x0, lambda k: p.x0, lambda k: p.x0, p.x0)
+    assert len(rounds) == CLASSES_ROUNDS

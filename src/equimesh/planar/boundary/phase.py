@@ -30,7 +30,7 @@ import math
 import numpy as np
 
 from ...errors import InvalidPolygonError
-from ...tolerance import REL_TOL, at_least, at_most
+from ...tolerance import REL_TOL
 from .resample import Boundary
 from .separation import check_boundary_separation
 from .sides import SHARP_CORNER
@@ -99,16 +99,15 @@ def _sides(ring, lp):
     """``(first, last)`` vertex indices of the ring's sides: maximal runs of vertices on one line, vertex 0 ending one.
 
     A vertex is inside a side when it lies within ``STRAIGHT lp`` of the
-    segment joining its neighbours; every other vertex (and vertex 0) ends a
-    side.  ``last`` may be ``len(ring)``: vertex 0 again.
+    line through its neighbours (between them: the polygon is simple); every
+    other vertex (and vertex 0) ends a side.  ``last`` may be ``len(ring)``: vertex 0 again.
     """
     v = ring.local
     n = len(v)
     before, after = np.roll(v, 1, axis=0), np.roll(v, -1, axis=0)
     chord = after - before
     off = np.abs(chord[:, 0] * (v - before)[:, 1] - chord[:, 1] * (v - before)[:, 0]) / np.linalg.norm(chord, axis=1)
-    ahead = (np.sum((v - before) * chord, axis=1) > 0) & (np.sum((after - v) * chord, axis=1) > 0)
-    ends = np.flatnonzero(~((off <= STRAIGHT * lp) & ahead))
+    ends = np.flatnonzero(off > STRAIGHT * lp)  # a simple polygon does not turn back on itself at a vertex
     ends = np.union1d(ends, [0])
     return list(zip(ends, np.append(ends[1:], n)))
 
@@ -116,8 +115,8 @@ def _sides(ring, lp):
 def _side_points(ring, first, last, directions, rows, lp):
     """``(points, is_vertex, edge)`` of the side from vertex ``first`` to ``last`` in phase with the lattice, or None.
 
-    None when the side does not qualify (see the module) or its parts would
-    leave ``[l, 2l]``.
+    None when the side does not qualify (see the module).  Its inner parts are the period, its end parts in
+    ``[SHORTEST_END l, sqrt(3) l]`` (:func:`_end`).
     """
     v = ring.local
     n = len(v)
@@ -153,15 +152,13 @@ def _side_points(ring, first, last, directions, rows, lp):
     if not mirrored:
         return None
     targets = [length - t for t in reversed(mirrored)]
-    positions = np.array([0.0, *head, *targets, *(length - t for t in reversed(tail))])
-    steps = np.diff(np.append(positions, length))
-    if not np.all(at_least(steps, lp) & at_most(steps, 2.0 * lp)):
-        return None
+    positions = np.array([0.0, *head, *targets, *(length - t for t in reversed(tail))])  # parts in [l, 2l] (_end)
     arc = np.linalg.norm(v[first : last + 1 if last < n else n] - a, axis=1)
     if last == n:
         arc = np.append(arc, length)
     edge = first + np.clip(np.searchsorted(arc, positions, side="right") - 1, 0, last - first - 1)
-    return a + positions[:, None] * d, np.arange(len(positions)) == 0, edge
+    points = a + positions[:, None] * d
+    return points, np.all(points == v[edge], axis=1), edge  # a point may fall on an inner vertex of the side
 
 
 def _end(targets, lp):
