@@ -487,10 +487,12 @@ def test_the_work_bound_ends_bounded_at_its_best_round_end_or_passes():
         stages.throw(WorkSpent())
 
 
-def test_the_work_bound_ends_classes_at_its_fewest_classes():
-    """WorkSpent thrown into a round of the classes: the fewest classes so far, here bounded's end (the flat grid at
-    l = 8, moved: more classes than its start), with bounded's stage."""
-    p, _ = problem(rise=0.0, slides=True, length=8.0)
+@pytest.mark.parametrize("length", [8.0, 10.0])
+def test_the_work_bound_ends_classes_at_its_fewest_classes(length):
+    """WorkSpent thrown into a round of the classes: the fewest classes so far, here bounded's end (the flat grid
+    moved: more classes than its start), with bounded's stage; at l = 10, where the start would begin a second
+    series, at once too."""
+    p, _ = problem(rise=0.0, slides=True, length=length)
     messy = moved(p, 4, size=0.004)
     stages = classes_stages(p)
     stage = next(stages)
@@ -626,21 +628,6 @@ def test_a_penalty_solve_that_ends_outside_or_unsound_is_not_kept(sound):
         end_there = p.x0
     _, (end, last), _, penalties = classes_answered(p, messy, lambda k: messy, lambda k: low, end_there)
     assert len(penalties) == 1 and "nominal lengths" not in last.description and np.array_equal(end, messy)
-
-
-def test_the_work_bound_in_the_first_series_ends_the_classes_at_once():
-    """WorkSpent thrown into the first series' round ends the stages there (no second series), at bounded's
-    result."""
-    p, _ = problem(rise=0.0, slides=True, length=10.0)
-    messy = moved(p, 4, size=0.004)
-    stages = classes_stages(p)
-    stage = next(stages)
-    while "nominal lengths" not in stage.description:
-        stage = stages.send(messy)
-    with pytest.raises(StopIteration) as done:
-        stages.throw(WorkSpent())
-    end, last = done.value.value
-    assert np.array_equal(end, messy)
 
 
 def test_the_work_bound_in_the_penalty_solve_ends_the_classes_at_once():
