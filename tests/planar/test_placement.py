@@ -365,3 +365,12 @@ def test_fewest_classes_placement_is_never_worse_than_its_start():
     mesh = equimesh.uniform_triangulation(box, 1.0, angle=found.angle, offset=found.offset)
     assert len(equimesh.length_classes(mesh.edge_lengths(), 1.0)) == found.lattice_edges
     assert found == fewest_classes_placement(box, 1.0, start=start)  # deterministic
+
+
+def test_fewest_classes_placement_scores_the_boundary_it_is_given():
+    """With ``boundary="lattice"`` every candidate is meshed with Step 2 in phase with its lattice: the winner's
+    count is that of its phased mesh (fewer than the equal parts' on this rectangle)."""
+    box = [[0.0, 0.0], [13.7, 0.0], [13.7, 9.3], [0.0, 9.3]]
+    equal, phased = (fewest_classes_placement(box, 1.0, boundary=b) for b in ("equal", "lattice"))
+    mesh = equimesh.uniform_triangulation(box, 1.0, angle=phased.angle, offset=phased.offset, boundary="lattice")
+    assert len(equimesh.length_classes(mesh.edge_lengths(), 1.0)) == phased.lattice_edges < equal.lattice_edges

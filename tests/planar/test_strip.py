@@ -768,3 +768,17 @@ def test_info_reports_the_parameters_as_used():
     """angle (taken as given), offset and clearance, as floats, in info."""
     mesh = equimesh.uniform_triangulation(SQUARE, 1.0, angle=7.5, offset=(0.25, 0.5), clearance=1.25)
     assert (mesh.info["angle"], mesh.info["offset"], mesh.info["clearance"]) == (7.5, (0.25, 0.5), 1.25)
+
+
+def test_boundary_in_phase_with_the_lattice_or_the_papers():
+    """``boundary="lattice"`` (beyond the paper, planar/boundary/phase.py) moves the points of the sides along and
+    across the lattice, and says so in ``info``; the default is the paper's equal parts, and an unknown name is
+    refused by name.  Both meshes pass verify_planar (Theorem 3)."""
+    vertices = rectangle(12.3, 9.7)
+    equal = equimesh.uniform_triangulation(vertices, 1.0)
+    phased = equimesh.uniform_triangulation(vertices, 1.0, boundary="lattice")
+    assert (equal.info["boundary"], phased.info["boundary"]) == ("equal", "lattice")
+    assert equal.n_boundary != phased.n_boundary or not np.array_equal(equal.points, phased.points)
+    assert set(equal.info) == set(phased.info)
+    with pytest.raises(EquimeshError, match=r"^boundary must be one of \('equal', 'lattice'\), got 'periodic'$"):
+        equimesh.uniform_triangulation(vertices, 1.0, boundary="periodic")
