@@ -96,12 +96,12 @@ def test_sides_along_and_across_the_lattice_repeat(width, height, fi, fj, l):
         assert members.size or (height if axis == 0 else width) < 10.0  # a long side has regular points
 
 
-def phased_boundary(vertices, l, angle=0.0):
+def phased_boundary(vertices, l, angle=0.0, offset=(0.0, 0.0)):
     """The paper's Step 2 points of ``vertices`` and the same in phase with the lattice (the polygon, both
     boundaries), as Problem 2 computes them."""
     poly = as_polygon(vertices, l, None)
     boundary = resample_boundary(poly, l, BOUNDARY_SPACING)
-    lattice = lattice_part(poly, l, angle, (0.0, 0.0), 1.0)
+    lattice = lattice_part(poly, l, angle, offset, 1.0)
     return poly, boundary, in_phase(poly, boundary, lattice, l)
 
 
@@ -110,23 +110,25 @@ def check_on_their_edges(poly, boundary):
     v = poly.local
     a, b = v[boundary.edge], np.roll(v, -1, axis=0)[boundary.edge]
     t = np.sum((boundary.points - a) * (b - a), axis=1) / np.sum((b - a) ** 2, axis=1)
-    assert np.all((t >= -1e-12) & (t < 1.0))
+    assert np.all((t >= -1e-12) & (t <= 1.0 + 1e-12))  # a point on an inner vertex of its side, up to rounding
     np.testing.assert_allclose(a + t[:, None] * (b - a), boundary.points, atol=1e-9)
     np.testing.assert_array_equal(np.all(boundary.points == a, axis=1), boundary.is_vertex)
 
 
-@pytest.mark.parametrize("l", [1.0, 3.0])
-def test_vertices_along_a_side_move_with_its_points(l):
-    """A rectangle whose sides carry vertices of their own (a resampled outline): the same points as the plain
-    rectangle, each on the edge its ``edge`` names, a vertex only at the corners."""
+@pytest.mark.parametrize("l, angle", [(1.0, 0.0), (3.0, 0.0), (1.0, 30.0)])
+def test_vertices_along_a_side_move_with_its_points(l, angle):
+    """A rectangle whose sides carry vertices of their own (a resampled outline), turned with the lattice: the same
+    points as the plain rectangle, each on the edge its ``edge`` names, a vertex only where it is one."""
     w, h = 16.0 * l, 13.0 * l
     plain = rectangle(w, h)
     subdivided = np.array(
         [(0, 0), (2.5 * l, 0), (7 * l, 0), (w, 0), (w, 4 * l), (w, h), (9 * l, h), (0, h), (0, 6.5 * l)],
         dtype=float,
     )
-    _, _, reference = phased_boundary(plain, l)
-    poly, equal, phased = phased_boundary(subdivided, l)
+    turn = math.radians(angle)
+    rotation = np.array([[math.cos(turn), math.sin(turn)], [-math.sin(turn), math.cos(turn)]])
+    _, _, reference = phased_boundary(plain @ rotation, l, angle)
+    poly, equal, phased = phased_boundary(subdivided @ rotation, l, angle)
     assert phased is not equal
     np.testing.assert_allclose(phased.points, reference.points, atol=1e-9 * l)
     check_on_their_edges(poly, phased)
@@ -143,13 +145,18 @@ def test_a_side_through_vertex_0_is_two_sides():
     assert steps.min() >= 1.0 - 1e-9 and steps.max() <= 2.0
 
 
-def test_the_phase_is_taken_at_the_middle_of_a_side():
+@pytest.mark.parametrize("l", [1.0, 3.0])
+@pytest.mark.parametrize("shift", [0.0, 0.5])
+def test_the_phase_is_taken_at_the_middle_of_a_side(l, shift):
     """A rectangle half a degree off the lattice still counts as along it: the boundary point nearest the middle of
-    its bottom side lies half a period from the first row's point nearest that middle."""
+    its bottom side lies half a period from the first row's point nearest that middle (whichever row of the
+    lattice is nearer that middle)."""
     turn = math.radians(0.5)
     rotation = np.array([[math.cos(turn), math.sin(turn)], [-math.sin(turn), math.cos(turn)]])
-    poly, _, phased = phased_boundary(rectangle(17.0, 12.0) @ rotation, 1.0)
-    lattice = lattice_part(poly, 1.0, 0.0, (0.0, 0.0), 1.0)
+    offset = (shift * l, 0.0)
+    poly, _, phased = phased_boundary(l * rectangle(17.0, 12.0) @ rotation, l, offset=offset)
+    lattice = lattice_part(poly, l, 0.0, offset, 1.0)
+    lp = poly.local_length(l)
     a, b = poly.local[0], poly.local[1]
     length = float(np.linalg.norm(b - a))
     d = (b - a) / length
@@ -158,11 +165,11 @@ def test_the_phase_is_taken_at_the_middle_of_a_side():
     s, h = (rows - a) @ d, (rows - a) @ normal
     near = (s > 0) & (s < length) & (h > 0)
     s, h = s[near], h[near]
-    row = s[h <= h.min() + 0.25]
+    row = s[h <= h.min() + 0.25 * lp]
     reference = row[np.argmin(np.abs(row - length / 2))]
     on_side = phased.points[phased.edge == 0]
     along = (on_side - a) @ d
-    assert np.min(np.abs(along - (reference + 0.5))) <= 1e-9
+    assert np.min(np.abs(along - (reference + 0.5 * lp))) <= 1e-9
 
 
 @pytest.mark.parametrize("lp", [1.0, 1.5])
@@ -176,6 +183,9 @@ def test_the_ends_of_a_side(lp):
     assert targets == [3.6 * lp] and np.allclose(points, [1.2 * lp, 2.4 * lp])
     assert _end([1.2 * lp], lp) == ([1.2 * lp], [])
     assert _end([], lp) == ([], [])
+    assert _end([SHORTEST_END * lp], lp) == ([SHORTEST_END * lp], [])  # the bounds themselves are kept
+    assert _end([LONGEST_PART * lp], lp) == ([LONGEST_PART * lp], [])
+    assert _end([2.0 * SHORTEST_END * lp], lp) == ([2.0 * SHORTEST_END * lp], [SHORTEST_END * lp])
 
 
 def test_a_rectangle_along_the_lattice_has_few_classes():

@@ -145,18 +145,13 @@ def _side_points(ring, first, last, directions, rows, lp):
     first_row = h <= h.min() + lp / 4  # the row (or, across the rows, the nearer row ends) next to the side
     s = s[first_row]
     middle = s[np.argmin(np.abs(s - length / 2))] + period / 2
-    k = np.arange(math.ceil(-middle / period), math.floor((length - middle) / period) + 1)
-    targets = middle + k * period
-    targets, head = _end(list(targets[(targets > 0) & (targets < length)]), lp)
+    targets, head = _end(list(np.arange(middle % period, length, period)), lp)
     mirrored, tail = _end([length - t for t in reversed(targets)], lp)
     if not mirrored:
         return None
     targets = [length - t for t in reversed(mirrored)]
     positions = np.array([0.0, *head, *targets, *(length - t for t in reversed(tail))])  # parts in [l, 2l] (_end)
-    arc = np.linalg.norm(v[first : last + 1 if last < n else n] - a, axis=1)
-    if last == n:
-        arc = np.append(arc, length)
-    edge = first + np.clip(np.searchsorted(arc, positions, side="right") - 1, 0, last - first - 1)
+    edge = first + np.searchsorted((v[first:last] - a) @ d, positions, side="right") - 1
     points = a + positions[:, None] * d
     return points, np.all(points == v[edge], axis=1), edge  # a point may fall on an inner vertex of the side
 
@@ -168,6 +163,7 @@ def _end(targets, lp):
     parts in ``[SHORTEST_END l, sqrt(3) l]``."""
     while targets and (targets[0] < SHORTEST_END * lp or LONGEST_PART * lp < targets[0] < 2.0 * SHORTEST_END * lp):
         targets = targets[1:]
-    gap = targets[0] if targets else 0.0
-    parts = max(1, math.ceil(gap / (LONGEST_PART * lp)))
-    return targets, [gap * j / parts for j in range(1, parts)]
+    if not targets:
+        return targets, []
+    parts = math.ceil(targets[0] / (LONGEST_PART * lp))
+    return targets, [targets[0] * j / parts for j in range(1, parts)]
