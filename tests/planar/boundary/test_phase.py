@@ -145,31 +145,48 @@ def test_a_side_through_vertex_0_is_two_sides():
     assert steps.min() >= 1.0 - 1e-9 and steps.max() <= 2.0
 
 
-@pytest.mark.parametrize("l", [1.0, 3.0])
-@pytest.mark.parametrize("shift", [0.0, 0.5])
-def test_the_phase_is_taken_at_the_middle_of_a_side(l, shift):
-    """A rectangle half a degree off the lattice still counts as along it: the boundary point nearest the middle of
-    its bottom side lies half a period from the first row's point nearest that middle (whichever row of the
-    lattice is nearer that middle)."""
-    turn = math.radians(0.5)
-    rotation = np.array([[math.cos(turn), math.sin(turn)], [-math.sin(turn), math.cos(turn)]])
-    offset = (shift * l, 0.0)
-    poly, _, phased = phased_boundary(l * rectangle(17.0, 12.0) @ rotation, l, offset=offset)
-    lattice = lattice_part(poly, l, 0.0, offset, 1.0)
-    lp = poly.local_length(l)
-    a, b = poly.local[0], poly.local[1]
+def middle_offset(poly, phased, lattice, edge, lp):
+    """How far the boundary point nearest the middle of the side starting at polygon vertex ``edge`` lies from half
+    a period (l) past the point of the side's own first row (the lattice points over it, nearest to it) nearest
+    that middle."""
+    v = poly.local
+    a, b = v[edge], v[(edge + 1) % len(v)]
     length = float(np.linalg.norm(b - a))
     d = (b - a) / length
     normal = np.array([-d[1], d[0]])
     rows = lattice.points[lattice.boundary_vertices]
     s, h = (rows - a) @ d, (rows - a) @ normal
-    near = (s > 0) & (s < length) & (h > 0)
-    s, h = s[near], h[near]
+    over = (s > 0) & (s < length) & (h > 0)
+    s, h = s[over], h[over]
     row = s[h <= h.min() + 0.25 * lp]
     reference = row[np.argmin(np.abs(row - length / 2))]
-    on_side = phased.points[phased.edge == 0]
-    along = (on_side - a) @ d
-    assert np.min(np.abs(along - (reference + 0.5 * lp))) <= 1e-9
+    along = (phased.points[phased.edge == edge] - a) @ d
+    return float(np.min(np.abs(along - (reference + 0.5 * lp))))
+
+
+@pytest.mark.parametrize("l", [1.0, 3.0])
+@pytest.mark.parametrize("shift", [0.0, 0.25, 0.5])
+def test_the_phase_is_taken_at_the_middle_of_a_side(l, shift):
+    """A rectangle half a degree off the lattice still counts as along it: the boundary point nearest the middle of
+    its bottom side lies half a period from the first row's point nearest that middle (not the next row's, half a
+    period along, whichever lies nearer the middle)."""
+    turn = math.radians(0.5)
+    rotation = np.array([[math.cos(turn), math.sin(turn)], [-math.sin(turn), math.cos(turn)]])
+    offset = (shift * l, 0.0)
+    poly, _, phased = phased_boundary(l * rectangle(17.0, 12.0) @ rotation, l, offset=offset)
+    lattice = lattice_part(poly, l, 0.0, offset, 1.0)
+    assert middle_offset(poly, phased, lattice, 0, poly.local_length(l)) <= 1e-9
+
+
+def test_a_side_whose_line_runs_on_inside_takes_its_own_rows_phase():
+    """An L: the side from (20, 8) to (10, 8) ends at a reflex corner, beyond which its line runs on through the
+    polygon, with lattice points just under it; its phase is that of the row over the side itself."""
+    l = 1.0
+    ell = np.array([(0.0, 0.0), (20.0, 0.0), (20.0, 8.0), (10.0, 8.0), (10.0, 16.0), (0.0, 16.0)])
+    for shift in (0.0, 0.3, 0.6):
+        poly, _, phased = phased_boundary(ell, l, offset=(0.0, shift))
+        lattice = lattice_part(poly, l, 0.0, (0.0, shift), 1.0)
+        assert middle_offset(poly, phased, lattice, 2, poly.local_length(l)) <= 1e-9
 
 
 @pytest.mark.parametrize("lp", [1.0, 1.5])

@@ -649,3 +649,23 @@ def test_no_second_series_from_a_remap_with_as_many_classes():
     p, _ = problem(rise=0.0, slides=True, length=10.0)
     _, _, rounds, _ = classes_answered(p, p.x0, lambda k: p.x0, lambda k: p.x0, p.x0)
     assert len(rounds) == CLASSES_ROUNDS
+
+
+def test_a_penalty_solve_after_the_first_series_is_kept_and_the_second_series_follows():
+    """The first series' rounds all end a hair below l with two classes: solved on with the penalty and answered
+    with a point in [l, 2l] with two classes, that point is the best so far, and the rounds from the remap follow
+    (none beats it: answered with bounded's end).  The work bound thrown into that penalty solve ends the stages
+    there, at bounded's end."""
+    p, _ = problem(rise=0.0, slides=True, length=10.0)
+    messy, low = moved(p, 4, size=0.004), moved(p, 5, size=1e-5)
+    seen, (end, last), rounds, penalties = classes_answered(p, messy, lambda k: low, lambda k: messy, p.x0)
+    assert len(penalties) == 1 and len(rounds) == 2 * CLASSES_ROUNDS
+    assert seen.index(penalties[0]) < seen.index(rounds[CLASSES_ROUNDS])
+    assert last is penalties[0] and np.array_equal(end, p.x0)
+    stages = classes_stages(p)
+    stage = next(stages)
+    while "into [l, 2l] by a penalty" not in stage.description:
+        stage = stages.send(low if "nominal lengths" in stage.description else messy)
+    with pytest.raises(StopIteration) as done:
+        stages.throw(WorkSpent())
+    assert np.array_equal(done.value.value[0], messy)
