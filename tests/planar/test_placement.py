@@ -374,3 +374,26 @@ def test_fewest_classes_placement_scores_the_boundary_it_is_given():
     equal, phased = (fewest_classes_placement(box, 1.0, boundary=b) for b in ("equal", "lattice"))
     mesh = equimesh.uniform_triangulation(box, 1.0, angle=phased.angle, offset=phased.offset, boundary="lattice")
     assert len(equimesh.length_classes(mesh.edge_lengths(), 1.0)) == phased.lattice_edges < equal.lattice_edges
+
+
+def test_fewest_classes_placement_takes_the_sides_between_corners(monkeypatch):
+    """A rectangle turned by 20 degrees whose sides carry vertices of their own (a resampled outline): its sides
+    between the corners (turns of at least CLASS_CORNER_TURN) give the two candidate angles, 20 and 110 modulo 60
+    = 50, each with CLASS_OFFSETS^2 offsets after the start; the winner's lattice runs along one of them."""
+    turn = np.radians(20.0)
+    rotation = np.array([[np.cos(turn), np.sin(turn)], [-np.sin(turn), np.cos(turn)]])
+    ring = [(0, 0), (4.5, 0), (9, 0), (13.7, 0), (13.7, 3.1), (13.7, 6.2), (13.7, 9.3), (7, 9.3), (0, 9.3), (0, 4.6)]
+    box = np.array(ring, dtype=float) @ rotation
+    found = fewest_classes_placement(box, 1.0)
+    assert found.evaluations == 1 + 2 * placement.CLASS_OFFSETS**2
+    assert found.angle == 0.0 or min(abs(found.angle - a) for a in (20.0, 50.0)) <= 1e-9
+    tried = []
+    real = placement.uniform_triangulation
+
+    def spy(vertices, l, **options):
+        tried.append(round(options["angle"] % 60.0, 9))
+        return real(vertices, l, **options)
+
+    monkeypatch.setattr(placement, "uniform_triangulation", spy)
+    fewest_classes_placement(box, 1.0)
+    assert sorted(set(tried)) == [0.0, 20.0, 50.0] and tried.count(20.0) == tried.count(50.0) == 9
