@@ -397,3 +397,39 @@ def test_fewest_classes_placement_takes_the_sides_between_corners(monkeypatch):
     monkeypatch.setattr(placement, "uniform_triangulation", spy)
     fewest_classes_placement(box, 1.0)
     assert sorted(set(tried)) == [0.0, 20.0, 50.0] and tried.count(20.0) == tried.count(50.0) == 9
+
+
+def test_fewest_classes_placement_meshes_what_it_is_given(monkeypatch):
+    """A rectangle with an arched top (a curved side: its chord is one candidate) and an opening, at a spacing and
+    a tolerance of its own: every candidate is meshed with the opening and the spacing, the start first (angle 0
+    at the origin), then per candidate angle the nine offsets of a cell in thirds; the counts are the classes at
+    that tolerance."""
+    x = np.linspace(14.0, 0.0, 9)
+    arch = np.column_stack([x, 10.0 + 1.5 * np.sin(np.pi * x / 14.0)])  # from (14, 10) over to (0, 10)
+    ring = np.vstack([[(0.0, 0.0), (14.0, 0.0)], arch])
+    hole = np.array([(5.0, 3.0), (9.0, 3.0), (9.0, 6.0), (5.0, 6.0)])
+    calls = []
+    real = placement.uniform_triangulation
+
+    def spy(vertices, l, **options):
+        calls.append(options)
+        return real(vertices, l, **options)
+
+    monkeypatch.setattr(placement, "uniform_triangulation", spy)
+    found = fewest_classes_placement(ring, 1.0, holes=[hole], boundary_spacing=1.2, tolerance=0.01)
+    assert found.evaluations == len(calls) == 1 + 2 * 9  # angles 0 (bottom, the arch's chord) and 30 (the sides)
+    assert all(c["boundary_spacing"] == 1.2 and np.array_equal(c["holes"][0], hole) for c in calls)
+    assert calls[0]["angle"] == 0.0 and tuple(calls[0]["offset"]) == (0.0, 0.0)
+    for angle in (0.0, 30.0):
+        basis = lattice.lattice_basis(1.0, angle)
+        offsets = [np.linalg.solve(basis.T, c["offset"]) for c in calls[1:] if c["angle"] == angle]
+        thirds = {tuple(np.round(3 * (o % 1.0)).astype(int) % 3) for o in offsets}
+        assert len(offsets) == 9 and len(thirds) == 9
+    monkeypatch.setattr(placement, "uniform_triangulation", real)
+
+    def classes(angle, offset):
+        mesh = real(ring, 1.0, holes=[hole], angle=angle, offset=offset, boundary_spacing=1.2)
+        return len(equimesh.length_classes(mesh.edge_lengths(), 1.0, 0.01))
+
+    assert found.lattice_edges == classes(found.angle, found.offset)
+    assert found.default_lattice_edges == classes(0.0, (0.0, 0.0))
