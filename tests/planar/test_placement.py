@@ -399,37 +399,77 @@ def test_fewest_classes_placement_takes_the_sides_between_corners(monkeypatch):
     assert sorted(set(tried)) == [0.0, 20.0, 50.0] and tried.count(20.0) == tried.count(50.0) == 9
 
 
-def test_fewest_classes_placement_meshes_what_it_is_given(monkeypatch):
-    """A rectangle with an arched top (a curved side: its chord is one candidate) and an opening, at a spacing and
-    a tolerance of its own: every candidate is meshed with the opening and the spacing, the start first (angle 0
-    at the origin), then per candidate angle the nine offsets of a cell in thirds; the counts are the classes at
-    that tolerance."""
-    x = np.linspace(14.0, 0.0, 9)
-    arch = np.column_stack([x, 10.0 + 1.5 * np.sin(np.pi * x / 14.0)])  # from (14, 10) over to (0, 10)
-    ring = np.vstack([[(0.0, 0.0), (14.0, 0.0)], arch])
-    hole = np.array([(5.0, 3.0), (9.0, 3.0), (9.0, 6.0), (5.0, 6.0)])
+def turned(points, degrees):
+    t = np.radians(degrees)
+    return np.asarray(points, dtype=float) @ np.array([[np.cos(t), np.sin(t)], [-np.sin(t), np.cos(t)]])
+
+
+def spied(monkeypatch):
+    """Record the options of every Problem 2 mesh ``fewest_classes_placement`` makes (meshed with the fast engine
+    whatever it asks for), with each mesh's key (classes at 0.01, minus the share in the ten largest)."""
     calls = []
     real = placement.uniform_triangulation
 
     def spy(vertices, l, **options):
-        calls.append(options)
-        return real(vertices, l, **options)
+        mesh = real(vertices, l, **{**options, "engine": "fast"})
+        classes = equimesh.length_classes(mesh.edge_lengths(), l, 0.01)
+        calls.append({**options, "key": (len(classes), -classes.top_share(10))})
+        return mesh
 
     monkeypatch.setattr(placement, "uniform_triangulation", spy)
-    found = fewest_classes_placement(ring, 1.0, holes=[hole], boundary_spacing=1.2, tolerance=0.01)
-    assert found.evaluations == len(calls) == 1 + 2 * 9  # angles 0 (bottom, the arch's chord) and 30 (the sides)
-    assert all(c["boundary_spacing"] == 1.2 and np.array_equal(c["holes"][0], hole) for c in calls)
+    return calls
+
+
+@pytest.mark.parametrize("degrees", [0.0, 20.0])
+def test_fewest_classes_placement_meshes_what_it_is_given(monkeypatch, degrees):
+    """A rectangle with an arched top (a curved side: its chord is one candidate) and an opening, turned, at a
+    spacing, tolerance and engine of its own: every candidate is meshed with them, the start first (angle 0 at
+    the origin), then per candidate angle the nine offsets of a cell in thirds; the winner is the first of the
+    fewest classes, then the largest share in the ten largest, and the counts are the classes at that tolerance."""
+    x = np.linspace(14.0, 0.0, 9)
+    arch = np.column_stack([x, 10.0 + 1.5 * np.sin(np.pi * x / 14.0)])  # from (14, 10) over to (0, 10)
+    ring = turned(np.vstack([[(0.0, 0.0), (14.0, 0.0)], arch]), degrees)
+    hole = turned([(5.0, 3.0), (9.0, 3.0), (9.0, 6.0), (5.0, 6.0)], degrees)
+    calls = spied(monkeypatch)
+    found = fewest_classes_placement(ring, 1.0, holes=[hole], boundary_spacing=1.2, tolerance=0.01, engine="reference")
+    angles = sorted({degrees % 60.0, (degrees + 90.0) % 60.0})  # the bottom and the arch's chord, the sides
+    assert found.evaluations == len(calls) == 1 + 2 * 9
+    assert all(c["boundary_spacing"] == 1.2 and c["engine"] == "reference" for c in calls)
+    assert all(np.array_equal(c["holes"][0], hole) for c in calls)
     assert calls[0]["angle"] == 0.0 and tuple(calls[0]["offset"]) == (0.0, 0.0)
-    for angle in (0.0, 30.0):
+    assert sorted({round(c["angle"], 9) for c in calls[1:]}) == angles
+    for angle in angles:
         basis = lattice.lattice_basis(1.0, angle)
-        offsets = [np.linalg.solve(basis.T, c["offset"]) for c in calls[1:] if c["angle"] == angle]
+        offsets = [np.linalg.solve(basis.T, c["offset"]) for c in calls[1:] if abs(c["angle"] - angle) < 1e-9]
         thirds = {tuple(np.round(3 * (o % 1.0)).astype(int) % 3) for o in offsets}
         assert len(offsets) == 9 and len(thirds) == 9
-    monkeypatch.setattr(placement, "uniform_triangulation", real)
+    first = min(range(len(calls)), key=lambda k: calls[k]["key"])  # min keeps the first of equal keys
+    assert (found.angle, tuple(found.offset)) == (calls[first]["angle"], tuple(calls[first]["offset"]))
+    assert (found.lattice_edges, found.default_lattice_edges) == (calls[first]["key"][0], calls[0]["key"][0])
 
-    def classes(angle, offset):
-        mesh = real(ring, 1.0, holes=[hole], angle=angle, offset=offset, boundary_spacing=1.2)
-        return len(equimesh.length_classes(mesh.edge_lengths(), 1.0, 0.01))
 
-    assert found.lattice_edges == classes(found.angle, found.offset)
-    assert found.default_lattice_edges == classes(0.0, (0.0, 0.0))
+def _arc(first, last, n):
+    t = np.linspace(first, last, n)
+    return np.column_stack([8.0 * np.cos(t), 8.0 * np.sin(t)])
+
+
+@pytest.mark.parametrize(
+    "ring, angles",
+    [
+        (_arc(0.0, 2 * np.pi, 17)[:-1], []),
+        (_arc(0.0, np.pi, 17), [0.0]),
+        (
+            rectangle(13.7, 9.3) @ np.array([[np.cos(1.0385), np.sin(1.0385)], [-np.sin(1.0385), np.cos(1.0385)]]),
+            [0.0, round(np.degrees(1.0385) + 90.0 - 120.0, 9)],
+        ),
+    ],
+    ids=["no corner", "two corners", "a side less than a degree short of 60"],
+)
+def test_fewest_classes_placement_candidates(monkeypatch, ring, angles):
+    """A polygon turning by less than CLASS_CORNER_TURN everywhere has no side to align with: only the start is
+    meshed; a half disc has two corners, its diameter and its arc's chord one candidate; a side less than a
+    degree short of 60 is the lattice's 0 (its symmetry)."""
+    calls = spied(monkeypatch)
+    found = fewest_classes_placement(ring, 1.0)
+    assert found.evaluations == len(calls) == 1 + 9 * len(angles)
+    assert sorted({round(c["angle"], 9) for c in calls[1:]}) == angles

@@ -221,7 +221,7 @@ def fewest_classes_placement(
     angles = []
     for a in np.degrees(np.arctan2(sides[:, 1], sides[:, 0])) % 60.0:
         a = 0.0 if a >= 60.0 - CLASS_ANGLE else a  # within a degree of 60 is 0 (the lattice's symmetry)
-        if all(min(abs(a - b), 60.0 - abs(a - b)) > CLASS_ANGLE for b in angles):
+        if all(abs(a - b) > CLASS_ANGLE for b in angles):  # none of [59, 60) is left to meet 0 across the wrap
             angles.append(float(a))
     start = start or Placement(0.0, (0.0, 0.0), 0, 0, 0)
     tried = [(start.angle, tuple(start.offset))]
