@@ -35,8 +35,8 @@ from .resample import Boundary
 from .separation import check_boundary_separation
 from .sides import SHARP_CORNER
 
-#: A side is straight when each of its polygon vertices lies within this many l of its chord: a straight side resampled
-#: (the flattened outline of a developable surface lies within 1e-11 l of its chords).
+#: A side is straight when each of its polygon vertices lies within this many l of its chord: a straight side resampled,
+#: straight to rounding (as the flattened outline of a developable surface, ruled or a cylinder, is).
 STRAIGHT = REL_TOL
 #: Degrees within which a side runs along or across a lattice direction (the merge angle of the placements tried).
 PHASE_ANGLE = 1.0
