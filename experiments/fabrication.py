@@ -47,7 +47,13 @@ import compare_peers  # noqa: E402
 
 from equimesh.classes import length_classes  # noqa: E402
 from equimesh.mesh import edge_lengths, unique_edges  # noqa: E402
-from equimesh.metrics import COMPARISON_COLUMNS, MEMBER_KINDS, classes_by_kind, comparison_figures  # noqa: E402
+from equimesh.metrics import (  # noqa: E402
+    COMPARISON_COLUMNS,
+    MEMBER_KINDS,
+    classes_by_kind,
+    comparison_figures,
+    share_within,
+)
 from equimesh.surface.charts.bezier import BezierSurface  # noqa: E402
 from equimesh.surface.pipeline import mesh_surface  # noqa: E402
 
@@ -92,7 +98,7 @@ def _equimesh(objective, fraction=0.0):
         mesh = mesh_surface(surface, l, optimize=objective, surface_tolerance=fraction * l, max_nodes=None)
         remapped = edge_lengths(mesh.stages.remapped_points, mesh.edges) / l
         dev_max, dev_mean = mesh.deviation()
-        within = float(np.mean(np.abs(remapped - 1.0) <= 0.005))
+        within = share_within(remapped, 1.0, 0.005)
         return mesh.points, mesh.triangles, {"deviation_max": dev_max, "deviation_mean": dev_mean, REMAPPED: within}
 
     return run

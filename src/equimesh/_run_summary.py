@@ -39,9 +39,7 @@ def joints_note(sharp, objective):
 def work_note(mesh):
     """The note for a ``mesh`` whose optimisation ended at its work bound, at the best point its objective kept
     (:attr:`~equimesh.surface.optimize.driver.UVOptimization.work_bound_reached`); None otherwise."""
-    result = getattr(getattr(mesh, "stages", None), "optimization", None)
-    return (
-        f"the optimisation ended at {result.message}, not converged"
-        if getattr(result, "work_bound_reached", False)
-        else None
-    )
+    result = mesh.stages.optimization  # None without an optimisation
+    if result is None or not result.work_bound_reached:
+        return None
+    return f"the optimisation ended at {result.message}, not converged"

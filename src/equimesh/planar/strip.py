@@ -131,21 +131,18 @@ def uniform_triangulation(
     poly = as_polygon(vertices, l, holes)
     check_edges_at_least(poly, l)
     check_size(*planar_estimate(poly, l, strip_estimate(poly, l, clearance), engine), max_nodes, l)
-    boundary_points = resample_boundary(poly, l, spacing)
-    check_boundary_separation(poly, boundary_points, l)
+    equal = resample_boundary(poly, l, spacing)
+    check_boundary_separation(poly, equal, l)
     lat = lattice_part(poly, l, angle, offset, clearance)
-    if boundary == "lattice":
-        boundary = in_phase(poly, boundary_points, lat, l)
-    else:
-        boundary = boundary_points
+    sampled = in_phase(poly, equal, lat, angle, l) if boundary == "lattice" else equal
 
-    nb = len(boundary.points)
+    nb = len(sampled.points)
     lat_boundary = lat.boundary_vertices
     lat_index = np.full(len(lat.points), -1, dtype=np.int64)
     lat_index[lat_boundary] = nb + np.arange(len(lat_boundary))
     region = Region(
-        np.vstack([boundary.points, lat.points[lat_boundary]]),
-        np.vstack([boundary.segments, lat_index[lat.boundary_edges]]).astype(np.int64),
+        np.vstack([sampled.points, lat.points[lat_boundary]]),
+        np.vstack([sampled.segments, lat_index[lat.boundary_edges]]).astype(np.int64),
         np.vstack([lat.holes, *(hole_seed(hole) for hole in poly.holes)]),
     )
     strip = insert(region, poly.local_length(l), engine=engine)
@@ -159,7 +156,7 @@ def uniform_triangulation(
     is_lattice = np.zeros(len(points), dtype=bool)
     is_lattice[lat_index] = True
 
-    starts = np.cumsum(boundary.ring_sizes) - boundary.ring_sizes
+    starts = np.cumsum(sampled.ring_sizes) - sampled.ring_sizes
     rings = tuple(len(boundary_ring(strip.segments, start)) for start in starts)
     order, inverse, n_ring = boundary_first(strip.segments, len(points), starts)
     mesh_edges = unique_edges(triangles)
@@ -179,7 +176,7 @@ def uniform_triangulation(
             "offset": tuple(offset),
             "clearance": clearance,
             "boundary_rings": rings,
-            "boundary": "equal" if boundary is boundary_points else "lattice",
+            "boundary": "equal" if sampled is equal else "lattice",
         },
         frame=poly.frame,
         pinned=pinned_vertices(poly),

@@ -102,7 +102,7 @@ def phased_boundary(vertices, l, angle=0.0, offset=(0.0, 0.0)):
     poly = as_polygon(vertices, l, None)
     boundary = resample_boundary(poly, l, BOUNDARY_SPACING)
     lattice = lattice_part(poly, l, angle, offset, 1.0)
-    return poly, boundary, in_phase(poly, boundary, lattice, l)
+    return poly, boundary, in_phase(poly, boundary, lattice, angle, l)
 
 
 def check_on_their_edges(poly, boundary):

@@ -31,6 +31,7 @@ import numpy as np
 
 from ...errors import InvalidPolygonError
 from ...tolerance import REL_TOL
+from ..lattice import lattice_basis
 from .resample import Boundary
 from .separation import check_boundary_separation
 from .sides import SHARP_CORNER
@@ -48,7 +49,7 @@ LONGEST_PART = math.sqrt(3.0)
 SHORTEST_END = 1.05
 
 
-def in_phase(poly, boundary, lattice, l):
+def in_phase(poly, boundary, lattice, angle, l):
     """The Step 2 ``boundary`` of ``poly`` with its straight sides' points in phase with ``lattice``.
 
     Parameters
@@ -56,6 +57,7 @@ def in_phase(poly, boundary, lattice, l):
     poly : Polygon (validated, :func:`~equimesh.planar.polygon.as_polygon`).
     boundary : Boundary, the paper's Step 2 points (:func:`~.resample.resample_boundary`).
     lattice : LatticePart, the kept lattice K (:func:`~equimesh.planar.lattice.lattice_part`).
+    angle : float, the lattice's angle (degrees; the local frame is not turned).
     l : float
 
     Returns
@@ -69,9 +71,8 @@ def in_phase(poly, boundary, lattice, l):
     if not len(lattice.triangles):
         return boundary
     lp = poly.local_length(l)
-    corners = lattice.points[lattice.triangles[0]]
-    directions = np.roll(corners, -1, axis=0) - corners
-    directions /= np.linalg.norm(directions, axis=1)[:, None]
+    e1, e2 = lattice_basis(1.0, angle)
+    directions = np.array([e1, e2, e2 - e1])  # the three lattice directions, unit vectors
     rows = lattice.points[lattice.boundary_vertices]
     parts, changed = [], False
     for r, ring in enumerate(poly.rings):

@@ -23,6 +23,7 @@ import numpy as np
 
 from ...classes import TOP_CLASSES, length_classes, on_catalogue
 from ...mesh import G1
+from ...metrics import share_within
 from ...tolerance import (
     BOUNDED_BAND,
     BOUNDED_FTOL,
@@ -135,7 +136,7 @@ def bounded_stages(problem):
 
     def share(ratio):
         """The share of members within ``BOUNDED_BAND`` of l (what the rounds keep the best of)."""
-        return float(np.mean(np.abs(ratio - 1.0) <= BOUNDED_BAND))
+        return share_within(ratio, 1.0, BOUNDED_BAND)
 
     def cauchy_loss(ratio):
         """The loss that the rounds decrease (majorise-minimise): ``sum log(1 + (d_e / s)^2)``."""
@@ -271,7 +272,7 @@ def classes_stages(problem):
     best = {"x": x, "stage": stage, "key": _class_key(members.ratio(x), tolerance, catalogue)}
     starts = [x]
     remapped = members.ratio(problem.x0)
-    kept = float(np.mean(np.abs(remapped - 1.0) <= tolerance)) >= CLASSES_REMAP_SHARE
+    kept = share_within(remapped, 1.0, tolerance) >= CLASSES_REMAP_SHARE
     if kept and _class_key(remapped, tolerance, catalogue)[:2] < best["key"][:2]:
         starts.append(problem.x0)  # the remap kept the plane's lattice (a developable surface), bounded's rounds not
     for x in starts:
