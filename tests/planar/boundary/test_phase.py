@@ -264,3 +264,18 @@ def test_a_boundary_failing_lemma_3_gives_way_to_the_papers(monkeypatch):
 def test_an_unknown_boundary_is_refused_by_name():
     with pytest.raises(EquimeshError, match="boundary must be one of"):
         uniform_triangulation(rectangle(12.0, 9.0), 1.0, boundary="periodic")
+
+
+def test_the_phase_turns_with_the_lattice_by_its_symmetry():
+    """The lattice at angle 0 through the origin is its own image turned by 120 degrees about the origin: the
+    phased points of a rectangle so turned (sides at 120 and 210 degrees, along and across e2 - e1) are those of
+    the rectangle, turned."""
+    turn = math.radians(120.0)
+    rotation = np.array([[math.cos(turn), math.sin(turn)], [-math.sin(turn), math.cos(turn)]])
+    rect = rectangle(16.0, 11.0) + np.array([2.3, 1.7])
+    plain_poly, _, plain = phased_boundary(rect, 1.0)
+    turned_poly, equal, turned = phased_boundary(rect @ rotation, 1.0)
+    assert turned is not equal
+    expected = plain_poly.frame.to_caller(plain.points) @ rotation
+    got = turned_poly.frame.to_caller(turned.points)
+    np.testing.assert_allclose(np.sort(np.round(got, 9), axis=0), np.sort(np.round(expected, 9), axis=0), atol=1e-8)

@@ -669,3 +669,18 @@ def test_a_penalty_solve_after_the_first_series_is_kept_and_the_second_series_fo
     with pytest.raises(StopIteration) as done:
         stages.throw(WorkSpent())
     assert np.array_equal(done.value.value[0], messy)
+
+
+def test_of_rounds_in_the_band_the_largest_share_is_kept():
+    """At l = 9.9 two rim members at l (nodes 1 and 2 slid to a corner's distance l) against one: the round that
+    ended with two within the band of l is the result, although a later one ended with one."""
+    p, _ = problem(rise=0.0, slides=True, length=9.9)
+    one = p.x0.copy()
+    one[8] = 0.33  # node 1 slides to u = 0.33: the member from node 0 is 9.9 = l long
+    two = one.copy()
+    two[9] = 0.67  # node 2 slides to u = 0.67: the member to node 3 (a corner) is l long too
+    for x, count in ((one, 1), (two, 2)):
+        assert np.count_nonzero(np.abs(ratio(p, x) - 1.0) <= BOUNDED_BAND) == count
+        assert Members.inside(ratio(p, x)) and p.sound(x)
+    seen, (end, last) = drive(bounded_stages(p), lambda k, stage: two if k == 0 else one)
+    assert last is seen[0] and np.array_equal(end, two)
