@@ -31,7 +31,7 @@ def joints_note(sharp, objective):
     if objective in sound or not sharp > 0:
         return None
     return (
-        f"--optimize {', '.join(sound)} keeps every triangle angle at least {JOINT_ANGLE:g} degrees, or a sharper "
+        f"--optimize {' or '.join(sound)} keeps every triangle angle at least {JOINT_ANGLE:g} degrees, or a sharper "
         "input corner's own (joints that can be built)"
     )
 

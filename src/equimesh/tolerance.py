@@ -152,10 +152,9 @@ BOUNDED_LOSS_TOL = 1e-3
 BOUNDED_STEP = 0.1
 PAPER_FTOL = 1e-8
 #: The paper's optimum that ``"bounded"`` takes as its second start is solved, boundary held, to ``BOUNDED_START_FTOL``
-#: only: it is a start, compared once by its share, and lost to the first series on every surface measured
-#: (docs/decisions.md, "Two starts for bounded, and the best point kept").  ``python experiments/bounded_sweep.py``
-#: against ``PAPER_FTOL`` there, side by side: the same mean share 0.7223, smallest margin over the paper +0.0061 and
-#: none below it on the 101 domes, one dome 0.0019 lower, 1.47 times fewer Jacobians in all (mean 93.6 to 63.5;
+#: only: it is a start, compared once by its share (docs/decisions.md, "Two starts for bounded, and the best point
+#: kept").  ``python experiments/bounded_sweep.py`` against ``PAPER_FTOL`` there, one after the other: the same share
+#: on each of the 101 domes (mean 0.7101), 1.42 times fewer Jacobians in all (mean 101.1 to 71.3;
 #: results/bounded_sweep.md).  The released stage, when it runs, solves to ``PAPER_FTOL``.
 BOUNDED_START_FTOL = 1e-3
 
@@ -168,7 +167,7 @@ REACH_LENGTH = 0.5
 REACH_SHARE = 0.5
 
 #: Beyond the paper (docs/decisions.md, "Sound joints"): an objective with
-#: ``sound_joints`` (``"classes"``) keeps every triangle angle on the surface at least ``JOINT_ANGLE``
+#: ``sound_joints`` (``"bounded"`` and ``"classes"``) keeps every triangle angle on the surface at least ``JOINT_ANGLE``
 #: degrees (hence at most ``180 - 2 JOINT_ANGLE = 120``), Chew's bound for
 #: edges in [h, 2h] and circumradii below h, which Problem 2 meets on the plane
 #: (docs/decisions.md, "Angles of Problems 1 and 2").  The optimisation's barrier is

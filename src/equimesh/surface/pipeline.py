@@ -204,7 +204,7 @@ def mesh_surface(
         (beyond the paper, the default) keeps every member in [l, 2l] with as
         many as possible at one length, boundary nodes sliding along their
         side, loop or hole edge; "classes" (beyond) seeks the fewest length
-        classes at ``tolerance`` with every angle at least 30 degrees
+        classes at ``tolerance``; both keep every angle at least 30 degrees
         (:mod:`~equimesh.surface.optimize.joints`; steps 3 to 4 run again at
         a larger spacing when the remapped mesh lacks the area that needs,
         :func:`~equimesh.surface.optimize.joints.joint_spacing`); "paper" is the paper's.

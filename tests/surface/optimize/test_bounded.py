@@ -12,11 +12,13 @@ from section4_standin import parabolic_vault
 from equimesh import InternalError
 from equimesh.errors import InvalidSurfaceError
 from equimesh.io.provenance import provenance
+from equimesh.metrics import triangle_angles
 from equimesh.surface import pipeline
 from equimesh.surface.optimize import optimize_uv
 from equimesh.surface.optimize.problem import parameter_box
 from equimesh.surface.pipeline import mesh_surface
 from equimesh.testing.surfaces import dome
+from equimesh.tolerance import JOINT_ANGLE
 
 #: "Within 0.5 % of l": what counts as an exact member.
 BAND = 0.005
@@ -31,6 +33,13 @@ def in_bounds(mesh):
     ratio = mesh.edge_lengths() / mesh.length
     return bool(np.all((ratio >= 1.0) & (ratio <= 2.0)))
 
+
+#: What sound joints may cost bounded against the paper's share within 0.5 % of l: the paper's optimum is not a
+#: point bounded may end at (on the domes where bounded trails it, 35-39 % of its members outside [l, 2l] and 18-37
+#: triangles with an angle below 30 degrees), so its share is no bound; one member in a hundred, where the 101 domes of
+#: ``python experiments/bounded_sweep.py`` trail by at most 0.0074 (docs/decisions.md, "Two starts for bounded, and
+#: the best point kept").
+SOUND_COST = 0.01
 
 #: Generated patches per run: a few in the ci profile (each costs a "bounded" and a "paper" mesh,
 #: about 2 s), more in the thorough one.
@@ -50,17 +59,18 @@ EXAMPLES = {"thorough": 60}.get(os.environ.get("EQUIMESH_HYPOTHESIS_PROFILE", "c
 # node (docs/decisions.md, "Two starts for bounded, and the best point kept" and "A trust region per node").
 @example(rise=6.326581062262999, seed=2437408156, l=4.593367092801857)
 def test_bounded_keeps_members_in_bounds_and_reaches_the_papers_share(rise, seed, l):
-    """Mildly curved Bezier patches: 100 % of the members in [l, 2l], and a share within 0.5 % of l at least the
-    paper's."""
+    """Mildly curved Bezier patches: 100 % of the members in [l, 2l], every angle at least 30 degrees, and a share
+    within 0.5 % of l at least the paper's less ``SOUND_COST``."""
     surface = dome(rise=rise, seed=seed, jitter=1.0)
     bounded, paper = (mesh_surface(surface, l, optimize=o, placement="default") for o in ("bounded", "paper"))
     assert in_bounds(bounded)
-    assert share_exact(bounded) >= share_exact(paper)
+    assert triangle_angles(bounded.points, bounded.triangles).min() >= JOINT_ANGLE
+    assert share_exact(bounded) >= share_exact(paper) - SOUND_COST
 
 
 @pytest.mark.parametrize("rise", [2.0, 4.0, 8.0, 12.0, 15.0])
 def test_bounded_reaches_the_papers_share_on_the_stand_in_domes(rise):
-    """Rise 2 to 15 over 60, l = 4.5: paper 0.73, 0.73, 0.65, 0.31, 0.20; bounded 0.80, 0.77, 0.72, 0.67, 0.66."""
+    """Rise 2 to 15 over 60, l = 4.5: paper 0.73, 0.73, 0.65, 0.31, 0.20; bounded 0.82, 0.78, 0.73, 0.67, 0.68."""
     surface = dome(rise=rise, seed=0, jitter=1.0)
     bounded, paper = (mesh_surface(surface, 4.5, optimize=o, placement="default") for o in ("bounded", "paper"))
     assert in_bounds(bounded)
@@ -68,7 +78,7 @@ def test_bounded_reaches_the_papers_share_on_the_stand_in_domes(rise):
 
 
 def test_bounded_beats_paper_on_a_doubly_curved_dome():
-    """Rise 15 over 60: the paper's objective leaves 0.20 of the members within 0.5 % of l, bounded 0.66."""
+    """Rise 15 over 60: the paper's objective leaves 0.20 of the members within 0.5 % of l, bounded 0.68."""
     surface = dome(rise=15.0, seed=0, jitter=1.0)
     bounded, paper = (mesh_surface(surface, 4.5, optimize=o, placement="default") for o in ("bounded", "paper"))
     assert in_bounds(bounded) and not in_bounds(paper)

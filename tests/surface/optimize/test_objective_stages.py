@@ -509,7 +509,7 @@ def test_the_records():
     paper, bounded, classes = (OBJECTIVES[name] for name in ("paper", "bounded", "classes"))
     assert [r.name for r in OBJECTIVES.values()] == ["paper", "bounded", "classes"]
     assert (paper.slides, paper.bounds_members, paper.sound_joints) == (False, False, False)
-    assert (bounded.slides, bounded.bounds_members, bounded.sound_joints) == (True, True, False)
+    assert (bounded.slides, bounded.bounds_members, bounded.sound_joints) == (True, True, True)
     assert (classes.slides, classes.bounds_members, classes.sound_joints) == (True, True, True)
     assert paper.max_nodes == {"pardiso": 34_000, "cholmod": 34_000, "superlu": 34_000}
     assert bounded.max_nodes == {"pardiso": 50_000, "cholmod": 50_000, "superlu": 34_000}

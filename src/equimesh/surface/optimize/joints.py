@@ -2,7 +2,7 @@
 
 A joint where two members meet at a small angle cannot be built (the
 members' ends collide, the node plate grows, a weld cannot reach).  An
-objective with ``sound_joints`` (``"classes"``) keeps every triangle angle on the surface at least
+objective with ``sound_joints`` (``"bounded"``, ``"classes"``) keeps every triangle angle on the surface at least
 :data:`~equimesh.tolerance.JOINT_ANGLE` (30 degrees), so at most
 ``180 - 2 * 30 = 120`` degrees too: Chew's bound for meshes whose edges lie
 in [h, 2h] and whose circumradii are below h (``sin theta_min = e_min / 2R >= 1 / 2``),

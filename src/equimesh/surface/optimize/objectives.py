@@ -12,8 +12,10 @@ optimisation ends at with the stage whose costs are reported.
   boundary fixed (:func:`paper_stages`);
 * ``"bounded"`` (beyond the paper): every member in [l, 2l] as a hard
   constraint, and as many members as possible at one length by rounds of
-  reweighted (Cauchy) least squares, boundary nodes sliding
-  (:func:`bounded_stages`).
+  reweighted (Cauchy) least squares, boundary nodes sliding, joints sound
+  (:func:`bounded_stages`);
+* ``"classes"`` (beyond the paper): from bounded's result, the fewest length
+  classes at the fabrication tolerance (:func:`classes_stages`).
 """
 
 from dataclasses import dataclass, replace
@@ -77,6 +79,11 @@ def bounded_stages(problem):
     * the hard constraint ``l <= L_e <= 2 l`` for every member (Theorems 1 and
       3 kept on the surface): the result must satisfy it (checked here, and
       again by the pipeline);
+    * sound joints (the record's ``sound_joints``): every triangle angle on the
+      surface at least its bound (:mod:`~equimesh.surface.optimize.joints`), kept
+      in every round by the driver's barrier and acceptance test; the paper's
+      optimum below is only a start and is solved without them, and a round end
+      is kept only with them (:meth:`UVProblem.sound`);
     * rounds of iteratively reweighted least squares, each ``r_e = w_e (L_e / l - t_e)``
       with weights and targets frozen at the round's start: a member outside
       ``[t, 2 - BOUNDED_OFFSET]`` is pulled to the nearer end with the weight
@@ -466,7 +473,7 @@ OBJECTIVES = {
             "every member in [l, 2l], as many as possible at l; boundary nodes slide along the boundary",
             slides=True,
             bounds_members=True,
-            sound_joints=False,
+            sound_joints=True,
             max_nodes=_BOUNDED_MAX_NODES,
             max_jacobians=_BOUNDED_MAX_JACOBIANS,
         ),
