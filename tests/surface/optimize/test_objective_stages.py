@@ -512,9 +512,9 @@ def test_the_records():
     assert (bounded.slides, bounded.bounds_members, bounded.sound_joints) == (True, True, True)
     assert (classes.slides, classes.bounds_members, classes.sound_joints) == (True, True, True)
     assert paper.max_nodes == {"pardiso": 34_000, "cholmod": 34_000, "superlu": 34_000}
-    assert bounded.max_nodes == {"pardiso": 50_000, "cholmod": 50_000, "superlu": 34_000}
+    assert bounded.max_nodes == {"pardiso": 38_000, "cholmod": 38_000, "superlu": 20_000}
     assert classes.max_nodes == {"pardiso": 12_000, "cholmod": 12_000, "superlu": 6_000}
-    assert bounded.node_limit("superlu") == 34_000 and bounded.node_limit() == bounded.max_nodes[DEFAULT_FACTORISATION]
+    assert bounded.node_limit("superlu") == 20_000 and bounded.node_limit() == bounded.max_nodes[DEFAULT_FACTORISATION]
     assert paper.stages is paper_stages and bounded.stages is bounded_stages and classes.stages is classes_stages
 
 

@@ -430,12 +430,13 @@ class Objective:
 #: Every objective's record: what ``optimize=`` names.  The default node limits keep the optimisation of a default
 #: run to about two minutes on a 2-core machine with each factorisation, measured by
 #: ``EQUIMESH_FACTORISATION=F python experiments/optimisation_timing.py --length L --objective bounded`` on the
-#: reference dome (docs/performance.md, "The final optimisation"; CPU seconds, the machine shared): "bounded" took
-#: 46 s (CHOLMOD) and 40 s (PARDISO) at 34,031 nodes, 165 s and 207 s at 67,371 nodes, so 50,000 nodes for
-#: both; SuperLU, in its nested-dissection order (:mod:`~equimesh.surface.optimize.ordering`), 128.5 s at 34,031
-#: nodes, so 34,000.  "paper" took 59.2 s with SuperLU, the slowest, at 34,031 nodes, so 34,000 with each.
+#: reference dome (docs/performance.md, "The final optimisation"; CPU seconds of the whole call): "bounded", sound
+#: joints kept, took 71.7 s (PARDISO) and 75.4 s (CHOLMOD) at 32,608 nodes, 172.5 s and 161.1 s at 43,571, so
+#: 38,000 nodes for both (about two minutes on the line through those points on a log-log scale); SuperLU, in its
+#: nested-dissection order (:mod:`~equimesh.surface.optimize.ordering`), 138.6 s at 22,924 nodes and 240.4 s at
+#: 32,608, so 20,000.  "paper" took 59.2 s with SuperLU, the slowest, at 34,031 nodes, so 34,000 with each.
 _PAPER_MAX_NODES = {"pardiso": 34_000, "cholmod": 34_000, "superlu": 34_000}
-_BOUNDED_MAX_NODES = {"pardiso": 50_000, "cholmod": 50_000, "superlu": 34_000}
+_BOUNDED_MAX_NODES = {"pardiso": 38_000, "cholmod": 38_000, "superlu": 20_000}
 #: "classes" (``/usr/bin/time equimesh mesh experiments/surfaces/reference_dome.json --optimize classes --max-nodes
 #: none -l L``, CPU seconds, the machine shared): with PARDISO 9.0 s at 5,716 nodes (l = 1.24), 17.9 s at 11,357
 #: (l = 0.88) and 56.4 s at 22,911 (l = 0.62); at 11,357 nodes 21.6 s with CHOLMOD and 50.0 s with SuperLU
