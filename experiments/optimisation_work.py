@@ -9,8 +9,10 @@ meshed by :func:`equimesh.mesh_surface` (default placement, no size limit) once 
 of the optimisation (the remapped mesh: the share of its members shorter than ``REACH_LENGTH`` l on the surface,
 :func:`~equimesh.surface.optimize.members.short_share`, and its shortest and longest member over l), then with each
 objective (``"classes"`` only up to its node limit): the solver's Jacobian evaluations (the result's ``njev``, the
-unit of ``Objective.max_jacobians``) or the refusal.  The work bounds and ``REACH_SHARE`` are set from this table
-(docs/decisions.md, "A work bound for the optimisation").
+unit of ``Objective.max_jacobians``) and the mesh's nodes, or the refusal (with the start's nodes).  An objective
+with sound joints may mesh the plane again at a larger spacing (docs/decisions.md, "Sound joints"): its nodes are
+then fewer than the start's, whose share of short members is the one given.  The work bounds and ``REACH_SHARE``
+are set from this table (docs/decisions.md, "A work bound for the optimisation").
 
 Writes::
 
@@ -120,7 +122,9 @@ def measure(case):
         except EquimeshError as error:
             rows.append({**result, "outcome": f"refused: {error}"})
             continue
-        rows.append({**result, "jacobians": int(mesh.stages.optimization.njev), "outcome": "meshed"})
+        rows.append(
+            {**result, "nodes": len(mesh.uv), "jacobians": int(mesh.stages.optimization.njev), "outcome": "meshed"}
+        )
     return rows
 
 
