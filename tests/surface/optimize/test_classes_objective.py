@@ -118,8 +118,8 @@ def test_classes_is_a_record_with_sound_joints_and_bounded_members():
 def test_sound_joints_mesh_the_plane_again_where_the_start_lacks_area(name, objective):
     """Under sound joints a remapped mesh lacking more than ``JOINT_DEFICIT`` of the area members at least l with
     angles at most 120 degrees need (the saddle lacks 1.1 %) is meshed again with its lattice at ``joint_spacing l``;
-    one that lacks less (the dome), and the paper's objective always, keep the paper's l; members are checked
-    against l."""
+    one that lacks less (the dome), and the paper's objective always, keep the paper's l; under an objective that
+    bounds them, the members are in [l, 2l]."""
     surface = load_surface(SURFACES / "saddle.json") if name == "saddle" else dome(rise=8.0, seed=1, jitter=1.0)
     l, sound = 5.0, OBJECTIVES[objective].sound_joints
     first = mesh_surface(surface, l, optimize="none").stages

@@ -78,7 +78,8 @@ def test_a_bound_at_the_work_of_a_run_changes_nothing_and_one_below_keeps_the_be
 
 
 def test_a_small_bound_refuses_a_normal_input_naming_the_members_outside(monkeypatch, jacobians):
-    """Three rounds (12 Jacobians): none has ended with every member in [l, 2l] (the fifth, at 20, is the first)."""
+    """Three rounds (12 Jacobians): none has ended with every member in [l, 2l]; the fifth, at 20, is the first, so a
+    bound of 20 returns it."""
     bounded_to(monkeypatch, "bounded", 12)
     with pytest.raises(
         InvalidSurfaceError,
@@ -87,6 +88,9 @@ def test_a_small_bound_refuses_a_normal_input_naming_the_members_outside(monkeyp
     ):
         mesh_surface(dome(**SURFACE), 5.0, optimize="bounded", placement="default")
     assert sum(jacobians) <= 12
+    bounded_to(monkeypatch, "bounded", 20)
+    result = mesh_surface(dome(**SURFACE), 5.0, optimize="bounded", placement="default").stages.optimization
+    assert result.work_bound_reached and result.njev == 20
 
 
 def test_the_bounds_cover_each_objective_s_own_guards():

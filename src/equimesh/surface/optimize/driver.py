@@ -151,9 +151,11 @@ def optimize_uv(
     Raises
     ------
     InvalidSurfaceError
-        The objective has a hard constraint (``"bounded"``: every member in
-        [l, 2l]) and no point satisfying it was found, or its start is out of
-        reach of it (:func:`~equimesh.surface.optimize.members.out_of_reach`);
+        The objective has a hard constraint (``bounds_members``: every member in
+        [l, 2l]; ``sound_joints``: every triangle angle at least its bound,
+        :mod:`~equimesh.surface.optimize.joints`) and no point satisfying it was
+        found, or its start is out of reach of [l, 2l]
+        (:func:`~equimesh.surface.optimize.members.out_of_reach`);
         the message suggests a smaller l, a finer grid (``surface.finer`` names
         what refines a chart, "a finer auxiliary grid" by default) or
         ``optimize='paper'``.  Also when the solver's Jacobian evaluations would

@@ -472,7 +472,7 @@ OBJECTIVES = {
         Objective(
             "bounded",
             bounded_stages,
-            "every member in [l, 2l], as many as possible at l; boundary nodes slide along the boundary",
+            "every member in [l, 2l], as many as possible at l, joints sound; boundary nodes slide along the boundary",
             slides=True,
             bounds_members=True,
             sound_joints=True,
