@@ -30,6 +30,7 @@ def test_two_domes_give_the_same_csv_in_process_and_on_two_workers(sweep, tmp_pa
     assert (one / "bounded_sweep.csv").read_bytes() == (two / "bounded_sweep.csv").read_bytes()
     frame = pd.read_csv(one / "bounded_sweep.csv", keep_default_na=False)
     assert list(frame["index"]) == [0, 1] and (frame["bounded_share_in_l_2l"] == 1.0).all()
+    assert (frame["bounded_min_angle"] >= 30.0).all() and (frame["paper_min_angle"] > 0.0).all()
     assert (frame["margin"] == frame["bounded_share_within_0.5pct"] - frame["paper_share_within_0.5pct"]).all()
     assert (pd.read_csv(one / "bounded_sweep_times.csv")[["paper_seconds", "bounded_seconds"]] > 0).all().all()
     report = (one / "bounded_sweep.md").read_text()
