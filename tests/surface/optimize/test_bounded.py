@@ -35,10 +35,10 @@ def in_bounds(mesh):
 
 
 #: What sound joints may cost bounded against the paper's share within 0.5 % of l: the paper's optimum is not a
-#: point bounded may end at (on the domes where bounded trails it, 35-45 % of its members outside [l, 2l] and angles
-#: down to 11 degrees), so its share is no bound.  Five members in a hundred: domes 0 to 140 of ``python
-#: experiments/bounded_sweep.py --count 241`` trail by at most 0.0424 (dome 136), the next 100 by at most 0.0278
-#: (docs/decisions.md, "Two starts for bounded, and the best point kept").
+#: point bounded may end at (on the 8 domes where bounded trails it most, 36-45 % of its members outside [l, 2l] and
+#: smallest angles of 11 to 18 degrees), so its share is no bound.  Five members in a hundred: domes 0 to 140 of
+#: ``python experiments/bounded_sweep.py --count 241`` trail by at most 0.0424 (dome 136), the next 100 by at most
+#: 0.0278 (docs/decisions.md, "Two starts for bounded, and the best point kept").
 SOUND_COST = 0.05
 
 #: Generated patches per run: a few in the ci profile (each costs a "bounded" and a "paper" mesh,
