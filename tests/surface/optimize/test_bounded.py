@@ -12,6 +12,7 @@ from section4_standin import parabolic_vault
 from equimesh import InternalError
 from equimesh.errors import InvalidSurfaceError
 from equimesh.io.provenance import provenance
+from equimesh.mesh import G1
 from equimesh.metrics import triangle_angles
 from equimesh.surface import pipeline
 from equimesh.surface.optimize import optimize_uv
@@ -35,11 +36,11 @@ def in_bounds(mesh):
 
 
 #: What sound joints may cost bounded against the paper's share within 0.5 % of l: the paper's optimum is not a
-#: point bounded may end at (on the 8 domes where bounded trails it most, 36-45 % of its members outside [l, 2l] and
-#: smallest angles of 11 to 18 degrees), so its share is no bound.  Five members in a hundred: domes 0 to 140 of
-#: ``python experiments/bounded_sweep.py --count 241`` trail by at most 0.0424 (dome 136), the next 100 by at most
-#: 0.0278 (docs/decisions.md, "Two starts for bounded, and the best point kept").
-SOUND_COST = 0.05
+#: point bounded may end at (on the 7 domes where bounded trails it, 37-41 % of its members outside [l, 2l] and
+#: smallest angles of 15 to 19 degrees), so its share is no bound.  Two and a half members in a hundred: domes 0 to
+#: 240 of ``python experiments/bounded_sweep.py --count 441`` trail by at most 0.0192 (dome 180), the next 200 not at
+#: all (docs/decisions.md, "Two starts for bounded, and the best point kept").
+SOUND_COST = 0.025
 
 #: Generated patches per run: a few in the ci profile (each costs a "bounded" and a "paper" mesh,
 #: about 2 s), more in the thorough one.
@@ -58,9 +59,9 @@ EXAMPLES = {"thorough": 60}.get(os.environ.get("EQUIMESH_HYPOTHESIS_PROFILE", "c
 # Dome 3 of experiments/bounded_sweep.py, where the bounded share fell below the paper's without the trust region per
 # node (docs/decisions.md, "Two starts for bounded, and the best point kept" and "A trust region per node").
 @example(rise=6.326581062262999, seed=2437408156, l=4.593367092801857)
-# Dome 136 of experiments/bounded_sweep.py, where bounded trails the paper's share most under sound joints: 0.6740
-# against 0.7164.
-@example(rise=7.609704750712571, seed=555580331, l=4.562972604246563)
+# Dome 180 of experiments/bounded_sweep.py, where bounded trails the paper's share most under sound joints: 0.6880
+# against 0.7073.
+@example(rise=7.5449186591664645, seed=3130914487, l=4.865769583295538)
 def test_bounded_keeps_members_in_bounds_and_reaches_the_papers_share(rise, seed, l):
     """Mildly curved Bezier patches: 100 % of the members in [l, 2l], every angle at least 30 degrees, and a share
     within 0.5 % of l at least the paper's less ``SOUND_COST``."""
@@ -153,7 +154,9 @@ def test_experiment_measures_a_surface_and_reports_the_target(load_experiment):
 
 
 def test_the_papers_stage_holds_the_boundary_nodes(monkeypatch):
-    """The paper's optimum that "bounded" compares with is the paper's problem: the sliding boundary nodes stay put."""
+    """The paper's optimum that "bounded" compares with holds the boundary as the paper does (the sliding boundary
+    nodes stay put) and keeps the joints sound: its residuals are the G1 members', one of the fold-over barrier per
+    triangle and one of the angle barrier per angle."""
     from equimesh.surface.optimize import driver
 
     calls = []
@@ -161,13 +164,14 @@ def test_the_papers_stage_holds_the_boundary_nodes(monkeypatch):
 
     def spy(residuals, jacobian, x0, lower, upper, **kwargs):
         solution = real(residuals, jacobian, x0, lower, upper, **kwargs)
-        calls.append((np.array(x0), lower == upper, solution.x))
+        calls.append((np.array(x0), lower == upper, solution.x, len(residuals(x0))))
         return solution
 
     monkeypatch.setattr(driver, "least_squares", spy)
     mesh = mesh_surface(dome(rise=12.0), 5.0, placement="default")
-    held = [(x0, h, x) for x0, h, x in calls if h.any()]
+    held = [(x0, h, x, n) for x0, h, x, n in calls if h.any()]
     assert len(held) == 1  # one solve of the paper's objective
-    x0, h, x = held[0]
+    x0, h, x, n = held[0]
+    assert n == np.count_nonzero(mesh.edge_groups == G1) + 4 * len(mesh.triangles)
     assert h.sum() == mesh.n_boundary - 4  # every boundary node but the corners has one variable, held
     assert np.array_equal(x[h], x0[h]) and not np.array_equal(x[~h], x0[~h])

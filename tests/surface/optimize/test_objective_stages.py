@@ -89,7 +89,6 @@ def test_a_series_ends_at_a_settled_round_inside_and_keeps_the_start():
     step[0] = 1.0  # node 12 along u: 30 per unit, limited to 0.1 l = 0.8
     np.testing.assert_allclose(first.limit(step), step * 0.8 / 30.0, rtol=1e-12)
     assert papers.description == paper_stage(p).description and papers.ftol == BOUNDED_START_FTOL
-    assert papers.joints is False  # the paper's problem, without the angle barrier
     np.testing.assert_array_equal(papers.start, p.x0)
     np.testing.assert_array_equal(papers.hold, p.sliding_variables)
     assert last is first and np.array_equal(end, p.x0)
@@ -106,7 +105,7 @@ def test_the_papers_start_is_taken_when_its_share_is_larger():
     assert len(seen) == 4
     released, second = seen[2], seen[3]
     assert released.description == paper_stage(p).description and released.start is None and released.hold is None
-    assert released.ftol == PAPER_FTOL and released.joints is False
+    assert released.ftol == PAPER_FTOL
     assert second.description.endswith("round 1") and second.start is None
     assert last is second and np.array_equal(end, better)
 
@@ -512,9 +511,9 @@ def test_the_records():
     assert (bounded.slides, bounded.bounds_members, bounded.sound_joints) == (True, True, True)
     assert (classes.slides, classes.bounds_members, classes.sound_joints) == (True, True, True)
     assert paper.max_nodes == {"pardiso": 34_000, "cholmod": 34_000, "superlu": 34_000}
-    assert bounded.max_nodes == {"pardiso": 38_000, "cholmod": 38_000, "superlu": 20_000}
+    assert bounded.max_nodes == {"pardiso": 48_000, "cholmod": 48_000, "superlu": 27_000}
     assert classes.max_nodes == {"pardiso": 12_000, "cholmod": 12_000, "superlu": 6_000}
-    assert bounded.node_limit("superlu") == 20_000 and bounded.node_limit() == bounded.max_nodes[DEFAULT_FACTORISATION]
+    assert bounded.node_limit("superlu") == 27_000 and bounded.node_limit() == bounded.max_nodes[DEFAULT_FACTORISATION]
     assert paper.stages is paper_stages and bounded.stages is bounded_stages and classes.stages is classes_stages
 
 

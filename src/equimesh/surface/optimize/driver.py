@@ -250,7 +250,7 @@ def _solve(problem, stage, x, damping, triangles, barrier, normal_equations, fto
     """One stage solved from ``x`` with the fold-over guards; a stage with a hard constraint that ends outside it is
     solved on at ``PAPER_FTOL``.  Every solve's Jacobians are counted in ``work`` (a :class:`_Work`), which ends the
     stage with :class:`_OutOfWork` when they would exceed its bound."""
-    joints = problem.joints if stage.joints else None
+    joints = problem.joints
     guard = _Guard(problem, triangles, (stage.feasible, None if joints is None else joints.sound), x)
     solve = with_barriers(problem, stage, barrier, joints, x)
     tol = stage.ftol if ftol is None else ftol

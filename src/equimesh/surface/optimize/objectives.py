@@ -81,9 +81,9 @@ def bounded_stages(problem):
       again by the pipeline);
     * sound joints (the record's ``sound_joints``): every triangle angle on the
       surface at least its bound (:mod:`~equimesh.surface.optimize.joints`), kept
-      in every round by the driver's barrier and acceptance test; the paper's
-      optimum below is only a start and is solved without them, and a round end
-      is kept only with them (:meth:`UVProblem.sound`);
+      in every solve by the driver's barrier and acceptance test, the paper's
+      objective below included, and a round end is kept only with them
+      (:meth:`UVProblem.sound`);
     * rounds of iteratively reweighted least squares, each ``r_e = w_e (L_e / l - t_e)``
       with weights and targets frozen at the round's start: a member outside
       ``[t, 2 - BOUNDED_OFFSET]`` is pulled to the nearer end with the weight
@@ -112,7 +112,7 @@ def bounded_stages(problem):
     * two starts, because the rounds are a local method: first the remapped
       mesh; then the optimum of the paper's objective (Section 4's last step,
       :func:`paper_stage`, solved from the remapped mesh with the
-      boundary nodes held, so that it is the paper's problem, to
+      boundary nodes held, as the paper does, but under sound joints, to
       :data:`~equimesh.tolerance.BOUNDED_START_FTOL`: only a start).  If its share
       of members within :data:`~equimesh.tolerance.BOUNDED_BAND` of l beats
       every point in [l, 2l] kept so far, the boundary nodes are released
@@ -206,17 +206,16 @@ def bounded_stages(problem):
 
     try:
         yield from series(problem.x0)
-        # The paper's optimum, boundary held (the paper's problem, as optimize="paper"), then rounds from it if it has
-        # the larger share: the boundary released (the paper's objective solved on) first.
+        # The paper's optimum under sound joints, boundary held (as optimize="paper" holds it), then rounds from it if
+        # it has the larger share: the boundary released (the paper's objective solved on) first.
         x = yield replace(
             paper_stage(problem),
             start=problem.x0,
             hold=problem.sliding_variables,
-            joints=False,
             ftol=BOUNDED_START_FTOL,
         )
         if share(lengths(x) / l) > best["share"]:
-            x = yield replace(paper_stage(problem), joints=False)
+            x = yield paper_stage(problem)
             yield from series(x)
     except WorkSpent:  # the work bound: the best round end in [l, 2l] so far, if any
         if best["x"] is None:
@@ -431,12 +430,12 @@ class Objective:
 #: run to about two minutes on a 2-core machine with each factorisation, measured by
 #: ``EQUIMESH_FACTORISATION=F python experiments/optimisation_timing.py --length L --objective bounded`` on the
 #: reference dome (docs/performance.md, "The final optimisation"; CPU seconds of the whole call): "bounded", sound
-#: joints kept, took 71.7 s (PARDISO) and 75.4 s (CHOLMOD) at 32,608 nodes, 172.5 s and 161.1 s at 43,571, so
-#: 38,000 nodes for both (about two minutes on the line through those points on a log-log scale); SuperLU, in its
-#: nested-dissection order (:mod:`~equimesh.surface.optimize.ordering`), 138.6 s at 22,924 nodes and 240.4 s at
-#: 32,608, so 20,000.  "paper" took 59.2 s with SuperLU, the slowest, at 34,031 nodes, so 34,000 with each.
+#: joints kept, took 48.2 s (PARDISO) and 56.3 s (CHOLMOD) at 32,608 nodes, 86.2 s and 99.6 s at 43,571, so
+#: 48,000 nodes for both (two minutes on the line through those points on a log-log scale: 51,400 and 47,900); SuperLU,
+#: in its nested-dissection order (:mod:`~equimesh.surface.optimize.ordering`), 95.2 s at 22,924 nodes and 153.4 s
+#: at 32,608, so 27,000.  "paper" took 59.2 s with SuperLU, the slowest, at 34,031 nodes, so 34,000 with each.
 _PAPER_MAX_NODES = {"pardiso": 34_000, "cholmod": 34_000, "superlu": 34_000}
-_BOUNDED_MAX_NODES = {"pardiso": 38_000, "cholmod": 38_000, "superlu": 20_000}
+_BOUNDED_MAX_NODES = {"pardiso": 48_000, "cholmod": 48_000, "superlu": 27_000}
 #: "classes" (``/usr/bin/time equimesh mesh experiments/surfaces/reference_dome.json --optimize classes --max-nodes
 #: none -l L``, CPU seconds, the machine shared): with PARDISO 9.0 s at 5,716 nodes (l = 1.24), 17.9 s at 11,357
 #: (l = 0.88) and 56.4 s at 22,911 (l = 0.62); at 11,357 nodes 21.6 s with CHOLMOD and 50.0 s with SuperLU

@@ -44,10 +44,6 @@ class Stage:
         later one does, and a stage that ends outside it is solved on to
         ``PAPER_FTOL``; if the point the optimisation ends at is outside, the
         surface is refused with ``violation(x)``, a phrase naming what is violated.
-    joints : bool
-        Keep the joints sound in this solve (:mod:`~equimesh.surface.optimize.joints`):
-        the driver appends the angle barrier, and an iterate whose every angle
-        meets its bound is followed by such iterates only.
     """
 
     residuals: Callable[[np.ndarray], np.ndarray]
@@ -60,4 +56,3 @@ class Stage:
     limit: Callable[[np.ndarray], np.ndarray] = None
     feasible: Callable[[np.ndarray], bool] = None
     violation: Callable[[np.ndarray], str] = None
-    joints: bool = True
