@@ -444,7 +444,7 @@ FACTORISATIONS = {"superlu": _SuperLU, "cholmod": _Cholmod, "pardiso": _Pardiso}
 _LIBRARIES = {"pardiso": pypardiso, "cholmod": _cvxopt_cholmod, "superlu": scipy}
 #: The factorisations whose library is installed, the fastest first (docs/performance.md, "The final
 #: optimisation"): PARDISO (the extra ``mkl``: pypardiso, where MKL exists), CHOLMOD (the extra ``fast``: cvxopt,
-#: wheels on every platform, about as fast), SuperLU (scipy, always; about six times slower).
+#: wheels on every platform, about as fast), SuperLU (scipy, always; about three times slower).
 INSTALLED = tuple(name for name, library in _LIBRARIES.items() if library is not None)
 #: The environment variable that names the default factorisation (e.g. ``superlu``, to measure an installation
 #: without the extras in the same checkout); by default the first of :data:`INSTALLED`.
