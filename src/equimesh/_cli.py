@@ -293,8 +293,30 @@ def _quiet(unraisable):
 
 def _fail(code, message):
     """Print ``message`` as one line on standard error and return ``code``."""
-    print("equimesh: " + " ".join(message.split()), file=sys.stderr)
+    _say("equimesh: " + " ".join(message.split()))
     return code
+
+
+def _say(text, stream=None):
+    """Print ``text`` on ``stream`` (standard error by default): progress, the summary, notes, the error line.
+
+    They only report a run, whose outcome is its exit code and its files: a stream that is closed or full (a reader
+    that quit, ``2>/dev/full``) is pointed at the null device and the run goes on, so it neither fails after its
+    outputs are written nor stops before them.
+    """
+    stream = sys.stderr if stream is None else stream
+    if stream is None:  # the descriptor was closed when the interpreter started
+        return
+    try:
+        print(text, file=stream, flush=True)
+    except (OSError, ValueError):  # a broken pipe, a full device, a closed file
+        try:
+            null = os.open(os.devnull, os.O_WRONLY)
+            if null != stream.fileno():
+                os.dup2(null, stream.fileno())
+                os.close(null)
+        except (OSError, ValueError):
+            pass
 
 
 def _output_dest(slot):
@@ -396,12 +418,12 @@ def _run_mesh(args):
         warnings.simplefilter("always", SurfaceWarning)
         surface = load_surface(args.surface, **({"object": args.object} if args.object is not None else {}))
     for warning in caught:
-        print(f"equimesh: warning: {warning.message}", file=sys.stderr)
+        _say(f"equimesh: warning: {warning.message}")
 
     def progress(stage, seconds):
         interrupt.check()
         if not args.quiet:
-            print(f"  {stage}: {seconds:.2f} s", file=sys.stderr)
+            _say(f"  {stage}: {seconds:.2f} s")
 
     given = {name: getattr(args, name) for name in ("max_nodes", "feature_angle") if name in args}
     with _library_quiet(), _Interrupt() as interrupt:
@@ -422,15 +444,14 @@ def _run_mesh(args):
     write(mesh, args.tolerance)
     if not args.quiet:
         n_g1 = int(mesh.g1_mask.sum())
-        print(
+        _say(
             f"wrote {', '.join(map(str, write.paths))}: {len(mesh.points)} nodes, {len(mesh.edges)} members "
-            f"({n_g1} in the equal-length group G1), {len(mesh.triangles)} triangles",
-            file=sys.stderr,
+            f"({n_g1} in the equal-length group G1), {len(mesh.triangles)} triangles"
         )
         text, notes = summary(mesh, args.optimize, args.tolerance, args.lengths)
-        print(text)
+        _say(text, sys.stdout)
         for note in notes:
-            print(f"equimesh: note: {note}", file=sys.stderr)
+            _say(f"equimesh: note: {note}")
     return 0
 
 
@@ -454,18 +475,22 @@ def _library_quiet():
         warnings.simplefilter("ignore", RuntimeWarning)
         try:
             saved = os.dup(1)
-        except OSError:  # file descriptor 1 is closed: nothing to silence
-            yield
-            return
+        except OSError:  # descriptor 1 is closed: the null device holds it meanwhile, so no file opened takes it
+            saved = None
         if sys.stdout is not None:
             sys.stdout.flush()
+        null = os.open(os.devnull, os.O_WRONLY)  # descriptor 1 itself if that was closed
+        if null != 1:
+            os.dup2(null, 1)
+            os.close(null)
         try:
-            with open(os.devnull, "wb") as null:
-                os.dup2(null.fileno(), 1)
             yield
         finally:
-            os.dup2(saved, 1)
-            os.close(saved)
+            if saved is None:
+                os.close(1)
+            else:
+                os.dup2(saved, 1)
+                os.close(saved)
 
 
 def _run_experiment(args):

@@ -8,6 +8,7 @@ import dataclasses
 import json
 import os
 import re
+import shlex
 import shutil
 import signal
 import subprocess
@@ -323,6 +324,28 @@ def test_console_script_and_help():
         assert done.returncode == 0 and "usage" in done.stdout
     done = subprocess.run([exe, "mesh", str(SADDLE), "--length", "0", "-o", "x.obj"], capture_output=True, text=True)
     assert done.returncode == 2 and done.stderr.count("\n") == 1
+
+
+@pytest.mark.parametrize(
+    "streams",
+    ["1>&-", "2>&-", "1>&- 2>&-", "1>/dev/full", "2>/dev/full", "a pipe nobody reads"],
+)
+def test_a_closed_or_full_stream_neither_fails_nor_stops_a_run(streams, tmp_path):
+    """Progress lines, the summary and notes only report a run: with standard output or error closed, on a full
+    device or a pipe whose reader quit, the mesh is written and the exit code is 0."""
+    exe = shutil.which("equimesh") or str(Path(sys.executable).with_name("equimesh"))
+    mesh = tmp_path / "m.obj"
+    command = [exe, "mesh", str(SADDLE), "--length", "5", "-o", str(mesh)]
+    if streams == "a pipe nobody reads":
+        read, write = os.pipe()
+        os.close(read)
+        done = subprocess.run(command, stdout=write, stderr=subprocess.DEVNULL, check=False)
+        os.close(write)
+    else:
+        if "/dev/full" in streams and not Path("/dev/full").exists():
+            pytest.skip("no /dev/full on this system")
+        done = subprocess.run(" ".join([*map(shlex.quote, command), streams]), shell=True, check=False)
+    assert done.returncode == 0 and len(meshio.read(mesh).cells_dict["triangle"]) > 0
 
 
 def test_tiny_length_is_refused_in_one_line(tmp_path, capsys):

@@ -7,10 +7,12 @@ import pandas as pd
 import pytest
 from hypothesis import example, given, settings
 from hypothesis import strategies as st
+from repository import SURFACES
 from section4_standin import parabolic_vault
 
 from equimesh import InternalError
 from equimesh.errors import InvalidSurfaceError
+from equimesh.io import load_surface
 from equimesh.io.provenance import provenance
 from equimesh.mesh import G1
 from equimesh.metrics import triangle_angles
@@ -125,6 +127,16 @@ def test_no_feasible_mesh_is_a_clear_error():
     edges = np.array([[0, 1], [1, 2], [0, 2]])
     with pytest.raises(InvalidSurfaceError, match=r"optimisation \(bounded\): no mesh with every member in \[l, 2l\]"):
         optimize_uv(surface, uv, edges, np.zeros(3), 1.0, fixed=[0, 1], objective="bounded")
+
+
+@pytest.mark.parametrize("objective", ["bounded", "classes"])
+def test_a_start_with_no_free_node_is_held_to_the_band(objective):
+    """The reference dome at l = 83: its flattened sides are longer than l, their chords on the surface (80) shorter,
+    and every node is a corner, so nothing can move: refused as any end outside [l, 2l] is, never returned."""
+    surface = load_surface(SURFACES / "reference_dome.json")
+    with pytest.raises(InvalidSurfaceError, match=r"no mesh with every member in \[l, 2l\] found, no node free"):
+        mesh_surface(surface, 83.0, optimize=objective)
+    assert mesh_surface(surface, 83.0, optimize="paper").stages.optimization.message == "no free nodes"
 
 
 def test_a_member_outside_the_bounds_is_an_internal_error(monkeypatch):

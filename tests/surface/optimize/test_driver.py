@@ -332,7 +332,7 @@ def test_an_end_outside_the_constraint_is_refused(monkeypatch):
 
 def test_bounds_out_of_reach_are_refused(monkeypatch):
     """The joints' check fires: an objective with sound joints whose stages end with an angle below its bound is
-    refused in the surface's terms, naming the angles."""
+    refused in the surface's terms, naming the angles; so is such a start where no node is free to move."""
 
     def idle(problem):
         return Stage(lambda x: np.zeros(1), lambda x: scipy.sparse.csr_matrix((1, len(x))), max_iterations=0)
@@ -349,6 +349,8 @@ def test_bounds_out_of_reach_are_refused(monkeypatch):
     )
     with pytest.raises(InvalidSurfaceError, match=r"use a smaller l, a finer auxiliary grid, or optimize='paper'"):
         run("idle")
+    with pytest.raises(InvalidSurfaceError, match=r"at least 30 degrees found, 18 of"):
+        run("idle", fixed=np.arange(len(UV)))  # no node free to move: the start is the end, held to the bound
 
 
 def test_the_joints_are_kept_in_a_stage_that_keeps_them(monkeypatch):

@@ -90,8 +90,13 @@ def captured_stdout():
     Yields a function returning what was printed.  The descriptor is restored
     in ``finally``, so nothing Triangle prints reaches our standard output.
     """
-    sys.stdout.flush()
-    saved = os.dup(1)
+    if sys.stdout is not None:  # None: descriptor 1 was closed when the interpreter started
+        sys.stdout.flush()
+    try:
+        saved = os.dup(1)
+    except OSError:  # descriptor 1 is closed: Triangle's prints go nowhere, and nothing opened here can take it
+        yield lambda: ""
+        return
     with tempfile.TemporaryFile(mode="w+b") as sink:
         text = []
         try:

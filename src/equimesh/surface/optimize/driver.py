@@ -192,7 +192,11 @@ def optimize_uv(
     stages = record.stages(problem)
     stage = next(stages)
     x0 = problem.x0
-    if len(x0) == 0:
+    if len(x0) == 0:  # nothing moves: the start is the end, held to the objective's promises as any end is
+        if record.bounds_members and not Members(problem).feasible(x0):
+            raise _refusal(objective, surface, f"found, no node free to move, {Members(problem).violation(x0)}")
+        if not problem.sound(x0):
+            raise _unsound(objective, surface, problem, x0)
         cost0 = _cost(stage, x0)
         return UVOptimization(uv, np.zeros(len(uv)), cost0, cost0, 0, 0, True, "no free nodes", objective)
     if record.bounds_members:
@@ -227,11 +231,7 @@ def optimize_uv(
     if stage.feasible is not None and not stage.feasible(x):
         raise _refusal(objective, surface, f"found, {stage.violation(x)}")
     if not problem.sound(x):
-        raise InvalidSurfaceError(
-            f"optimisation ({objective}): no mesh with every triangle angle at least {JOINT_ANGLE:g} degrees found, "
-            f"{problem.joints.violation(x)}; use a smaller l, {_finer(surface)}, "
-            "or optimize='paper' (which does not bound the angles)"
-        )
+        raise _unsound(objective, surface, problem, x)
     return UVOptimization(
         np.array(problem.uv_of(x)),  # a copy: the problem keeps the one it shares
         problem.offsets_of(x),
@@ -338,6 +338,15 @@ def _refusal(objective, surface, why):
     return InvalidSurfaceError(
         f"optimisation ({objective}): no mesh with every member in [l, 2l] {why}; use a smaller l, {_finer(surface)}, "
         "or optimize='paper' (which does not bound the members on the surface)"
+    )
+
+
+def _unsound(objective, surface, problem, x):
+    """The refusal of an objective that keeps the joints sound, ending at ``x`` with an angle below its bound."""
+    return InvalidSurfaceError(
+        f"optimisation ({objective}): no mesh with every triangle angle at least {JOINT_ANGLE:g} degrees found, "
+        f"{problem.joints.violation(x)}; use a smaller l, {_finer(surface)}, "
+        "or optimize='paper' (which does not bound the angles)"
     )
 
 
