@@ -1,4 +1,5 @@
-"""Argument checks shared by every verb: real numbers, counts, the target length l, arrays of reals, numbers as text.
+"""Argument checks shared by every verb: real numbers, counts, the target length l, arrays of reals, of points and of
+indices, numbers as text.
 
 Each check returns the value in the form the code uses (a float, an int, a
 float array) or raises an :class:`~equimesh.errors.EquimeshError` subclass
@@ -112,6 +113,33 @@ def real_array(value, what, error):
             f"{what} must be real numbers within the float range, but {f'entry {index}' if index else 'it'} is "
             f"{_beyond_floats(flat[k])}"
         ) from None
+
+
+def finite_rows(value, width, what, row, error):
+    """``value`` as an (N, ``width``) float array of finite numbers, raising ``error`` otherwise: ``what`` names the
+    array (its shape is wrong), ``row`` is a format string naming row k (it is not finite)."""
+    points = real_array(value, what, error)
+    if points.ndim != 2 or points.shape[1] != width:
+        raise error(f"{what} must be an (N, {width}) array, got shape {points.shape}")
+    bad = np.flatnonzero(~np.all(np.isfinite(points), axis=1))
+    if bad.size:
+        raise error(f"{row.format(int(bad[0]))} is not finite: {points[bad[0]].tolist()}")
+    return points
+
+
+def index_rows(value, width, count, what, row, target, error):
+    """``value`` as a (K, ``width``) int64 array of indices of ``count`` ``target`` items (empty: (0, width)),
+    raising ``error`` otherwise: ``what`` names the array (not integers of that shape), ``row`` is a format string
+    naming row k (an index outside 0 .. count - 1, compared in the caller's dtype: no uint64 wraps to -1)."""
+    raw = np.asarray(value)
+    if raw.size == 0:
+        return np.zeros((0, width), dtype=np.int64)
+    if raw.ndim != 2 or raw.shape[1] != width or not np.issubdtype(raw.dtype, np.integer):
+        raise error(f"{what} must be an (M, {width}) array of {target} indices, got shape {raw.shape} of {raw.dtype}")
+    bad = np.flatnonzero(np.any((raw < 0) | (raw >= count), axis=1))
+    if bad.size:
+        raise error(f"{row.format(int(bad[0]))} refers to a {target} outside 0 .. {count - 1}: {raw[bad[0]].tolist()}")
+    return raw.astype(np.int64)
 
 
 def _overflows(x):

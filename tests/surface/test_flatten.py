@@ -31,6 +31,36 @@ def orientations(points, triangles):
     return orient(*(points[triangles[:, k]] for k in range(3)))
 
 
+FLATTEN_FAULTS = {
+    "no triangles": ({"triangles": np.zeros((0, 3), dtype=int)}, "no triangles to flatten"),
+    "points in the plane": ({"points3d": np.zeros((9, 2))}, r"points3d must be an \(N, 3\) array, got shape \(9, 2\)"),
+    "a point not finite": (
+        {"points3d": np.where(np.arange(9)[:, None] == 4, np.nan, np.ones((9, 3)))},
+        "surface point 4 is not finite",
+    ),
+    "a triangle to no point": (
+        {"triangles": [[0, 1, 9]]},
+        r"triangle 0 refers to a point outside 0 \.\. 8: \[0, 1, 9\]",
+    ),
+    "a triangle to point -1": ({"triangles": [[1, -1, 2]]}, r"triangle 0 refers to a point outside 0 \.\. 8"),
+    "a fractional index": ({"triangles": [[0, 1, 3.7]]}, r"triangles must be an \(M, 3\) array of point indices"),
+    "four corners": ({"triangles": [[0, 1, 4, 3]]}, r"triangles must be an \(M, 3\) array of point indices"),
+    "uv of another mesh": ({"uv": np.zeros((4, 2))}, r"uv must have one row per surface point \(9\), got 4"),
+}
+
+
+@pytest.mark.parametrize("case", FLATTEN_FAULTS)
+def test_bad_arguments_are_refused_by_name(case):
+    """Step 2's arguments are checked before any work: each fault is an error of equimesh's naming it (a point of
+    nan was reported as two coinciding points, a negative index was read from the end)."""
+    grid = auxiliary_grid(2, 2)
+    args = {"points3d": dome().evaluate(grid.uv[:, 0], grid.uv[:, 1]), "triangles": grid.triangles, "uv": grid.uv}
+    given, message = FLATTEN_FAULTS[case]
+    args.update(given)
+    with pytest.raises(InvalidSurfaceError, match=message):
+        flatten(args["points3d"], args["triangles"], uv=args["uv"])
+
+
 @pytest.mark.parametrize("shear", [0.0, 25.0])
 def test_flat_surface_is_flattened_exactly(shear):
     g, x, f = run(flat_patch(shear=shear), 9, 13)

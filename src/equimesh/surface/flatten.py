@@ -59,6 +59,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse
 
+from .._checks import finite_rows, index_rows
 from .._geometry import power_of_two_scale
 from ..errors import InvalidSurfaceError, at, coordinates, number
 from ..mesh import edge_lengths, triangle_orient, unique_edges
@@ -162,14 +163,24 @@ def flatten(
     Raises
     ------
     InvalidSurfaceError
-        Two auxiliary nodes coincide on the surface, the auxiliary edges'
+        An argument is malformed (points not finite (N, 3) rows, no
+        triangles, an index that is no point, ``uv`` or ``x0`` not one finite
+        row per point), two auxiliary nodes coincide on the surface, the auxiliary edges'
         lengths are too far apart for eq. (1) (:func:`check_edge_lengths`),
         or the result folds over.
     """
-    x3 = np.asarray(points3d, dtype=float)
-    tri = np.asarray(triangles, dtype=np.int64)
-    uv = None if uv is None else np.asarray(uv, dtype=float)
-    e = unique_edges(tri) if edges is None else np.asarray(edges, dtype=np.int64)
+    x3 = finite_rows(points3d, 3, "points3d", "surface point {}", InvalidSurfaceError)
+    if np.asarray(triangles).size == 0:
+        raise InvalidSurfaceError("no triangles to flatten")
+    n = len(x3)
+    tri = index_rows(triangles, 3, n, "triangles", "triangle {}", "point", InvalidSurfaceError)
+    uv = None if uv is None else _rows_of(uv, n, "uv", "the (u, v) of point {}")
+    x0 = None if x0 is None else _rows_of(x0, n, "x0", "the start of point {}")
+    e = (
+        unique_edges(tri)
+        if edges is None
+        else index_rows(edges, 2, n, "edges", "edge {}", "point", InvalidSurfaceError)
+    )
     ls = edge_lengths(x3, e)
     if not np.all(ls > 0):
         a, b = e[int(np.flatnonzero(~(ls > 0))[0])]
@@ -197,6 +208,14 @@ def flatten(
         f"flattening folds {bad.size} of {len(tri)} auxiliary triangles over{near}; "
         "the surface is degenerate or too strongly curved for this grid"
     )
+
+
+def _rows_of(value, n, what, row):
+    """``value`` as ``n`` finite rows of two numbers, one per surface point (:func:`flatten`'s ``uv`` and ``x0``)."""
+    rows = finite_rows(value, 2, what, row, InvalidSurfaceError)
+    if len(rows) != n:
+        raise InvalidSurfaceError(f"{what} must have one row per surface point ({n}), got {len(rows)}")
+    return rows
 
 
 def _solve(guess, tri, e, ls, gauge, area_floor, options):

@@ -34,6 +34,7 @@ from dataclasses import dataclass
 import matplotlib.tri
 import numpy as np
 
+from .._checks import finite_rows
 from .._geometry import between, nearest_segment
 from ..errors import InternalError, InvalidSurfaceError, at
 from .charts.chart import Domain
@@ -111,11 +112,17 @@ def remap(surface, plane_points, flat_points, grid, *, on_boundary=None, outline
     Raises
     ------
     InvalidSurfaceError
-        If the surface is not finite at a remapped (u, v).
+        If the surface is not finite at a remapped (u, v), or an argument is
+        malformed: points not finite (K, 2) or (N, 2) rows, ``grid`` no
+        auxiliary triangulation or of another size than ``flat_points``.
     """
     loc = locate(plane_points, flat_points, grid, on_boundary=on_boundary, outline=outline, snap_tol=snap_tol)
     points = evaluate(surface, loc.uv)
     return Remap(loc.uv, loc.triangle, loc.alpha, loc.beta, loc.on_boundary, loc.segment, loc.t, points)
+
+
+#: What :func:`remap` reads of the auxiliary triangulation.
+_GRID = ("uv", "triangles", "boundary", "boundary_sides", "domain")
 
 
 def locate(plane_points, flat_points, grid, *, on_boundary=None, outline=None, snap_tol=None):
@@ -123,8 +130,16 @@ def locate(plane_points, flat_points, grid, *, on_boundary=None, outline=None, s
 
     See :func:`remap` for the parameters; ``points`` of the result is None.
     """
-    x = np.asarray(plane_points, dtype=float).reshape(-1, 2)
-    flat = np.asarray(flat_points, dtype=float)
+    x = finite_rows(plane_points, 2, "plane_points", "plane point {}", InvalidSurfaceError)
+    if not all(hasattr(grid, name) for name in _GRID):
+        raise InvalidSurfaceError(
+            f"grid must be the auxiliary triangulation of step 1 (with {', '.join(_GRID)}), got {type(grid).__name__}"
+        )
+    flat = finite_rows(flat_points, 2, "flat_points", "flattened node {}", InvalidSurfaceError)
+    if len(flat) != len(grid.uv):
+        raise InvalidSurfaceError(
+            f"flat_points must have one row per node of the grid ({len(grid.uv)}), got {len(flat)}"
+        )
     tri = np.asarray(grid.triangles)
     k = len(x)
     boundary_path = np.zeros(k, dtype=bool)

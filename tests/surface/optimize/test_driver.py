@@ -92,6 +92,41 @@ def test_an_unknown_objective_or_factorisation_is_named():
         run(factorisation="nope")
 
 
+BAD_CALLS = {
+    "a length that is no number": ({"length": float("nan")}, "target length l must be positive and finite, got nan"),
+    "a length of zero": ({"length": 0.0}, "target length l must be positive and finite, got 0.0"),
+    "uv of three columns": ({"uv": np.zeros((len(UV), 3))}, r"uv must be an \(N, 2\) array, got shape \(16, 3\)"),
+    "a (u, v) not finite": ({"uv": np.where(np.arange(len(UV))[:, None] == 3, np.nan, UV)}, r"node 3 is not finite"),
+    "every node far outside the range": ({"uv": UV + 5.0}, r"edge 0 joins nodes \d+ and \d+ at one point"),
+    "an edge to no node": ({"edges": [[0, 1], [0, 16]]}, r"edge 1 refers to a node outside 0 \.\. 15: \[0, 16\]"),
+    "an edge to node -1": ({"edges": [[0, -1]]}, r"edge 0 refers to a node outside 0 \.\. 15"),
+    "an edge of fractions": ({"edges": EDGES + 0.5}, r"edges must be an \(M, 2\) array of node indices"),
+    "fewer labels than edges": ({"groups": GROUPS[:3]}, r"edge_groups must hold one label per edge \(\d+\)"),
+    "a fixed node that is none": ({"fixed": [0, 16]}, r"entry 1 of fixed refers to a node outside 0 \.\. 15"),
+    "a mask of fixed nodes too short": ({"fixed": np.ones(3, dtype=bool)}, r"one entry per node \(16\)"),
+    "a triangle to no node": ({"triangles": [[0, 1, 16]]}, r"triangle 0 refers to a node outside 0 \.\. 15"),
+}
+
+
+@pytest.mark.parametrize("case", BAD_CALLS)
+def test_bad_arguments_are_refused_by_name(case):
+    """A public verb's arguments are checked before any work: each fault is an error of equimesh's naming it (a
+    length of nan once made the solver damp forever, an edge to no node was an IndexError deep inside)."""
+    given, message = BAD_CALLS[case]
+    args = {"uv": UV, "edges": EDGES, "groups": GROUPS, "length": 8.0, "fixed": FIXED, "triangles": TRIANGLES}
+    args.update(given)
+    with pytest.raises(EquimeshError, match=message):
+        optimize_uv(
+            patch(),
+            args["uv"],
+            args["edges"],
+            args["groups"],
+            args["length"],
+            fixed=args["fixed"],
+            triangles=args["triangles"],
+        )
+
+
 def test_without_free_nodes_nothing_moves():
     """Every node fixed: the start, clipped into the domain, with the first stage's cost at it."""
     uv = UV.copy()

@@ -169,6 +169,31 @@ def test_a_failed_factorisation_is_damped_more(monkeypatch, failure):
     np.testing.assert_allclose(damping, [1e-3, 2e-3, 8e-3], rtol=1e-9)
 
 
+def test_normal_equations_no_damping_helps_end_the_solve():
+    """Residuals that are not numbers (a length of nan): every factorisation fails, the damping doubles its factor
+    until it is no number either, and the solve stops there, unconverged, instead of damping forever."""
+    a = scipy.sparse.csr_matrix(np.array([[2.0, 0.0], [1.0, 1.0], [0.0, 3.0]]))
+    system, solves = NormalEquations("superlu"), []
+    real = system.solve
+
+    def solve(lam, rhs):
+        solves.append(lam)
+        assert len(solves) < 10_000, "damped forever"
+        return real(lam, rhs)
+
+    system.solve = solve
+    solution = least_squares(
+        lambda x: a @ x - np.nan,
+        lambda x: a * np.nan,
+        np.zeros(2),
+        np.full(2, -10.0),
+        np.full(2, 10.0),
+        normal_equations=system,
+    )
+    assert not solution.converged and solution.message == "no damping made the normal equations factorisable"
+    assert solution.iterations == 0 and len(solves) < 100
+
+
 def test_a_limit_bounds_every_step_and_the_solve_still_converges():
     """``limit`` (a trust region per variable group) is applied to every step tried: on a linear problem whose
     minimum is far away, each accepted step stays within the limit, and the solve still ends at the minimum."""

@@ -35,7 +35,7 @@ import numpy as np
 import scipy.sparse
 import scipy.sparse.csgraph
 
-from ..._checks import real_array
+from ..._checks import finite_rows, index_rows
 from ...errors import InvalidSurfaceError, coordinates
 from ...mesh import edge_keys, half_edges
 from ...tolerance import SINGULAR_SIN
@@ -90,25 +90,10 @@ class TriangulatedSurface:
 
 
 def _parse(vertices, triangles):
-    v = real_array(vertices, "triangle mesh vertices", InvalidSurfaceError)
-    if v.ndim != 2 or v.shape[1] != 3:
-        raise InvalidSurfaceError(f"triangle mesh vertices must be an (N, 3) array, got shape {v.shape}")
-    bad = np.flatnonzero(~np.all(np.isfinite(v), axis=1))
-    if bad.size:
-        raise InvalidSurfaceError(f"vertex {int(bad[0])} of the triangle mesh is not finite: {v[bad[0]].tolist()}")
-    t = np.asarray(triangles)
-    if t.size == 0:
+    v = finite_rows(vertices, 3, "triangle mesh vertices", "vertex {} of the triangle mesh", InvalidSurfaceError)
+    if np.asarray(triangles).size == 0:
         raise InvalidSurfaceError("the mesh has no triangles")
-    if t.ndim != 2 or t.shape[1] != 3 or not np.issubdtype(t.dtype, np.integer):
-        raise InvalidSurfaceError(
-            f"triangles must be an (M, 3) array of vertex indices, got shape {t.shape} of {t.dtype}"
-        )
-    bad = np.flatnonzero(np.any((t < 0) | (t >= len(v)), axis=1))  # in the caller's dtype: no uint64 wraps to -1
-    if bad.size:
-        raise InvalidSurfaceError(
-            f"triangle {int(bad[0])} refers to a vertex outside 0 .. {len(v) - 1}: {t[bad[0]].tolist()}"
-        )
-    return v, t.astype(np.int64)
+    return v, index_rows(triangles, 3, len(v), "triangles", "triangle {}", "vertex", InvalidSurfaceError)
 
 
 def _merge(v, t):

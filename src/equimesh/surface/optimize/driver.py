@@ -35,6 +35,7 @@ import numpy as np
 import scipy.optimize
 import scipy.sparse
 
+from ..._checks import check_length, finite_rows, index_rows
 from ...classes import DEFAULT_TOLERANCE
 from ...errors import EquimeshError, InvalidSurfaceError
 from ...tolerance import JOINT_ANGLE, JOINT_WEIGHT, LM_INITIAL_DAMPING, PAPER_FTOL
@@ -150,6 +151,12 @@ def optimize_uv(
 
     Raises
     ------
+    EquimeshError
+        An argument is malformed, each named: ``length`` outside the
+        supported range (:class:`~equimesh.errors.InvalidLengthError`), ``uv``
+        not finite (N, 2) rows or so far outside the parameter range that
+        clipping joins an edge's nodes, an edge, triangle or fixed node that
+        is no node, ``edge_groups`` not one label per edge.
     InvalidSurfaceError
         The objective has a hard constraint (``bounds_members``: every member in
         [l, 2l]; ``sound_joints``: every triangle angle at least its bound,
@@ -170,23 +177,33 @@ def optimize_uv(
     except (KeyError, TypeError):
         raise EquimeshError(f"unknown objective {objective!r}; choose from {sorted(OBJECTIVES)}") from None
     normal_equations = NormalEquations(factorisation)  # one pattern for every stage: analysed once
+    length = check_length(length)
     lower, upper = parameter_box(surface)
-    uv = np.clip(np.array(uv, dtype=float).reshape(-1, 2), lower, upper)
+    uv = finite_rows(uv, 2, "uv", "the (u, v) of node {}", EquimeshError)
+    edges = index_rows(edges, 2, len(uv), "edges", "edge {}", "node", EquimeshError)
+    uv = _start(uv, edges, lower, upper)
+    edge_groups = np.asarray(edge_groups)
+    if edge_groups.shape != (len(edges),):
+        raise EquimeshError(f"edge_groups must hold one label per edge ({len(edges)}), got shape {edge_groups.shape}")
     slides = tuple(slides)
-    free = free_nodes(len(uv), fixed, slides)
+    free = free_nodes(len(uv), _nodes(fixed, len(uv)), slides)
     problem = UVProblem(
         surface,
         uv,
-        np.asarray(edges, dtype=np.int64),
-        np.asarray(edge_groups),
-        float(length),
+        edges,
+        edge_groups,
+        length,
         free,
         slides,
         surface_tolerance=float(surface_tolerance),
         tolerance=float(tolerance),
         catalogue=None if catalogue is None else np.asarray(catalogue, dtype=float) / float(length),
     )
-    tri = None if triangles is None else np.asarray(triangles, dtype=np.int64).reshape(-1, 3)
+    tri = (
+        None
+        if triangles is None
+        else index_rows(triangles, 3, len(uv), "triangles", "triangle {}", "node", EquimeshError)
+    )
     if record.sound_joints and tri is not None:
         problem = problem.with_joints(tri, joint_bounds(surface, uv, tri))
     stages = record.stages(problem)
@@ -326,6 +343,30 @@ class _Work:
         self.spent += solution.iterations + 1
         if capped and not solution.converged:
             raise _OutOfWork(solution.x)
+
+
+def _start(uv, edges, lower, upper):
+    """The start parameters ``uv`` (N, 2) clipped into the parameter box ``[lower, upper]`` (a remap's rounding),
+    refused by name where an edge then joins two nodes at one (u, v) (a start far outside the box)."""
+    uv = np.clip(uv, lower, upper)
+    same = np.flatnonzero(np.all(uv[edges[:, 0]] == uv[edges[:, 1]], axis=1))
+    if same.size:
+        a, b = map(int, edges[same[0]])
+        raise EquimeshError(
+            f"edge {int(same[0])} joins nodes {a} and {b} at one point, (u, v) = {uv[a].tolist()} in the surface's "
+            "parameter range"
+        )
+    return uv
+
+
+def _nodes(fixed, n):
+    """``fixed`` (node indices, or a mask of the ``n`` nodes) as node indices, refused by name if it is neither."""
+    raw = np.asarray(fixed)
+    if raw.dtype == bool:
+        if raw.shape != (n,):
+            raise EquimeshError(f"fixed as a mask must have one entry per node ({n}), got shape {raw.shape}")
+        return np.flatnonzero(raw)
+    return index_rows(raw.reshape(-1, 1), 1, n, "fixed", "entry {} of fixed", "node", EquimeshError).ravel()
 
 
 def _finer(surface):

@@ -139,7 +139,10 @@ def least_squares(
         retried = False
         while True:
             direction = system.solve(lam, rhs)
-            if direction is None:  # not numerically positive definite: damp more
+            if direction is None:  # not numerically positive definite: damp more, while the damping is a number
+                if not np.isfinite(lam * nu):  # no damping helps: the normal equations are not finite
+                    message = "no damping made the normal equations factorisable"
+                    return Solution(x, cost, iteration, evaluations, False, message, lam)
                 lam, nu, retried = lam * nu, 2.0 * nu, True
                 continue
             if limit is not None:
