@@ -12,7 +12,7 @@ import pytest
 
 import equimesh
 from equimesh import EquimeshError, InvalidLengthError, InvalidPolygonError
-from equimesh._checks import check_count, check_length, number_text, real_array, real_number
+from equimesh._checks import check_count, check_length, finite_rows, index_rows, number_text, real_array, real_number
 from equimesh.tolerance import MAX_LENGTH, MIN_LENGTH
 
 
@@ -155,3 +155,39 @@ def test_numbers_in_other_spellings_are_refused(text, whole, got):
 def test_counts_below_the_least_show_a_short_number():
     with pytest.raises(EquimeshError, match=r"^n must be an integer of at least 1, got an integer of 31 digits$"):
         check_count(-(10**30), "n")
+
+
+def test_finite_rows_returns_floats_and_names_the_shape_and_the_row():
+    """An (N, width) array of finite numbers comes back as floats; a wrong shape names the array, a row with a
+    non-finite entry names that row by the caller's format."""
+    rows = finite_rows([[1, 2], [3, 4]], 2, "points", "point {}", EquimeshError)
+    assert rows.dtype == float and rows.tolist() == [[1.0, 2.0], [3.0, 4.0]]
+    with pytest.raises(EquimeshError, match=r"^points must be an \(N, 2\) array, got shape \(1, 3\)$"):
+        finite_rows([[1, 2, 3]], 2, "points", "point {}", EquimeshError)
+    with pytest.raises(EquimeshError, match=r"^points must be an \(N, 2\) array, got shape \(2,\)$"):
+        finite_rows([1, 2], 2, "points", "point {}", EquimeshError)
+    with pytest.raises(EquimeshError, match=r"^point 1 is not finite: \[1\.0, inf\]$"):
+        finite_rows([[0, 0], [1, np.inf], [np.nan, 0]], 2, "points", "point {}", EquimeshError)
+
+
+def test_index_rows_returns_int64_and_names_the_shape_and_the_row():
+    """A (K, width) array of integers in 0 .. count - 1 comes back as int64 (an empty one as (0, width) whatever its
+    dtype); other dtypes or shapes name the array, an index out of range its row, in the caller's dtype."""
+    rows = index_rows(np.array([[0, 1], [1, 2]], dtype=np.uint8), 2, 3, "edges", "edge {}", "node", EquimeshError)
+    assert rows.dtype == np.int64 and rows.tolist() == [[0, 1], [1, 2]]
+    empty = index_rows([], 2, 3, "edges", "edge {}", "node", EquimeshError)
+    assert empty.dtype == np.int64 and empty.shape == (0, 2)
+    with pytest.raises(
+        EquimeshError, match=r"^edges must be an \(M, 2\) array of node indices, got shape \(1, 2\) of fl"
+    ):
+        index_rows([[0.0, 1.0]], 2, 3, "edges", "edge {}", "node", EquimeshError)
+    with pytest.raises(
+        EquimeshError, match=r"^edges must be an \(M, 2\) array of node indices, got shape \(3,\) of int"
+    ):
+        index_rows([0, 1, 2], 2, 3, "edges", "edge {}", "node", EquimeshError)
+    for row in ([0, 3], [-1, 0]):
+        with pytest.raises(EquimeshError, match=rf"^edge 1 refers to a node outside 0 \.\. 2: \[{row[0]}, {row[1]}\]$"):
+            index_rows([[0, 1], row, [0, 9]], 2, 3, "edges", "edge {}", "node", EquimeshError)
+    wrapped = np.array([[0, 2**64 - 1]], dtype=np.uint64)  # -1 as uint64: out of range, not node -1
+    with pytest.raises(EquimeshError, match=r"^edge 0 refers to a node outside 0 \.\. 2"):
+        index_rows(wrapped, 2, 3, "edges", "edge {}", "node", EquimeshError)

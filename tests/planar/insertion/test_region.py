@@ -12,6 +12,8 @@ cheap to kill.
 
 import ctypes
 import os
+import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -126,3 +128,25 @@ def test_captured_stdout_takes_what_c_and_the_descriptor_print_and_restores_it(c
     os.write(1, b"after\n")
     assert printed() == "from C\nraw\n"
     assert capfd.readouterr().out == "beforeafter\n"
+
+
+def test_captured_stdout_with_descriptor_1_closed_captures_nothing_and_leaves_it_closed():
+    """Descriptor 1 closed (``equimesh mesh ... >&-``; Python's ``sys.stdout`` is then None): the block runs, Triangle
+    included, with nothing to capture, and no file opened in it takes descriptor 1."""
+    code = """if True:
+        import os, sys
+        from equimesh.planar.insertion import region
+        os.close(1)
+        sys.stdout = None
+        square = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]
+        triangles = region.constrained_delaunay(square, [[0, 1], [1, 2], [2, 3], [3, 0]], [])  # captures inside
+        with region.captured_stdout() as printed:
+            os.write(2, b"")
+        try:
+            os.fstat(1)
+            sys.stderr.write("descriptor 1 open")
+        except OSError:
+            sys.stderr.write(f"closed {printed()!r} {len(triangles)}")
+    """
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert done.stderr == "closed '' 2"
