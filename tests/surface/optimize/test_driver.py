@@ -105,6 +105,8 @@ BAD_CALLS = {
     "a fixed node that is none": ({"fixed": [0, 16]}, r"entry 1 of fixed refers to a node outside 0 \.\. 15"),
     "a mask of fixed nodes too short": ({"fixed": np.ones(3, dtype=bool)}, r"one entry per node \(16\)"),
     "a triangle to no node": ({"triangles": [[0, 1, 16]]}, r"triangle 0 refers to a node outside 0 \.\. 15"),
+    "a triangle of fractions": ({"triangles": TRIANGLES + 0.5}, r"^triangles must be an \(M, 3\) array of node ind"),
+    "a fixed node of a fraction": ({"fixed": [0.5]}, r"^fixed must be an \(M, 1\) array of node indices"),
 }
 
 
@@ -125,6 +127,48 @@ def test_bad_arguments_are_refused_by_name(case):
             fixed=args["fixed"],
             triangles=args["triangles"],
         )
+
+
+def test_a_start_clipped_onto_one_point_names_its_first_collapsed_edge():
+    """Both nodes of one edge beyond the corner (1, 1): clipped, they meet there; that edge, and no other, is named."""
+    k = len(EDGES) - 1
+    uv = UV.copy()
+    uv[EDGES[k]] = [5.0, 5.0]
+    clipped = np.clip(uv, 0.0, 1.0)
+    first = int(np.flatnonzero(np.all(clipped[EDGES[:, 0]] == clipped[EDGES[:, 1]], axis=1))[0])
+    a, b = EDGES[first]
+    at = r"at one point, \(u, v\) = \[1\.0, 1\.0\] in the surface's parameter range$"
+    message = rf"^edge {first} joins nodes {a} and {b} {at}"
+    with pytest.raises(EquimeshError, match=message):
+        optimize_uv(patch(), uv, EDGES, GROUPS, 8.0, fixed=FIXED)
+
+
+def test_a_mask_of_fixed_nodes_is_the_nodes_it_marks():
+    mask = np.zeros(len(UV), dtype=bool)
+    mask[FIXED] = True
+    assert np.array_equal(run(fixed=mask).uv, run().uv)
+
+
+def test_a_start_with_no_node_free_is_held_to_the_band(monkeypatch):
+    """Every node fixed under an objective that bounds the members: refused as any end outside [l, 2l] is when a
+    member is out, returned as it is when none is."""
+
+    def idle(problem):
+        return Stage(lambda x: np.zeros(1), lambda x: scipy.sparse.csr_matrix((1, len(x))), max_iterations=0)
+
+    record(monkeypatch, "held", stages_of(idle), bounds_members=True)
+    ends = patch().evaluate(*UV[EDGES].reshape(-1, 2).T).reshape(-1, 2, 3)
+    lengths = np.linalg.norm(ends[:, 1] - ends[:, 0], axis=1)
+    assert lengths.max() < 1.98 * lengths.min()  # some l puts every member of the grid in [l, 2l]
+    everything = np.arange(len(UV))
+    inside = optimize_uv(Finer(), UV, EDGES, GROUPS, lengths.min() / 1.01, fixed=everything, objective="held")
+    assert inside.message == "no free nodes" and np.array_equal(inside.uv, UV)
+    with pytest.raises(InvalidSurfaceError) as refused:
+        optimize_uv(Finer(), UV, EDGES, GROUPS, lengths.max(), fixed=everything, objective="held")
+    text = str(refused.value)
+    assert text.startswith("optimisation (held): no mesh with every member in [l, 2l] found, no node free to move, ")
+    assert f" of {len(EDGES)} members outside [l, 2l] (lengths from " in text
+    assert text.endswith(", a finer control net, or optimize='paper' (which does not bound the members on the surface)")
 
 
 def test_without_free_nodes_nothing_moves():
@@ -384,8 +428,9 @@ def test_bounds_out_of_reach_are_refused(monkeypatch):
     )
     with pytest.raises(InvalidSurfaceError, match=r"use a smaller l, a finer auxiliary grid, or optimize='paper'"):
         run("idle")
-    with pytest.raises(InvalidSurfaceError, match=r"at least 30 degrees found, 18 of"):
-        run("idle", fixed=np.arange(len(UV)))  # no node free to move: the start is the end, held to the bound
+    with pytest.raises(InvalidSurfaceError) as refused:
+        run("idle", surface=Finer(), fixed=np.arange(len(UV)))  # no node free to move: the start is the end, held
+    assert str(refused.value) == text
 
 
 def test_the_joints_are_kept_in_a_stage_that_keeps_them(monkeypatch):

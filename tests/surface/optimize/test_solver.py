@@ -191,7 +191,13 @@ def test_normal_equations_no_damping_helps_end_the_solve():
         normal_equations=system,
     )
     assert not solution.converged and solution.message == "no damping made the normal equations factorisable"
-    assert solution.iterations == 0 and len(solves) < 100
+    assert solution.iterations == 0 and solution.evaluations == 1 and np.isnan(solution.cost)
+    np.testing.assert_array_equal(solution.x, np.zeros(2))
+    lam, nu, tried = 1e-3, 2.0, [1e-3]  # the damping times nu, nu doubling, while the next damping is a number
+    while np.isfinite(lam * nu):
+        lam, nu = lam * nu, 2.0 * nu
+        tried.append(lam)
+    assert solves == tried and solution.damping == tried[-1]
 
 
 def test_a_limit_bounds_every_step_and_the_solve_still_converges():
