@@ -32,20 +32,34 @@ def orientations(points, triangles):
 
 
 FLATTEN_FAULTS = {
-    "no triangles": ({"triangles": np.zeros((0, 3), dtype=int)}, "no triangles to flatten"),
-    "points in the plane": ({"points3d": np.zeros((9, 2))}, r"points3d must be an \(N, 3\) array, got shape \(9, 2\)"),
+    "no triangles": ({"triangles": np.zeros((0, 3), dtype=int)}, "^no triangles to flatten$"),
+    "points in the plane": (
+        {"points3d": np.zeros((9, 2))},
+        r"^points3d must be an \(N, 3\) array, got shape \(9, 2\)$",
+    ),
     "a point not finite": (
         {"points3d": np.where(np.arange(9)[:, None] == 4, np.nan, np.ones((9, 3)))},
-        "surface point 4 is not finite",
+        r"^surface point 4 is not finite",
     ),
     "a triangle to no point": (
         {"triangles": [[0, 1, 9]]},
-        r"triangle 0 refers to a point outside 0 \.\. 8: \[0, 1, 9\]",
+        r"^triangle 0 refers to a point outside 0 \.\. 8: \[0, 1, 9\]$",
     ),
-    "a triangle to point -1": ({"triangles": [[1, -1, 2]]}, r"triangle 0 refers to a point outside 0 \.\. 8"),
-    "a fractional index": ({"triangles": [[0, 1, 3.7]]}, r"triangles must be an \(M, 3\) array of point indices"),
-    "four corners": ({"triangles": [[0, 1, 4, 3]]}, r"triangles must be an \(M, 3\) array of point indices"),
-    "uv of another mesh": ({"uv": np.zeros((4, 2))}, r"uv must have one row per surface point \(9\), got 4"),
+    "a triangle to point -1": ({"triangles": [[1, -1, 2]]}, r"^triangle 0 refers to a point outside 0 \.\. 8"),
+    "a fractional index": ({"triangles": [[0, 1, 3.7]]}, r"^triangles must be an \(M, 3\) array of point indices"),
+    "four corners": ({"triangles": [[0, 1, 4, 3]]}, r"^triangles must be an \(M, 3\) array of point indices"),
+    "uv of another mesh": ({"uv": np.zeros((4, 2))}, r"^uv must have one row per surface point \(9\), got 4$"),
+    "a (u, v) not finite": (
+        {"uv": np.where(np.arange(9)[:, None] == 4, np.nan, np.full((9, 2), 0.5))},
+        r"^the \(u, v\) of point 4 is not",
+    ),
+    "a start of another mesh": ({"x0": np.zeros((4, 2))}, r"^x0 must have one row per surface point \(9\), got 4$"),
+    "a start not finite": (
+        {"x0": np.where(np.arange(9)[:, None] == 2, np.inf, np.full((9, 2), 0.5))},
+        r"^the start of point 2 is not",
+    ),
+    "an edge to no point": ({"edges": [[0, 1], [0, 9]]}, r"^edge 1 refers to a point outside 0 \.\. 8: \[0, 9\]$"),
+    "an edge of fractions": ({"edges": [[0.0, 1.0]]}, r"^edges must be an \(M, 2\) array of point indices"),
 }
 
 
@@ -54,11 +68,12 @@ def test_bad_arguments_are_refused_by_name(case):
     """Step 2's arguments are checked before any work: each fault is an error of equimesh's naming it (a point of
     nan was reported as two coinciding points, a negative index was read from the end)."""
     grid = auxiliary_grid(2, 2)
-    args = {"points3d": dome().evaluate(grid.uv[:, 0], grid.uv[:, 1]), "triangles": grid.triangles, "uv": grid.uv}
+    points = dome().evaluate(grid.uv[:, 0], grid.uv[:, 1])
+    args = {"points3d": points, "triangles": grid.triangles, "uv": grid.uv, "x0": None, "edges": None}
     given, message = FLATTEN_FAULTS[case]
     args.update(given)
     with pytest.raises(InvalidSurfaceError, match=message):
-        flatten(args["points3d"], args["triangles"], uv=args["uv"])
+        flatten(args["points3d"], args["triangles"], uv=args["uv"], x0=args["x0"], edges=args["edges"])
 
 
 @pytest.mark.parametrize("shear", [0.0, 25.0])

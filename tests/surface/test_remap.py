@@ -34,15 +34,17 @@ def test_bad_arguments_are_refused_by_name():
     surface, grid = plane_patch(), auxiliary_grid(4, 4)
     flat = equimesh.flatten(surface.evaluate(grid.uv[:, 0], grid.uv[:, 1]), grid.triangles, uv=grid.uv).points
     middle = np.array([[0.5, 0.5]])
-    with pytest.raises(InvalidSurfaceError, match=r"plane_points must be an \(N, 2\) array, got shape \(3, 3\)"):
+    with pytest.raises(InvalidSurfaceError, match=r"^plane_points must be an \(N, 2\) array, got shape \(3, 3\)"):
         equimesh.remap(surface, np.zeros((3, 3)), flat, grid)
-    with pytest.raises(InvalidSurfaceError, match=r"plane point 0 is not finite: \[nan, 0\.5\]"):
+    with pytest.raises(InvalidSurfaceError, match=r"^plane point 0 is not finite: \[nan, 0\.5\]"):
         equimesh.remap(surface, [[np.nan, 0.5]], flat, grid)
     with pytest.raises(
-        InvalidSurfaceError, match=r"grid must be the auxiliary triangulation of step 1 .*, got NoneType"
+        InvalidSurfaceError, match=r"^grid must be the auxiliary triangulation of step 1 .*, got NoneType"
     ):
         equimesh.remap(surface, middle, flat, None)
-    with pytest.raises(InvalidSurfaceError, match=r"flat_points must have one row per node of the grid \(25\), got 24"):
+    with pytest.raises(
+        InvalidSurfaceError, match=r"^flat_points must have one row per node of the grid \(25\), got 24"
+    ):
         equimesh.remap(surface, middle, flat[:-1], grid)
 
 
