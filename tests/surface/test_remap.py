@@ -38,10 +38,15 @@ def test_bad_arguments_are_refused_by_name():
         equimesh.remap(surface, np.zeros((3, 3)), flat, grid)
     with pytest.raises(InvalidSurfaceError, match=r"^plane point 0 is not finite: \[nan, 0\.5\]"):
         equimesh.remap(surface, [[np.nan, 0.5]], flat, grid)
-    with pytest.raises(
-        InvalidSurfaceError, match=r"^grid must be the auxiliary triangulation of step 1 .*, got NoneType"
-    ):
-        equimesh.remap(surface, middle, flat, None)
+    grid_is = (
+        r"^grid must be the auxiliary triangulation of step 1 \(with uv, triangles, boundary, boundary_sides, domain\)"
+    )
+    with pytest.raises(InvalidSurfaceError, match=grid_is + ", got int$"):
+        equimesh.remap(surface, middle, flat, 5)
+    with pytest.raises(InvalidSurfaceError, match=r"^flat_points must be an \(N, 2\) array, got shape \(25,\)$"):
+        equimesh.remap(surface, middle, flat[:, 0], grid)
+    with pytest.raises(InvalidSurfaceError, match=r"^flattened node 3 is not finite: \[nan, nan\]$"):
+        equimesh.remap(surface, middle, np.where(np.arange(25)[:, None] == 3, np.nan, flat), grid)
     with pytest.raises(
         InvalidSurfaceError, match=r"^flat_points must have one row per node of the grid \(25\), got 24"
     ):
