@@ -222,9 +222,12 @@ class Factorisations:
         return _starts(["bounded"], self.params[1])
 
     def setup(self, cache, factorisation, l):
-        nodes = len(cache[1]["bounded", l].remapped_uv)
-        try:  # every node fixed: only the factorisation is checked
-            _optimise(cache, "bounded", l, factorisation, fixed=np.arange(nodes), slides=())
+        surface, starts = cache
+        plane, uv = starts["bounded", l].plane, starts["bounded", l].remapped_uv
+        try:  # every node fixed under the paper's objective, which bounds nothing: only the factorisation is checked
+            equimesh.optimize_uv(
+                surface, uv, plane.edges, plane.edge_groups, l, fixed=np.arange(len(uv)), factorisation=factorisation
+            )
         except equimesh.EquimeshError as error:
             raise NotImplementedError(str(error)) from None
 

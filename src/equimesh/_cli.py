@@ -21,15 +21,14 @@ Every run ends in one of four ways, always without a traceback:
 """
 
 import argparse
-import contextlib
 import importlib.util
-import os
 import re
 import signal
 import sys
 import warnings
 from pathlib import Path
 
+from ._streams import library_quiet, say
 from .errors import EquimeshError, SurfaceWarning
 
 EXIT_USAGE = 2
@@ -293,30 +292,8 @@ def _quiet(unraisable):
 
 def _fail(code, message):
     """Print ``message`` as one line on standard error and return ``code``."""
-    _say("equimesh: " + " ".join(message.split()))
+    say("equimesh: " + " ".join(message.split()))
     return code
-
-
-def _say(text, stream=None):
-    """Print ``text`` on ``stream`` (standard error by default): progress, the summary, notes, the error line.
-
-    They only report a run, whose outcome is its exit code and its files: a stream that is closed or full (a reader
-    that quit, ``2>/dev/full``) is pointed at the null device and the run goes on, so it neither fails after its
-    outputs are written nor stops before them.
-    """
-    stream = sys.stderr if stream is None else stream
-    if stream is None:  # the descriptor was closed when the interpreter started
-        return
-    try:
-        print(text, file=stream, flush=True)
-    except (OSError, ValueError):  # a broken pipe, a full device, a closed file
-        try:
-            null = os.open(os.devnull, os.O_WRONLY)
-            if null != stream.fileno():
-                os.dup2(null, stream.fileno())
-                os.close(null)
-        except (OSError, ValueError):
-            pass
 
 
 def _output_dest(slot):
@@ -418,15 +395,15 @@ def _run_mesh(args):
         warnings.simplefilter("always", SurfaceWarning)
         surface = load_surface(args.surface, **({"object": args.object} if args.object is not None else {}))
     for warning in caught:
-        _say(f"equimesh: warning: {warning.message}")
+        say(f"equimesh: warning: {warning.message}")
 
     def progress(stage, seconds):
         interrupt.check()
         if not args.quiet:
-            _say(f"  {stage}: {seconds:.2f} s")
+            say(f"  {stage}: {seconds:.2f} s")
 
     given = {name: getattr(args, name) for name in ("max_nodes", "feature_angle") if name in args}
-    with _library_quiet(), _Interrupt() as interrupt:
+    with library_quiet(), _Interrupt() as interrupt:
         mesh = mesh_surface(
             surface,
             args.length,
@@ -444,14 +421,14 @@ def _run_mesh(args):
     write(mesh, args.tolerance)
     if not args.quiet:
         n_g1 = int(mesh.g1_mask.sum())
-        _say(
+        say(
             f"wrote {', '.join(map(str, write.paths))}: {len(mesh.points)} nodes, {len(mesh.edges)} members "
             f"({n_g1} in the equal-length group G1), {len(mesh.triangles)} triangles"
         )
         text, notes = summary(mesh, args.optimize, args.tolerance, args.lengths)
-        _say(text, sys.stdout)
+        say(text, sys.stdout)
         for note in notes:
-            _say(f"equimesh: note: {note}")
+            say(f"equimesh: note: {note}")
     return 0
 
 
@@ -460,37 +437,6 @@ def _parameters(args):
     keys = ("surface", "object", "length", "grid", "optimize", "placement", "engine", "max_nodes", "feature_angle")
     keys += ("tolerance", "surface_tolerance", "lengths")
     return {("input" if k == "surface" else k): getattr(args, k) for k in keys if getattr(args, k, None)}
-
-
-@contextlib.contextmanager
-def _library_quiet():
-    """Keep the run's outcome the only thing printed: no floating-point RuntimeWarnings, no C-level stdout.
-
-    The library checks its results (finite, every theorem) and raises one
-    error of its own; the warnings numpy emits on the way to that error, and
-    the messages Triangle's C code prints on file descriptor 1 before its
-    RuntimeError, would only add lines to it.
-    """
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", RuntimeWarning)
-        try:
-            saved = os.dup(1)
-        except OSError:  # descriptor 1 is closed: the null device holds it meanwhile, so no file opened takes it
-            saved = None
-        if sys.stdout is not None:
-            sys.stdout.flush()
-        null = os.open(os.devnull, os.O_WRONLY)  # descriptor 1 itself if that was closed
-        if null != 1:
-            os.dup2(null, 1)
-            os.close(null)
-        try:
-            yield
-        finally:
-            if saved is None:
-                os.close(1)
-            else:
-                os.dup2(saved, 1)
-                os.close(saved)
 
 
 def _run_experiment(args):
