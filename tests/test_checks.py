@@ -5,6 +5,7 @@ included); anything else is refused with one line saying what it got, an integer
 (never Python's OverflowError); a number typed as text is read only in its plain spellings.
 """
 
+import fractions
 import re
 
 import numpy as np
@@ -12,7 +13,17 @@ import pytest
 
 import equimesh
 from equimesh import EquimeshError, InvalidLengthError, InvalidPolygonError
-from equimesh._checks import check_count, check_length, finite_rows, index_rows, number_text, real_array, real_number
+from equimesh._checks import (
+    _beyond_floats,
+    check_count,
+    check_length,
+    finite_rows,
+    index_rows,
+    number_text,
+    plain_integer,
+    real_array,
+    real_number,
+)
 from equimesh.tolerance import MAX_LENGTH, MIN_LENGTH
 
 
@@ -191,3 +202,32 @@ def test_index_rows_returns_int64_and_names_the_shape_and_the_row():
     wrapped = np.array([[0, 2**64 - 1]], dtype=np.uint64)  # -1 as uint64: out of range, not node -1
     with pytest.raises(EquimeshError, match=r"^edge 0 refers to a node outside 0 \.\. 2"):
         index_rows(wrapped, 2, 3, "edges", "edge {}", "node", EquimeshError)
+
+
+def test_the_messages_of_the_number_checks_by_hand():
+    """Up to 20 digits an integer is shown, beyond them counted; a count below its least is refused; a number as
+    text is read as a float unless ``whole``, and a text of more than 40 characters is shown by its length."""
+    assert plain_integer(10**20 - 1) == "9" * 20 and plain_integer(-(10**20 - 1)) == "-" + "9" * 20
+    assert plain_integer(10**20) == "an integer of 21 digits"
+    assert plain_integer(10**25 - 1) == "an integer of 25 digits" and plain_integer(10**25) == "an integer of 26 digits"
+    assert _beyond_floats(10**400) == "an integer of 401 digits"
+    assert _beyond_floats(fractions.Fraction(10**400, 3)) == "a number beyond it"
+    assert check_count(1, "n") == 1
+    with pytest.raises(EquimeshError, match=r"^n must be an integer of at least 1, got 0$"):
+        check_count(0, "n")
+    with pytest.raises(EquimeshError, match=r"^n must be an integer of at least 1, got 2\.5$"):
+        check_count(np.float64(2.5), "n")
+    assert number_text("2.5", "x", EquimeshError) == 2.5
+    with pytest.raises(EquimeshError, match=r"^x must be a number, got 'a'$"):
+        number_text("a", "x", EquimeshError)
+    with pytest.raises(EquimeshError, match=r"^x must be a whole number, got '2\.5'$"):
+        number_text("2.5", "x", EquimeshError, whole=True)
+    forty = "1" * 39 + "x"
+    with pytest.raises(EquimeshError, match=rf"^x must be a number, got '{forty}'$"):
+        number_text(forty, "x", EquimeshError)
+    with pytest.raises(EquimeshError, match=r"^x must be a number, got a text of 41 characters$"):
+        number_text(forty + "x", "x", EquimeshError)
+    with pytest.raises(EquimeshError, match=r"^x must be real numbers within the float range, but it is an integer of"):
+        real_array(10**400, "x", EquimeshError)
+    with pytest.raises(EquimeshError, match=r"^points must be an array of numbers$"):
+        finite_rows("abc", 2, "points", "point {}", EquimeshError)

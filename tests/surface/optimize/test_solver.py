@@ -190,7 +190,7 @@ def test_normal_equations_no_damping_helps_end_the_solve():
         np.full(2, 10.0),
         normal_equations=system,
     )
-    assert not solution.converged and solution.message == "no damping made the normal equations factorisable"
+    assert solution.converged is False and solution.message == "no damping made the normal equations factorisable"
     assert solution.iterations == 0 and solution.evaluations == 1 and np.isnan(solution.cost)
     np.testing.assert_array_equal(solution.x, np.zeros(2))
     lam, nu, tried = 1e-3, 2.0, [1e-3]  # the damping times nu, nu doubling, while the next damping is a number
