@@ -48,6 +48,7 @@ FLATTEN_FAULTS = {
     "a triangle to point -1": ({"triangles": [[1, -1, 2]]}, r"^triangle 0 refers to a point outside 0 \.\. 8"),
     "a fractional index": ({"triangles": [[0, 1, 3.7]]}, r"^triangles must be an \(M, 3\) array of point indices"),
     "four corners": ({"triangles": [[0, 1, 4, 3]]}, r"^triangles must be an \(M, 3\) array of point indices"),
+    "uv of three columns": ({"uv": np.zeros((9, 3))}, r"^uv must be an \(N, 2\) array, got shape \(9, 3\)$"),
     "uv of another mesh": ({"uv": np.zeros((4, 2))}, r"^uv must have one row per surface point \(9\), got 4$"),
     "a (u, v) not finite": (
         {"uv": np.where(np.arange(9)[:, None] == 4, np.nan, np.full((9, 2), 0.5))},
