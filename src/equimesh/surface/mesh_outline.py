@@ -136,9 +136,8 @@ def mesh_outline(chart, l, spacing, feature_angle=DEFAULT_FEATURE_ANGLE):
     for k, loop in enumerate(loops):
         xy, arc = loop.points, loop.arc
         name = ring_name(chart, order, k)
-        corners, ring = loop_ring(
-            xy, l, spacing, feature_angle, _refusals(chart, xy, name, length, spacing, feature_angle)
-        )
+        refuse = _refusals(chart, xy, [other.points for other in loops], name, length, spacing, feature_angle)
+        corners, ring = loop_ring(xy, l, spacing, feature_angle, refuse)
         at = loop.project(ring)[2]
         at[1:] += arc[-1] * np.cumsum(np.diff(at) < 0)  # the ring starts at a corner: unwrap past the loop's start
         rings.append(ring)
@@ -381,17 +380,19 @@ def _ring(xy, corners, l, spacing, turn):
 FIT_BISECTIONS = 20
 
 
-def largest_fitting_length(xy, l, spacing, feature_angle):
-    """The largest length below ``l`` (to four digits, rounded down) at which :func:`loop_ring` accepts the loop, or
-    None.
+def largest_fitting_length(loops, l, spacing, feature_angle):
+    """The largest length below ``l`` (to four digits, rounded down) at which :func:`loop_ring` accepts every loop of
+    ``loops`` (their plane points), or None.
 
-    Found by bisection on ``(0, l)`` and checked: a refusal suggests an l
-    that this loop passes (other loops and Problem 2 are not tried).
+    Found by bisection on ``(0, l)`` and checked: a refusal of any loop
+    suggests an l that all of them pass, so the advice is not refused by the
+    next loop (Problem 2 is not tried).
     """
 
     def fits(length):
         try:
-            loop_ring(xy, length, spacing, feature_angle, _Refusal)
+            for xy in loops:
+                loop_ring(xy, length, spacing, feature_angle, _Refusal)
         except _Refusal:
             return False
         return True
@@ -405,20 +406,21 @@ def largest_fitting_length(xy, l, spacing, feature_angle):
     return round_down(low) if low > 0.0 else None
 
 
-def _refusals(chart, xy, name, length, spacing, feature_angle):
-    """The refusals of :func:`loop_ring` on the loop ``xy`` called ``name``, in the surface's terms, at the
-    :class:`~equimesh.surface.plane_length.PlaneLength` ``length``."""
+def _refusals(chart, xy, loops, name, length, spacing, feature_angle):
+    """The refusals of :func:`loop_ring` on the loop ``xy`` called ``name``, one of the chart's ``loops``, in the
+    surface's terms, at the :class:`~equimesh.surface.plane_length.PlaneLength` ``length``; each suggests the largest
+    l every loop takes (:func:`largest_fitting_length`)."""
     l = length.value
 
-    def use(fit):
+    def use():
+        fit = largest_fitting_length(loops, l, spacing, feature_angle)
         return f"l <= {number(length.suggest(fit))}" if fit else "a smaller l"
 
     def too_small():
         rim = Polyline(xy).length
-        fit = largest_fitting_length(xy, l, spacing, feature_angle)
         return InvalidSurfaceError(
             f"{name} of the mesh is too small for {length}: no ring of 3 or more parts of at least {length.symbol} "
-            f"follows its rim, {number(rim)} long on the flattened surface; use {use(fit)}"
+            f"follows its rim, {number(rim)} long on the flattened surface; use {use()}"
         )
 
     def refuse(kind, *details):
@@ -428,17 +430,16 @@ def _refusals(chart, xy, name, length, spacing, feature_angle):
             _, arc, chord, _ = details
             return InvalidSurfaceError(
                 f"{name} of the mesh has a part {number(arc)} long between two corners {number(chord)} apart on the "
-                f"flattened surface, shorter than {length}; use {use(round_down(chord))}"
+                f"flattened surface, shorter than {length}; use {use()}"
             )
         i, gap = details
         turn = scale_turns(xy, l)
         if _ring(xy, loop_corners(xy, l, 180.0, turn), l, spacing, turn)[0] is None:  # no ring at all: say so
             return too_small()
-        fit = largest_fitting_length(xy, l, spacing, feature_angle)
         return InvalidSurfaceError(
             f"{name} of the mesh is narrower than {length} on the flattened surface at its corner "
             f"{coordinates(chart.evaluate(xy[i, 0], xy[i, 1]))}: a ring of parts of at least {length.symbol} passes "
-            f"{number(gap)} from it; use {use(fit)}"
+            f"{number(gap)} from it; use {use()}"
         )
 
     return refuse
