@@ -64,6 +64,14 @@ def test_every_registered_type_and_format_is_complete():
         assert fmt.name and callable(fmt.read)
 
 
+@pytest.mark.parametrize("path", [None, 5, b"dome.json"], ids=["None", "a number", "bytes"])
+def test_a_path_that_is_no_path_is_refused_by_name(path):
+    with pytest.raises(
+        InvalidSurfaceError, match=rf"^the surface file must be given as a path, got {type(path).__name__}$"
+    ):
+        load_surface(path)
+
+
 def test_surface_to_dict_of_an_unregistered_class():
     with pytest.raises(TypeError, match="no JSON surface type for object"):
         surface_to_dict(object())

@@ -12,6 +12,7 @@ that is not a finite number, is one :class:`InvalidSurfaceError` line.
 """
 
 import json
+import os
 import sys
 from dataclasses import dataclass
 from pathlib import Path
@@ -111,11 +112,14 @@ def load_surface(path, *, object=None):
     Raises
     ------
     InvalidSurfaceError
-        one line naming the problem: unknown extension (listing the known
-        ones), a path that is missing, too long, not a regular file or not
-        readable, a malformed description, ``object`` given for a format
+        one line naming the problem: ``path`` not a path (a str or
+        path-like), unknown extension (listing the known ones), a path that
+        is missing, too long, not a regular file or not readable, a
+        malformed description, ``object`` given for a format
         holding one surface, or not naming a surface of the file.
     """
+    if not isinstance(path, (str, os.PathLike)):
+        raise InvalidSurfaceError(f"the surface file must be given as a path, got {type(path).__name__}")
     path = Path(path)
     fmt = INPUT_FORMATS.get(path.suffix.lower())
     if fmt is None:
