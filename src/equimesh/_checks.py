@@ -115,12 +115,15 @@ def real_array(value, what, error):
         ) from None
 
 
-def finite_rows(value, width, what, row, error):
+def finite_rows(value, width, what, row, error, per=None):
     """``value`` as an (N, ``width``) float array of finite numbers, raising ``error`` otherwise: ``what`` names the
-    array (its shape is wrong), ``row`` is a format string naming row k (it is not finite)."""
+    array (its shape is wrong), ``row`` is a format string naming row k (it is not finite); ``per``, ``(count,
+    items)``, asks one row per item (``count`` of them)."""
     points = real_array(value, what, error)
     if points.ndim != 2 or points.shape[1] != width:
         raise error(f"{what} must be an (N, {width}) array, got shape {points.shape}")
+    if per is not None and len(points) != per[0]:
+        raise error(f"{what} must have one row per {per[1]} ({per[0]}), got {len(points)}")
     bad = np.flatnonzero(~np.all(np.isfinite(points), axis=1))
     if bad.size:
         raise error(f"{row.format(int(bad[0]))} is not finite: {points[bad[0]].tolist()}")

@@ -174,8 +174,9 @@ def flatten(
         raise InvalidSurfaceError("no triangles to flatten")
     n = len(x3)
     tri = index_rows(triangles, 3, n, "triangles", "triangle {}", "point", InvalidSurfaceError)
-    uv = None if uv is None else _rows_of(uv, n, "uv", "the (u, v) of point {}")
-    x0 = None if x0 is None else _rows_of(x0, n, "x0", "the start of point {}")
+    per = (n, "surface point")
+    uv = None if uv is None else finite_rows(uv, 2, "uv", "the (u, v) of point {}", InvalidSurfaceError, per)
+    x0 = None if x0 is None else finite_rows(x0, 2, "x0", "the start of point {}", InvalidSurfaceError, per)
     e = (
         unique_edges(tri)
         if edges is None
@@ -208,14 +209,6 @@ def flatten(
         f"flattening folds {bad.size} of {len(tri)} auxiliary triangles over{near}; "
         "the surface is degenerate or too strongly curved for this grid"
     )
-
-
-def _rows_of(value, n, what, row):
-    """``value`` as ``n`` finite rows of two numbers, one per surface point (:func:`flatten`'s ``uv`` and ``x0``)."""
-    rows = finite_rows(value, 2, what, row, InvalidSurfaceError)
-    if len(rows) != n:
-        raise InvalidSurfaceError(f"{what} must have one row per surface point ({n}), got {len(rows)}")
-    return rows
 
 
 def _solve(guess, tri, e, ls, gauge, area_floor, options):

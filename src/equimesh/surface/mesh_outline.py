@@ -133,10 +133,11 @@ def mesh_outline(chart, l, spacing, feature_angle=DEFAULT_FEATURE_ANGLE):
     order = [chart.outer] + [k for k in range(len(chart.surface.loops)) if k != chart.outer]
     loops = [Polyline(chart.plane[chart.surface.loops[k]]) for k in order]
     rings, arcs, corner_arcs = [], [], []
+    points = [loop.points for loop in loops]
     for k, loop in enumerate(loops):
         xy, arc = loop.points, loop.arc
         name = ring_name(chart, order, k)
-        refuse = _refusals(chart, xy, [other.points for other in loops], name, length, spacing, feature_angle)
+        refuse = _refusals(chart, xy, points, name, length, spacing, feature_angle)
         corners, ring = loop_ring(xy, l, spacing, feature_angle, refuse)
         at = loop.project(ring)[2]
         at[1:] += arc[-1] * np.cumsum(np.diff(at) < 0)  # the ring starts at a corner: unwrap past the loop's start

@@ -135,11 +135,8 @@ def locate(plane_points, flat_points, grid, *, on_boundary=None, outline=None, s
         raise InvalidSurfaceError(
             f"grid must be the auxiliary triangulation of step 1 (with {', '.join(_GRID)}), got {type(grid).__name__}"
         )
-    flat = finite_rows(flat_points, 2, "flat_points", "flattened node {}", InvalidSurfaceError)
-    if len(flat) != len(grid.uv):
-        raise InvalidSurfaceError(
-            f"flat_points must have one row per node of the grid ({len(grid.uv)}), got {len(flat)}"
-        )
+    per = (len(grid.uv), "node of the grid")
+    flat = finite_rows(flat_points, 2, "flat_points", "flattened node {}", InvalidSurfaceError, per)
     tri = np.asarray(grid.triangles)
     k = len(x)
     boundary_path = np.zeros(k, dtype=bool)

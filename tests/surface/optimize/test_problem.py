@@ -10,9 +10,11 @@ that would move too far.  On the tiny grids of ``optimize_cases``.
 from dataclasses import replace
 
 import numpy as np
+import pytest
 import scipy.sparse
 from optimize_cases import RIM, finite_difference, moved, patch, problem
 
+from equimesh.errors import EquimeshError
 from equimesh.surface.charts.chart import Domain
 from equimesh.surface.optimize.joints import Joints, surface_angles
 from equimesh.surface.optimize.problem import free_nodes, offset_points, parameter_box, unit_normals
@@ -219,6 +221,14 @@ def test_free_nodes_are_those_neither_fixed_nor_sliding():
     mask[fixed] = True
     np.testing.assert_array_equal(free_nodes(16, mask, p.slides), expected)
     np.testing.assert_array_equal(free_nodes(4, np.array([1, 2]), ()), [True, False, False, True])
+    np.testing.assert_array_equal(free_nodes(4, [], ()), [True] * 4)
+    for fixed, message in (
+        (np.ones(3, dtype=bool), r"^fixed as a mask must have one entry per node \(4\), got shape \(3,\)$"),
+        ([0, 4], r"^entry 1 of fixed refers to a node outside 0 \.\. 3: \[4\]$"),
+        ([0.5], r"^fixed must be an \(M, 1\) array of node indices, got shape \(1, 1\) of float64$"),
+    ):
+        with pytest.raises(EquimeshError, match=message):
+            free_nodes(4, fixed, ())
 
 
 def test_with_joints_the_members_and_the_angles_share_one_evaluation_per_x():

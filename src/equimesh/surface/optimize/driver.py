@@ -186,7 +186,7 @@ def optimize_uv(
     if edge_groups.shape != (len(edges),):
         raise EquimeshError(f"edge_groups must hold one label per edge ({len(edges)}), got shape {edge_groups.shape}")
     slides = tuple(slides)
-    free = free_nodes(len(uv), _nodes(fixed, len(uv)), slides)
+    free = free_nodes(len(uv), fixed, slides)
     problem = UVProblem(
         surface,
         uv,
@@ -209,15 +209,15 @@ def optimize_uv(
     stages = record.stages(problem)
     stage = next(stages)
     x0 = problem.x0
+    members = Members(problem) if record.bounds_members else None
     if len(x0) == 0:  # nothing moves: the start is the end, held to the objective's promises as any end is
-        if record.bounds_members and not Members(problem).feasible(x0):
-            raise _refusal(objective, surface, f"found, no node free to move, {Members(problem).violation(x0)}")
+        if members is not None and not members.feasible(x0):
+            raise _refusal(objective, surface, f"found, no node free to move, {members.violation(x0)}")
         if not problem.sound(x0):
             raise _unsound(objective, surface, problem, x0)
         cost0 = _cost(stage, x0)
         return UVOptimization(uv, np.zeros(len(uv)), cost0, cost0, 0, 0, True, "no free nodes", objective)
-    if record.bounds_members:
-        members = Members(problem)
+    if members is not None:
         if out_of_reach(members.ratio(x0)):  # docs/decisions.md, "A work bound for the optimisation"
             raise _refusal(objective, surface, f"within reach of the remapped mesh: {members.reach(x0)}")
     x, nfev, work, damping = x0, 0, _Work(record.max_jacobians), LM_INITIAL_DAMPING
@@ -357,16 +357,6 @@ def _start(uv, edges, lower, upper):
             "parameter range"
         )
     return uv
-
-
-def _nodes(fixed, n):
-    """``fixed`` (node indices, or a mask of the ``n`` nodes) as node indices, refused by name if it is neither."""
-    raw = np.asarray(fixed)
-    if raw.dtype == bool:
-        if raw.shape != (n,):
-            raise EquimeshError(f"fixed as a mask must have one entry per node ({n}), got shape {raw.shape}")
-        return np.flatnonzero(raw)
-    return index_rows(raw.reshape(-1, 1), 1, n, "fixed", "entry {} of fixed", "node", EquimeshError).ravel()
 
 
 def _finer(surface):

@@ -16,7 +16,9 @@ import numpy as np
 import scipy.optimize
 import scipy.sparse
 
+from ..._checks import index_rows
 from ..._jit import compiled
+from ...errors import EquimeshError
 from ..charts.chart import domain_of
 from ..regularity import derivatives, evaluate
 from .joints import Joints
@@ -341,10 +343,17 @@ def parameter_box(surface):
 
 
 def free_nodes(n, fixed, slides):
-    """(n,) mask of the nodes whose two parameters are variables: all but the ``fixed`` ones and the sliding ones."""
+    """(n,) mask of the nodes whose two parameters are variables: all but the ``fixed`` ones (node indices, or a mask
+    of the ``n`` nodes; refused by name if neither) and the sliding ones."""
     free = np.ones(n, dtype=bool)
     fixed = np.asarray(fixed)
-    free[np.flatnonzero(fixed) if fixed.dtype == bool else fixed.astype(np.int64)] = False
+    if fixed.dtype == bool:
+        if fixed.shape != (n,):
+            raise EquimeshError(f"fixed as a mask must have one entry per node ({n}), got shape {fixed.shape}")
+        free[fixed] = False
+    else:
+        indices = index_rows(fixed.reshape(-1, 1), 1, n, "fixed", "entry {} of fixed", "node", EquimeshError)
+        free[indices.ravel()] = False
     for slide in slides:
         free[slide.nodes] = False
     return free
