@@ -179,6 +179,9 @@ def test_finite_rows_returns_floats_and_names_the_shape_and_the_row():
         finite_rows([1, 2], 2, "points", "point {}", EquimeshError)
     with pytest.raises(EquimeshError, match=r"^point 1 is not finite: \[1\.0, inf\]$"):
         finite_rows([[0, 0], [1, np.inf], [np.nan, 0]], 2, "points", "point {}", EquimeshError)
+    assert finite_rows([[1, 2]], 2, "points", "point {}", EquimeshError, (1, "node")).tolist() == [[1.0, 2.0]]
+    with pytest.raises(EquimeshError, match=r"^points must have one row per node \(3\), got 2$"):
+        finite_rows([[1, 2], [3, 4]], 2, "points", "point {}", EquimeshError, (3, "node"))
 
 
 def test_index_rows_returns_int64_and_names_the_shape_and_the_row():
