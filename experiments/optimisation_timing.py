@@ -15,7 +15,8 @@ run, start it once per checkout, side by side::
 ``--trace`` also prints one JSON line per solve of the optimisation (a
 round of ``"bounded"``, the paper's stage): its iterations, evaluations,
 final damping, and the share of all members within 0.5 % of l and in
-[l, 2l] where it ended (docs/decisions.md, "A trust region per node").
+[l, 2l] where it ended (docs/decisions.md, "A trust region per node"), in the order the solves end: bounded's second
+start, solved beside the first series (docs/decisions.md, "Bounded's second start on a second core"), among its rounds.
 
 Usage::
 

@@ -113,6 +113,7 @@ OPTIMIZE_MODULES = {
     ],
     "src/equimesh/surface/optimize/objectives.py": ["tests/surface/optimize/test_objective_stages.py"],
     "src/equimesh/surface/optimize/driver.py": ["tests/surface/optimize/test_driver.py"],
+    "src/equimesh/surface/optimize/beside.py": ["tests/surface/optimize/test_driver.py"],
 }
 MODULES.update(OPTIMIZE_MODULES)
 

@@ -10,6 +10,7 @@ start, nor leaves a hard constraint it met; a surface that is not finite at a tr
 the tiny grids of ``optimize_cases``, with objectives of a few stages made for the test.
 """
 
+import threading
 from dataclasses import replace
 
 import numpy as np
@@ -22,6 +23,7 @@ import equimesh
 from equimesh import EquimeshError, InvalidSurfaceError
 from equimesh.surface.charts.chart import Domain
 from equimesh.surface.optimize import OBJECTIVES, Objective, Stage, driver, joints, optimize_uv
+from equimesh.surface.optimize.beside import Beside, Stopped
 from equimesh.surface.optimize.driver import fold_over_barrier, with_barriers
 from equimesh.surface.optimize.jacobian import signed_areas
 from equimesh.surface.optimize.joints import Joints, joint_bounds, surface_angles
@@ -689,3 +691,95 @@ def test_the_work_bound_ends_where_the_stages_keep_a_point(monkeypatch):
     record(monkeypatch, "passing", stages_of(papers(), papers(start="x0")), max_jacobians=first.njev + 1)
     with pytest.raises(InvalidSurfaceError, match=rf"not converged within {first.njev + 1} Jacobian evaluations"):
         run("passing")
+
+
+def in_turn(monkeypatch):
+    """The driver with every stage solved in turn (:attr:`Stage.beside` ones when taken, on the calling thread)."""
+    monkeypatch.setattr(driver, "Beside", lambda solve, concurrent: Beside(solve, concurrent=False))
+
+
+def with_one_beside(carried):
+    """Stages: two iterations of the paper's, then the paper's from the start with the rim's neighbours held
+    (carried by the first if ``carried``), then the paper's on from its end with its damping."""
+
+    def stages(problem):
+        held = np.zeros(len(problem.x0), dtype=bool)
+        held[:4] = True
+        later = replace(paper_stage(problem), start=problem.x0, hold=held)
+        yield replace(paper_stage(problem), max_iterations=2, beside=(later,) if carried else ())
+        yield later
+        x = yield paper_stage(problem)
+        return x, later
+
+    return stages
+
+
+@pytest.mark.parametrize("bound", [1000, 6, 4])
+def test_a_stage_carried_beside_ends_where_the_stages_in_turn_do(bound, monkeypatch):
+    """The same stages with the second solved beside the first (on a thread, and in turn when taken) and not
+    carried at all: the same point, the same evaluations and Jacobians, bit for bit, the third going on from the
+    second's end with its damping (13 Jacobians: 3, 5 and 5).  With a work bound that cuts the second short (6: it
+    may take 2 of its 4 iterations, so it is solved again in turn) or leaves it none (4), the same refusal."""
+    ends = []
+    for carried, concurrent in ((True, True), (True, False), (False, True)):
+        record(monkeypatch, "beside", with_one_beside(carried), max_jacobians=bound)
+        with monkeypatch.context() as patched:
+            if not concurrent:
+                in_turn(patched)
+            try:
+                result = run("beside")
+            except InvalidSurfaceError as error:
+                ends.append(str(error))
+            else:
+                ends.append((result.uv.tobytes(), result.nfev, result.njev, result.cost_after, result.message))
+    assert ends[0] == ends[1] == ends[2]
+    assert isinstance(ends[0], str) == (bound < 13), ends[0]
+
+
+@pytest.mark.parametrize("objective", ["bounded", "classes"])
+def test_a_stage_solved_beside_gives_the_bits_of_the_solve_in_turn(objective, monkeypatch):
+    """Bounded's second start is solved on a thread of its own beside the first series: the mesh and the work
+    counted are those of every stage solved in turn, bit for bit, on a dome at two lengths."""
+    from equimesh.testing.surfaces import dome
+
+    surface = dome(rise=8.0, seed=3, jitter=1.0)
+    for length in (3.0, 4.0):
+        beside = equimesh.mesh_surface(surface, length, optimize=objective, placement="default")
+        with monkeypatch.context() as patched:
+            in_turn(patched)
+            turn = equimesh.mesh_surface(surface, length, optimize=objective, placement="default")
+        assert np.array_equal(beside.points, turn.points) and np.array_equal(beside.uv, turn.uv)
+        done, then = beside.stages.optimization, turn.stages.optimization
+        assert (done.njev, done.nfev, done.cost_after) == (then.njev, then.nfev, then.cost_after)
+
+
+def test_a_solve_beside_that_no_stage_takes_is_stopped_when_the_optimisation_ends():
+    """A stage solved beside whose end nobody asks for: :meth:`Beside.close` stops it at its next evaluation of
+    the residuals and waits for its thread, so no work goes on after the optimisation returns."""
+    p, _ = problem(seed=1)
+    paper = paper_stage(p)
+    calls, under_way = [], threading.Event()
+    beside = Beside(driver._alone(p, None, 0.0, None, (None, 1e-10, 1e-10)), concurrent=True)
+
+    def residuals(x):
+        calls.append(1)
+        if len(calls) == 2:  # the solve is under way: held here until close asks it to stop
+            under_way.set()
+            beside._stop.wait()
+        return paper.residuals(x)
+
+    beside.start(replace(paper, residuals=residuals, start=p.x0))
+    ((_, future),) = beside._pending.values()
+    assert under_way.wait(timeout=600)
+    beside.close()
+    assert len(calls) == 2 and isinstance(future.exception(), Stopped)
+
+
+@pytest.mark.parametrize("change", [{"start": None}, {"feasible": lambda x: True}])
+def test_only_a_stage_with_its_own_start_and_no_hard_constraint_is_solved_beside(change):
+    p, _ = problem()
+    beside = Beside(driver._alone(p, None, 0.0, None, (None, 1e-10, 1e-10)), concurrent=True)
+    stage = replace(paper_stage(p), start=p.x0)
+    with pytest.raises(equimesh.errors.InternalError, match="needs its own start and no hard constraint"):
+        beside.start(replace(stage, **change))
+    beside.close()

@@ -91,7 +91,8 @@ def test_a_series_ends_at_a_settled_round_inside_and_keeps_the_start():
     assert papers.description == paper_stage(p).description and papers.ftol == BOUNDED_START_FTOL
     np.testing.assert_array_equal(papers.start, p.x0)
     np.testing.assert_array_equal(papers.hold, p.sliding_variables)
-    assert last is first and np.array_equal(end, p.x0)
+    assert len(first.beside) == 1 and first.beside[0] is papers  # solved beside the first series
+    assert papers.beside == () and last is first and np.array_equal(end, p.x0)
 
 
 def test_the_papers_start_is_taken_when_its_share_is_larger():
@@ -511,9 +512,9 @@ def test_the_records():
     assert (bounded.slides, bounded.bounds_members, bounded.sound_joints) == (True, True, True)
     assert (classes.slides, classes.bounds_members, classes.sound_joints) == (True, True, True)
     assert paper.max_nodes == {"pardiso": 34_000, "cholmod": 34_000, "superlu": 34_000}
-    assert bounded.max_nodes == {"pardiso": 48_000, "cholmod": 48_000, "superlu": 27_000}
+    assert bounded.max_nodes == {"pardiso": 57_000, "cholmod": 57_000, "superlu": 35_000}
     assert classes.max_nodes == {"pardiso": 12_000, "cholmod": 12_000, "superlu": 6_000}
-    assert bounded.node_limit("superlu") == 27_000 and bounded.node_limit() == bounded.max_nodes[DEFAULT_FACTORISATION]
+    assert bounded.node_limit("superlu") == 35_000 and bounded.node_limit() == bounded.max_nodes[DEFAULT_FACTORISATION]
     assert paper.stages is paper_stages and bounded.stages is bounded_stages and classes.stages is classes_stages
 
 

@@ -6,6 +6,7 @@
 * :mod:`.stage`       :class:`~.stage.Stage`: one least-squares solve an objective yields, and the work bound's signal;
 * :mod:`.driver`      :func:`~.driver.optimize_uv`: the stages of an objective solved in turn,
                       with the fold-over guards;
+* :mod:`.beside`      :class:`~.beside.Beside`: the stages solved beside the others, on a second thread;
 * :mod:`.solver`      the sparse bounded Levenberg-Marquardt and its factorisations;
 * :mod:`.jacobian`    sparse Jacobians of per-element residuals, the area barrier;
 * :mod:`.slide`       boundary nodes sliding along closed polylines by their arc position.

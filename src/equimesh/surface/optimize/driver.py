@@ -11,7 +11,9 @@ sequence of stages, each a least-squares problem solved by the sparse bounded
 Levenberg-Marquardt of :mod:`equimesh.surface.optimize.solver` with an
 analytic sparse Jacobian (chain rule through the surface's first
 derivatives); the damping and the normal equations' analysis carry over
-from one stage to the next.
+from one stage to the next.  A stage that does not depend on the ones
+before it is solved beside them on a second thread
+(:attr:`~equimesh.surface.optimize.stage.Stage.beside`), with the same end.
 
 Fold-over.  Lengths do not see orientation, and the G1 edges do not see the
 triangles between the lattice and the boundary at all: minimising the G1
@@ -39,6 +41,7 @@ from ..._checks import check_length, finite_rows, index_rows
 from ...classes import DEFAULT_TOLERANCE
 from ...errors import EquimeshError, InvalidSurfaceError
 from ...tolerance import JOINT_ANGLE, JOINT_WEIGHT, LM_INITIAL_DAMPING, PAPER_FTOL
+from .beside import Beside
 from .jacobian import AreaBarrier, signed_areas
 from .joints import joint_bounds
 from .members import Members, out_of_reach
@@ -206,8 +209,20 @@ def optimize_uv(
     )
     if record.sound_joints and tri is not None:
         problem = problem.with_joints(tri, joint_bounds(surface, uv, tri))
+    x0 = problem.x0
+    beside = Beside(_alone(problem, tri, area_floor, factorisation, (ftol, xtol, gtol)), concurrent=len(x0) > 0)
+    try:
+        return _optimize(problem, record, surface, uv, tri, area_floor, normal_equations, beside, ftol, xtol, gtol)
+    finally:
+        beside.close()
+
+
+def _optimize(problem, record, surface, uv, tri, area_floor, normal_equations, beside, ftol, xtol, gtol):
+    """:func:`optimize_uv`'s work on its checked ``problem``: ``record``'s stages solved in turn (those carried
+    by another, :attr:`~.stage.Stage.beside`, by ``beside``), the result checked against the objective's promises."""
+    objective = record.name
     stages = record.stages(problem)
-    stage = next(stages)
+    stage = _advance(stages, None, beside)
     x0 = problem.x0
     members = Members(problem) if record.bounds_members else None
     if len(x0) == 0:  # nothing moves: the start is the end, held to the objective's promises as any end is
@@ -226,7 +241,10 @@ def optimize_uv(
         if stage.start is not None:  # a restart is a fresh solve: its own start and the initial damping
             x, damping = stage.start, LM_INITIAL_DAMPING
         try:
-            solution = _solve(problem, stage, x, damping, tri, barrier, normal_equations, ftol, xtol, gtol, work)
+            if beside.holds(stage):
+                solution = beside.take(stage, work)
+            else:
+                solution = _solve(problem, stage, x, damping, tri, barrier, normal_equations, ftol, xtol, gtol, work)
         except _OutOfWork as spent:
             within = f"within {record.max_jacobians} Jacobian evaluations (its work bound)"
             kept = _kept(stages)
@@ -241,7 +259,7 @@ def optimize_uv(
         x, nfev, damping = solution.x, nfev + solution.evaluations, solution.damping  # damping: the next solve's start
         converged, message, reached = solution.converged, solution.message, False
         try:
-            stage = stages.send(x)
+            stage = _advance(stages, x, beside)
         except StopIteration as done:
             x, stage = done.value
             break
@@ -294,6 +312,29 @@ def _solve(problem, stage, x, damping, triangles, barrier, normal_equations, fto
         if stage.feasible is None or stage.feasible(x) or tol <= PAPER_FTOL:
             return replace(solution, evaluations=evaluations)
         tol = PAPER_FTOL
+
+
+def _advance(stages, value, beside):
+    """The next stage to solve, ``stages.send(value)``, the stages it carries (:attr:`~.stage.Stage.beside`) handed to
+    ``beside``."""
+    stage = stages.send(value)
+    for later in stage.beside:
+        beside.start(later)
+    return stage
+
+
+def _alone(problem, triangles, area_floor, factorisation, tolerances):
+    """``solve(stage, work=None)`` for :class:`~.beside.Beside`: ``stage`` from its own start with the initial
+    damping, normal equations of its own and the fold-over guards, counted in ``work`` (a :class:`_Work`; by default
+    its own iterations bound it alone)."""
+
+    def solve(stage, work=None):
+        barrier = None if triangles is None or area_floor <= 0 else fold_over_barrier(problem, triangles, area_floor)
+        work = _Work(stage.max_iterations + 1) if work is None else work
+        equations = NormalEquations(factorisation)
+        return _solve(problem, stage, stage.start, LM_INITIAL_DAMPING, triangles, barrier, equations, *tolerances, work)
+
+    return solve
 
 
 def _kept(stages):

@@ -9,6 +9,7 @@ tolerance ``D > 0`` every node that moves also has an offset ``h`` in
 ``X^s(u, v) + h N(u, v)`` (docs/decisions.md, "Nodes off the surface within a tolerance").
 """
 
+import threading
 from dataclasses import dataclass, replace
 from functools import cached_property
 
@@ -118,16 +119,16 @@ class UVProblem:
             [self.uv.ravel()[self.variables], *(slide.s for slide in self.slides), np.zeros(len(self.offset_nodes))]
         )
 
-    @cached_property
-    def _last(self):
-        """The quantities computed at the last ``x`` asked for (:meth:`at`)."""
-        return {}
+    def __post_init__(self):
+        # The quantities computed at the last x asked for (at), one record per thread: the driver solves a stage
+        # beside the others (Stage.beside), each thread at its own x.
+        object.__setattr__(self, "_last", threading.local())
 
     def at(self, x, name, compute):
-        """``compute(x)``, once per ``x``: the residuals, the Jacobian, the guards and the rounds of one iteration
-        ask for the nodes' (u, v), points and tangents (and the joints for the angles) at the same ``x``.  Read-only,
-        since shared."""
-        last = self._last
+        """``compute(x)``, once per ``x`` and thread: the residuals, the Jacobian, the guards and the rounds of one
+        iteration ask for the nodes' (u, v), points and tangents (and the joints for the angles) at the same ``x``.
+        Read-only, since shared."""
+        last = self._last.__dict__
         if "x" not in last or not np.array_equal(last["x"], x):
             last.clear()
             last["x"] = np.array(x)

@@ -2,7 +2,9 @@
 
 An objective's stages (:mod:`~equimesh.surface.optimize.objectives`) yield :class:`Stage` records to
 :func:`~equimesh.surface.optimize.driver.optimize_uv`, which solves each from where the last ended and sends back
-the point reached; where the Jacobians would pass the objective's work bound it throws :class:`WorkSpent` in.
+the point reached; where the Jacobians would pass the objective's work bound it throws :class:`WorkSpent` in.  A
+stage may carry stages the objective yields later that do not depend on the ones before (:attr:`Stage.beside`), so
+that the driver solves them beside those.
 """
 
 from dataclasses import dataclass
@@ -44,6 +46,11 @@ class Stage:
         later one does, and a stage that ends outside it is solved on to
         ``PAPER_FTOL``; if the point the optimisation ends at is outside, the
         surface is refused with ``violation(x)``, a phrase naming what is violated.
+    beside : tuple of Stage
+        Stages the objective yields later, each a solve from its own start without a hard constraint: the driver
+        solves them beside this stage and the ones in between, on a thread of their own (so on a second core), and
+        answers each, when it is yielded, with the end that solving it then, in turn, gives (the same point, the same
+        count of its Jacobians against the work bound), so the result does not depend on the order the solves ran in.
     """
 
     residuals: Callable[[np.ndarray], np.ndarray]
@@ -56,3 +63,4 @@ class Stage:
     limit: Callable[[np.ndarray], np.ndarray] = None
     feasible: Callable[[np.ndarray], bool] = None
     violation: Callable[[np.ndarray], str] = None
+    beside: tuple = ()
