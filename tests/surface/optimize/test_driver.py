@@ -698,42 +698,93 @@ def in_turn(monkeypatch):
     monkeypatch.setattr(driver, "Beside", lambda solve, concurrent: Beside(solve, concurrent=False))
 
 
-def with_one_beside(carried):
-    """Stages: two iterations of the paper's, then the paper's from the start with the rim's neighbours held
-    (carried by the first if ``carried``), then the paper's on from its end with its damping."""
+def with_one_beside(carried, iterations, keeping, breaks, squeezed=False):
+    """Stages: two iterations of the paper's, then the paper's from the start with the rim's neighbours held (at
+    most ``iterations``; carried by the first if ``carried``; if ``breaks``, its Jacobian not finite from its third
+    evaluation on; if ``squeezed``, from a start whose third free node is pushed towards the rim, squeezing its
+    triangles into the fold-over barrier), then the paper's on from its end with its damping.  Where the work bound
+    ends them, ``keeping`` ones return the end of the stage before, the others nothing."""
 
     def stages(problem):
         held = np.zeros(len(problem.x0), dtype=bool)
         held[:4] = True
-        later = replace(paper_stage(problem), start=problem.x0, hold=held)
-        yield replace(paper_stage(problem), max_iterations=2, beside=(later,) if carried else ())
-        yield later
-        x = yield paper_stage(problem)
-        return x, later
+        start = problem.x0.copy()
+        if squeezed:
+            start[4] -= 0.2
+            assert np.any(fold_over_barrier(problem, TRIANGLES, 0.5).residuals(problem.uv_of(start)) > 0)
+        later = replace(paper_stage(problem), start=start, hold=held, max_iterations=iterations)
+        if breaks:
+            calls, jacobian = [], later.jacobian
+
+            def broken(x):
+                calls.append(x)
+                return jacobian(x) * (np.nan if len(calls) > 2 else 1.0)
+
+            later = replace(later, jacobian=broken)
+        first = replace(paper_stage(problem), max_iterations=2, beside=(later,) if carried else ())
+        ends = [(None, None)]
+        for stage in (first, later, paper_stage(problem)):
+            try:
+                ends.append(((yield stage), stage))
+            except WorkSpent:
+                if keeping and ends[-1][0] is not None:
+                    return ends[-1]
+                raise
+        return ends[-1]
 
     return stages
 
 
-@pytest.mark.parametrize("bound", [1000, 6, 4])
-def test_a_stage_carried_beside_ends_where_the_stages_in_turn_do(bound, monkeypatch):
-    """The same stages with the second solved beside the first (on a thread, and in turn when taken) and not
-    carried at all: the same point, the same evaluations and Jacobians, bit for bit, the third going on from the
-    second's end with its damping (13 Jacobians: 3, 5 and 5).  With a work bound that cuts the second short (6: it
-    may take 2 of its 4 iterations, so it is solved again in turn) or leaves it none (4), the same refusal."""
+@pytest.mark.parametrize(
+    "bound, iterations, keeping, bounds_members, breaks, squeezed",
+    [
+        (1000, 500, False, False, False, True),
+        (1000, 500, False, False, False, False),
+        (1000, 2, False, False, False, False),
+        (6, 500, True, False, False, False),
+        (6, 500, True, False, True, False),
+        (4, 500, False, True, False, False),
+    ],
+)
+def test_a_stage_carried_beside_ends_where_the_stages_in_turn_do(
+    bound, iterations, keeping, bounds_members, breaks, squeezed, monkeypatch
+):
+    """The same stages with the second solved beside the first (on a thread, or in turn when taken) and not carried
+    at all: the same point, the same evaluations and Jacobians, bit for bit, the third going on from the second's end
+    with its damping (13 Jacobians: 3, 5 and 5; with the second given only 2 iterations, unconverged, the third goes
+    on all the same).  With a work bound that cuts the second short (6: it may take 2 of its 4 iterations, so it is
+    solved again in turn, and the end kept is the first's; also where its normal equations stop being finite just at
+    those 2, which in turn ends it unconverged at its cap) or leaves it none (4: refused, the members outside [l, 2l]
+    named at its start), the same end.  On a thread the second is solved once, there, unless the bound cuts it; from
+    a start in the fold-over barrier, with SuperLU (not the default), it keeps the guards and the factorisation."""
     ends = []
     for carried, concurrent in ((True, True), (True, False), (False, True)):
-        record(monkeypatch, "beside", with_one_beside(carried), max_jacobians=bound)
+        stages = with_one_beside(carried, iterations, keeping, breaks, squeezed)
+        record(monkeypatch, "beside", stages, bounds_members=bounds_members, max_jacobians=bound)
+        solves, solve = [], driver._solve
+
+        def spied(problem, stage, *args, **kwargs):
+            solves.append((stage.start is not None, threading.current_thread() is threading.main_thread()))
+            return solve(problem, stage, *args, **kwargs)
+
         with monkeypatch.context() as patched:
+            patched.setattr(driver, "_solve", spied)
             if not concurrent:
                 in_turn(patched)
             try:
-                result = run("beside")
+                result = run("beside", factorisation="superlu" if squeezed else None)
             except InvalidSurfaceError as error:
                 ends.append(str(error))
             else:
                 ends.append((result.uv.tobytes(), result.nfev, result.njev, result.cost_after, result.message))
+        if carried and concurrent and bound == 1000:
+            assert sorted(solves) == [(False, True), (False, True), (True, False)]
     assert ends[0] == ends[1] == ends[2]
-    assert isinstance(ends[0], str) == (bound < 13), ends[0]
+    assert isinstance(ends[0], str) == (bound == 4), ends[0]
+    if bounds_members:
+        assert "no mesh with every member in [l, 2l] found within 4 Jacobian evaluations" in ends[0]
+    if keeping:
+        assert ends[0][-1] == "the best point found within 6 Jacobian evaluations (its work bound)"
 
 
 @pytest.mark.parametrize("objective", ["bounded", "classes"])
@@ -770,9 +821,11 @@ def test_a_solve_beside_that_no_stage_takes_is_stopped_when_the_optimisation_end
 
     beside.start(replace(paper, residuals=residuals, start=p.x0))
     ((_, future),) = beside._pending.values()
-    assert under_way.wait(timeout=600)
+    while not (under_way.wait(timeout=0.05) or future.done()):  # the second evaluation, or an end before it
+        pass
     beside.close()
-    assert len(calls) == 2 and isinstance(future.exception(), Stopped)
+    assert future.done()  # close waited for it
+    assert under_way.is_set() and len(calls) == 2 and isinstance(future.exception(), Stopped)
 
 
 @pytest.mark.parametrize("change", [{"start": None}, {"feasible": lambda x: True}])
@@ -780,6 +833,9 @@ def test_only_a_stage_with_its_own_start_and_no_hard_constraint_is_solved_beside
     p, _ = problem()
     beside = Beside(driver._alone(p, None, 0.0, None, (None, 1e-10, 1e-10)), concurrent=True)
     stage = replace(paper_stage(p), start=p.x0)
-    with pytest.raises(equimesh.errors.InternalError, match="needs its own start and no hard constraint"):
+    with pytest.raises(
+        equimesh.errors.InternalError,
+        match="^a stage solved beside the others needs its own start and no hard constraint$",
+    ):
         beside.start(replace(stage, **change))
     beside.close()
