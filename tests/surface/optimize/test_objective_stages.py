@@ -460,6 +460,7 @@ def test_a_settled_round_whose_cost_fell_does_not_restart():
         assert loss_change <= BOUNDED_LOSS_TOL * cauchy_loss(ratio(p, p.x0))
         seen, _ = drive(bounded_stages(p), lambda k, stage: x)
         assert seen[1].description.endswith("round 2") and (seen[1].start is not None) == restarts
+        assert len(seen[0].beside) == 1 and seen[1].beside == ()  # only the first round carries the second start
 
 
 def test_the_work_bound_ends_bounded_at_its_best_round_end_or_passes():
