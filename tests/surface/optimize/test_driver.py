@@ -810,7 +810,7 @@ def test_a_solve_beside_that_no_stage_takes_is_stopped_when_the_optimisation_end
     p, _ = problem(seed=1)
     paper = paper_stage(p)
     calls, under_way = [], threading.Event()
-    beside = Beside(driver._alone(p, None, 0.0, None, (None, 1e-10, 1e-10)), concurrent=True)
+    beside = Beside(driver._alone(p, None, None, None, (None, 1e-10, 1e-10)), concurrent=True)
 
     def residuals(x):
         calls.append(1)
@@ -831,7 +831,7 @@ def test_a_solve_beside_that_no_stage_takes_is_stopped_when_the_optimisation_end
 @pytest.mark.parametrize("change", [{"start": None}, {"feasible": lambda x: True}])
 def test_only_a_stage_with_its_own_start_and_no_hard_constraint_is_solved_beside(change):
     p, _ = problem()
-    beside = Beside(driver._alone(p, None, 0.0, None, (None, 1e-10, 1e-10)), concurrent=True)
+    beside = Beside(driver._alone(p, None, None, None, (None, 1e-10, 1e-10)), concurrent=True)
     stage = replace(paper_stage(p), start=p.x0)
     with pytest.raises(
         equimesh.errors.InternalError,

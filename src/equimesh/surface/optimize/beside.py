@@ -39,15 +39,18 @@ class Beside:
         self._pending[id(stage)] = (stage, future)
 
     def holds(self, stage):
-        """Whether ``stage`` itself was started here and not yet taken."""
-        return id(stage) in self._pending and self._pending[id(stage)][0] is stage
+        """Whether ``stage`` itself was started here and not yet taken (kept in :attr:`_pending` until then, so no
+        other object can have its id)."""
+        return id(stage) in self._pending
 
     def take(self, stage, work):
         """``stage``'s solution, its Jacobians counted in ``work`` (``work.cap`` and ``work.spend`` raise where the
         bound ends the optimisation, as in turn)."""
         _, future = self._pending.pop(id(stage))
+        if future is None:  # not concurrent: solved now, in turn
+            return self._solve(stage, work)
         cap = work.cap(stage.max_iterations, stage.start)
-        solution = self._solve(stage) if future is None else future.result()
+        solution = future.result()
         if solution.iterations > cap:  # in turn, the bound would have stopped it earlier: so solve it in turn
             return self._solve(stage, work)
         work.spend(solution, cap < stage.max_iterations)

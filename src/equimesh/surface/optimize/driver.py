@@ -209,15 +209,16 @@ def optimize_uv(
     )
     if record.sound_joints and tri is not None:
         problem = problem.with_joints(tri, joint_bounds(surface, uv, tri))
-    x0 = problem.x0
-    beside = Beside(_alone(problem, tri, area_floor, factorisation, (ftol, xtol, gtol)), concurrent=len(x0) > 0)
+    barrier = None if tri is None or area_floor <= 0 else fold_over_barrier(problem, tri, area_floor)
+    concurrent = len(problem.x0) > 0
+    beside = Beside(_alone(problem, tri, barrier, factorisation, (ftol, xtol, gtol)), concurrent=concurrent)
     try:
-        return _optimize(problem, record, surface, uv, tri, area_floor, normal_equations, beside, ftol, xtol, gtol)
+        return _optimize(problem, record, surface, uv, tri, barrier, normal_equations, beside, ftol, xtol, gtol)
     finally:
         beside.close()
 
 
-def _optimize(problem, record, surface, uv, tri, area_floor, normal_equations, beside, ftol, xtol, gtol):
+def _optimize(problem, record, surface, uv, tri, barrier, normal_equations, beside, ftol, xtol, gtol):
     """:func:`optimize_uv`'s work on its checked ``problem``: ``record``'s stages solved in turn (those carried
     by another, :attr:`~.stage.Stage.beside`, by ``beside``), the result checked against the objective's promises."""
     objective = record.name
@@ -236,7 +237,6 @@ def _optimize(problem, record, surface, uv, tri, area_floor, normal_equations, b
         if out_of_reach(members.ratio(x0)):  # docs/decisions.md, "A work bound for the optimisation"
             raise _refusal(objective, surface, f"within reach of the remapped mesh: {members.reach(x0)}")
     x, nfev, work, damping = x0, 0, _Work(record.max_jacobians), LM_INITIAL_DAMPING
-    barrier = None if tri is None or area_floor <= 0 else fold_over_barrier(problem, tri, area_floor)
     while True:
         if stage.start is not None:  # a restart is a fresh solve: its own start and the initial damping
             x, damping = stage.start, LM_INITIAL_DAMPING
@@ -323,13 +323,12 @@ def _advance(stages, value, beside):
     return stage
 
 
-def _alone(problem, triangles, area_floor, factorisation, tolerances):
+def _alone(problem, triangles, barrier, factorisation, tolerances):
     """``solve(stage, work=None)`` for :class:`~.beside.Beside`: ``stage`` from its own start with the initial
-    damping, normal equations of its own and the fold-over guards, counted in ``work`` (a :class:`_Work`; by default
-    its own iterations bound it alone)."""
+    damping, normal equations of its own and the fold-over guards (``barrier``, read only, shared with the other
+    stages), counted in ``work`` (a :class:`_Work`; by default its own iterations bound it alone)."""
 
     def solve(stage, work=None):
-        barrier = None if triangles is None or area_floor <= 0 else fold_over_barrier(problem, triangles, area_floor)
         work = _Work(stage.max_iterations + 1) if work is None else work
         equations = NormalEquations(factorisation)
         return _solve(problem, stage, stage.start, LM_INITIAL_DAMPING, triangles, barrier, equations, *tolerances, work)
