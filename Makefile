@@ -44,6 +44,7 @@ EXPERIMENTS := \
 	experiments/bounded.py \
 	experiments/bounded_sweep.py \
 	experiments/optimisation_work.py \
+	experiments/pardiso_threads.py \
 	experiments/feature_angle.py \
 	experiments/inputs.py \
 	experiments/fabrication.py

@@ -103,7 +103,14 @@ MODULES.update(KERNEL_MODULES)
 OPTIMIZE_MODULES = {
     "src/equimesh/surface/optimize/slide.py": ["tests/surface/optimize/test_slide.py"],
     "src/equimesh/surface/optimize/jacobian.py": ["tests/surface/optimize/test_jacobian.py"],
-    "src/equimesh/surface/optimize/solver.py": ["tests/surface/optimize/test_solver.py"],
+    "src/equimesh/surface/optimize/solver.py": [
+        "tests/surface/optimize/test_solver.py",
+        "tests/surface/optimize/test_pardiso_cores.py",
+    ],
+    "src/equimesh/surface/optimize/cores.py": [
+        "tests/surface/optimize/test_solver.py",
+        "tests/surface/optimize/test_pardiso_cores.py",
+    ],
     "src/equimesh/surface/optimize/ordering.py": ["tests/surface/optimize/test_ordering.py"],
     "src/equimesh/surface/optimize/joints.py": ["tests/surface/optimize/test_joints.py"],
     "src/equimesh/surface/optimize/members.py": ["tests/surface/optimize/test_members.py"],
@@ -113,7 +120,10 @@ OPTIMIZE_MODULES = {
     ],
     "src/equimesh/surface/optimize/objectives.py": ["tests/surface/optimize/test_objective_stages.py"],
     "src/equimesh/surface/optimize/driver.py": ["tests/surface/optimize/test_driver.py"],
-    "src/equimesh/surface/optimize/beside.py": ["tests/surface/optimize/test_driver.py"],
+    "src/equimesh/surface/optimize/beside.py": [
+        "tests/surface/optimize/test_driver.py",
+        "tests/surface/optimize/test_pardiso_cores.py",
+    ],
 }
 MODULES.update(OPTIMIZE_MODULES)
 

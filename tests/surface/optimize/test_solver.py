@@ -15,6 +15,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from equimesh.errors import EquimeshError
+from equimesh.surface.optimize import cores
 from equimesh.surface.optimize import solver as _solver
 from equimesh.surface.optimize.ordering import DISSECT_FROM, nested_dissection
 from equimesh.surface.optimize.solver import FACTORISATIONS, INSTALLED, NormalEquations, least_squares
@@ -614,8 +615,8 @@ def test_the_openblas_bundled_beside_a_package_is_kept_to_one_thread(tmp_path, m
         setter = files[str(Path(path).relative_to(tmp_path.resolve()))]
         return types.SimpleNamespace(**{setter: lambda threads: calls.append((Path(path).name, setter, threads))})
 
-    monkeypatch.setattr(_solver.ctypes, "CDLL", library)
-    _solver._one_blas_thread(types.SimpleNamespace(__file__=str(tmp_path / "pkg/__init__.py")))
+    monkeypatch.setattr(cores.ctypes, "CDLL", library)
+    cores.one_blas_thread(types.SimpleNamespace(__file__=str(tmp_path / "pkg/__init__.py")))
     assert calls == [
         ("libopenblas64_p-r0.so", "openblas_set_num_threads", 1),
         ("libscipy_openblas64_.so", "scipy_openblas_set_num_threads64_", 1),

@@ -12,6 +12,7 @@ from concurrent.futures import ThreadPoolExecutor
 from dataclasses import replace
 
 from ...errors import InternalError
+from .cores import CORES
 
 
 class Beside:
@@ -35,7 +36,7 @@ class Beside:
         hard constraint, which solving it beside the stages before would change."""
         if stage.start is None or stage.feasible is not None:
             raise InternalError("a stage solved beside the others needs its own start and no hard constraint")
-        future = self._pool.submit(self._solve, self._stoppable(stage)) if self._concurrent else None
+        future = self._pool.submit(self._on_one_core, self._stoppable(stage)) if self._concurrent else None
         self._pending[id(stage)] = (stage, future)
 
     def holds(self, stage):
@@ -64,6 +65,12 @@ class Beside:
                 if future is not None:
                     future.cancel()
             self._pool.shutdown(wait=True)
+
+    def _on_one_core(self, stage):
+        """``stage`` solved on this thread, beside the others (:meth:`~.cores.Cores.beside`): while it runs, each
+        factorises on one thread."""
+        with CORES.beside():
+            return self._solve(stage)
 
     def _stoppable(self, stage):
         """``stage`` with residuals that raise :class:`Stopped` once :meth:`close` was called."""

@@ -39,18 +39,16 @@ on surface meshes) instead of an inner iterative solve:
   and predicted relative reductions below ``ftol``.  ``max_iterations`` is
   only a guard against a bug and is reported when it is hit.
 
-Deterministic: no randomness, a fixed ordering, single-threaded
-factorisations and inner products that do not depend on the BLAS's threads
-(:func:`inner`), so the same input gives the same bits on one installation
-(the factorisations round differently, so a result's last bits depend on
-which one is used).
+Deterministic: no randomness, a fixed ordering, factorisations and inner
+products (:func:`inner`) whose rounding does not depend on their threads
+(:mod:`~equimesh.surface.optimize.cores`), so the same input gives the same
+bits on one installation, whatever its cores (the factorisations round
+differently, so a result's last bits depend on which one is used).
 """
 
-import ctypes
 import os
 import weakref
 from dataclasses import dataclass
-from pathlib import Path
 
 import numpy as np
 import scipy.sparse
@@ -59,6 +57,7 @@ import scipy.sparse.linalg
 from ..._jit import compiled
 from ...errors import EquimeshError
 from ...tolerance import LM_BACKTRACKS, LM_DIAGONAL_FLOOR, LM_INITIAL_DAMPING
+from .cores import CORES, PARDISO_THREADS, one_blas_thread
 from .ordering import DISSECT_FROM, nested_dissection
 
 try:
@@ -77,6 +76,16 @@ else:
     # environment when ctypes does not find it (0.15 s on an idle machine, 0.75 s under load,
     # per solver): the one its import found is named once for all of them.
     os.environ.setdefault("PYPARDISO_MKL_RT", pypardiso.ps.libmkl._name)
+    # MKL's OpenMP threads wait for work by spinning, 200 ms by default: "bounded" at 22,448 variables took 17.3 and
+    # 19.0 CPU seconds so, 13.2 and 16.2 without, in about the same wall time (KMP_BLOCKTIME=200 and unset,
+    # `python experiments/optimisation_timing.py --length 0.88 --objective bounded`).
+    os.environ.setdefault("KMP_BLOCKTIME", "0")
+
+#: Below this many variables PARDISO factorises sequentially on one thread, from it on reproducibly on two
+#: (:data:`~.cores.PARDISO_THREADS`): results/pardiso_threads.md (``python experiments/pardiso_threads.py``) timed
+#: a factorisation and a solve so at about the cost of the sequential one at 2,698 variables, two thirds of it at
+#: 5,278 and 11,066, three quarters at 64,784 (the reproducible solve takes twice as long), more at 1,344.
+PARDISO_THREADS_FROM = 4_000
 
 
 @dataclass(frozen=True)
@@ -344,14 +353,20 @@ class _SuperLU:
 
 class _Pardiso:
     """MKL PARDISO (``pypardiso``): a supernodal Cholesky of the upper triangle, its symbolic analysis (METIS order)
-    done once, one thread."""
+    done once; from :data:`PARDISO_THREADS_FROM` variables on reproducible on up to two threads, else on one."""
 
-    def __init__(self, rows, cols, n):
+    def __init__(self, rows, cols, n, threads=None, reproducible=None):
+        """``threads``: those it runs on (by default :meth:`~.cores.Cores.threads` at each factorisation if
+        ``reproducible``, else 1); ``reproducible``: iparm 34 (by default as :data:`PARDISO_THREADS_FROM` says)."""
+        if reproducible is None:
+            reproducible = PARDISO_THREADS if n >= PARDISO_THREADS_FROM else 0
+        self._fixed = threads or (None if reproducible else 1)
+        self._threads = self._fixed or CORES.threads()
         self._solver = pypardiso.PyPardisoSolver(mtype=2)
         # Our own parameters (iparm 1 = 1): METIS order (2 = 2), no iterative refinement (8 = 0: it
         # took two of three triangular solves; the Cholesky solve alone is backward stable),
-        # the default pivot perturbation 1e-8 (10 = 8).
-        for i, value in ((1, 1), (2, 2), (8, 0), (10, 8)):
+        # the default pivot perturbation 1e-8 (10 = 8), results reproducible on up to that many threads (34).
+        for i, value in ((1, 1), (2, 2), (8, 0), (10, 8), (34, reproducible)):
             self._solver.set_iparm(i, value)
         self._pattern = scipy.sparse.csr_matrix((np.ones(len(rows)), (rows, cols)), shape=(n, n))
         self._pattern.sort_indices()
@@ -360,9 +375,10 @@ class _Pardiso:
         self.release = weakref.finalize(self, self._solver.free_memory, everything=True)
 
     def _call(self, phase, b):
-        """PARDISO's ``phase`` on the pattern's matrix, in one thread (with two its results differ in the last bits)."""
+        """PARDISO's ``phase`` on the pattern's matrix, on its threads (two in the sequential mode would change the
+        last bits)."""
         self._solver.set_phase(phase)
-        threads = self._solver.libmkl.MKL_Set_Num_Threads_Local(1)
+        threads = self._solver.libmkl.MKL_Set_Num_Threads_Local(self._threads)
         try:
             return self._solver._call_pardiso(self._pattern, b)
         except pypardiso.pardiso_wrapper.PyPardisoError as error:  # e.g. -4, a zero pivot
@@ -372,6 +388,10 @@ class _Pardiso:
 
     def factorise(self, values):
         """A function ``b -> A^-1 b`` for the matrix of the pattern's upper-triangular ``values``."""
+        threads = self._fixed or CORES.threads()
+        if threads != self._threads:  # PARDISO's threads are fixed by its analysis (fewer after it failed)
+            self._threads = threads
+            self._call(11, np.zeros(self._pattern.shape[0]))
         self._pattern.data[:] = values
         self._call(22, np.zeros(self._pattern.shape[0]))
         return lambda b: self._call(33, np.asarray(b, dtype=float))
@@ -382,7 +402,7 @@ class _Cholmod:
     (AMD order, supernodes) done once, the BLAS it calls kept to one thread."""
 
     def __init__(self, rows, cols, n):
-        _one_blas_thread(_cvxopt_cholmod)
+        one_blas_thread(_cvxopt_cholmod)
         # The lower triangle is the upper one transposed: sorted by row then column, its entries are in the
         # column-major order that cvxopt keeps, so the values are handed over as they come.
         self._matrix = _cvxopt_spmatrix(
@@ -417,24 +437,6 @@ def _with_options(options, function, *args, **kwargs):
     finally:
         _cvxopt_cholmod.options.clear()
         _cvxopt_cholmod.options.update(saved)
-
-
-def _one_blas_thread(module):
-    """Keep the OpenBLAS bundled beside ``module``'s package (cvxopt's wheels carry one) to one thread.
-
-    A supernodal factorisation calls the BLAS on dense blocks; with two
-    threads the blocks' sums could be split, tying the last bits to the core
-    count (docs/decisions.md, "One pattern for the normal matrix, three factorisations").
-    Found by its file name beside the package (``cvxopt.libs``, ``cvxopt/.libs``, ``cvxopt/.dylibs``);
-    a BLAS not bundled so is the platform's (Accelerate on macOS), left as it is.
-    """
-    package = Path(module.__file__).resolve().parent
-    for folder in (package.parent / f"{package.name}.libs", package / ".libs", package / ".dylibs"):
-        for path in sorted(folder.glob("*openblas*")) if folder.is_dir() else ():
-            library = ctypes.CDLL(str(path))
-            for name in ("openblas_set_num_threads", "scipy_openblas_set_num_threads64_"):
-                if hasattr(library, name):
-                    getattr(library, name)(1)
 
 
 class _FactorisationError(ArithmeticError):
