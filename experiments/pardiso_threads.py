@@ -3,12 +3,12 @@
 For each member length l, "bounded" on the reference dome (15 x 15 grid, default lattice placement, no size limit)
 until its optimisation's fifth factorisation of more than ``MIN_VARIABLES`` variables; that normal matrix (the
 first rounds', boundary sliding) is then factorised and solved ``REPEATS`` times in each of PARDISO's modes
-(:class:`~equimesh.surface.optimize.solver.FACTORISATIONS` ``["pardiso"]``): sequential (iparm 34 = 0) on one
-thread and on two, and reproducible for two threads (iparm 34 = 2) on one and on two.  It gives the median
-milliseconds of a factorisation and of a solve, and whether the solution has the bits of the mode's run on one
-thread (a hash of the solution of one right-hand side); and reproducibly with two solves at once (on two threads
-of the interpreter, as the driver's solve beside the others runs), each on two threads or each on one.  Run with
-nothing else on the machine.
+(:data:`~equimesh.surface.optimize.solver.FACTORISATIONS` ``["pardiso"]``), the modes taking turns: sequential
+(iparm 34 = 0) on one thread and on two, and reproducible for two threads (iparm 34 = 2) on one and on two.  It
+gives the median milliseconds of a factorisation and of a solve, and whether the solution has the bits of the
+mode's run on one thread (a hash of the solution of one right-hand side); and reproducibly with two solves at once
+(on two threads of the interpreter, as the driver's solve beside the others runs), each on two threads or each on
+one.  Run with nothing else on the machine.
 
 Writes::
 
@@ -44,7 +44,7 @@ LENGTHS = (3.5, 2.5, 1.8, 1.25, 0.88, 0.52)
 #: The normal matrices of the flattening and of Problem 2's small solves are not the optimisation's.
 MIN_VARIABLES = 1_000
 CAPTURED = 5
-REPEATS = 7
+REPEATS = 15
 #: (mode, reproducible for this many threads (iparm 34), threads run on, solves at once).
 MODES = (
     ("sequential", 0, 1, 1),
@@ -102,44 +102,53 @@ def normal_matrix(length):
     raise RuntimeError(f"fewer than {CAPTURED} factorisations of more than {MIN_VARIABLES} variables at l = {length}")
 
 
-def timed_mode(rows, cols, values, n, reproducible, threads):
-    """Median milliseconds of a factorisation and of a solve in one mode, and the first hex digits of the
-    solution's hash."""
-    factor = solver.FACTORISATIONS["pardiso"](rows, cols, n, threads=threads, reproducible=reproducible)
-    rhs = np.arange(n, dtype=float) % 7 - 3
-    factorisations, solves = [], []
-    for _ in range(REPEATS):
-        start = time.perf_counter()
-        solve = factor.factorise(values)
-        factorisations.append(time.perf_counter() - start)
-        start = time.perf_counter()
-        x = solve(rhs)
-        solves.append(time.perf_counter() - start)
-    factor.release()
-    bits = hashlib.sha256(np.ascontiguousarray(x).tobytes()).hexdigest()[:12]
-    return 1e3 * statistics.median(factorisations), 1e3 * statistics.median(solves), bits
+def timed_once(factor, values, rhs):
+    """Seconds of one factorisation and of one solve, and the solution."""
+    start = time.perf_counter()
+    solve = factor.factorise(values)
+    middle = time.perf_counter()
+    x = solve(rhs)
+    return middle - start, time.perf_counter() - middle, x
 
 
 def measure(length):
-    """The rows of one l: each mode of :data:`MODES` on its normal matrix (with two at once, the first solve's)."""
+    """The rows of one l: each mode of :data:`MODES` on its normal matrix (with two at once, the first solve's).
+
+    The modes take turns, one factorisation and solve each per turn, :data:`REPEATS` turns: a change of the
+    machine's load falls on every mode alike."""
     rows, cols, values, n = normal_matrix(length)
+    rhs = np.arange(n, dtype=float) % 7 - 3
+    pardiso = solver.FACTORISATIONS["pardiso"]
+    factors = [
+        [pardiso(rows, cols, n, threads=threads, reproducible=reproducible) for _ in range(at_once)]
+        for _, reproducible, threads, at_once in MODES
+    ]
+    times = [[] for _ in MODES]
+    with ThreadPoolExecutor(max_workers=2) as pool:
+        for _ in range(REPEATS):
+            for mode, group in enumerate(factors):
+                runs = [pool.submit(timed_once, factor, values, rhs) for factor in group]
+                times[mode].append(runs[0].result())
+                for run in runs[1:]:
+                    run.result()
     out, one_thread = [], {}
-    for mode, reproducible, threads, at_once in MODES:
-        with ThreadPoolExecutor(max_workers=at_once) as pool:
-            runs = [pool.submit(timed_mode, rows, cols, values, n, reproducible, threads) for _ in range(at_once)]
-            factorisation, solve, bits = runs[0].result()
+    for (mode, reproducible, threads, at_once), timed, group in zip(MODES, times, factors):
+        bits = hashlib.sha256(np.ascontiguousarray(timed[-1][2]).tobytes()).hexdigest()[:12]
+        factorisation, solve = (1e3 * statistics.median(t[k] for t in timed) for k in (0, 1))
         one_thread.setdefault(mode, bits)
         row = [length, n, len(values), mode, threads, at_once, factorisation, solve, bits, bits == one_thread[mode]]
         out.append(row)
+        for factor in group:
+            factor.release()
     return out
 
 
 def summarize(df, record):
     body = [
         'The normal matrix of "bounded" on the reference dome at each l (its optimisation\'s fifth factorisation), '
-        f"factorised and solved {REPEATS} times per mode: median milliseconds; at once: solves running together, "
-        "each on its threads (the first one's times); bits: the first hex digits of the solution's SHA-256; same "
-        "bits: as the mode's run on one thread.",
+        f"factorised and solved {REPEATS} times per mode, the modes in turn: median milliseconds; at once: solves "
+        "running together, each on its threads (the first one's times); bits: the first hex digits of the "
+        "solution's SHA-256; same bits: as the mode's run on one thread.",
         "",
         "| l | variables | upper nonzeros | mode | threads | at once | factorisation (ms) | solve (ms) | both (ms) "
         "| bits | same bits |",
