@@ -82,9 +82,9 @@ else:
     os.environ.setdefault("KMP_BLOCKTIME", "0")
 
 #: Below this many variables PARDISO factorises sequentially on one thread, from it on reproducibly on two
-#: (:data:`~.cores.PARDISO_THREADS`): results/pardiso_threads.md (``python experiments/pardiso_threads.py``) timed
-#: a factorisation and a solve so at about the cost of the sequential one at 2,698 variables, two thirds of it at
-#: 5,278 and 11,066, three quarters at 64,784 (the reproducible solve takes twice as long), more at 1,344.
+#: (:data:`~.cores.PARDISO_THREADS`): results/pardiso_threads.md (``python experiments/pardiso_threads.py``) timed a
+#: factorisation and a solve so at 1.35 times the sequential one's time at 1,344 variables, 1.01 at 2,698, 0.75 to
+#: 0.82 from 5,278 to 22,448 and 0.91 at 64,784 (the reproducible solve takes 1.5 to 2 times as long).
 PARDISO_THREADS_FROM = 4_000
 
 
