@@ -79,24 +79,32 @@ def test_two_threads_give_the_bits_of_one_and_a_new_count_is_analysed_again(monk
 
 
 def test_while_a_solve_runs_beside_every_factorisation_takes_one_thread():
-    """``CORES.beside()``: its thread and every other one factorise on one thread while it lasts, on all the
-    reproducible mode takes before and after."""
-    inside, entered, done = [], threading.Event(), threading.Event()
+    """``Cores.beside()``: its thread and every other one factorise on one thread while it lasts (two such solves
+    at once too), on all the reproducible mode takes before and after."""
+    shared, inside, entered, done = cores.Cores(), [], threading.Event(), threading.Event()
 
     def beside():
-        with cores.CORES.beside():
+        with shared.beside():
             entered.set()
-            inside.append(cores.CORES.threads())
+            inside.append(shared.threads())
             done.wait()
 
-    assert cores.CORES.threads() == CORES
+    assert shared.threads() == CORES
     with ThreadPoolExecutor(max_workers=1) as pool:
         future = pool.submit(beside)
         entered.wait()
-        others = cores.CORES.threads()
+        others = shared.threads()
+        with shared.beside():
+            both = shared.threads()
+        still = shared.threads()
         done.set()
         future.result()
-    assert inside == [1] and others == 1 and cores.CORES.threads() == CORES
+    assert inside == [1] and others == both == still == 1 and shared.threads() == CORES
+
+
+def test_a_machine_whose_cores_are_unknown_factorises_on_one_thread(monkeypatch):
+    monkeypatch.setattr(cores.os, "cpu_count", lambda: None)
+    assert cores.Cores().threads() == 1
 
 
 def test_the_solve_beside_the_others_runs_as_one_beside_them():
@@ -139,3 +147,21 @@ def test_the_driver_solves_beside_on_one_thread(monkeypatch):
     monkeypatch.setattr(driver, "_solve", spied)
     mesh_surface(dome(rise=10.0, seed=3, jitter=1.0), 5.0, placement="default")
     assert (False, 1) in seen
+
+
+def test_each_call_sets_its_threads_and_restores_the_callers(monkeypatch):
+    """Every PARDISO phase runs with MKL's thread count of this thread set to the factorisation's (one sequentially,
+    ``CORES.threads()`` reproducibly), and the caller's count is put back after it."""
+    rows, cols, values = _spd(500, seed=2)
+    for reproducible, expected in ((0, 1), (cores.PARDISO_THREADS, CORES)):
+        factor = solver.FACTORISATIONS["pardiso"](rows, cols, 500, reproducible=reproducible)
+        settings = []
+
+        class Recorded:  # MKL's setter, recorded: it returns the count it replaced, the caller's
+            def MKL_Set_Num_Threads_Local(self, count):
+                settings.append(count)
+                return "caller's"
+
+        monkeypatch.setattr(factor._solver, "libmkl", Recorded())
+        factor.factorise(values)(np.ones(500))
+        assert settings == [expected, "caller's", expected, "caller's"]

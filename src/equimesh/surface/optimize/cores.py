@@ -27,26 +27,22 @@ class Cores:
     depend on it (docs/decisions.md, "PARDISO on two threads, the same bits as on one")."""
 
     def __init__(self):
-        self._lock, self._beside, self._local = threading.Lock(), 0, threading.local()
+        self._lock, self._beside = threading.Lock(), 0
 
     @contextlib.contextmanager
     def beside(self):
         """Inside, this thread's solve is one beside the others."""
         with self._lock:
             self._beside += 1
-        self._local.beside = True
         try:
             yield
         finally:
-            self._local.beside = False
             with self._lock:
                 self._beside -= 1
 
     def threads(self):
-        """How many threads a factorisation on this thread may run on now."""
-        if getattr(self._local, "beside", False) or self._beside:
-            return 1
-        return min(PARDISO_THREADS, os.cpu_count() or 1)
+        """How many threads a factorisation may run on now."""
+        return 1 if self._beside else min(PARDISO_THREADS, os.cpu_count() or 1)
 
 
 CORES = Cores()

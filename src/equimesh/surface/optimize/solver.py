@@ -77,7 +77,7 @@ else:
     # per solver): the one its import found is named once for all of them.
     os.environ.setdefault("PYPARDISO_MKL_RT", pypardiso.ps.libmkl._name)
     # MKL's OpenMP threads wait for work by spinning, 200 ms by default: "bounded" at 22,448 variables took 17.3 and
-    # 19.0 CPU seconds so, 13.2 and 16.2 without, in about the same wall time (KMP_BLOCKTIME=200 and unset,
+    # 19.0 CPU seconds with it, 13.2 and 16.2 without, in about the same wall time (KMP_BLOCKTIME=200 and unset,
     # `python experiments/optimisation_timing.py --length 0.88 --objective bounded`).
     os.environ.setdefault("KMP_BLOCKTIME", "0")
 
