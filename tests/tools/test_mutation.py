@@ -225,27 +225,53 @@ def test_the_all_or_nothing_writes_are_mutated():
     assert {"atomic_paths", "atomic_path", "interrupts_held"} <= functions
 
 
+def _stubbed_copy(monkeypatch, folder, status, made):
+    """A copy of the project for bounds.py in ``folder`` with mutmut's verdicts ``status`` and the mutants ``made``,
+    mutmut stubbed; the module and the list its runs' arguments are appended to."""
+    module = "src/equimesh/planar/bounds.py"
+    (folder / "mutants" / "src" / "equimesh" / "planar").mkdir(parents=True)
+    (folder / "mutants" / (module + ".meta")).write_text('{"hash_by_function_name": {}}')
+    (folder / "measured.json").write_text('{"commit": "abc", "dirty": false}')
+    (folder / module).parent.mkdir(parents=True)
+    (folder / module).write_text("")
+    runs = []
+    monkeypatch.setattr(run, "prepare", lambda *args: folder)
+    monkeypatch.setattr(run, "mutmut", lambda folder, *args, environment=None: runs.append(args))
+    monkeypatch.setattr(run, "statuses", lambda folder: status)
+    monkeypatch.setattr(run, "module_mutants", lambda module, code: made)
+    return module, runs
+
+
 def test_unexplained_reruns_only_the_survivors_not_argued_equivalent(monkeypatch, tmp_path):
     """``--unexplained`` runs again only the last run's survivors not argued equivalent (mutmut stubbed)."""
-    module = "src/equimesh/planar/bounds.py"
-    (tmp_path / "mutants" / "src" / "equimesh" / "planar").mkdir(parents=True)
-    (tmp_path / "mutants" / (module + ".meta")).write_text('{"hash_by_function_name": {}}')
-    (tmp_path / "measured.json").write_text('{"commit": "abc", "dirty": false}')
-    (tmp_path / module).parent.mkdir(parents=True)
-    (tmp_path / module).write_text("")
-    runs = []
-    monkeypatch.setattr(run, "prepare", lambda *args: tmp_path)
-    monkeypatch.setattr(run, "mutmut", lambda folder, *args, environment=None: runs.append(args))
-    monkeypatch.setattr(
-        run, "statuses", lambda folder: {"m_1": "survived", "m_2": "survived", "m_3": "survived", "m_4": "killed"}
-    )
+    status = {"m_1": "survived", "m_2": "survived", "m_3": "survived", "m_4": "killed"}
     made = [Mutant(f"m_{i}", "f", "x = 0", f"x = {i}") for i in range(1, 5)]
-    monkeypatch.setattr(run, "module_mutants", lambda module, code: made)
+    module, runs = _stubbed_copy(monkeypatch, tmp_path, status, made)
     row = run.run_module(module, tmp_path, 1, "survivors", 50, lambda text: None, again=lambda m: m.name != "m_1")
     assert runs == [("run", "--max-children", "1", "m_2", "m_3")]
     assert (row["mutants"], row["killed"], row["survived"], row["seconds"]) == (4, 1, 3, 50)
     assert row["survivors"][1] == {"mutant": "m_2", "function": "f", "original": "x = 0", "mutated": "x = 2"}
     assert row["measured"] == {"commit": "abc", "dirty": False}
+
+
+def test_survivors_run_again_only_within_the_functions_the_last_run_covered(monkeypatch, tmp_path):
+    """After a run of some functions the copy holds no verdicts of the others ("not checked"): running the
+    survivors of the whole module, or of another function, is refused; those of the functions run are run again."""
+    status = {"m.x_f__mutmut_1": "not checked", "m.x_g__mutmut_1": "survived", "m.x_g__mutmut_2": "killed"}
+    made = [Mutant(n, function_of(n), "x = 0", "x = 1") for n in status]
+    module, runs = _stubbed_copy(monkeypatch, tmp_path, status, made)
+    monkeypatch.setattr(run, "_hashes", lambda folder, module: {"x_f": "f1", "x_g": "g1"})
+    quiet = dict(progress=lambda text: None)
+    run.run_module(module, tmp_path, 1, functions=["g"], **quiet)
+    for functions in (None, ["f"], ["f", "g"]):
+        with pytest.raises(SystemExit, match="covered only the mutants of g: run them again with --functions g"):
+            run.run_module(module, tmp_path, 1, "survivors", 50, functions=functions, **quiet)
+    runs.clear()
+    row = run.run_module(module, tmp_path, 1, "survivors", 50, functions=["g"], **quiet)
+    assert runs == [("run", "--max-children", "1", "m.x_g__mutmut_1")]
+    assert (row["mutants"], row["killed"], row["survived"]) == (2, 1, 1)
+    run.run_module(module, tmp_path, 1, **quiet)  # a run of every function: its survivors may run again
+    run.run_module(module, tmp_path, 1, "survivors", 50, **quiet)
 
 
 def test_functions_name_their_mutants():

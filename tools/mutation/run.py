@@ -130,6 +130,35 @@ def natural(name):
     return [int(t) if t.isdigit() else t for t in re.split(r"(\d+)", name)]
 
 
+#: The functions the last run in a copy's folder was limited to (``--functions``); absent after a run of them all.
+_COVERED = "functions.json"
+
+
+def _record_covered(folder, functions):
+    """Note in ``folder`` the functions a run there is limited to (none: every function)."""
+    path = folder / _COVERED
+    if functions:
+        path.write_text(json.dumps(sorted(functions)) + "\n")
+    else:
+        path.unlink(missing_ok=True)
+
+
+def _check_covered(folder, module, functions):
+    """Refuse to run again mutants the last run in ``folder`` did not cover: outside the functions it was limited
+    to, mutmut's verdicts are "not checked", and a row from them would replace the module's with a part of it."""
+    path = folder / _COVERED
+    if not path.exists():
+        return
+    covered = json.loads(path.read_text())
+    outside = sorted(set(functions or ()) - set(covered))
+    if not functions or outside:
+        names = ",".join(covered)
+        raise SystemExit(
+            f"mutation: the last run of {module} covered only the mutants of {names}: run them again with "
+            f"--functions {names}, or the module afresh"
+        )
+
+
 def merged(before, part, functions):
     """The row of a full run ``before`` with the verdicts of ``functions`` replaced by those of ``part``.
 
@@ -181,6 +210,10 @@ def run_module(module, work_dir, max_children, keep=None, seconds=None, progress
     """
     folder = prepare(module, work_dir, keep)
     full = keep not in ("survivors", "so-far") or not (folder / "mutants").exists()
+    if full:
+        _record_covered(folder, functions)
+    else:
+        _check_covered(folder, module, functions)
     made = {m.name: m for m in module_mutants(module, (folder / module).read_text())}
     rerun = [] if full else [n for n, s in statuses(folder).items() if s == "survived"]
     rerun = sorted(
