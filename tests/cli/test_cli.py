@@ -599,6 +599,7 @@ def test_sigint_prints_one_line_exits_130_and_writes_nothing(tmp_path):
     finally:
         proc.kill()
         proc.wait()
+        proc.stderr.close()
     assert code == 130 and rest.strip().splitlines()[-1] == "equimesh: interrupted", rest
     assert "Traceback" not in rest
     assert list(tmp_path.iterdir()) == []

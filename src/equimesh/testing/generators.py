@@ -101,7 +101,9 @@ def close_polygon(directions, lengths):
     gap = -(lengths @ u)
     nxt = np.roll(u, -1, axis=0)
     det = cross(u, nxt)
-    with np.errstate(divide="ignore", invalid="ignore"):
+    # Where det <= 0, or is tiny (two directions nearly alike, a cone too narrow to hold the gap: a and b huge and
+    # of opposite signs), the quotients are discarded or never chosen.
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         a = np.where(det > 0, cross(gap, nxt) / det, -np.inf)
         b = np.where(det > 0, cross(u, gap) / det, -np.inf)
     # The cone containing the gap has a, b >= 0; rounding may leave -1e-17.
