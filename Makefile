@@ -45,6 +45,7 @@ EXPERIMENTS := \
 	experiments/bounded_sweep.py \
 	experiments/optimisation_work.py \
 	experiments/pardiso_threads.py \
+	experiments/optimisation_levers.py \
 	experiments/feature_angle.py \
 	experiments/inputs.py \
 	experiments/fabrication.py
