@@ -12,6 +12,9 @@ remapped start; :func:`equimesh.optimize_uv` then solves "bounded" again, bounda
   graph Laplacian (``d <- (d + mean of the neighbours' d) / 2``, boundary nodes held at their remapped place): what
   a start that carries only the smooth part of the answer can save (a coarse-to-fine solve, a flattening that
   targets lengths on the surface, a global local-global pass);
+* from the end of ``LOCAL_GLOBAL`` iterations of a local-global pass on the members from the remapped mesh
+  (projective dynamics, Bouaziz et al. 2014; Liu et al. 2013: the global step's matrix factorised once,
+  :func:`local_global`);
 * from the optimum of the paper's objective (``optimize="paper"``, boundary fixed);
 * from the remapped mesh with one constant of the rounds changed (``CONSTANTS``: fewer iterations per round, a
   larger trust region per node, a looser end of a series).
@@ -41,6 +44,7 @@ from unittest import mock
 import numpy as np
 import pandas as pd
 import scipy.sparse
+import scipy.sparse.linalg
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))  # _common.py, also when loaded by file path
 import _common  # noqa: E402
@@ -48,7 +52,9 @@ import _common  # noqa: E402
 import equimesh  # noqa: E402
 from equimesh.errors import EquimeshError  # noqa: E402
 from equimesh.surface.optimize import objectives, solver  # noqa: E402
+from equimesh.surface.optimize.jacobian import signed_areas  # noqa: E402
 from equimesh.surface.optimize.members import Members  # noqa: E402
+from equimesh.surface.optimize.problem import parameter_box  # noqa: E402
 
 NAME = "optimisation_levers"
 DOME = Path(__file__).resolve().parent / "surfaces" / "reference_dome.json"
@@ -56,6 +62,14 @@ LENGTHS = (2.5, 1.0)
 QUICK_LENGTHS = (5.0,)
 #: Jacobi steps of the smoothing of bounded's displacement (a few edges, and about ten).
 SMOOTHINGS = (10, 100)
+#: Iterations of the local-global pass tried as starts.
+LOCAL_GLOBAL = (50, 100)
+#: The local-global pass's weight of a node's pull to the surface (a member's is one).
+SURFACE_WEIGHT = 1.0
+#: Its local step sends a member within this relative deviation of the target to the target, the others into the band.
+SNAP = 0.05
+#: The weight that holds the chart's corners in its global step.
+CORNER_WEIGHT = 1e8
 #: Constants of the rounds (:mod:`equimesh.tolerance`, as :mod:`~equimesh.surface.optimize.objectives` reads them)
 #: and the value each is tried at (today's in brackets in the report).
 CONSTANTS = (("BOUNDED_ROUND_ITERATIONS", 2), ("BOUNDED_STEP", 0.2), ("BOUNDED_LOSS_TOL", 1e-2))
@@ -71,6 +85,7 @@ COLUMNS = [
     "jacobians_over_today",
     "within_band",
     "in_band",
+    "start_seconds",
     "seconds",
     "seconds_over_today",
 ]
@@ -90,6 +105,49 @@ def smoothed(displacement, edges, n_boundary, steps):
         d = 0.5 * d + 0.5 * (adjacency @ d) / degree[:, None]
         d[:n_boundary] = 0.0
     return d
+
+
+def local_global(surface, uv, edges, length, iterations):
+    """``iterations`` of a local-global pass (Bouaziz et al. 2014, "Projective dynamics"; Liu et al. 2013) on the
+    nodes in space, from the (u, v) ``uv``: the (u, v) its last projection reached.
+
+    Local step: each member's vector ``d_e`` along its direction, ``t l`` long (``t = Members.target``) if within
+    ``SNAP`` of it, else its length clipped to ``[t, Members.high] l``; each node's point ``p_i`` on the surface, one
+    Gauss-Newton step of its (u, v) towards the node (a coordinate on a side of the parameter box held, so the
+    boundary nodes stay on their sides, the corners in place).  Global step: the nodes minimising
+    ``sum_e |x_a - x_b - d_e|^2 + SURFACE_WEIGHT sum_i |x_i - p_i|^2`` (the corners at ``CORNER_WEIGHT``), whose
+    matrix depends on the mesh only: factorised once, each iteration three solves.
+    """
+    lower, upper = parameter_box(surface)
+    uv = np.array(uv, dtype=float)
+    held = (uv == lower) | (uv == upper)
+    n, m = len(uv), len(edges)
+    difference = scipy.sparse.csr_matrix(
+        (np.repeat([1.0, -1.0], m), (np.tile(np.arange(m), 2), edges.ravel(order="F"))), shape=(m, n)
+    )
+    weight = np.where(held.all(axis=1), CORNER_WEIGHT, SURFACE_WEIGHT)
+    solve_global = scipy.sparse.linalg.factorized((difference.T @ difference + scipy.sparse.diags(weight)).tocsc())
+    target, high = Members.target * length, Members.high * length
+    x = surface.evaluate(uv[:, 0], uv[:, 1])
+    for _ in range(iterations):
+        vectors = difference @ x
+        lengths = np.linalg.norm(vectors, axis=1)
+        goal = np.where(np.abs(lengths - target) <= SNAP * target, target, np.clip(lengths, target, high))
+        su, sv = surface.derivatives(uv[:, 0], uv[:, 1])
+        gap = x - surface.evaluate(uv[:, 0], uv[:, 1])
+        normal = np.stack(
+            [np.stack([(su * su).sum(1), (su * sv).sum(1)], 1), np.stack([(su * sv).sum(1), (sv * sv).sum(1)], 1)], 1
+        )
+        normal[held[:, 0], 0, :], normal[held[:, 1], 1, :] = 0.0, 0.0
+        normal[held[:, 0], :, 0], normal[held[:, 1], :, 1] = 0.0, 0.0
+        normal[held[:, 0], 0, 0], normal[held[:, 1], 1, 1] = 1.0, 1.0
+        gradient = np.where(held, 0.0, np.stack([(su * gap).sum(1), (sv * gap).sum(1)], 1))
+        uv = np.clip(uv + np.linalg.solve(normal, gradient[:, :, None])[:, :, 0], lower, upper)
+        rhs = difference.T @ (vectors * (goal / lengths)[:, None]) + weight[:, None] * surface.evaluate(
+            uv[:, 0], uv[:, 1]
+        )
+        x = np.column_stack([solve_global(rhs[:, k]) for k in range(3)])
+    return uv
 
 
 def solve(surface, mesh, start, objective="bounded", constant=None):
@@ -121,10 +179,16 @@ def ratios(surface, uv, edges, length):
     return np.linalg.norm(points[edges[:, 1]] - points[edges[:, 0]], axis=1) / length
 
 
-def lever_row(surface, mesh, lever, start, constant=None):
-    """The row of one lever: bounded solved from ``start`` (``constant`` patched), or its refusal, and the time."""
+def lever_row(surface, mesh, lever, start, constant=None, start_seconds=np.nan):
+    """The row of one lever: bounded solved from ``start`` (``constant`` patched), or its refusal, and the time;
+    ``start_seconds``: what making the start took (none for today's, and for the starts made of bounded's result)."""
     plane = mesh.stages.plane
     row = {"l": mesh.length, "nodes": len(plane.points), "members": len(plane.edges), "lever": lever}
+    row["start_seconds"] = start_seconds
+    folds = int(np.count_nonzero(signed_areas(start, plane.triangles) <= 0.0))
+    if folds:  # the solver keeps the orientation a start has: a folded one is no start
+        row.update(outcome=f"the start folds {folds} triangles", seconds=0.0)
+        return row
     began = time.perf_counter()
     try:
         result = solve(surface, mesh, start, constant=constant)
@@ -153,37 +217,48 @@ def measure(length):
             f"l = {length}: bounded from the remapped mesh took {today.get('jacobians')} Jacobians here, "
             f"{mesh.stages.optimization.njev} in mesh_surface"
         )
-    paper = solve(surface, mesh, remapped, "paper")  # on bounded's plane (meshed again for sound joints)
+    paper, paper_seconds = _common.timed(solve, surface, mesh, remapped, "paper")  # on bounded's plane
     displacement = mesh.uv - remapped
-    levers = [("start: its own result", mesh.uv, None)]
+    levers = [("start: its own result", mesh.uv, None, np.nan)]
     levers += [
         (
             f"start: its displacement smoothed {k} times",
             remapped + smoothed(displacement, plane.edges, plane.n_boundary, k),
             None,
+            np.nan,
         )
         for k in SMOOTHINGS
     ]
-    levers.append(("start: the paper's optimum (optimize='paper')", paper.uv, None))
+    for k in LOCAL_GLOBAL:
+        start, seconds = _common.timed(local_global, surface, remapped, plane.edges, length, k)
+        levers.append((f"start: {k} local-global iterations", start, None, seconds))
+    levers.append(("start: the paper's optimum (optimize='paper')", paper.uv, None, paper_seconds))
     levers += [
-        (f"{name} = {value:g} ({getattr(objectives, name):g})", remapped, (name, value)) for name, value in CONSTANTS
+        (f"{name} = {value:g} ({getattr(objectives, name):g})", remapped, (name, value), np.nan)
+        for name, value in CONSTANTS
     ]
     rows = [today] + [lever_row(surface, mesh, *lever) for lever in levers]
     for row in rows:
         row["jacobians_over_today"] = row.get("jacobians", np.nan) / today["jacobians"]
-        row["seconds_over_today"] = row["seconds"] / today["seconds"]
+        row["seconds_over_today"] = (row["seconds"] + np.nan_to_num(row["start_seconds"])) / today["seconds"]
     return rows
+
+
+def _seconds(value):
+    return "" if np.isnan(value) else f"{value:.2f}"
 
 
 def summarize(df, record):
     body = [
         '"bounded" on the reference dome solved again from each start, or with one constant of its rounds changed '
         "(today's value in brackets), in one run; Jacobians: the solver's Jacobian evaluations, one factorisation "
-        "each; over today: the lever's Jacobians and seconds over those of the solve from the remapped mesh at the "
-        "same l; within 0.5 %: the share of members within 0.5 % of l; in [l, 2l]: every member.",
+        "each; start: the seconds making the start took (none where it is made of bounded's own result, which a "
+        "start could at best approach); over today: the lever's Jacobians, and its seconds with the start's, over "
+        "those of the solve from the remapped mesh at the same l; within 0.5 %: the share of members within 0.5 % of "
+        "l; in [l, 2l]: every member.",
         "",
-        "| l | nodes | lever | Jacobians | over today | within 0.5 % | in [l, 2l] | seconds | over today |",
-        "|---:|---:|---|---:|---:|---:|---|---:|---:|",
+        "| l | nodes | lever | Jacobians | over today | within 0.5 % | in [l, 2l] | start (s) | seconds | over today |",
+        "|---:|---:|---|---:|---:|---:|---|---:|---:|---:|",
     ]
     for _, r in df.iterrows():
         if r["outcome"] == "meshed":
@@ -194,8 +269,8 @@ def summarize(df, record):
         else:
             work = f"{r['outcome']} | | |"
         body.append(
-            f"| {r['l']:g} | {r['nodes']:,} | {r['lever']} | {work} | {r['seconds']:.2f} "
-            f"| {r['seconds_over_today']:.2f} |"
+            f"| {r['l']:g} | {r['nodes']:,} | {r['lever']} | {work} | {_seconds(r['start_seconds'])} "
+            f"| {r['seconds']:.2f} | {r['seconds_over_today']:.2f} |"
         )
     return _common.markdown_report(
         "Levers on the work of the bounded objective", "`python experiments/optimisation_levers.py`", body, record
@@ -217,6 +292,7 @@ def main(argv=None):
     parameters = {
         "lengths": lengths,
         "smoothings": list(SMOOTHINGS),
+        "local_global": {"iterations": list(LOCAL_GLOBAL), "surface_weight": SURFACE_WEIGHT, "snap": SNAP},
         "constants": [list(c) for c in CONSTANTS],
         "factorisation": solver.DEFAULT_FACTORISATION,
         "quick": args.quick,

@@ -8,6 +8,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
+import equimesh
 from equimesh.surface.optimize import objectives
 
 
@@ -21,7 +22,7 @@ def test_optimisation_levers_solves_each_lever_beside_todays(load_experiment, tm
     assert {name: getattr(objectives, name) for name, _ in experiment.CONSTANTS} == before
     df = pd.read_csv(out / "optimisation_levers.csv")
     assert list(df.columns) == experiment.COLUMNS
-    assert len(df) == 3 + len(experiment.SMOOTHINGS) + len(experiment.CONSTANTS)
+    assert len(df) == 3 + len(experiment.SMOOTHINGS) + len(experiment.LOCAL_GLOBAL) + len(experiment.CONSTANTS)
     today, own = df.iloc[0], df.iloc[1]
     assert today["lever"].startswith("today") and today["jacobians_over_today"] == 1.0
     assert own["jacobians"] < today["jacobians"]
@@ -51,3 +52,18 @@ def test_smoothing_holds_the_boundary_and_averages_the_inside(load_experiment):
     d = np.array([[5.0, 5.0], [2.0, 0.0], [0.0, 4.0]])
     out = experiment.smoothed(d, np.array([[0, 1], [1, 2]]), 1, 1)
     np.testing.assert_allclose(out, [[0.0, 0.0], [1.0, 1.0], [1.0, 2.0]])
+
+
+def test_local_global_holds_the_sides_and_pulls_members_to_the_target(load_experiment):
+    """From the remapped reference dome at l = 5: the corners stay bit for bit, each side node keeps its side's
+    coordinate, and more members come within 0.5 % of l than in the remapped mesh."""
+    experiment = load_experiment("optimisation_levers")
+    surface = equimesh.surface_from_dict(json.loads(experiment.DOME.read_text()))
+    mesh = equimesh.mesh_surface(surface, 5.0, optimize="none", placement="default")
+    start, edges = mesh.stages.remapped_uv, mesh.stages.plane.edges
+    end = experiment.local_global(surface, start, edges, 5.0, 50)
+    on_side = (start == 0.0) | (start == 1.0)
+    assert np.array_equal(end[on_side], start[on_side]) and on_side.all(axis=1).sum() == 4
+    assert not np.array_equal(end, start) and ((end >= 0.0) & (end <= 1.0)).all()
+    before, after = (experiment.ratios(surface, uv, edges, 5.0) for uv in (start, end))
+    assert np.mean(np.abs(after - 1.0) <= 0.005) > np.mean(np.abs(before - 1.0) <= 0.005)
