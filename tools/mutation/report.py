@@ -80,10 +80,13 @@ def markdown(rows, record, table=MODULES):
                 "",
             ]
         if m.get("rerun"):
+            tests = m["rerun"].get("tests", m["tests"])
+            against = "" if tests == m["tests"] else f" against {', '.join(tests)}"
             body += [
                 f"Only the mutants of {', '.join(f'`{f}`' for f in m['rerun']['functions'])} "
-                f"({m['rerun']['mutants']}) were run again (`--functions`, the last run {m['rerun']['seconds']} s); "
-                "the other functions' verdicts and the time are from the module's last full run.",
+                f"({m['rerun']['mutants']}) were run again (`--functions`{against}, the last run "
+                f"{m['rerun']['seconds']} s); the other functions' verdicts, the test files in the table and the time "
+                "are from the module's last full run.",
                 "",
             ]
         if m.get("not checked"):
