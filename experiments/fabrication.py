@@ -10,6 +10,9 @@ doubly curved ones also at span / 24, every method is measured by
   length classes), the last with nodes on the surface and with a surface
   tolerance D of 0.25, 0.5, 1 and 2 % of l (the frontier: how many member
   types a deviation from the design surface buys);
+* the lever "Step 2's spacing on the surface": the classes objective solved
+  with the outline's nodes at equal arc lengths of each side on the surface,
+  held (:func:`_outline_held`);
 * gmsh's four algorithms and pymeshlab's isotropic remeshing, exactly as
   ``experiments/compare_peers.py`` runs them (its peers, reused).
 
@@ -55,6 +58,7 @@ from equimesh.metrics import (  # noqa: E402
     share_within,
 )
 from equimesh.surface.charts.bezier import BezierSurface  # noqa: E402
+from equimesh.surface.optimize import optimize_uv  # noqa: E402
 from equimesh.surface.pipeline import mesh_surface  # noqa: E402
 
 NAME = "fabrication"
@@ -63,6 +67,9 @@ SPAN = 80.0
 DIVISORS = (16, 24)
 #: Surface tolerances D of the frontier, as fractions of l.
 SURFACE_TOLERANCES = (0.0, 0.0025, 0.005, 0.01, 0.02)
+#: The method of :func:`_outline_held`, and its points per side.
+OUTLINE_HELD = "equimesh classes, outline held equal"
+SIDE_SAMPLES = 2001
 #: The targets of the fewest-classes objective (with the default equimesh mesh, nodes on the surface).
 TARGETS = {"classes vs gmsh Frontal-Delaunay": 0.5, "top-10 share": 0.95, "within 0.5 %": (0.5, 0.75)}
 
@@ -104,6 +111,37 @@ def _equimesh(objective, fraction=0.0):
     return run
 
 
+def _outline_held(surface, l):
+    """The classes objective from the remapped mesh with the outline's nodes at equal arc lengths of each side on
+    the surface (``SIDE_SAMPLES`` points per side), held: the parts of a side one length, whatever the flattening did
+    to them; the figures of :func:`_equimesh`.  The sides are straight in (u, v) between the corners of the
+    parameter rectangle, as on every surface here."""
+    mesh = mesh_surface(surface, l, optimize="classes", max_nodes=None)  # its plane and remapped start
+    plane, start = mesh.stages.plane, np.array(mesh.stages.remapped_uv)
+    n = plane.n_boundary
+    corners = np.sort(mesh.stages.outline.slides(plane, start)[1])
+    for a, b in zip(corners, np.append(corners[1:], corners[0] + n)):
+        side = np.arange(a, b + 1) % n
+        chord = start[side[-1]] - start[side[0]]
+        t = np.linspace(0.0, 1.0, SIDE_SAMPLES)
+        points = surface.evaluate(start[side[0], 0] + t * chord[0], start[side[0], 1] + t * chord[1])
+        arc = np.append(0.0, np.cumsum(np.linalg.norm(np.diff(points, axis=0), axis=1)))
+        start[side] = start[side[0]] + np.interp(np.linspace(0.0, arc[-1], len(side)), arc, t)[:, None] * chord
+    result = optimize_uv(
+        surface,
+        start,
+        plane.edges,
+        plane.edge_groups,
+        l,
+        fixed=np.arange(n),
+        triangles=plane.triangles,
+        objective="classes",
+    )
+    points = surface.evaluate(result.uv[:, 0], result.uv[:, 1])
+    within = share_within(edge_lengths(mesh.stages.remapped_points, plane.edges) / l, 1.0, 0.005)
+    return points, plane.triangles, {"deviation_max": 0.0, "deviation_mean": 0.0, REMAPPED: within}
+
+
 def _peer(run):
     def meshed(surface, l):
         points, triangles = run(surface, l)
@@ -116,6 +154,7 @@ def methods():
     """({method: run}, {method: why skipped}): equimesh's objectives and the frontier, then compare_peers' peers."""
     run = {"equimesh paper": _equimesh("paper"), "equimesh bounded": _equimesh("bounded")}
     run.update({_classes_name(d): _equimesh("classes", d) for d in SURFACE_TOLERANCES})
+    run[OUTLINE_HELD] = _outline_held
     peers, skipped = compare_peers.methods()
     run.update({name: _peer(f) for name, f in peers.items() if not name.startswith("equimesh")})
     return run, {name: why for name, why in skipped.items() if not name.startswith("equimesh")}
@@ -255,7 +294,8 @@ def targets(df):
 
 
 def kinds(df):
-    """One line per (surface, l, method) of equimesh classes (D = 0) and gmsh Frontal-Delaunay: per kind of member
+    """One line per (surface, l, method) of equimesh classes (D = 0, and the outline held equal) and gmsh
+    Frontal-Delaunay: per kind of member
     (:func:`equimesh.metrics.classes_by_kind`) its members, the classes it needs alone, its share in the mesh's
     10 largest classes and its share within 5 % of l."""
     lines = [
@@ -270,7 +310,7 @@ def kinds(df):
         "| surface | l | method | classes | along the outline | strip | inside | remapped |",
         "|---|---|---|---|---|---|---|---|",
     ]
-    shown = df[(df["status"] == "ok") & df["method"].isin(["equimesh classes", "gmsh Frontal-Delaunay"])]
+    shown = df[(df["status"] == "ok") & df["method"].isin(["equimesh classes", OUTLINE_HELD, "gmsh Frontal-Delaunay"])]
     for r in shown.to_dict("records"):
         cells = [
             f"{int(r[f'{k}_members'])} / {int(r[f'{k}_classes'])} / {_pct(r[f'{k}_in_top10'])} % / "
@@ -301,10 +341,9 @@ def plot(df, classes, fig_dir, parameters):
     first = df[(df["divisor"] == DIVISORS[0]) & (df["status"] == "ok")]
     fig = Figure(figsize=(9.0, 3.4))
     ax_classes, ax_top = fig.subplots(1, 2)
-    frontier = first[first["method"].str.startswith("equimesh classes")].copy()
-    frontier["D"] = [
-        0.0 if m == "equimesh classes" else float(m.split("D=")[1].split("%")[0]) for m in frontier["method"]
-    ]
+    percent = {_classes_name(d): 100 * d for d in SURFACE_TOLERANCES}  # the frontier's methods, D in % of l
+    frontier = first[first["method"].isin(list(percent))].copy()
+    frontier["D"] = frontier["method"].map(percent)
     for name, part in frontier.groupby("surface", sort=False):
         part = part.sort_values("D")
         (line,) = ax_classes.plot(part["D"], part["classes_05"], marker="o", label=name)
@@ -326,10 +365,11 @@ def plot(df, classes, fig_dir, parameters):
     shown = [m for m in dict.fromkeys(sizes["method"]) if "D=" not in m]
     fig = Figure(figsize=(3.0 * len(shown), 2.8))
     axes = fig.subplots(1, len(shown), squeeze=False, sharey=True)[0]
+    colour = {name: f"C{k}" for k, (name, _, _) in enumerate(surfaces())}  # a surface's colour in every panel
     for ax, method in zip(axes, shown):
         for name, part in sizes[sizes["method"] == method].groupby("surface", sort=False):
             share = 100 * np.cumsum(part["count"].to_numpy()) / part["count"].sum()
-            ax.step(part["rank"], share, where="post", label=name)
+            ax.step(part["rank"], share, where="post", label=name, color=colour[name])
         ax.axvline(10, color="k", ls=":", lw=0.6)
         ax.set_xscale("log")
         ax.set_title(method, fontsize=8)

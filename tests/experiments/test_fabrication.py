@@ -3,8 +3,13 @@
 import json
 import re
 
+import numpy as np
 import pandas as pd
 import pytest
+
+from equimesh.classes import length_classes
+from equimesh.mesh import edge_lengths, unique_edges
+from equimesh.metrics import comparison_figures
 
 
 @pytest.fixture
@@ -48,3 +53,24 @@ def test_fabrication_writes_table_targets_classes_figures_and_provenance(fabrica
     (figs / "fabrication_frontier.png").unlink()
     assert fabrication.main(["--plot-only", "--out-dir", str(out), "--fig-dir", str(figs)]) == 0
     assert (figs / "fabrication_frontier.png").stat().st_size > 0
+
+
+def test_the_outline_held_equal_has_one_length_per_side(fabrication):
+    """The lever "Step 2's spacing on the surface": each side's parts equal on the surface, held through the
+    optimisation, so the outline's members need at most one class per side (the classes objective's own, sliding,
+    need more); every member in [l, 2l], joints sound."""
+    surface = {name: s for name, _, s in fabrication.surfaces()}["asymmetric dome"]
+    l = fabrication.SPAN / fabrication.DIVISORS[0]
+
+    def outline_classes(points, triangles):
+        edges = np.sort(np.vstack([triangles[:, [0, 1]], triangles[:, [1, 2]], triangles[:, [2, 0]]]), axis=1)
+        edges, count = np.unique(edges, axis=0, return_counts=True)  # an outline member is one triangle's
+        return len(length_classes(edge_lengths(points, edges[count == 1]), l, 0.005).count)
+
+    points, triangles, _ = fabrication._outline_held(surface, l)
+    figures = comparison_figures(points, triangles, l)
+    assert figures["in_l_2l"] == 1.0 and figures["angle_min"] >= 30.0 - 1e-9
+    assert outline_classes(points, triangles) <= 4
+    sliding = fabrication._equimesh("classes")(surface, l)
+    assert outline_classes(*sliding[:2]) > 4
+    assert len(unique_edges(triangles)) == len(unique_edges(sliding[1]))
