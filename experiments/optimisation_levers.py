@@ -1,11 +1,11 @@
-"""Levers on the work of "bounded"'s optimisation, each solved beside today's in one run: starts and round constants.
+"""Levers on the work of "bounded"'s optimisation, each solved beside the pipeline's in one run: starts, constants.
 
 The rounds of the default objective (docs/decisions.md, "The bounded objective") are most of a run's time, one
 factorisation per iteration (docs/performance.md, "The final optimisation").  On the reference dome (15 x 15 grid,
 default lattice placement, no size limit) at each l, :func:`equimesh.mesh_surface` gives bounded's result and its
 remapped start; :func:`equimesh.optimize_uv` then solves "bounded" again, boundary nodes sliding as in the pipeline,
 
-* from the remapped mesh, as the pipeline solves it ("today": its Jacobians must be the pipeline's, else this
+* from the remapped mesh, as the pipeline solves it (its Jacobians must be the pipeline's, else this
   script is not measuring what the pipeline runs, and it stops);
 * from bounded's own result: the floor of any start;
 * from the remapped mesh moved by bounded's displacement smoothed by ``SMOOTHINGS`` Jacobi steps of the mesh's
@@ -20,7 +20,7 @@ remapped start; :func:`equimesh.optimize_uv` then solves "bounded" again, bounda
   larger trust region per node, a looser end of a series).
 
 Each row: the solver's Jacobian evaluations (``njev``, one factorisation each), the share of members within 0.5 %
-of l, whether every member is in [l, 2l], the solve's wall seconds, and both counts over today's.  Run with nothing
+of l, whether every member is in [l, 2l], the solve's wall seconds, and both over the pipeline's.  Run with nothing
 else on the machine (the seconds; the Jacobians do not depend on it).
 
 Writes::
@@ -51,6 +51,7 @@ import _common  # noqa: E402
 
 import equimesh  # noqa: E402
 from equimesh.errors import EquimeshError  # noqa: E402
+from equimesh.metrics import share_within  # noqa: E402
 from equimesh.surface.optimize import objectives, solver  # noqa: E402
 from equimesh.surface.optimize.jacobian import signed_areas  # noqa: E402
 from equimesh.surface.optimize.members import Members  # noqa: E402
@@ -71,7 +72,7 @@ SNAP = 0.05
 #: The weight that holds the chart's corners in its global step.
 CORNER_WEIGHT = 1e8
 #: Constants of the rounds (:mod:`equimesh.tolerance`, as :mod:`~equimesh.surface.optimize.objectives` reads them)
-#: and the value each is tried at (today's in brackets in the report).
+#: and the value each is tried at (the default in brackets in the report).
 CONSTANTS = (("BOUNDED_ROUND_ITERATIONS", 2), ("BOUNDED_STEP", 0.2), ("BOUNDED_LOSS_TOL", 1e-2))
 #: Members within this relative deviation of l count as exact (the 0.5 % of every share).
 BAND = 0.005
@@ -82,12 +83,12 @@ COLUMNS = [
     "lever",
     "outcome",
     "jacobians",
-    "jacobians_over_today",
+    "jacobians_ratio",
     "within_band",
     "in_band",
     "start_seconds",
     "seconds",
-    "seconds_over_today",
+    "seconds_ratio",
 ]
 
 
@@ -109,14 +110,13 @@ def smoothed(displacement, edges, n_boundary, steps):
 
 def local_global(surface, uv, edges, length, iterations):
     """``iterations`` of a local-global pass (Bouaziz et al. 2014, "Projective dynamics"; Liu et al. 2013) on the
-    nodes in space, from the (u, v) ``uv``: the (u, v) its last projection reached.
+    nodes in space, from the (u, v) ``uv``: the (u, v) of the nodes' last projection on the surface.
 
     Local step: each member's vector ``d_e`` along its direction, ``t l`` long (``t = Members.target``) if within
-    ``SNAP`` of it, else its length clipped to ``[t, Members.high] l``; each node's point ``p_i`` on the surface, one
-    Gauss-Newton step of its (u, v) towards the node (a coordinate on a side of the parameter box held, so the
-    boundary nodes stay on their sides, the corners in place).  Global step: the nodes minimising
-    ``sum_e |x_a - x_b - d_e|^2 + SURFACE_WEIGHT sum_i |x_i - p_i|^2`` (the corners at ``CORNER_WEIGHT``), whose
-    matrix depends on the mesh only: factorised once, each iteration three solves.
+    ``SNAP`` of it, else its length clipped to ``[t, Members.high] l``; each node's point ``p_i`` on the surface
+    (:func:`_projected`).  Global step: the nodes minimising ``sum_e |x_a - x_b - d_e|^2 + SURFACE_WEIGHT sum_i
+    |x_i - p_i|^2`` (the corners at ``CORNER_WEIGHT``), whose matrix depends on the mesh only: factorised once,
+    each iteration three solves.
     """
     lower, upper = parameter_box(surface)
     uv = np.array(uv, dtype=float)
@@ -133,21 +133,27 @@ def local_global(surface, uv, edges, length, iterations):
         vectors = difference @ x
         lengths = np.linalg.norm(vectors, axis=1)
         goal = np.where(np.abs(lengths - target) <= SNAP * target, target, np.clip(lengths, target, high))
-        su, sv = surface.derivatives(uv[:, 0], uv[:, 1])
-        gap = x - surface.evaluate(uv[:, 0], uv[:, 1])
-        normal = np.stack(
-            [np.stack([(su * su).sum(1), (su * sv).sum(1)], 1), np.stack([(su * sv).sum(1), (sv * sv).sum(1)], 1)], 1
-        )
-        normal[held[:, 0], 0, :], normal[held[:, 1], 1, :] = 0.0, 0.0
-        normal[held[:, 0], :, 0], normal[held[:, 1], :, 1] = 0.0, 0.0
-        normal[held[:, 0], 0, 0], normal[held[:, 1], 1, 1] = 1.0, 1.0
-        gradient = np.where(held, 0.0, np.stack([(su * gap).sum(1), (sv * gap).sum(1)], 1))
-        uv = np.clip(uv + np.linalg.solve(normal, gradient[:, :, None])[:, :, 0], lower, upper)
+        uv = _projected(surface, uv, x, held, lower, upper)
         rhs = difference.T @ (vectors * (goal / lengths)[:, None]) + weight[:, None] * surface.evaluate(
             uv[:, 0], uv[:, 1]
         )
         x = np.column_stack([solve_global(rhs[:, k]) for k in range(3)])
-    return uv
+    return _projected(surface, uv, x, held, lower, upper)
+
+
+def _projected(surface, uv, x, held, lower, upper):
+    """The (u, v) one Gauss-Newton step from ``uv`` towards the points ``x``, the coordinates ``held`` (on a side of
+    the parameter box) kept, so the boundary nodes stay on their sides and the corners in place."""
+    su, sv = surface.derivatives(uv[:, 0], uv[:, 1])
+    gap = x - surface.evaluate(uv[:, 0], uv[:, 1])
+    normal = np.stack(
+        [np.stack([(su * su).sum(1), (su * sv).sum(1)], 1), np.stack([(su * sv).sum(1), (sv * sv).sum(1)], 1)], 1
+    )
+    normal[held[:, 0], 0, :], normal[held[:, 1], 1, :] = 0.0, 0.0
+    normal[held[:, 0], :, 0], normal[held[:, 1], :, 1] = 0.0, 0.0
+    normal[held[:, 0], 0, 0], normal[held[:, 1], 1, 1] = 1.0, 1.0
+    gradient = np.where(held, 0.0, np.stack([(su * gap).sum(1), (sv * gap).sum(1)], 1))
+    return np.clip(uv + np.linalg.solve(normal, gradient[:, :, None])[:, :, 0], lower, upper)
 
 
 def solve(surface, mesh, start, objective="bounded", constant=None):
@@ -181,7 +187,8 @@ def ratios(surface, uv, edges, length):
 
 def lever_row(surface, mesh, lever, start, constant=None, start_seconds=np.nan):
     """The row of one lever: bounded solved from ``start`` (``constant`` patched), or its refusal, and the time;
-    ``start_seconds``: what making the start took (none for today's, and for the starts made of bounded's result)."""
+    ``start_seconds``: what making the start took (none for the remapped mesh and the starts made of bounded's
+    result)."""
     plane = mesh.stages.plane
     row = {"l": mesh.length, "nodes": len(plane.points), "members": len(plane.edges), "lever": lever}
     row["start_seconds"] = start_seconds
@@ -199,7 +206,7 @@ def lever_row(surface, mesh, lever, start, constant=None, start_seconds=np.nan):
     row.update(
         outcome="meshed",
         jacobians=result.njev,
-        within_band=float(np.mean(np.abs(ratio - 1.0) <= BAND)),
+        within_band=share_within(ratio, 1.0, BAND),
         in_band=Members.inside(ratio),
         seconds=time.perf_counter() - began,
     )
@@ -207,14 +214,14 @@ def lever_row(surface, mesh, lever, start, constant=None, start_seconds=np.nan):
 
 
 def measure(length):
-    """The rows of one l: today's solve first (checked against the pipeline's), then each lever."""
+    """The rows of one l: the solve from the remapped mesh first (checked against the pipeline's), then each lever."""
     surface = equimesh.surface_from_dict(json.loads(DOME.read_text()))
     mesh = equimesh.mesh_surface(surface, length, placement="default", max_nodes=None)
     remapped, plane = mesh.stages.remapped_uv, mesh.stages.plane
-    today = lever_row(surface, mesh, "today (the remapped mesh)", remapped)
-    if today.get("jacobians") != mesh.stages.optimization.njev:
+    pipeline = lever_row(surface, mesh, "the pipeline's (from the remapped mesh)", remapped)
+    if pipeline.get("jacobians") != mesh.stages.optimization.njev:
         raise RuntimeError(
-            f"l = {length}: bounded from the remapped mesh took {today.get('jacobians')} Jacobians here, "
+            f"l = {length}: bounded from the remapped mesh took {pipeline.get('jacobians')} Jacobians here, "
             f"{mesh.stages.optimization.njev} in mesh_surface"
         )
     paper, paper_seconds = _common.timed(solve, surface, mesh, remapped, "paper")  # on bounded's plane
@@ -237,10 +244,10 @@ def measure(length):
         (f"{name} = {value:g} ({getattr(objectives, name):g})", remapped, (name, value), np.nan)
         for name, value in CONSTANTS
     ]
-    rows = [today] + [lever_row(surface, mesh, *lever) for lever in levers]
+    rows = [pipeline] + [lever_row(surface, mesh, *lever) for lever in levers]
     for row in rows:
-        row["jacobians_over_today"] = row.get("jacobians", np.nan) / today["jacobians"]
-        row["seconds_over_today"] = (row["seconds"] + np.nan_to_num(row["start_seconds"])) / today["seconds"]
+        row["jacobians_ratio"] = row.get("jacobians", np.nan) / pipeline["jacobians"]
+        row["seconds_ratio"] = (row["seconds"] + np.nan_to_num(row["start_seconds"])) / pipeline["seconds"]
     return rows
 
 
@@ -251,26 +258,26 @@ def _seconds(value):
 def summarize(df, record):
     body = [
         '"bounded" on the reference dome solved again from each start, or with one constant of its rounds changed '
-        "(today's value in brackets), in one run; Jacobians: the solver's Jacobian evaluations, one factorisation "
-        "each; start: the seconds making the start took (none where it is made of bounded's own result, which a "
-        "start could at best approach); over today: the lever's Jacobians, and its seconds with the start's, over "
-        "those of the solve from the remapped mesh at the same l; within 0.5 %: the share of members within 0.5 % of "
-        "l; in [l, 2l]: every member.",
+        "(the default in brackets), in one run; Jacobians: the solver's Jacobian evaluations, one factorisation "
+        "each; start: the seconds making the start took (none for the remapped mesh, nor where it is made of "
+        "bounded's own result, which no start can know); ratio: the lever's Jacobians, and its seconds with the "
+        "start's, over those of the solve from the remapped mesh at the same l (the pipeline's); within 0.5 %: the "
+        "share of members within 0.5 % of l; in [l, 2l]: every member.",
         "",
-        "| l | nodes | lever | Jacobians | over today | within 0.5 % | in [l, 2l] | start (s) | seconds | over today |",
+        "| l | nodes | lever | Jacobians | ratio | within 0.5 % | in [l, 2l] | start (s) | seconds | ratio |",
         "|---:|---:|---|---:|---:|---:|---|---:|---:|---:|",
     ]
     for _, r in df.iterrows():
         if r["outcome"] == "meshed":
             work = (
-                f"{r['jacobians']:.0f} | {r['jacobians_over_today']:.2f} | {r['within_band']:.4f} "
+                f"{r['jacobians']:.0f} | {r['jacobians_ratio']:.2f} | {r['within_band']:.4f} "
                 f"| {'yes' if r['in_band'] else 'no'}"
             )
         else:
             work = f"{r['outcome']} | | |"
         body.append(
             f"| {r['l']:g} | {r['nodes']:,} | {r['lever']} | {work} | {_seconds(r['start_seconds'])} "
-            f"| {r['seconds']:.2f} | {r['seconds_over_today']:.2f} |"
+            f"| {r['seconds']:.2f} | {r['seconds_ratio']:.2f} |"
         )
     return _common.markdown_report(
         "Levers on the work of the bounded objective", "`python experiments/optimisation_levers.py`", body, record

@@ -8,7 +8,7 @@ import pandas as pd
 import pytest
 
 from equimesh.classes import length_classes
-from equimesh.mesh import edge_lengths, unique_edges
+from equimesh.mesh import edge_lengths
 from equimesh.metrics import comparison_figures
 
 
@@ -69,8 +69,6 @@ def test_the_outline_held_equal_has_one_length_per_side(fabrication):
 
     points, triangles, _ = fabrication._outline_held(surface, l)
     figures = comparison_figures(points, triangles, l)
-    assert figures["in_l_2l"] == 1.0 and figures["angle_min"] >= 30.0 - 1e-9
+    assert figures["in_l_2l"] == 1.0 and 30.0 - 1e-9 <= figures["angle_min"] <= figures["angle_max"] <= 120.0
     assert outline_classes(points, triangles) <= 4
-    sliding = fabrication._equimesh("classes")(surface, l)
-    assert outline_classes(*sliding[:2]) > 4
-    assert len(unique_edges(triangles)) == len(unique_edges(sliding[1]))
+    assert outline_classes(*fabrication._equimesh("classes")(surface, l)[:2]) > 4

@@ -1,5 +1,5 @@
 """experiments/optimisation_levers.py: bounded solved again from other starts and with other round constants, beside
-today's solve, with provenance."""
+the pipeline's solve, with provenance."""
 
 import dataclasses
 import json
@@ -12,9 +12,9 @@ import equimesh
 from equimesh.surface.optimize import objectives
 
 
-def test_optimisation_levers_solves_each_lever_beside_todays(load_experiment, tmp_path):
-    """--quick: a row per lever, today's first (its Jacobians those of mesh_surface, which the script checks); from
-    bounded's own result fewer Jacobians than from the remapped mesh; the constants patched only while solved."""
+def test_optimisation_levers_solves_each_lever_beside_the_pipelines(load_experiment, tmp_path):
+    """--quick: a row per lever, the pipeline's first (its Jacobians those of mesh_surface, which the script checks);
+    from bounded's own result fewer Jacobians than from the remapped mesh; the constants patched only while solved."""
     experiment = load_experiment("optimisation_levers")
     before = {name: getattr(objectives, name) for name, _ in experiment.CONSTANTS}
     out = tmp_path / "results"
@@ -23,17 +23,16 @@ def test_optimisation_levers_solves_each_lever_beside_todays(load_experiment, tm
     df = pd.read_csv(out / "optimisation_levers.csv")
     assert list(df.columns) == experiment.COLUMNS
     assert len(df) == 3 + len(experiment.SMOOTHINGS) + len(experiment.LOCAL_GLOBAL) + len(experiment.CONSTANTS)
-    today, own = df.iloc[0], df.iloc[1]
-    assert today["lever"].startswith("today") and today["jacobians_over_today"] == 1.0
-    assert own["jacobians"] < today["jacobians"]
+    pipeline, own = df.iloc[0], df.iloc[1]
+    assert pipeline["lever"].startswith("the pipeline's") and own["jacobians"] < pipeline["jacobians"]
     meshed = df[df["outcome"] == "meshed"]
     assert meshed["in_band"].all() and (meshed["jacobians"] > 0).all()
-    assert "| today (the remapped mesh) |" in (out / "optimisation_levers.md").read_text()
+    assert "| the pipeline's (from the remapped mesh) |" in (out / "optimisation_levers.md").read_text()
     assert json.loads((out / "optimisation_levers.provenance.json").read_text())["parameters"]["quick"] is True
 
 
 def test_the_script_stops_when_its_solve_from_the_remap_is_not_the_pipelines(load_experiment, monkeypatch):
-    """Today's row must be the pipeline's solve: a count of Jacobians off by one stops the script."""
+    """The first row must be the pipeline's solve: a count of Jacobians off by one stops the script."""
     experiment = load_experiment("optimisation_levers")
     solve = experiment.solve
 

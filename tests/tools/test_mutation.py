@@ -322,7 +322,8 @@ def test_a_run_of_some_functions_replaces_their_verdicts_only():
     row = run.merged(full, part, ["g", "new"])
     assert [s["mutant"] for s in row["survivors"]] == ["m.x_f__mutmut_2", "m.x_g__mutmut_3"]
     assert (row["mutants"], row["killed"], row["survived"], row["timeout"]) == (6, 4, 2, 0)
-    assert row["rerun"] == {"functions": ["g", "new"], "mutants": 4, "seconds": 60, "tests": ["tests/test_m.py"]}
+    tests = {"g": ["tests/test_m.py"], "new": ["tests/test_m.py"]}
+    assert row["rerun"] == {"functions": ["g", "new"], "mutants": 4, "seconds": 60, "tests": tests}
     assert report.scored(row, equivalent.Arguments([]))["score"] == 4 / 6
     with pytest.raises(SystemExit, match="f changed since its full run"):
         run.merged(full, {**part, "by_function": {**part["by_function"], "f": {"hash": "f2"}}}, ["g", "new"])
@@ -332,9 +333,13 @@ def test_a_run_of_some_functions_replaces_their_verdicts_only():
         run.merged({k: v for k, v in full.items() if k != "by_function"}, part, ["g"])
     text = _markdown(row)
     assert "Only the mutants of `g`, `new` (4) were run again (`--functions`, the last run 60 s)" in text
-    wider = run.merged(full, {**part, "tests": ["tests/test_m.py", "tests/test_n.py"]}, ["g", "new"])
-    assert wider["tests"] == ["tests/test_m.py"] and wider["rerun"]["tests"] == ["tests/test_m.py", "tests/test_n.py"]
-    assert "(`--functions` against tests/test_m.py, tests/test_n.py, the last run 60 s)" in _markdown(wider)
+    both = ["tests/test_m.py", "tests/test_n.py"]
+    wider = run.merged(full, {**part, "tests": both}, ["g", "new"])
+    assert wider["tests"] == ["tests/test_m.py"] and wider["rerun"]["tests"] == {"g": both, "new": both}
+    text = _markdown(wider)
+    assert "(`--functions`, the last run 60 s; `g` against tests/test_m.py, tests/test_n.py; `new` against" in text
+    back = run.merged(wider, part, ["new"])  # g keeps the files it was run against, new takes this run's
+    assert back["rerun"]["tests"] == {"g": both, "new": ["tests/test_m.py"]}
     again = run.merged(
         row,
         {**part, "survivors": [], "by_function": {**part["by_function"], "new": {"hash": "n1", "killed": 1}}},

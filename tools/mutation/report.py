@@ -80,13 +80,18 @@ def markdown(rows, record, table=MODULES):
                 "",
             ]
         if m.get("rerun"):
-            tests = m["rerun"].get("tests", m["tests"])
-            against = "" if tests == m["tests"] else f" against {', '.join(tests)}"
+            tests = m["rerun"].get("tests", {})
+            other = [
+                f"`{f}` against {', '.join(tests[f])}"
+                for f in m["rerun"]["functions"]
+                if tests.get(f, m["tests"]) != m["tests"]
+            ]
+            against = f"; {'; '.join(other)}" if other else ""
             body += [
                 f"Only the mutants of {', '.join(f'`{f}`' for f in m['rerun']['functions'])} "
-                f"({m['rerun']['mutants']}) were run again (`--functions`{against}, the last run "
-                f"{m['rerun']['seconds']} s); the other functions' verdicts, the test files in the table and the time "
-                "are from the module's last full run.",
+                f"({m['rerun']['mutants']}) were run again (`--functions`, the last run {m['rerun']['seconds']} s"
+                f"{against}); the other functions' verdicts, the test files in the table and the time are from the "
+                "module's last full run.",
                 "",
             ]
         if m.get("not checked"):

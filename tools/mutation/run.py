@@ -164,8 +164,8 @@ def merged(before, part, functions):
 
     ``part`` is :func:`run_module`'s row of a run of those functions only.  Functions gone from the module
     are dropped; one not named must have the hash it had in ``before`` (its verdicts still hold), else
-    SystemExit.  The functions run again since the full run accumulate in ``rerun``, with the test files of the
-    last run (the row's ``tests`` stay the full run's, which the other verdicts come from).
+    SystemExit.  The functions run again since the full run accumulate in ``rerun``, with the test files each was
+    run against last (the row's ``tests`` stay the full run's, which the other verdicts come from).
     """
     module = before["module"]
     if "by_function" not in before:
@@ -183,7 +183,9 @@ def merged(before, part, functions):
     survivors = sorted(kept + part["survivors"], key=lambda s: natural(s["mutant"]))
     named = [f for f in dict.fromkeys([*before.get("rerun", {}).get("functions", ()), *functions]) if f in verdicts]
     mutants = sum(count for f in named for s, count in verdicts[f].items() if s != "hash")
-    rerun = {"functions": named, "mutants": mutants, "seconds": part["seconds"], "tests": part["tests"]}
+    earlier = before.get("rerun", {}).get("tests", {})
+    tests = {f: part["tests"] if f in functions else earlier.get(f, before["tests"]) for f in named}
+    rerun = {"functions": named, "mutants": mutants, "seconds": part["seconds"], "tests": tests}
     return {
         **before,
         "mutants": sum(counts.values()),
