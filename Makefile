@@ -48,7 +48,8 @@ EXPERIMENTS := \
 	experiments/optimisation_levers.py \
 	experiments/feature_angle.py \
 	experiments/inputs.py \
-	experiments/fabrication.py
+	experiments/fabrication.py \
+	experiments/classes_sweep.py
 
 # The hypothesis profile comes from EQUIMESH_HYPOTHESIS_PROFILE (tests/conftest.py;
 # quick "ci" when unset); `make test-thorough` selects the thorough one.

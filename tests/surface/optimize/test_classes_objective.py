@@ -90,7 +90,7 @@ def test_developable_vault_has_one_dominant_class_and_a_strip_that_repeats():
     """On a developable vault the lattice members all reach l (one class holds most members), never more classes
     than its start's.  Its flattened sides are straight and the plane's Step 2 points are in phase with the
     lattice, so the strip repeats: a third fewer classes than the same objective on the paper's equal parts (17
-    against 30 at l = 4: the corners' end parts and the remap's small change of length keep it above a handful)."""
+    against 27 at l = 4: the corners' end parts and the remap's small change of length keep it above a handful)."""
     surface = parabolic_vault()
     fewest, start = (mesh_surface(surface, 4.0, optimize=o) for o in ("classes", LATTICE_BOUNDED))
     check_sound(fewest, surface)

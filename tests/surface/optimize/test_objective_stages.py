@@ -22,7 +22,7 @@ from equimesh.mesh import G1, edge_lengths
 from equimesh.surface.optimize import OBJECTIVES, optimize_uv
 from equimesh.surface.optimize.joints import Joints, surface_angles
 from equimesh.surface.optimize.members import Members, cauchy
-from equimesh.surface.optimize.objectives import bounded_stages, classes_stages, paper_stage, paper_stages
+from equimesh.surface.optimize.objectives import bounded_stages, class_scale, classes_stages, paper_stage, paper_stages
 from equimesh.surface.optimize.slide import along_polygon
 from equimesh.surface.optimize.solver import DEFAULT_FACTORISATION
 from equimesh.surface.optimize.stage import WorkSpent
@@ -37,6 +37,8 @@ from equimesh.tolerance import (
     BOUNDED_SCALE,
     BOUNDED_START_FTOL,
     CLASSES_ROUNDS,
+    CLASSES_SCALE_DECAY,
+    CLASSES_SCALE_START,
     CLASSES_START,
     PAPER_FTOL,
 )
@@ -211,13 +213,13 @@ def start_nominals(p, x):
     return np.unique(np.append(np.clip(classes.nominal[largest], TARGET, HIGH), TARGET))
 
 
-def round_residuals(p, x, nominal):
+def round_residuals(p, x, nominal, scale):
     """A round's residuals at its start ``x``: each member pulled to its nearest nominal with the Cauchy weight of
-    scale tolerance / 2, a member outside [target, high] to the nearer end with BOUNDED_PULL."""
+    scale ``scale``, a member outside [target, high] to the nearer end with BOUNDED_PULL."""
     r = ratio(p, x)
     goal = nominal[np.argmin(np.abs(r[:, None] - nominal[None, :]), axis=1)]
     outside = (r < TARGET) | (r > HIGH)
-    weight = np.where(outside, BOUNDED_PULL, cauchy(r - goal, 0.5 * p.tolerance))
+    weight = np.where(outside, BOUNDED_PULL, cauchy(r - goal, scale))
     return weight * (r - np.where(outside, np.clip(r, TARGET, HIGH), goal))
 
 
@@ -242,9 +244,9 @@ def test_classes_rounds_merge_the_nominal_lengths():
     diagonal = r > 1.5
     np.testing.assert_allclose(rounds[0].residuals(p.x0), 0.0, atol=1e-12)  # every member at its own nominal
     goal = np.where(diagonal, 1.25, r)
-    pull = cauchy(r - goal, 0.5 * p.tolerance) * (r - goal)
+    pull = cauchy(r - goal, class_scale(3, p.tolerance)) * (r - goal)
     np.testing.assert_allclose(rounds[3].residuals(p.x0), pull, rtol=1e-9, atol=1e-12)
-    pull = cauchy(r - TARGET, 0.5 * p.tolerance) * (r - TARGET)
+    pull = cauchy(r - TARGET, class_scale(6, p.tolerance)) * (r - TARGET)
     np.testing.assert_allclose(rounds[6].residuals(p.x0), pull, rtol=1e-9)
     assert last is seen[0] and np.array_equal(end, p.x0)
 
@@ -262,7 +264,7 @@ def test_classes_nominals_move_to_the_middle_of_their_members():
     diagonal = 0.5 * (r[~grid_edges].min() + r[~grid_edges].max())
     nominal = np.array([TARGET, middle, diagonal])
     goal = nominal[np.argmin(np.abs(r[:, None] - nominal), axis=1)]
-    expected = cauchy(r - goal, 0.5 * p.tolerance) * (r - goal)
+    expected = cauchy(r - goal, class_scale(1, p.tolerance)) * (r - goal)
     np.testing.assert_allclose(seen[3].residuals(spread), expected, rtol=1e-9, atol=1e-15)
 
 
@@ -295,7 +297,8 @@ def test_classes_with_a_catalogue_counts_the_members_off_it_first():
     assert all(" of 2 nominal lengths" in s.description for s in seen[2:])
     r = ratio(p, p.x0)
     goal = np.where(r > 1.5, 1.5, 1.25)
-    np.testing.assert_allclose(seen[2].residuals(p.x0), cauchy(r - goal, 0.5 * p.tolerance) * (r - goal), rtol=1e-9)
+    expected = cauchy(r - goal, class_scale(0, p.tolerance)) * (r - goal)
+    np.testing.assert_allclose(seen[2].residuals(p.x0), expected, rtol=1e-9)
     assert last is seen[0]
 
 
@@ -325,7 +328,12 @@ def test_classes_breaks_a_tie_in_classes_by_the_share_in_the_ten_largest():
     assert last is rounds[0] and np.array_equal(end, better)
     nominal = start_nominals(p, start)
     assert len(nominal) == 13 and rounds[0].description.startswith("members to the nearest of 13 nominal lengths")
-    np.testing.assert_allclose(rounds[0].residuals(start), round_residuals(p, start, nominal), rtol=1e-9, atol=1e-15)
+    np.testing.assert_allclose(
+        rounds[0].residuals(start),
+        round_residuals(p, start, nominal, class_scale(0, p.tolerance)),
+        rtol=1e-9,
+        atol=1e-15,
+    )
 
 
 def test_the_first_nominals_are_the_30_largest_classes():
@@ -342,7 +350,12 @@ def test_the_first_nominals_are_the_30_largest_classes():
     nominal = start_nominals(p, start)
     assert len(nominal) == 31 and classes.nominal.max() not in nominal
     assert rounds[0].description.startswith("members to the nearest of 31 nominal lengths")
-    np.testing.assert_allclose(rounds[0].residuals(start), round_residuals(p, start, nominal), rtol=1e-9, atol=1e-15)
+    np.testing.assert_allclose(
+        rounds[0].residuals(start),
+        round_residuals(p, start, nominal, class_scale(0, p.tolerance)),
+        rtol=1e-9,
+        atol=1e-15,
+    )
 
 
 def test_of_equal_classes_the_first_by_length_is_a_nominal():
@@ -355,7 +368,12 @@ def test_of_equal_classes_the_first_by_length_is_a_nominal():
     answer, rounds = answers_for_classes(start, lambda k: start)
     drive(classes_stages(p), answer)
     nominal = start_nominals(p, start)
-    np.testing.assert_allclose(rounds[0].residuals(start), round_residuals(p, start, nominal), rtol=1e-9, atol=1e-15)
+    np.testing.assert_allclose(
+        rounds[0].residuals(start),
+        round_residuals(p, start, nominal, class_scale(0, p.tolerance)),
+        rtol=1e-9,
+        atol=1e-15,
+    )
 
 
 def test_classes_are_counted_at_the_problems_tolerance():
@@ -382,8 +400,11 @@ def test_nominals_stay_at_most_high():
     drive(classes_stages(p), answer)
     nominal = start_nominals(p, start)
     assert nominal.max() == HIGH
-    for stage in rounds[:2]:  # after the first round the diagonals' nominal moves to their middle, at most high
-        np.testing.assert_allclose(stage.residuals(start), round_residuals(p, start, nominal), rtol=1e-9, atol=1e-15)
+    for k, stage in enumerate(
+        rounds[:2]
+    ):  # after the first round the diagonals' nominal moves to their middle, at most high
+        expected = round_residuals(p, start, nominal, class_scale(k, p.tolerance))
+        np.testing.assert_allclose(stage.residuals(start), expected, rtol=1e-9, atol=1e-15)
 
 
 def test_a_class_at_l_starts_at_the_target():
@@ -533,8 +554,11 @@ def test_classes_runs_a_second_series_from_a_remap_that_kept_the_lattice():
     nominal = start_nominals(p, p.x0)
     np.testing.assert_allclose(nominal, [TARGET, 1.0 + np.sqrt(2.0) - 1.0], rtol=1e-12)
     np.testing.assert_allclose(
-        rounds[CLASSES_ROUNDS].residuals(p.x0), round_residuals(p, p.x0, nominal), rtol=1e-9, atol=1e-15
-    )
+        rounds[CLASSES_ROUNDS].residuals(p.x0),
+        round_residuals(p, p.x0, nominal, 0.5 * p.tolerance),
+        rtol=1e-9,
+        atol=1e-15,
+    )  # the rounds from the remap keep half the tolerance from their first on
     assert last is rounds[CLASSES_ROUNDS] and np.array_equal(end, p.x0)
 
 
@@ -567,7 +591,7 @@ def test_a_second_series_outside_the_band_is_solved_on_with_the_penalty():
     depth = np.maximum(0.0, low_end - ratio(p, p.x0))
     psi = np.where(depth < smooth, depth**2 / (2 * smooth), depth - smooth / 2)
     nominal = start_nominals(p, p.x0)
-    expected = np.concatenate([round_residuals(p, p.x0, nominal), BOUNDED_PENALTY * psi])
+    expected = np.concatenate([round_residuals(p, p.x0, nominal, 0.5 * p.tolerance), BOUNDED_PENALTY * psi])
     np.testing.assert_allclose(penalty.residuals(p.x0), expected, rtol=1e-9, atol=1e-12)
     assert last is penalty and np.array_equal(end, p.x0)
 
@@ -685,3 +709,12 @@ def test_of_rounds_in_the_band_the_largest_share_is_kept():
         assert Members.inside(ratio(p, x)) and p.sound(x)
     seen, (end, last) = drive(bounded_stages(p), lambda k, stage: two if k == 0 else one)
     assert last is seen[0] and np.array_equal(end, two)
+
+
+def test_the_classes_scale_narrows_from_wide_to_half_the_tolerance():
+    """Round k's Cauchy scale: CLASSES_SCALE_START tolerance shrunk by CLASSES_SCALE_DECAY a round, never below half
+    the tolerance; the rounds of a remap that kept the lattice use half the tolerance from the first."""
+    for tolerance in (0.005, 0.01):
+        scales = [class_scale(k, tolerance) for k in range(CLASSES_ROUNDS + 40)]
+        assert scales[0] == CLASSES_SCALE_START * tolerance and min(scales) == 0.5 * tolerance
+        assert all(a >= b for a, b in zip(scales, scales[1:])) and scales[1] == scales[0] * CLASSES_SCALE_DECAY

@@ -38,6 +38,8 @@ from ...tolerance import (
     CLASSES_MERGE_EVERY,
     CLASSES_REMAP_SHARE,
     CLASSES_ROUNDS,
+    CLASSES_SCALE_DECAY,
+    CLASSES_SCALE_START,
     CLASSES_START,
 )
 from .members import Members, cauchy, edge_length_terms
@@ -257,8 +259,12 @@ def classes_stages(problem):
       always among them), or the caller's catalogue of stock lengths
       (``problem.catalogue``, fixed);
     * a round assigns each member to its nearest nominal length, pulls it
-      there with the Cauchy weight of scale ``tolerance / 2`` (a member far
-      from every nominal stops pulling on the others) and a member outside
+      there with a Cauchy weight whose scale shrinks from round to round
+      down to ``tolerance / 2`` in the rounds from bounded's result
+      (:func:`class_scale`: first the members far from every nominal, the
+      strip's, are pulled too; at the end a member far from every nominal
+      stops pulling on the others), is ``tolerance / 2`` throughout in those
+      from the remapped mesh, and a member outside
       ``[1 + BOUNDED_OFFSET, 2 - BOUNDED_OFFSET]`` back with
       ``BOUNDED_PULL``, for :data:`~equimesh.tolerance.BOUNDED_ROUND_ITERATIONS`
       solver iterations; then each nominal moves to the middle of the members
@@ -276,20 +282,32 @@ def classes_stages(problem):
     tolerance, catalogue = problem.tolerance, problem.catalogue
     x, stage = yield from bounded_stages(problem)
     best = {"x": x, "stage": stage, "key": _class_key(members.ratio(x), tolerance, catalogue)}
-    starts = [x]
+    starts = [(x, class_scale)]
     remapped = members.ratio(problem.x0)
     kept = share_within(remapped, 1.0, tolerance) >= CLASSES_REMAP_SHARE
     if kept and _class_key(remapped, tolerance, catalogue)[:2] < best["key"][:2]:
-        starts.append(problem.x0)  # the remap kept the plane's lattice (a developable surface), bounded's rounds not
-    for x in starts:
-        if (yield from _class_rounds(problem, members, x, best)):
+        # the remap kept the plane's lattice (a developable surface), bounded's rounds not: its exact members stay
+        starts.append((problem.x0, lambda k, tolerance: 0.5 * tolerance))
+    for x, scale in starts:
+        if (yield from _class_rounds(problem, members, x, best, scale)):
             break
     return best["x"], best["stage"]
 
 
-def _class_rounds(problem, members, x, best):
-    """:func:`classes_stages`' rounds from ``x``, nominal lengths from its classes (or the catalogue), ``best``
-    updated with every better round end; True when the work bound ended them (:class:`WorkSpent`)."""
+def class_scale(k, tolerance):
+    """The Cauchy scale of round ``k`` of :func:`classes_stages`' rounds from bounded's result, relative to l:
+    ``CLASSES_SCALE_START tolerance`` shrunk by ``CLASSES_SCALE_DECAY`` a round down to half the ``tolerance`` (a
+    continuation: first the members far from every nominal length, the strip's, are pulled to the nearest too, at
+    the end only those within the tolerance of one).  The rounds from the remapped mesh keep half the tolerance
+    throughout: their lattice members are exact, and a wider pull moves them too
+    (tests/surface/optimize/test_classes_objective.py's developable vault)."""
+    return max(0.5 * tolerance, CLASSES_SCALE_START * tolerance * CLASSES_SCALE_DECAY**k)
+
+
+def _class_rounds(problem, members, x, best, scale):
+    """:func:`classes_stages`' rounds from ``x``, nominal lengths from its classes (or the catalogue), the Cauchy
+    scale of round ``k`` ``scale(k, tolerance)``, ``best`` updated with every better round end; True when the work
+    bound ended them (:class:`WorkSpent`)."""
     tolerance, catalogue = problem.tolerance, problem.catalogue
     if catalogue is not None:
         nominal = np.asarray(catalogue, dtype=float)
@@ -302,7 +320,7 @@ def _class_rounds(problem, members, x, best):
     for k in range(CLASSES_ROUNDS):
         ratio = members.ratio(x)
         goal = nominal[np.argmin(np.abs(ratio[:, None] - nominal[None, :]), axis=1)]
-        weight, goal = members.pulled(ratio, cauchy(ratio - goal, 0.5 * tolerance), goal)
+        weight, goal = members.pulled(ratio, cauchy(ratio - goal, scale(k, tolerance)), goal)
         stage = Stage(
             *members.weighted(weight, goal),
             f"members to the nearest of {len(nominal)} nominal lengths, round {k + 1}",
