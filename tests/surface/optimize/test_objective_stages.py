@@ -718,3 +718,19 @@ def test_the_classes_scale_narrows_from_wide_to_half_the_tolerance():
         scales = [class_scale(k, tolerance) for k in range(CLASSES_ROUNDS + 40)]
         assert scales[0] == CLASSES_SCALE_START * tolerance and min(scales) == 0.5 * tolerance
         assert all(a >= b for a, b in zip(scales, scales[1:])) and scales[1] == scales[0] * CLASSES_SCALE_DECAY
+
+
+def test_the_rounds_from_a_remap_that_kept_the_lattice_pull_with_half_the_tolerance():
+    """A remap a hair off its lattice (members within about 1e-4 of their nominal): the first round from it weighs
+    each member by the Cauchy weight of scale tolerance / 2, which a scale of 1.5 tolerances would not give."""
+    p, _ = problem(rise=0.0, slides=True, length=10.0, seed=3, spread=1e-5)
+    messy = moved(p, 4, size=0.004)
+    assert documented_key(p, p.x0)[:2] == (0, 2) and documented_key(p, messy)[1] > 2
+    answer, rounds = answers_for_classes(messy, lambda k: messy)
+    drive(classes_stages(p), answer)
+    assert len(rounds) == 2 * CLASSES_ROUNDS
+    nominal = start_nominals(p, p.x0)
+    got = rounds[CLASSES_ROUNDS].residuals(p.x0)
+    assert np.abs(got).max() > 0.0
+    np.testing.assert_allclose(got, round_residuals(p, p.x0, nominal, 0.5 * p.tolerance), rtol=1e-12, atol=0.0)
+    assert not np.allclose(got, round_residuals(p, p.x0, nominal, 1.5 * p.tolerance), rtol=1e-9, atol=0.0)
