@@ -458,9 +458,10 @@ _BOUNDED_MAX_NODES = {"pardiso": 57_000, "cholmod": 57_000, "superlu": 35_000}
 #: "classes" (``/usr/bin/time equimesh mesh experiments/surfaces/reference_dome.json --optimize classes --max-nodes
 #: none -l L``, CPU seconds, the machine shared): with PARDISO 9.0 s at 5,716 nodes (l = 1.24), 17.9 s at 11,357
 #: (l = 0.88) and 56.4 s at 22,911 (l = 0.62); at 11,357 nodes 21.6 s with CHOLMOD and 50.0 s with SuperLU
-#: (``EQUIMESH_FACTORISATION``).  A run refused by the work bound costs its 2,600 Jacobians whatever it meshes, about
-#: 5.7 times the 455 of l = 0.88 (``mesh_surface(...).stages.optimization.njev``): about 100 s with PARDISO and 120 s
-#: with CHOLMOD at 11,357 nodes, so 12,000 nodes with both; about 285 s with SuperLU there, so 6,000 with it.
+#: (``EQUIMESH_FACTORISATION``), 455 Jacobians then.  A run refused by the work bound costs its 2,600 Jacobians
+#: whatever it meshes, 5.7 times those 455 (``mesh_surface(...).stages.optimization.njev``): about 100 s with PARDISO
+#: and 120 s with CHOLMOD at 11,357 nodes, so 12,000 nodes with both; about 285 s with SuperLU there, so 6,000 with
+#: it.  With the narrowing scale of its rounds (:func:`class_scale`) l = 0.88 takes 558 Jacobians (11,367 nodes).
 _CLASSES_MAX_NODES = {"pardiso": 12_000, "cholmod": 12_000, "superlu": 6_000}
 #: The work bounds in Jacobian evaluations (docs/decisions.md, "A work bound for the optimisation"), measured by
 #: ``python experiments/optimisation_work.py`` (results/optimisation_work.md: the reference dome at l = 0.5 to 2, the
@@ -468,7 +469,7 @@ _CLASSES_MAX_NODES = {"pardiso": 12_000, "cholmod": 12_000, "superlu": 6_000}
 #: spherical caps; with PARDISO).  "paper" is one solve of at most 500 iterations (the solver's guard,
 #: :attr:`Stage.max_iterations`), so 501: the bound it always had (the tubes take it all).  "bounded": at most 637 on
 #: a mesh returned there (dome 87 of the sweep, 167 nodes), 626 in docs/performance.md (64,493 nodes, above its node
-#: limit), so 1,500, 2.4 times the most.  "classes": at most 503 (the reference dome at l = 1, 8,795 nodes), so
+#: limit), so 1,500, 2.4 times the most.  "classes": at most 522 (the reference dome at l = 1, 8,795 nodes), so
 #: 2,600, about five times that, which a run at its node limit spends in about two minutes
 #: (``_CLASSES_MAX_NODES``).
 _PAPER_MAX_JACOBIANS = 501
