@@ -1,7 +1,7 @@
 """Beyond the paper: the classes objective's narrowing Cauchy scale against a constant one, on patches no constant
 was chosen on.
 
-``CLASSES_SCALE_START`` and ``CLASSES_SCALE_DECAY`` (:func:`equimesh.surface.optimize.objectives.class_scale`) were
+``CLASSES_SCALE_START`` and ``CLASSES_SCALE_DECAY`` (:func:`equimesh.surface.optimize.class_rounds.class_scale`) were
 chosen on the four surfaces of ``experiments/fabrication.py``; this sweep checks them on others: ``COUNT`` random
 80 x 80 bicubic Bezier patches (:func:`patch`: two in three doubly curved, control heights drawn in [-12, 30] with the
 corners at 0; one in three developable, a vault of a random profile along one side), each meshed by
@@ -34,7 +34,7 @@ import _common  # noqa: E402
 import fabrication  # noqa: E402
 
 from equimesh.metrics import comparison_figures  # noqa: E402
-from equimesh.surface.optimize import objectives  # noqa: E402
+from equimesh.surface.optimize import class_rounds  # noqa: E402
 from equimesh.surface.pipeline import mesh_surface  # noqa: E402
 
 NAME = "classes_sweep"
@@ -88,7 +88,7 @@ def measure(task):
     l = fabrication.SPAN / divisor
     row = {"seed": seed, "kind": kind, "divisor": divisor, "scale": scale}
     start = SCALES[scale]
-    held = contextlib.nullcontext() if start is None else mock.patch.object(objectives, "CLASSES_SCALE_START", start)
+    held = contextlib.nullcontext() if start is None else mock.patch.object(class_rounds, "CLASSES_SCALE_START", start)
     try:
         with held:
             mesh, seconds = _common.timed(mesh_surface, surface, l, optimize="classes", max_nodes=None)

@@ -5,17 +5,17 @@ import json
 
 import pandas as pd
 
-from equimesh.surface.optimize import objectives
+from equimesh.surface.optimize import class_rounds
 
 
 def test_classes_sweep_runs_both_scales_on_each_patch(load_experiment, tmp_path):
     """Two patches (a developable one and a doubly curved one at two l): a row per scale; on the doubly curved patch
     the two scales give different meshes (the constant one is patched in, and only while it runs)."""
     experiment = load_experiment("classes_sweep")
-    before = objectives.CLASSES_SCALE_START
+    before = class_rounds.CLASSES_SCALE_START
     out = tmp_path / "results"
     assert experiment.main(["--count", "2", "--jobs", "1", "--out-dir", str(out)]) == 0
-    assert objectives.CLASSES_SCALE_START == before
+    assert class_rounds.CLASSES_SCALE_START == before
     df = pd.read_csv(out / "classes_sweep.csv")
     assert list(df.columns) == experiment.COLUMNS and (df["status"] == "ok").all()
     assert df["kind"].tolist() == ["developable"] * 2 + ["doubly curved"] * 4

@@ -119,6 +119,7 @@ OPTIMIZE_MODULES = {
         "tests/surface/optimize/test_members.py",
     ],
     "src/equimesh/surface/optimize/objectives.py": ["tests/surface/optimize/test_objective_stages.py"],
+    "src/equimesh/surface/optimize/class_rounds.py": ["tests/surface/optimize/test_objective_stages.py"],
     "src/equimesh/surface/optimize/driver.py": ["tests/surface/optimize/test_driver.py"],
     "src/equimesh/surface/optimize/beside.py": [
         "tests/surface/optimize/test_driver.py",

@@ -20,9 +20,10 @@ from equimesh import InvalidSurfaceError
 from equimesh.classes import length_classes, on_catalogue
 from equimesh.mesh import G1, edge_lengths
 from equimesh.surface.optimize import OBJECTIVES, optimize_uv
+from equimesh.surface.optimize.class_rounds import class_scale
 from equimesh.surface.optimize.joints import Joints, surface_angles
 from equimesh.surface.optimize.members import Members, cauchy
-from equimesh.surface.optimize.objectives import bounded_stages, class_scale, classes_stages, paper_stage, paper_stages
+from equimesh.surface.optimize.objectives import bounded_stages, classes_stages, paper_stage, paper_stages
 from equimesh.surface.optimize.slide import along_polygon
 from equimesh.surface.optimize.solver import DEFAULT_FACTORISATION
 from equimesh.surface.optimize.stage import WorkSpent

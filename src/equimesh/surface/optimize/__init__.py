@@ -3,6 +3,7 @@
 * :mod:`.problem`     :class:`~.problem.UVProblem`: the variables (free parameters, arc positions
                       of sliding nodes), their bounds and the trust region;
 * :mod:`.objectives`  what is minimised, one record per objective in :data:`~.objectives.OBJECTIVES`;
+* :mod:`.class_rounds` the classes objective's rounds: members to nominal lengths, merged, its key;
 * :mod:`.stage`       :class:`~.stage.Stage`: one least-squares solve an objective yields, and the work bound's signal;
 * :mod:`.driver`      :func:`~.driver.optimize_uv`: the stages of an objective solved in turn,
                       with the fold-over guards;

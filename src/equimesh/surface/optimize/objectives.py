@@ -23,7 +23,6 @@ from typing import Callable
 
 import numpy as np
 
-from ...classes import TOP_CLASSES, length_classes, on_catalogue
 from ...mesh import G1
 from ...metrics import share_within
 from ...tolerance import (
@@ -35,13 +34,9 @@ from ...tolerance import (
     BOUNDED_SCALE,
     BOUNDED_START_FTOL,
     BOUNDED_STEP,
-    CLASSES_MERGE_EVERY,
     CLASSES_REMAP_SHARE,
-    CLASSES_ROUNDS,
-    CLASSES_SCALE_DECAY,
-    CLASSES_SCALE_START,
-    CLASSES_START,
 )
+from .class_rounds import class_key, class_rounds, class_scale, half_tolerance
 from .members import Members, cauchy, edge_length_terms
 from .solver import factorisation_name
 from .stage import Stage, WorkSpent
@@ -261,7 +256,7 @@ def classes_stages(problem):
     * a round assigns each member to its nearest nominal length, pulls it
       there with a Cauchy weight whose scale shrinks from round to round
       down to ``tolerance / 2`` in the rounds from bounded's result
-      (:func:`class_scale`: first the members far from every nominal, the
+      (:func:`~.class_rounds.class_scale`: first the members far from every nominal, the
       strip's, are pulled too; at the end a member far from every nominal
       stops pulling on the others), is ``tolerance / 2`` throughout in those
       from the remapped mesh, and a member outside
@@ -281,114 +276,17 @@ def classes_stages(problem):
     members = Members(problem)
     tolerance, catalogue = problem.tolerance, problem.catalogue
     x, stage = yield from bounded_stages(problem)
-    best = {"x": x, "stage": stage, "key": _class_key(members.ratio(x), tolerance, catalogue)}
+    best = {"x": x, "stage": stage, "key": class_key(members.ratio(x), tolerance, catalogue)}
     starts = [(x, class_scale)]
     remapped = members.ratio(problem.x0)
     kept = share_within(remapped, 1.0, tolerance) >= CLASSES_REMAP_SHARE
-    if kept and _class_key(remapped, tolerance, catalogue)[:2] < best["key"][:2]:
+    if kept and class_key(remapped, tolerance, catalogue)[:2] < best["key"][:2]:
         # the remap kept the plane's lattice (a developable surface), bounded's rounds not: its exact members stay
-        starts.append((problem.x0, lambda k, tolerance: 0.5 * tolerance))
+        starts.append((problem.x0, half_tolerance))
     for x, scale in starts:
-        if (yield from _class_rounds(problem, members, x, best, scale)):
+        if (yield from class_rounds(problem, members, x, best, scale)):
             break
     return best["x"], best["stage"]
-
-
-def class_scale(k, tolerance):
-    """The Cauchy scale of round ``k`` of :func:`classes_stages`' rounds from bounded's result, relative to l:
-    ``CLASSES_SCALE_START tolerance`` shrunk by ``CLASSES_SCALE_DECAY`` a round down to half the ``tolerance`` (a
-    continuation: first the members far from every nominal length, the strip's, are pulled to the nearest too, at
-    the end only those within the tolerance of one).  The rounds from the remapped mesh keep half the tolerance
-    throughout: their lattice members are exact, and a wider pull moves them too
-    (tests/surface/optimize/test_classes_objective.py's developable vault)."""
-    return max(0.5 * tolerance, CLASSES_SCALE_START * tolerance * CLASSES_SCALE_DECAY**k)
-
-
-def _class_rounds(problem, members, x, best, scale):
-    """:func:`classes_stages`' rounds from ``x``, nominal lengths from its classes (or the catalogue), the Cauchy
-    scale of round ``k`` ``scale(k, tolerance)``, ``best`` updated with every better round end; True when the work
-    bound ended them (:class:`WorkSpent`)."""
-    tolerance, catalogue = problem.tolerance, problem.catalogue
-    if catalogue is not None:
-        nominal = np.asarray(catalogue, dtype=float)
-    else:
-        start = length_classes(members.ratio(x), 1.0, tolerance)
-        largest = np.argsort(-start.count, kind="stable")[:CLASSES_START]
-        nominal = np.unique(np.append(np.clip(start.nominal[largest], members.target, members.high), members.target))
-    limit = problem.step_limit(BOUNDED_STEP * problem.length)
-    closest = None  # the round end outside [l, 2l] with the fewest classes, if fewer than the best's
-    for k in range(CLASSES_ROUNDS):
-        ratio = members.ratio(x)
-        goal = nominal[np.argmin(np.abs(ratio[:, None] - nominal[None, :]), axis=1)]
-        weight, goal = members.pulled(ratio, cauchy(ratio - goal, scale(k, tolerance)), goal)
-        stage = Stage(
-            *members.weighted(weight, goal),
-            f"members to the nearest of {len(nominal)} nominal lengths, round {k + 1}",
-            BOUNDED_FTOL,
-            BOUNDED_ROUND_ITERATIONS,
-            start=x if k == 0 else None,  # the driver ended elsewhere: bounded's result is its best round, not its last
-            limit=limit,
-        )
-        try:
-            x = yield stage
-        except WorkSpent:  # the work bound: the fewest classes so far (bounded's result at least)
-            return True
-        ratio = members.ratio(x)
-        key = _class_key(ratio, tolerance, catalogue)
-        if key < best["key"] and problem.sound(x):
-            if members.inside(ratio):
-                best.update(x=np.array(x), stage=stage, key=key)
-            elif closest is None or key < closest[0]:
-                closest = (key, np.array(x), weight, goal, len(nominal))
-        if catalogue is None:
-            nominal = _merged(nominal, ratio, tolerance, k, members)
-    if closest is None or not closest[0] < best["key"]:
-        return False
-    # A round end outside [l, 2l] beat the best: its members into [l, 2l] by the band penalty.
-    key, x, weight, goal, count = closest
-    stage = Stage(
-        *members.weighted(weight, goal, members.band_penalty()),
-        f"members to the nearest of {count} nominal lengths and into [l, 2l] by a penalty",
-        BOUNDED_FTOL,
-        start=x,
-        limit=limit,
-        feasible=members.feasible,
-        violation=members.violation,
-    )
-    try:
-        x = yield stage
-    except WorkSpent:
-        return True
-    ratio = members.ratio(x)
-    key = _class_key(ratio, tolerance, catalogue)
-    if key < best["key"] and members.inside(ratio) and problem.sound(x):
-        best.update(x=np.array(x), stage=stage, key=key)
-    return False
-
-
-def _class_key(ratio, tolerance, catalogue):
-    """What :func:`classes_stages` minimises at ``ratio = L / l``: (members off the catalogue, classes, minus the
-    share in the ten largest)."""
-    off = 0 if catalogue is None else int(np.count_nonzero(~on_catalogue(ratio, 1.0, catalogue, tolerance)))
-    classes = length_classes(ratio, 1.0, tolerance)
-    return off, len(classes), -float(np.sort(classes.count)[::-1][:TOP_CLASSES].sum() / max(len(ratio), 1))
-
-
-def _merged(nominal, ratio, tolerance, k, members):
-    """The nominal lengths after round ``k``: each moved to the middle of the members within ``tolerance`` of it (the
-    class at l stays; at most ``high``), and every ``CLASSES_MERGE_EVERY`` rounds the one holding the fewest dropped."""
-    nearest = np.argmin(np.abs(ratio[:, None] - nominal[None, :]), axis=1)
-    near = np.abs(ratio - nominal[nearest]) <= tolerance
-    moved = nominal.copy()
-    for q in np.flatnonzero(nominal != members.target):
-        held = ratio[near & (nearest == q)]
-        if held.size:  # above the target: a member below it is nearer to the target (the first nominal) than to q
-            moved[q] = min(0.5 * (held.min() + held.max()), members.high)
-    if (k + 1) % CLASSES_MERGE_EVERY or len(moved) == 1:
-        return moved
-    counts = np.bincount(nearest[near], minlength=len(nominal))
-    candidates = np.flatnonzero(nominal != members.target)
-    return np.delete(moved, candidates[np.argmin(counts[candidates])])
 
 
 @dataclass(frozen=True)
