@@ -51,6 +51,7 @@ import _common  # noqa: E402
 
 import equimesh  # noqa: E402
 from equimesh.errors import EquimeshError  # noqa: E402
+from equimesh.mesh import edge_lengths  # noqa: E402
 from equimesh.metrics import share_within  # noqa: E402
 from equimesh.surface.optimize import objectives, solver  # noqa: E402
 from equimesh.surface.optimize.jacobian import signed_areas  # noqa: E402
@@ -181,8 +182,7 @@ def solve(surface, mesh, start, objective="bounded", constant=None):
 
 def ratios(surface, uv, edges, length):
     """Every member's length over ``length`` with the nodes at ``uv``."""
-    points = surface.evaluate(uv[:, 0], uv[:, 1])
-    return np.linalg.norm(points[edges[:, 1]] - points[edges[:, 0]], axis=1) / length
+    return edge_lengths(surface.evaluate(uv[:, 0], uv[:, 1]), edges) / length
 
 
 def lever_row(surface, mesh, lever, start, constant=None, start_seconds=np.nan):

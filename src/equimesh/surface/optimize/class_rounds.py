@@ -31,8 +31,8 @@ def class_scale(k, tolerance):
     tolerance`` shrunk by ``CLASSES_SCALE_DECAY`` a round down to half the ``tolerance`` (a continuation: first the
     members far from every nominal length, the strip's, are pulled to the nearest too, at the end only those within
     the tolerance of one).  The rounds from the remapped mesh keep half the tolerance throughout
-    (:func:`half_tolerance`): their lattice members are exact, and a wider pull moves them too
-    (tests/surface/optimize/test_classes_objective.py's developable vault)."""
+    (:func:`half_tolerance`): their lattice members are exact, so a wider pull has nothing to gain there and can only
+    move them (tests/surface/optimize/test_classes_objective.py's developable vault keeps its classes)."""
     return max(0.5 * tolerance, CLASSES_SCALE_START * tolerance * CLASSES_SCALE_DECAY**k)
 
 
