@@ -13,6 +13,10 @@ doubly curved ones also at span / 24, every method is measured by
 * the lever "Step 2's spacing on the surface": the classes objective solved
   with the outline's nodes at equal arc lengths of each side on the surface,
   held (:func:`_outline_held`);
+* the lever "the strip's connectivity": the classes objective's mesh with
+  its inner members outside the ten largest classes flipped where the other
+  diagonal comes nearer one of them (:func:`strip_flips`), solved again, and
+  beside it the same mesh solved again unflipped (:func:`_solved_again`);
 * gmsh's four algorithms and pymeshlab's isotropic remeshing, exactly as
   ``experiments/compare_peers.py`` runs them (its peers, reused).
 
@@ -49,19 +53,23 @@ import _common  # noqa: E402
 import compare_peers  # noqa: E402
 
 from equimesh.classes import length_classes  # noqa: E402
-from equimesh.mesh import edge_lengths, unique_edges  # noqa: E402
+from equimesh.mesh import G1, OTHER, edge_keys, edge_lengths, half_edges, unique_edges  # noqa: E402
 from equimesh.metrics import (  # noqa: E402
     COMPARISON_COLUMNS,
     MEMBER_KINDS,
+    TOP_CLASSES,
     classes_by_kind,
     comparison_figures,
     share_within,
+    triangle_angles,
 )
 from equimesh.surface.charts.bezier import BezierSurface  # noqa: E402
 from equimesh.surface.optimize import optimize_uv  # noqa: E402
+from equimesh.surface.optimize.jacobian import signed_areas  # noqa: E402
 from equimesh.surface.optimize.joints import joint_bounds  # noqa: E402
 from equimesh.surface.output_checks import check_joints, check_members, check_orientation  # noqa: E402
 from equimesh.surface.pipeline import mesh_surface  # noqa: E402
+from equimesh.tolerance import JOINT_ANGLE  # noqa: E402
 
 NAME = "fabrication"
 SPAN = 80.0
@@ -72,6 +80,11 @@ SURFACE_TOLERANCES = (0.0, 0.0025, 0.005, 0.01, 0.02)
 #: The method of :func:`_outline_held`, and its points per side.
 OUTLINE_HELD = "equimesh classes, outline held equal"
 SIDE_SAMPLES = 2001
+#: The methods of :func:`_solved_again`: the classes objective's mesh solved again as it is, and with its strip
+#: flipped (:func:`strip_flips`).
+SOLVED_AGAIN, STRIP_FLIPPED = "equimesh classes, solved again", "equimesh classes, strip flipped"
+#: How near (in units of l) a nominal length of the ten largest classes a flipped member's new diagonal must come.
+FLIP_REACH = 0.05
 #: The targets of the fewest-classes objective (with the default equimesh mesh, nodes on the surface).
 TARGETS = {"classes vs gmsh Frontal-Delaunay": 0.5, "top-10 share": 0.95, "within 0.5 %": (0.5, 0.75)}
 
@@ -134,20 +147,7 @@ def _outline_held(surface, l):
         arc = np.append(0.0, np.cumsum(np.linalg.norm(np.diff(points, axis=0), axis=1)))
         start[side] = start[side[0]] + np.interp(np.linspace(0.0, arc[-1], len(side)), arc, t)[:, None] * chord
     check_orientation(start, plane.triangles, "the outline held equal")
-    result = optimize_uv(
-        surface,
-        start,
-        plane.edges,
-        plane.edge_groups,
-        l,
-        fixed=np.arange(n),
-        triangles=plane.triangles,
-        objective="classes",
-    )
-    check_orientation(result.uv, plane.triangles, "the optimisation")
-    points = surface.evaluate(result.uv[:, 0], result.uv[:, 1])
-    check_members(points, plane.edges, l)
-    check_joints(points, plane.triangles, joint_bounds(surface, mesh.stages.remapped_uv, plane.triangles))
+    points = _classes_from(surface, l, mesh, start, plane.triangles, np.arange(n))
     within = share_within(edge_lengths(surface.evaluate(start[:, 0], start[:, 1]), plane.edges) / l, 1.0, 0.005)
     uncounted = mesh.stages.seconds["optimisation of inner nodes"]
     return (
@@ -155,6 +155,102 @@ def _outline_held(surface, l):
         plane.triangles,
         {"deviation_max": 0.0, "deviation_mean": 0.0, REMAPPED: within, UNCOUNTED: uncounted},
     )
+
+
+def _classes_from(surface, l, mesh, start, triangles, fixed, slides=()):
+    """The classes objective solved from ``start`` on ``triangles`` (G1: the edges of the pipeline's ``mesh`` in
+    its G1), ``fixed`` and ``slides`` as the pipeline passes them, and the pipeline's output checks on the result:
+    its points."""
+    edges = unique_edges(triangles)
+    n = len(mesh.uv)
+    g1 = np.isin(edge_keys(edges, n)[0], edge_keys(mesh.edges[mesh.edge_groups == G1], n)[0])
+    result = optimize_uv(
+        surface,
+        start,
+        edges,
+        np.where(g1, G1, OTHER).astype(mesh.edge_groups.dtype),
+        l,
+        fixed=fixed,
+        slides=slides,
+        triangles=triangles,
+        objective="classes",
+    )
+    check_orientation(result.uv, triangles, "the optimisation")
+    points = surface.evaluate(result.uv[:, 0], result.uv[:, 1])
+    check_members(points, edges, l)
+    check_joints(points, triangles, joint_bounds(surface, mesh.stages.remapped_uv, triangles))
+    return points
+
+
+def strip_flips(points, uv, triangles, l):
+    """``(triangles, flips)``: ``triangles`` with inner members flipped one at a time while one is left whose other
+    diagonal comes nearer a nominal length of the ten largest classes at 0.5 % (of ``points``' members, fixed at the
+    start), within :data:`FLIP_REACH` l of it, than the member itself is, the member more than the tolerance from
+    every one of them; the new diagonal in [l, 2l], both new triangles counter-clockwise in ``uv`` and their angles
+    in [30, 120] degrees (sound joints); the largest gain first, ties to the first member in sorted order.  Each
+    flip lowers the members' summed distance to the nearest of these nominals, so the flips end."""
+    triangles = np.array(triangles, dtype=np.int64)
+    found = length_classes(edge_lengths(points, unique_edges(triangles)), l, 0.005)
+    nominals = found.nominal[np.argsort(-found.count, kind="stable")[:TOP_CLASSES]]
+
+    def gap(a, b):
+        return float(np.min(np.abs(nominals - np.linalg.norm(points[a] - points[b]))))
+
+    flips = 0
+    while True:
+        directed = half_edges(triangles)
+        side = {(int(a), int(b)): k for k, (a, b) in enumerate(directed)}  # half-edge k: side k // M of triangle k % M
+        best = None
+        for (a, b), k in sorted(side.items()):
+            if a > b or (b, a) not in side:
+                continue
+            t, s = k % len(triangles), side[(b, a)] % len(triangles)
+            c = int(np.setdiff1d(triangles[t], (a, b))[0])
+            d = int(np.setdiff1d(triangles[s], (a, b))[0])
+            old, new = gap(a, b), gap(c, d)
+            if old <= 0.005 * l or new > FLIP_REACH * l or new >= old or (best is not None and old - new <= best[0]):
+                continue
+            first, second = _flipped(triangles[t], a, b, d)
+            quad = np.array([first, second])
+            angles = triangle_angles(points, quad)
+            length = np.linalg.norm(points[c] - points[d]) / l
+            if (
+                1.0 <= length <= 2.0
+                and np.all(signed_areas(uv, quad) > 0)
+                and angles.min() >= JOINT_ANGLE
+                and angles.max() <= 180.0 - 2 * JOINT_ANGLE
+            ):
+                best = (old - new, t, s, first, second)
+        if best is None:
+            return triangles, flips
+        _, t, s, first, second = best
+        triangles[t], triangles[s] = first, second
+        flips += 1
+
+
+def _flipped(triangle, a, b, d):
+    """The two triangles that replace ``triangle`` (which runs ``a -> b``) and its neighbour across ``a b`` (whose
+    third node is ``d``) when ``a b`` is flipped, both in ``triangle``'s turning sense."""
+    k = list(triangle).index(a)
+    a, b, c = (int(triangle[(k + i) % 3]) for i in range(3))
+    return (c, a, d), (c, d, b)
+
+
+def _solved_again(flip):
+    """The classes objective's mesh solved again from its own result, its boundary sliding as in the pipeline:
+    unflipped, or with :func:`strip_flips` first (the count in the extras' ``flips``).  The meshing call is timed
+    less the pipeline's own optimisation, which gives it its start."""
+
+    def run(surface, l):
+        mesh = mesh_surface(surface, l, optimize="classes", max_nodes=None)
+        triangles, flips = strip_flips(mesh.points, mesh.uv, mesh.triangles, l) if flip else (mesh.triangles, 0)
+        slides, fixed = mesh.stages.outline.slides(mesh.stages.plane, mesh.uv)
+        points = _classes_from(surface, l, mesh, mesh.uv, triangles, fixed, slides)
+        uncounted = mesh.stages.seconds["optimisation of inner nodes"]
+        extras = {"deviation_max": 0.0, "deviation_mean": 0.0, REMAPPED: np.nan, UNCOUNTED: uncounted}
+        return points, triangles, {**extras, FLIPS: flips if flip else np.nan}
+
+    return run
 
 
 def _peer(run):
@@ -170,6 +266,7 @@ def methods():
     run = {"equimesh paper": _equimesh("paper"), "equimesh bounded": _equimesh("bounded")}
     run.update({_classes_name(d): _equimesh("classes", d) for d in SURFACE_TOLERANCES})
     run[OUTLINE_HELD] = _outline_held
+    run[SOLVED_AGAIN], run[STRIP_FLIPPED] = _solved_again(False), _solved_again(True)
     peers, skipped = compare_peers.methods()
     run.update({name: _peer(f) for name, f in peers.items() if not name.startswith("equimesh")})
     return run, {name: why for name, why in skipped.items() if not name.startswith("equimesh")}
@@ -219,6 +316,8 @@ def measure(task):
 
 #: The CSV column of the remapped mesh's share within 0.5 % of l (equimesh only).
 REMAPPED = "remapped_within_05"
+#: The CSV column of the flips :func:`strip_flips` made (its method only).
+FLIPS = "flips"
 #: The seconds of a method's call that are not its own (:func:`_outline_held`), not counted in its time.
 UNCOUNTED = "uncounted_seconds"
 #: Per kind of member (:func:`equimesh.metrics.classes_by_kind`): its members, the classes it needs alone, its share in
@@ -237,6 +336,7 @@ COLUMNS = [
     "deviation_max",
     "deviation_mean",
     REMAPPED,
+    FLIPS,
     "seconds",
     "status",
 ]
@@ -273,6 +373,7 @@ def markdown(df, skipped, record):
         )
     body += ["", "## The targets of the fewest-classes objective", "", *targets(df)]
     body += ["", "## Where the classes go", "", *kinds(df)]
+    body += ["", "## Flips in the strip", "", *flipped(df)]
     if skipped:
         body += ["", "Not compared on this machine:", ""] + [f"- {k}: {v}" for k, v in skipped.items()]
     return _common.markdown_report("Fewest member types and sound joints", f"experiments/{NAME}.py", body, record)
@@ -342,6 +443,29 @@ def kinds(df):
     return lines
 
 
+def flipped(df):
+    """One line per (surface, l) with the strip flipped: the flips made and the classes and top-10 share of the
+    classes objective's mesh, of it solved again and of it flipped and solved again."""
+    lines = [
+        "The classes objective's mesh with its inner members outside the ten largest classes flipped where the "
+        f"other diagonal comes nearer a nominal length of those classes, within {FLIP_REACH:g} l, the new triangles' "
+        "angles in [30, 120] degrees (experiments/fabrication.py strip_flips), then solved again; beside it the "
+        "mesh solved again unflipped, what the second solve alone gives. Each cell: classes at 0.5 % / top-10 share.",
+        "",
+        "| surface | l | flips | classes | solved again | strip flipped, solved again |",
+        "|---|---|---|---|---|---|",
+    ]
+    ok = df[df["status"] == "ok"].set_index(["surface", "divisor", "method"])
+    for surface, divisor, _ in ok.index[ok.index.get_level_values("method") == STRIP_FLIPPED]:
+        cells = []
+        for method in ("equimesh classes", SOLVED_AGAIN, STRIP_FLIPPED):
+            r = ok.loc[(surface, divisor, method)] if (surface, divisor, method) in ok.index else None
+            cells.append("" if r is None else f"{int(r['classes_05'])} / {_pct(r['top10_05'])} %")
+        flips = int(ok.loc[(surface, divisor, STRIP_FLIPPED), FLIPS])
+        lines.append(f"| {surface} | span / {divisor} | {flips} | " + " | ".join(cells) + " |")
+    return lines
+
+
 def class_frame(runs):
     """Long table of the class sizes: surface, divisor, method, rank (1 = largest), count."""
     records = [
@@ -379,7 +503,7 @@ def plot(df, classes, fig_dir, parameters):
     written = _common.save_figure(fig, Path(fig_dir) / f"{NAME}_frontier", parameters, dpi=120)
 
     sizes = classes[classes["divisor"] == DIVISORS[0]]
-    shown = [m for m in dict.fromkeys(sizes["method"]) if "D=" not in m]
+    shown = [m for m in dict.fromkeys(sizes["method"]) if "D=" not in m and m not in (SOLVED_AGAIN, STRIP_FLIPPED)]
     fig = Figure(figsize=(3.0 * len(shown), 2.8))
     axes = fig.subplots(1, len(shown), squeeze=False, sharey=True)[0]
     colour = {name: f"C{k}" for k, (name, _, _) in enumerate(surfaces())}  # a surface's colour in every panel

@@ -72,3 +72,40 @@ def test_the_outline_held_equal_has_one_length_per_side(fabrication):
     assert figures["in_l_2l"] == 1.0 and 30.0 - 1e-9 <= figures["angle_min"] <= figures["angle_max"] <= 120.0
     assert outline_classes(points, triangles) <= 4
     assert outline_classes(*fabrication._equimesh("classes")(surface, l)[:2]) > 4
+
+
+def test_strip_flips_bring_members_nearer_the_largest_classes_and_keep_a_valid_mesh(fabrication, monkeypatch):
+    """The lever "the strip's connectivity": on the dome's classes mesh some inner member outside the ten largest
+    classes is flipped; each flip brings its new diagonal nearer those classes' nominal lengths, the new triangles
+    stay counter-clockwise in (u, v) with sound joints and every member in [l, 2l], every inner edge has two
+    triangles; with no reach nothing is flipped."""
+    from equimesh.mesh import single_edges, unique_edges
+    from equimesh.metrics import triangle_angles
+    from equimesh.surface.optimize.jacobian import signed_areas
+    from equimesh.surface.pipeline import mesh_surface
+
+    surface = {name: s for name, _, s in fabrication.surfaces()}["asymmetric dome"]
+    l = fabrication.SPAN / fabrication.DIVISORS[0]
+    mesh = mesh_surface(surface, l, optimize="classes", max_nodes=None)
+    triangles, flips = fabrication.strip_flips(mesh.points, mesh.uv, mesh.triangles, l)
+    assert flips >= 1 and triangles.shape == mesh.triangles.shape
+    changed = np.flatnonzero((triangles != mesh.triangles).any(axis=1))
+    assert len(changed) <= 2 * flips
+    assert (signed_areas(mesh.uv, triangles) > 0).all()
+    angles = triangle_angles(mesh.points, triangles[changed])
+    assert angles.min() >= 30.0 and angles.max() <= 120.0
+    edges = unique_edges(triangles)
+    assert len(edges) == len(mesh.edges) and len(single_edges(triangles)) == len(single_edges(mesh.triangles))
+    ratio = edge_lengths(mesh.points, edges) / l
+    assert ((ratio >= 1.0 - 1e-9) & (ratio <= 2.0 + 1e-9)).all()
+
+    sizes = length_classes(edge_lengths(mesh.points, mesh.edges), l, 0.005)
+    nominals = sizes.nominal[np.argsort(-sizes.count, kind="stable")[:10]]
+
+    def summed_gap(edges):
+        lengths = edge_lengths(mesh.points, edges)
+        return np.abs(lengths[:, None] - nominals[None, :]).min(axis=1).sum()
+
+    assert summed_gap(edges) < summed_gap(mesh.edges)
+    monkeypatch.setattr(fabrication, "FLIP_REACH", 0.0)
+    assert fabrication.strip_flips(mesh.points, mesh.uv, mesh.triangles, l)[1] == 0
