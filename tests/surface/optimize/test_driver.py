@@ -449,6 +449,17 @@ def test_the_joints_are_kept_in_a_stage_that_keeps_them(monkeypatch):
     assert surface_angles(patch().evaluate(*kept.uv.T), TRIANGLES).min() >= bound + 0.25 * joints.JOINT_MARGIN
 
 
+def test_a_pull_stronger_than_the_angle_barrier_is_held_by_the_acceptance_test(monkeypatch):
+    """Node 12 pulled towards node 13 a hundred times harder: the pull outweighs the angle barrier, and the acceptance
+    test alone ends the stage sound, its smallest angle at its bound."""
+    start = surface_angles(patch().evaluate(*UV.T), TRIANGLES).min()
+    monkeypatch.setattr(joints, "JOINT_ANGLE", float(np.degrees(start)) - 0.5)
+    bound = start - np.radians(0.5)
+    record(monkeypatch, "hard", stages_of(pulling(RIM, 0.9, weight=1000.0)), sound_joints=True)
+    smallest = surface_angles(patch().evaluate(*run("hard").uv.T), TRIANGLES).min()
+    assert bound <= smallest < bound + 0.25 * joints.JOINT_MARGIN
+
+
 def pulling(node, target, weight=10.0, axis=0):
     """A stage pulling the free ``node``'s u (``axis`` 0, variable ``2 (node - RIM)``) or v (1) to ``target``."""
 
@@ -475,6 +486,20 @@ def test_no_step_folds_a_triangle(monkeypatch, area_floor):
     assert np.all(signed_areas(result.uv, TRIANGLES) > 0) and result.uv[RIM, 0] > UV[RIM, 0]
     free = optimize_uv(patch(), UV, EDGES, GROUPS, 8.0, fixed=FIXED, objective="pull")  # no triangles, no guards
     assert free.uv[RIM, 0] == pytest.approx(0.9)
+
+
+def test_a_stage_solved_beside_keeps_the_acceptance_test(monkeypatch):
+    """Node 12 pulled across its neighbours by a stage solved beside the first (its own start, no barrier): the
+    acceptance test keeps every triangle counter-clockwise there too, and node 12 moves."""
+
+    def stages(problem):
+        pull = replace(pulling(RIM, 0.9)(problem), start=problem.x0)
+        yield replace(paper_stage(problem), max_iterations=2, beside=(pull,))
+        return (yield pull), pull
+
+    record(monkeypatch, "pull beside", stages)
+    result = run("pull beside", area_floor=0.0)
+    assert np.all(signed_areas(result.uv, TRIANGLES) > 0) and result.uv[RIM, 0] > UV[RIM, 0]
 
 
 def test_the_barrier_holds_a_squeezed_triangle_back(monkeypatch):
@@ -785,6 +810,31 @@ def test_a_stage_carried_beside_ends_where_the_stages_in_turn_do(
         assert "no mesh with every member in [l, 2l] found within 4 Jacobian evaluations" in ends[0]
     if keeping:
         assert ends[0][-1] == "the best point found within 6 Jacobian evaluations (its work bound)"
+
+
+def test_a_stage_carried_by_a_later_stage_is_solved_beside_it(monkeypatch):
+    """The stage carried by the second (not the first) is solved beside that one: the same end, evaluations and
+    Jacobians as with it solved in turn uncarried, bit for bit."""
+
+    def stages(carried):
+        def make(problem):
+            held = np.zeros(len(problem.x0), dtype=bool)
+            held[:4] = True
+            later = replace(paper_stage(problem), start=problem.x0.copy(), hold=held)
+            second = replace(paper_stage(problem), max_iterations=2, beside=(later,) if carried else ())
+            x = stage = None
+            for stage in (replace(paper_stage(problem), max_iterations=2), second, later, paper_stage(problem)):
+                x = yield stage
+            return x, stage
+
+        return make
+
+    ends = []
+    for carried in (True, False):
+        record(monkeypatch, "later", stages(carried))
+        result = run("later")
+        ends.append((result.uv.tobytes(), result.nfev, result.njev, result.cost_after, result.message))
+    assert ends[0] == ends[1]
 
 
 @pytest.mark.parametrize("objective", ["bounded", "classes"])

@@ -11,6 +11,7 @@ diagonal 1.7678 l; with l = 6 the diagonals are 2.357 l, outside [l, 2l].
 
 import re
 from dataclasses import replace
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
@@ -19,8 +20,8 @@ from optimize_cases import RIM, finite_difference, grid, moved, patch, problem
 from equimesh import InvalidSurfaceError
 from equimesh.classes import length_classes, on_catalogue
 from equimesh.mesh import G1, edge_lengths
-from equimesh.surface.optimize import OBJECTIVES, optimize_uv
-from equimesh.surface.optimize.class_rounds import class_scale
+from equimesh.surface.optimize import OBJECTIVES, UVProblem, optimize_uv
+from equimesh.surface.optimize.class_rounds import class_key, class_rounds, class_scale, merged_nominals
 from equimesh.surface.optimize.joints import Joints, surface_angles
 from equimesh.surface.optimize.members import Members, cauchy
 from equimesh.surface.optimize.objectives import bounded_stages, classes_stages, paper_stage, paper_stages
@@ -315,6 +316,40 @@ def test_classes_counts_the_members_off_the_catalogue_first():
     assert last is rounds[0] and np.array_equal(end, fewer_off)
 
 
+def test_classes_keeps_fewer_members_off_the_catalogue_over_fewer_classes():
+    """With the catalogue (1.25 l, 1.7678 l) bounded ends with 1 member off it and 3 classes; a round answered with
+    2 off and 2 classes is not kept: the members off the catalogue count first in every round's key too."""
+    p, _ = problem(rise=0.0, slides=True, length=8.0)
+    p = replace(p, catalogue=np.array([1.25, 1.7678]))
+    start, fewer_classes = moved(p, 2, size=0.0005), moved(p, 18, size=0.0005)
+    assert documented_key(p, start)[:2] == (1, 3) and documented_key(p, fewer_classes)[:2] == (2, 2)
+    answer, rounds = answers_for_classes(start, lambda k: fewer_classes if k == 0 else start)
+    seen, (end, last) = drive(classes_stages(p), answer)
+    assert len(rounds) == CLASSES_ROUNDS and last is seen[0] and np.array_equal(end, start)
+
+
+def test_a_later_round_must_beat_the_best_round_not_bounded_s_end():
+    """Bounded ends with 12 classes, the first round with 3, the second with 4: the first round is kept, although
+    the second has fewer classes than bounded's end."""
+    p, _ = problem(rise=0.0, slides=True, length=8.0)
+    messy, three, four = moved(p, 4, size=0.004), moved(p, 1, size=0.001), moved(p, 0, size=0.001)
+    assert [documented_key(p, x)[1] for x in (messy, three, four)] == [12, 3, 4]
+    answer, rounds = answers_for_classes(messy, lambda k: (three, four)[k] if k < 2 else messy)
+    seen, (end, last) = drive(classes_stages(p), answer)
+    assert last is rounds[0] and np.array_equal(end, three)
+
+
+def test_merged_nominals_move_to_the_middle_of_the_members_within_the_tolerance_ends_included():
+    """Members exactly a tolerance from a nominal are within it (exact binary fractions): the nominal 1.5 with
+    members 1.5 and 1.75 at the tolerance 0.25 moves to 1.625; 1.25, as near the target as 1.5, goes to the target
+    (the first nominal), which stays; no merge after the first round."""
+    members = SimpleNamespace(target=1.0, high=1.9)
+    ratio = np.array([1.0, 1.25, 1.5, 1.75])
+    moved_nominals = merged_nominals(np.array([1.0, 1.5]), ratio, 0.25, 0, members)
+    np.testing.assert_array_equal(moved_nominals, [1.0, 1.625])
+    np.testing.assert_array_equal(merged_nominals(np.array([1.0, 1.8]), ratio, 0.25, 0, members), [1.0, 1.75])
+
+
 def test_classes_breaks_a_tie_in_classes_by_the_share_in_the_ten_largest():
     """At the tolerance 0.01 l: bounded ends at a point with 12 classes, the two smallest holding 3 members; a
     round answered with one of 12 classes whose two smallest hold 2 has the larger share in the ten largest and
@@ -463,6 +498,27 @@ def test_a_round_whose_loss_hardly_moved_has_settled():
     x = along(p, moved(p, 11, size=0.01) - p.x0, 0.5 * BOUNDED_LOSS_TOL, lambda y: cauchy_loss(ratio(p, y)))
     seen, _ = drive(bounded_stages(p), lambda k, stage: x)
     assert seen[1].description == paper_stage(p).description
+
+
+def test_a_round_at_zero_loss_that_did_not_move_has_settled():
+    """Two members exactly at the target (their Cauchy loss 0, l chosen to the bit) and the round answered with its
+    start: its loss moved by 0, within any share of 0, so the series ends after that round."""
+    uv = np.array([[0.0, 0.0], [0.5, 0.0], [0.5, 0.5]])
+    edges = np.array([[0, 1], [1, 2]])
+    free = np.array([False, True, False])
+    length = 15.0 / TARGET  # both members 15 long on the flat patch
+    for _ in range(64):
+        p = UVProblem(patch(0.0), uv, edges, np.array([G1, G1]), float(length), free)
+        r = ratio(p, p.x0)
+        if np.all(r == TARGET):
+            break
+        length = np.nextafter(length, np.inf if r[0] > TARGET else -np.inf)
+    assert np.all(r == TARGET) and cauchy_loss(r) == 0.0
+    seen, _ = drive(bounded_stages(p), lambda k, stage: p.x0)
+    assert [stage.description for stage in seen] == [
+        f"members into [l, 2l] and to {TARGET:g} l, round 1",
+        paper_stage(p).description,
+    ]
 
 
 def test_a_settled_round_whose_cost_fell_does_not_restart():
@@ -656,6 +712,40 @@ def test_a_penalty_solve_that_ends_outside_or_unsound_is_not_kept(sound):
     assert len(penalties) == 1 and "nominal lengths" not in last.description and np.array_equal(end, messy)
 
 
+def test_a_penalty_solve_that_ends_as_good_as_the_best_is_not_kept():
+    """At l = 9.5 bounded ends in [l, 2l] with 10 classes, every round with 6 and one member below l (node 12 moved
+    along u): solved on with the penalty and answered with bounded's end itself (the same key), the best stays
+    bounded's, its stage too; answered with the start (2 classes), the start is kept with the penalty's stage."""
+    p, _ = problem(rise=0.0, slides=True, length=9.5)
+    messy, out = moved(p, 4, size=0.004), p.x0.copy()
+    out[0] += 0.03  # node 12 along u by 0.9: its member towards node 11 is 9.1 long, below l
+    assert documented_key(p, messy)[1] == 10 and documented_key(p, out)[1] == 6 and not Members.inside(ratio(p, out))
+    seen, (end, last), _, penalties = classes_answered(p, messy, lambda k: out, lambda k: messy, messy)
+    assert len(penalties) == 1 and last is not penalties[0] and "nominal lengths" not in last.description
+    assert np.array_equal(end, messy)
+    seen, (end, last), _, penalties = classes_answered(p, messy, lambda k: out, lambda k: messy, p.x0)
+    assert len(penalties) == 1 and last is penalties[0] and np.array_equal(end, p.x0)
+
+
+def test_a_penalty_solve_kept_leaves_its_key_in_the_best():
+    """The rounds driven alone from bounded's end (10 classes) with the catalogue (1.0526 l): every round ends with
+    6 classes, one member below l; the penalty solve, answered with the start (2 classes, its 9 diagonals off the
+    catalogue), is kept with its own key, members off the catalogue counted, for the rounds that follow to beat."""
+    p, _ = problem(rise=0.0, slides=True, length=9.5)
+    p = replace(p, catalogue=np.array([10.0 / 9.5]))
+    messy, out = moved(p, 4, size=0.004), p.x0.copy()
+    out[0] += 0.03
+    members = Members(p)
+    best = {"x": messy, "stage": None, "key": class_key(ratio(p, messy), p.tolerance, p.catalogue)}
+    assert best["key"][0] > documented_key(p, out)[0] and documented_key(p, p.x0)[:2] == (9, 2)
+    solved_on = "into [l, 2l] by a penalty"
+    seen, spent = drive(
+        class_rounds(p, members, messy, best, class_scale), lambda k, s: p.x0 if solved_on in s.description else out
+    )
+    assert spent is False and solved_on in seen[-1].description and best["stage"] is seen[-1]
+    assert np.array_equal(best["x"], p.x0) and best["key"] == documented_key(p, p.x0)
+
+
 def test_the_work_bound_in_the_penalty_solve_ends_the_classes_at_once():
     p, _ = problem(rise=0.0, slides=True, length=10.0)
     messy, low = moved(p, 4, size=0.004), moved(p, 5, size=1e-5)
@@ -668,6 +758,20 @@ def test_the_work_bound_in_the_penalty_solve_ends_the_classes_at_once():
     with pytest.raises(StopIteration) as done:
         stages.throw(WorkSpent())
     assert np.array_equal(done.value.value[0], messy)
+
+
+def test_no_second_series_from_a_remap_with_more_members_off_the_catalogue():
+    """At l = 10 the remap (2 classes, its grid edges at l) would start a second series, but with a catalogue of
+    bounded's end's nominal lengths away from both of its lengths every one of its members is off it, more than at
+    bounded's end (12 classes): its key is worse, members off the catalogue counted first, and no rounds start there."""
+    p, _ = problem(rise=0.0, slides=True, length=10.0)
+    messy = moved(p, 4, size=0.004)
+    nominal = length_classes(ratio(p, messy), 1.0, p.tolerance).nominal
+    away = np.min(np.abs(nominal[:, None] - np.array([1.0, np.sqrt(2.0)])[None, :]), axis=1) > p.tolerance
+    p = replace(p, catalogue=nominal[away])
+    assert documented_key(p, p.x0)[:2] == (33, 2) and documented_key(p, messy)[0] < 33
+    _, _, rounds, _ = classes_answered(p, messy, lambda k: messy, lambda k: messy, messy)
+    assert len(rounds) == CLASSES_ROUNDS
 
 
 def test_no_second_series_from_a_remap_with_as_many_classes():
