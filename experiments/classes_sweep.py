@@ -5,10 +5,11 @@ was chosen on.
 chosen on the four surfaces of ``experiments/fabrication.py``; this sweep checks them on others: ``COUNT`` random
 80 x 80 bicubic Bezier patches (:func:`patch`: two in three doubly curved, control heights drawn in [-12, 30] with the
 corners at 0; one in three developable, a vault of a random profile along one side), each meshed by
-``mesh_surface(..., optimize="classes")`` at l = span / 16, and the doubly curved ones at span / 24 too, once as it is
-and once with the scale held at half the tolerance from the first round (``CLASSES_SCALE_START = 0.5``, the objective
-before the narrowing).  Each row: length classes at 0.5 %, the share of the members in the ten largest classes, the
-share within 0.5 % of l, the smallest angle, the seconds; the report gives them side by side and their means.
+``mesh_surface(..., optimize="classes")`` at l = span / 16, and the doubly curved ones at span / 24 and 30 too, once
+as it is and once with the scale held at half the tolerance from the first round (``CLASSES_SCALE_START = 0.5``, the
+objective before the narrowing).  Each row: length classes at 0.5 %, the share of the members in the ten largest
+classes, the share within 0.5 % of l, the smallest angle, the seconds; the report gives them side by side and their
+means.
 
 Writes::
 
@@ -72,7 +73,7 @@ def patch(seed):
 
 
 def tasks(count):
-    """(seed, divisor, scale) of every run: span / 16 on every patch, span / 24 on the doubly curved ones."""
+    """(seed, divisor, scale) of every run: span / 16 on every patch, span / 24 and 30 on the doubly curved ones."""
     out = []
     for seed in range(FIRST_SEED, FIRST_SEED + count):
         kind, _ = patch(seed)

@@ -3,7 +3,8 @@
 The paper's aim is "to reduce the different number of edge lengths".  On four
 surfaces that no constant of equimesh was chosen on (80 x 80 bicubic Bezier
 patches: two doubly curved, two developable) at l = span / 16, and the
-doubly curved ones also at span / 24, every method is measured by
+doubly curved ones also at span / 24 and span / 30 (the finest l of the
+targets), every method is measured by
 :func:`equimesh.metrics.comparison_figures`:
 
 * equimesh ``optimize="paper"``, ``"bounded"`` and ``"classes"`` (the fewest
@@ -73,8 +74,8 @@ from equimesh.tolerance import JOINT_ANGLE  # noqa: E402
 
 NAME = "fabrication"
 SPAN = 80.0
-#: l = span / divisor; the second only on the doubly curved surfaces (and without the peers' gmsh variants).
-DIVISORS = (16, 24)
+#: l = span / divisor; the later ones only on the doubly curved surfaces (and without the peers' gmsh variants).
+DIVISORS = (16, 24, 30)
 #: Surface tolerances D of the frontier, as fractions of l.
 SURFACE_TOLERANCES = (0.0, 0.0025, 0.005, 0.01, 0.02)
 #: The method of :func:`_outline_held`, and its points per side.
@@ -277,7 +278,7 @@ def _classes_name(fraction):
 
 
 def tasks(quick=False, surface_names=None, method_names=None):
-    """(surface, divisor, method) of every run: all methods at the first divisor; at the second, on the doubly
+    """(surface, divisor, method) of every run: all methods at the first divisor; at the later ones, on the doubly
     curved surfaces, equimesh bounded, classes and gmsh Frontal-Delaunay (the reference of the targets).  ``quick``
     keeps the first two surfaces at the first divisor; ``surface_names`` and ``method_names`` keep those given."""
     names = [m for m in methods()[0] if method_names is None or m in method_names]
@@ -288,7 +289,7 @@ def tasks(quick=False, surface_names=None, method_names=None):
             continue
         out += [(name, DIVISORS[0], m) for m in names]
         if not developable and not quick:
-            out += [(name, DIVISORS[1], m) for m in second]
+            out += [(name, divisor, m) for divisor in DIVISORS[1:] for m in second]
     return out
 
 
@@ -351,9 +352,9 @@ def _pct(x):
 def markdown(df, skipped, record):
     body = [
         "Four 80 x 80 bicubic Bezier patches none of equimesh's constants was chosen on (two doubly curved, two "
-        "developable), at l = span / 16 (all methods) and span / 24 (doubly curved, three methods). Classes: the "
-        "fewest length classes at +-0.5 % and +-1 % of l (equimesh.length_classes); largest / top 10: share of "
-        "the members in the largest class and in the 10 largest at +-0.5 %; within: share within 0.5 % of l; "
+        "developable), at l = span / 16 (all methods), span / 24 and span / 30 (doubly curved, three methods). "
+        "Classes: the fewest length classes at +-0.5 % and +-1 % of l (equimesh.length_classes); largest / top 10: "
+        "share of the members in the largest class and in the 10 largest at +-0.5 %; within: share within 0.5 % of l; "
         "< 30 deg: share of triangles with an angle below 30 degrees; deviation: the nodes' distance from the "
         "surface (max / mean, in units of l; peers' nodes are not measured); time: the meshing call.",
         "",

@@ -9,7 +9,7 @@ from equimesh.surface.optimize import class_rounds
 
 
 def test_classes_sweep_runs_both_scales_on_each_patch(load_experiment, tmp_path):
-    """Two patches (a developable one and a doubly curved one at two l): a row per scale; on the doubly curved patch
+    """Two patches (a developable one and a doubly curved one at three l): a row per scale; on the doubly curved patch
     the two scales give different meshes (the constant one is patched in, and only while it runs)."""
     experiment = load_experiment("classes_sweep")
     before = class_rounds.CLASSES_SCALE_START
@@ -18,8 +18,8 @@ def test_classes_sweep_runs_both_scales_on_each_patch(load_experiment, tmp_path)
     assert class_rounds.CLASSES_SCALE_START == before
     df = pd.read_csv(out / "classes_sweep.csv")
     assert list(df.columns) == experiment.COLUMNS and (df["status"] == "ok").all()
-    assert df["kind"].tolist() == ["developable"] * 2 + ["doubly curved"] * 4
-    assert df["scale"].tolist() == list(experiment.SCALES) * 3
+    assert df["kind"].tolist() == ["developable"] * 2 + ["doubly curved"] * 6
+    assert df["scale"].tolist() == list(experiment.SCALES) * 4
     curved = df[df["kind"] == "doubly curved"].set_index(["divisor", "scale"])
     assert (curved.loc[(16, "narrowing")] != curved.loc[(16, "constant")])[["classes_05", "within_05"]].any()
     assert (df["angle_min"] >= 30.0 - 1e-9).all()
