@@ -813,8 +813,8 @@ def test_a_stage_carried_beside_ends_where_the_stages_in_turn_do(
 
 
 def test_a_stage_carried_by_a_later_stage_is_solved_beside_it(monkeypatch):
-    """The stage carried by the second (not the first) is solved beside that one: the same end, evaluations and
-    Jacobians as with it solved in turn uncarried, bit for bit."""
+    """The stage carried by the second (not the first) is solved beside that one, on a thread of its own: the same
+    end, evaluations and Jacobians as with it solved in turn uncarried, bit for bit."""
 
     def stages(carried):
         def make(problem):
@@ -829,11 +829,20 @@ def test_a_stage_carried_by_a_later_stage_is_solved_beside_it(monkeypatch):
 
         return make
 
-    ends = []
+    ends, solve = [], driver._solve
     for carried in (True, False):
+        solves = []
+
+        def spied(problem, stage, *args, **kwargs):
+            solves.append((stage.start is not None, threading.current_thread() is threading.main_thread()))
+            return solve(problem, stage, *args, **kwargs)
+
         record(monkeypatch, "later", stages(carried))
-        result = run("later")
+        with monkeypatch.context() as patched:
+            patched.setattr(driver, "_solve", spied)
+            result = run("later")
         ends.append((result.uv.tobytes(), result.nfev, result.njev, result.cost_after, result.message))
+        assert sorted(solves) == [(False, True)] * 3 + [(True, not carried)]
     assert ends[0] == ends[1]
 
 

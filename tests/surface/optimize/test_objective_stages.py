@@ -342,7 +342,8 @@ def test_a_later_round_must_beat_the_best_round_not_bounded_s_end():
 def test_merged_nominals_move_to_the_middle_of_the_members_within_the_tolerance_ends_included():
     """Members exactly a tolerance from a nominal are within it (exact binary fractions): the nominal 1.5 with
     members 1.5 and 1.75 at the tolerance 0.25 moves to 1.625; 1.25, as near the target as 1.5, goes to the target
-    (the first nominal), which stays; no merge after the first round."""
+    (the first nominal), which stays; no merge after the first round.  The nominal 1.8 holds 1.75 alone (1.5 is 0.3
+    from it) and moves there."""
     members = SimpleNamespace(target=1.0, high=1.9)
     ratio = np.array([1.0, 1.25, 1.5, 1.75])
     moved_nominals = merged_nominals(np.array([1.0, 1.5]), ratio, 0.25, 0, members)
@@ -730,13 +731,14 @@ def test_a_penalty_solve_that_ends_as_good_as_the_best_is_not_kept():
 def test_a_penalty_solve_kept_leaves_its_key_in_the_best():
     """The rounds driven alone from bounded's end (10 classes) with the catalogue (1.0526 l): every round ends with
     6 classes, one member below l; the penalty solve, answered with the start (2 classes, its 9 diagonals off the
-    catalogue), is kept with its own key, members off the catalogue counted, for the rounds that follow to beat."""
+    catalogue), is kept with its own key (the one later rounds must beat), members off the catalogue counted."""
     p, _ = problem(rise=0.0, slides=True, length=9.5)
     p = replace(p, catalogue=np.array([10.0 / 9.5]))
     messy, out = moved(p, 4, size=0.004), p.x0.copy()
     out[0] += 0.03
     members = Members(p)
     best = {"x": messy, "stage": None, "key": class_key(ratio(p, messy), p.tolerance, p.catalogue)}
+    assert documented_key(p, messy)[1] == 10 and documented_key(p, out)[1] == 6
     assert best["key"][0] > documented_key(p, out)[0] and documented_key(p, p.x0)[:2] == (9, 2)
     solved_on = "into [l, 2l] by a penalty"
     seen, spent = drive(
@@ -761,11 +763,14 @@ def test_the_work_bound_in_the_penalty_solve_ends_the_classes_at_once():
 
 
 def test_no_second_series_from_a_remap_with_more_members_off_the_catalogue():
-    """At l = 10 the remap (2 classes, its grid edges at l) would start a second series, but with a catalogue of
-    bounded's end's nominal lengths away from both of its lengths every one of its members is off it, more than at
-    bounded's end (12 classes): its key is worse, members off the catalogue counted first, and no rounds start there."""
+    """At l = 10 the remap (2 classes, its grid edges at l) starts a second series from bounded's end (10 classes)
+    without a catalogue; with a catalogue of bounded's end's nominal lengths away from both of the remap's lengths
+    every one of its members is off it, more than at bounded's end: its key is worse, members off the catalogue
+    counted first, and no rounds start there."""
     p, _ = problem(rise=0.0, slides=True, length=10.0)
     messy = moved(p, 4, size=0.004)
+    assert documented_key(p, messy)[1] == 10
+    assert len(classes_answered(p, messy, lambda k: messy, lambda k: messy, messy)[2]) == 2 * CLASSES_ROUNDS
     nominal = length_classes(ratio(p, messy), 1.0, p.tolerance).nominal
     away = np.min(np.abs(nominal[:, None] - np.array([1.0, np.sqrt(2.0)])[None, :]), axis=1) > p.tolerance
     p = replace(p, catalogue=nominal[away])
