@@ -261,3 +261,37 @@ def test_single_precision_input_is_computed_in_double():
     single = resample_ring(xy, params, corners, 0.35, 1.5)
     assert single.points.dtype == single.params.dtype == np.float64
     assert np.array_equal(single.points, double.points) and np.array_equal(single.params, double.params)
+
+
+def test_at_distance_solves_each_segment_on_its_own():
+    """Two segments at once, each with its own origin: the fraction at which each reaches distance 2 (x = 2 on the
+    first, y = 2 on the second)."""
+    origin = np.array([[0.0, 0.0], [0.0, 0.0]])
+    a, b = np.array([[1.0, 0.0], [0.0, 1.0]]), np.array([[3.0, 0.0], [0.0, 5.0]])
+    np.testing.assert_allclose(ring.at_distance(origin, a, b, 2.0), [0.5, 0.25], rtol=1e-15)
+
+
+def test_reach_on_an_open_polyline_from_each_start_and_none_past_its_end():
+    """Along the x axis from vertices 0, 1 and 2 of (0, 0) ... (3, 0), distance 1.5 is first reached at x = 1.5 and
+    2.5; from vertex 2 only past the end (nan), although the polyline's first vertex is that far."""
+    line = Polyline(np.array([[0.0, 0.0], [1.0, 0.0], [2.0, 0.0], [3.0, 0.0]]), closed=False)
+    found = ring.reach(line, 1.5, [0, 1, 2])
+    np.testing.assert_allclose(found[:2], [1.5, 2.5], rtol=1e-15)
+    assert np.isnan(found[2])
+
+
+def test_reach_on_a_closed_polyline_runs_on_past_its_length():
+    """Around the unit square from its last vertex (0, 1): distance 1.2 is first reached on the first side, past
+    the turn's end, at arc 4 + sqrt(1.2^2 - 1); from vertex 0 on the second side, at arc 1 + sqrt(1.2^2 - 1)."""
+    square = Polyline(np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]))
+    run = math.sqrt(1.2**2 - 1.0)
+    np.testing.assert_allclose(ring.reach(square, 1.2, [3, 0]), [4.0 + run, 1.0 + run], rtol=1e-14)
+
+
+def test_reach_follows_a_closed_polyline_to_its_last_segment():
+    """From vertex 0 every vertex is within distance 1 but the last, (0.3, -2): the point is found on the last
+    segment of the turn, exactly 1 from the start."""
+    loop = Polyline(np.array([[0.0, 0.0], [0.5, 0.1], [0.6, 0.0], [0.3, -2.0]]))
+    (s,) = ring.reach(loop, 1.0, [0])
+    assert loop.arc[2] < s < loop.arc[3]
+    assert np.linalg.norm(loop.at(np.array([s]))[0]) == pytest.approx(1.0, rel=1e-14)
