@@ -18,7 +18,7 @@ from equimesh.errors import EquimeshError
 from equimesh.surface.charts.chart import Domain
 from equimesh.surface.optimize.joints import Joints, surface_angles
 from equimesh.surface.optimize.problem import free_nodes, offset_points, parameter_box, unit_normals
-from equimesh.surface.optimize.slide import Slide
+from equimesh.surface.optimize.slide import Slide, along_polygon
 
 SLIDING = [1, 2, 4, 5, 7, 8, 10, 11]  # the rim's nodes between the square's corners
 
@@ -128,6 +128,32 @@ def test_the_chain_rule_keeps_the_structure():
         if not tolerance:
             plain, _ = problem()
             assert plain.chain(jac, plain.x0) is jac
+
+
+def test_the_chain_rule_scales_the_first_sliding_node_by_its_direction():
+    """The rim slides from the top side's first node on, which moves along -u: its u entry is scaled by -1 and its v
+    entry by 0, as the derivative of its (u, v) says."""
+    p, _ = problem()
+    rim = np.roll(np.arange(RIM), -6)  # from the corner (1, 1): node 7 moves towards (0, 1)
+    square = np.array([[1.0, 1.0], [0.0, 1.0], [0.0, 0.0], [1.0, 0.0]])
+    slide, _ = along_polygon(rim, square, p.uv[rim])
+    p = replace(p, slides=(slide,))
+    assert slide.nodes[0] == 7
+    x = moved(p, 5, size=0.002)
+    dense = np.random.default_rng(6).standard_normal((5, int(p.moving.sum())))
+    duv = finite_difference(lambda y: p.uv_of(y).ravel()[p.moving], x)
+    np.testing.assert_allclose(p.chain(scipy.sparse.csr_matrix(dense), x).toarray(), dense @ duv, atol=1e-7)
+
+
+def test_what_at_keeps_is_read_only():
+    """The (u, v), points and tangents kept for an ``x`` are shared by every caller at that ``x``: none can be
+    written to, an array or each array of a tuple."""
+    p, _ = problem(slides=True)
+    x = moved(p, 2, size=0.002)
+    kept = [p.uv_of(x), p.points_of(x), *p.tangents(x)]
+    assert not any(array.flags.writeable for array in kept)
+    with pytest.raises(ValueError, match="read-only"):
+        p.points_of(x)[0, 0] = 0.0
 
 
 def test_offset_columns_are_the_gradients_along_the_normal():
