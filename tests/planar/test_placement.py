@@ -399,6 +399,80 @@ def test_fewest_classes_placement_takes_the_sides_between_corners(monkeypatch):
     assert sorted(set(tried)) == [0.0, 20.0, 50.0] and tried.count(20.0) == tried.count(50.0) == 9
 
 
+BOX = [[0.0, 0.0], [13.7, 0.0], [13.7, 9.3], [0.0, 9.3]]
+
+
+def scripted(monkeypatch, keys, refused=()):
+    """Stand-ins for Problem 2 and the classes inside ``fewest_classes_placement``: the k-th mesh asked for is refused
+    if k is in ``refused``, else its classes are ``keys[k]`` (count, share in the ten largest); the placements asked
+    for, in order."""
+    asked = []
+
+    class Mesh:
+        def __init__(self, k):
+            self.k = k
+
+        def edge_lengths(self):
+            return self.k
+
+    class Classes:
+        def __init__(self, count, share):
+            self.count, self.share = count, share
+
+        def __len__(self):
+            return self.count
+
+        def top_share(self, k=placement.TOP_CLASSES):
+            return self.share if k == placement.TOP_CLASSES else 1.0
+
+    def triangulate(vertices, l, **options):
+        asked.append((options["angle"], tuple(options["offset"])))
+        if len(asked) - 1 in refused:
+            raise InvalidPolygonError("refused")
+        return Mesh(len(asked) - 1)
+
+    monkeypatch.setattr(placement, "uniform_triangulation", triangulate)
+    monkeypatch.setattr(placement, "length_classes", lambda k, l, tolerance: Classes(*keys[k]))
+    return asked
+
+
+def test_fewest_classes_placement_keeps_the_first_of_the_fewest_classes_then_the_largest_share(monkeypatch):
+    """Of the rectangle's 19 placements (the start, then 9 offsets at 0 degrees, its first side's direction, and 9
+    at 30, its second's) the third, fourth
+    and fifth have the fewest classes, the fourth and fifth the largest share among those: the fourth wins, and
+    the counts are its classes and the start's."""
+    keys = [(5, 0.8), (6, 1.0), (4, 0.7), (4, 0.9), (4, 0.9)] + [(6, 1.0)] * 14
+    asked = scripted(monkeypatch, keys)
+    found = fewest_classes_placement(BOX, 1.0)
+    assert len(asked) == 19 and asked[3] != asked[4]
+    assert [angle for angle, _ in asked[1:]] == [0.0] * 9 + [30.0] * 9  # the sides in turn from the first corner
+    assert ((found.angle, tuple(found.offset)), found.lattice_edges) == (asked[3], 4)
+    assert (found.default_lattice_edges, found.evaluations) == (5, 19)
+
+
+def test_fewest_classes_placement_skips_a_refused_candidate_and_raises_the_starts_refusal(monkeypatch):
+    """A candidate that Problem 2 refuses is skipped and the search goes on to the last one, which wins; the
+    start's refusal is raised."""
+    keys = [(5, 0.8)] * 18 + [(3, 0.5)]
+    asked = scripted(monkeypatch, keys, refused=(1,))
+    found = fewest_classes_placement(BOX, 1.0)
+    assert (found.angle, tuple(found.offset)) == asked[18] and (found.lattice_edges, found.evaluations) == (3, 18)
+    scripted(monkeypatch, keys, refused=(0,))
+    with pytest.raises(InvalidPolygonError, match="refused"):
+        fewest_classes_placement(BOX, 1.0)
+
+
+def test_fewest_classes_placement_meshes_past_problem_2s_node_limit(monkeypatch):
+    """The search is itself bounded by its caller's size guard: its meshes are made with no node limit of their own,
+    so a limit of 10 nodes for every engine does not refuse the rectangle's."""
+    from equimesh.planar import strip
+
+    monkeypatch.setattr(strip, "MAX_NODES", dict.fromkeys(strip.MAX_NODES, 10))
+    with pytest.raises(MeshTooLargeError):
+        equimesh.uniform_triangulation(BOX, 1.0)
+    assert fewest_classes_placement(BOX, 1.0).evaluations == 19
+
+
 def turned(points, degrees):
     t = np.radians(degrees)
     return np.asarray(points, dtype=float) @ np.array([[np.cos(t), np.sin(t)], [-np.sin(t), np.cos(t)]])
@@ -457,17 +531,19 @@ def _arc(first, last, n):
     "ring, angles",
     [
         (_arc(0.0, 2 * np.pi, 17)[:-1], []),
+        (np.vstack([[16.0, 0.0], _arc(np.pi / 3, 5 * np.pi / 3, 17)]), []),
         (_arc(0.0, np.pi, 17), [0.0]),
         (
             rectangle(13.7, 9.3) @ np.array([[np.cos(1.0385), np.sin(1.0385)], [-np.sin(1.0385), np.cos(1.0385)]]),
             [0.0, round(np.degrees(1.0385) + 90.0 - 120.0, 9)],
         ),
     ],
-    ids=["no corner", "two corners", "a side less than a degree short of 60"],
+    ids=["no corner", "one corner", "two corners", "a side less than a degree short of 60"],
 )
 def test_fewest_classes_placement_candidates(monkeypatch, ring, angles):
     """A polygon turning by less than CLASS_CORNER_TURN everywhere has no side to align with: only the start is
-    meshed; a half disc has two corners, its diameter and its arc's chord one candidate; a side less than a
+    meshed; nor has a drop, a disc drawn to a point (one corner: its one side runs from it back to it); a half
+    disc has two corners, its diameter and its arc's chord one candidate; a side less than a
     degree short of 60 is the lattice's 0 (its symmetry)."""
     calls = spied(monkeypatch)
     found = fewest_classes_placement(ring, 1.0)

@@ -195,10 +195,12 @@ def fewest_classes_placement(
     directions of the polygon's sides from corner to corner (the vertices
     where it turns by at least :data:`CLASS_CORNER_TURN` degrees: a curved
     side resampled into many short edges is one side), each modulo 60 and
-    counted once within :data:`CLASS_ANGLE` degrees, each with
-    ``CLASS_OFFSETS^2`` offsets, after ``start`` (a :class:`Placement`, e.g.
+    counted once within :data:`CLASS_ANGLE` degrees, in the order of the sides
+    from the ring's first corner, each with ``CLASS_OFFSETS^2`` offsets, after
+    ``start`` (a :class:`Placement`, e.g.
     :func:`best_lattice_placement`'s; angle 0 at the origin by default).  Each
-    is meshed by :func:`equimesh.uniform_triangulation` and scored by its
+    is meshed by :func:`equimesh.uniform_triangulation`, with no node limit of
+    its own (the caller's size guard bounds the search), and scored by its
     length classes at ``tolerance`` (:func:`equimesh.classes.length_classes`),
     then by the share of its members in the
     :data:`~equimesh.classes.TOP_CLASSES` largest; ties keep the first.  A
