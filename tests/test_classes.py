@@ -322,3 +322,10 @@ def test_holds_at_the_ends_of_the_sums():
     assert [holds(t, [1.5], 1.0, 0.25) for t in (1.25, 2.5, 3.5, 3.75)] == [True, True, True, True]
     assert holds(0.75, [0.75], 0.5, 0.25)  # one member of at most 1: l = 0.5
     assert [holds(t, [1.5], 1.0, 0.25) for t in (np.nextafter(2.5, 0.0), np.nextafter(3.5, 4.0))] == [False, False]
+
+
+def test_the_union_of_sums_holds_an_interval_inside_another():
+    """The sums' intervals widen with the sum, so one can lie inside another: [1, 2] and [5, 6] inside [0, 10] are
+    one interval, [0, 10], and [12, 13] stays apart."""
+    union = classes._merge(np.array([[0.0, 10.0], [1.0, 2.0], [5.0, 6.0], [12.0, 13.0]]))
+    np.testing.assert_array_equal(union, [[0.0, 10.0], [12.0, 13.0]])
