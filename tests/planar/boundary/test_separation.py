@@ -195,6 +195,7 @@ UNMESHABLE = (
     "vertices, message",
     [
         (_leaving(5.4), UNMESHABLE.format(edge="0, 1", beta="5.4", end="vertex 1 at (5.4, 0)")),
+        (_leaving(5.4123456), UNMESHABLE.format(edge="0, 1", beta="5.4123456", end="vertex 1 at (5.4123456, 0)")),
         (
             np.array([[0, 0], [18, 0], [18, 9], at(20.0, 5.4)]),
             UNMESHABLE.format(edge="3, 0", beta="5.4", end="vertex 3 at (5.074340152, 1.846908774)"),
@@ -577,6 +578,13 @@ HANDLED = (
             "of "
             "10.350000000000001 and 9.9 into parts of [l, 2l] keeps every two points of different sides l apart "
             "(decided on a grid of cells), so " + HANDLED,
+        ),
+        # the same with the second side a hair longer: every digit of both lengths is printed
+        (
+            [(0.0, 0.0), (3.45, 0.0), at(20.0, 3.3001234)],
+            "the corner at vertex 0 at (0, 0) (20 degrees) cannot meet Lemma 3 (1) for l = 3.0: no split of its sides "
+            "of 10.350000000000001 and 9.900370200000001 into parts of [l, 2l] keeps every two points of different "
+            "sides l apart (decided on a grid of cells), so " + HANDLED,
         ),
         # 21 degrees, sides 3.48 l and 3.25 l: refused only on the finer cells of the joint decision with no second
         # corner
