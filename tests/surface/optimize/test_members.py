@@ -8,6 +8,8 @@ Jacobian are ``weight (L / l - goal)`` and its derivative, with extra terms afte
 ``optimize_cases``.
 """
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 import scipy.sparse
@@ -151,6 +153,20 @@ def test_weighted_residuals_and_their_jacobian(extra):
     jac = jacobian(x)
     assert scipy.sparse.issparse(jac) and jac.format == "csr"
     np.testing.assert_allclose(jac.toarray(), finite_difference(residuals, x), atol=1e-6)
+
+
+def test_the_weighted_jacobian_has_a_column_per_variable_of_a_node_no_member_touches_too():
+    """The last free node's members dropped: its two variables move nothing, and the Jacobian still has their two
+    (empty) columns, the shape the solver's normal equations are built for."""
+    p, _ = problem(seed=6)
+    last = len(p.uv) - 1
+    p = replace(
+        p, edges=p.edges[~np.any(p.edges == last, axis=1)], edge_groups=p.edge_groups[~np.any(p.edges == last, axis=1)]
+    )
+    members = Members(p)
+    _, jacobian = members.weighted(np.ones(len(p.edges)), np.full(len(p.edges), 1.25))
+    jac = jacobian(moved(p, 8))
+    assert jac.shape == (len(p.edges), len(p.x0)) and jac[:, -2:].nnz == 0
 
 
 def test_cauchy_weights_by_hand():
