@@ -13,6 +13,7 @@ from section4_standin import CircularVault, flat_patch, parabolic_vault
 from equimesh import InvalidSurfaceError
 from equimesh._geometry import orient
 from equimesh.mesh import edge_lengths
+from equimesh.surface import flatten as flatten_module
 from equimesh.surface.auxiliary import auxiliary_grid
 from equimesh.surface.charts.bezier import BezierSurface
 from equimesh.surface.flatten import check_edge_lengths, energy_terms, flatten, plane_start
@@ -178,6 +179,26 @@ def test_strongly_curved_patch_folds_without_barrier_and_not_with_it():
         flatten(x, g.triangles, uv=g.uv, area_floor=0.0)
     f = flatten(x, g.triangles, uv=g.uv)
     assert np.all(orientations(f.points, g.triangles) > 0)
+
+
+def test_the_barrier_weighs_a_fold_above_the_starts_energy(monkeypatch):
+    """A flat grid from a start 1.2 times too large (every relative error 0.2, E(start) 0.32): the barrier's weight
+    w has w^2 / 2 above E(start), so a folded triangle alone costs more than the start and is never accepted."""
+    made = []
+
+    class Recorded(AreaBarrier):
+        def __init__(self, triangles, start, fraction, weight, free=None, power=1):
+            made.append(weight)
+            super().__init__(triangles, start, fraction, weight, free, power)
+
+    monkeypatch.setattr(flatten_module, "AreaBarrier", Recorded)
+    g = auxiliary_grid(2, 2)
+    x = flat_patch(40.0, 40.0).evaluate(g.uv[:, 0], g.uv[:, 1])
+    edges = g.edges
+    start = 1.2 * x[:, :2]
+    energy = 0.5 * np.sum(((edge_lengths(start, edges) - edge_lengths(x, edges)) / edge_lengths(x, edges)) ** 2)
+    flatten(x, g.triangles, x0=start)
+    assert energy == pytest.approx(0.32) and len(made) == 1 and made[0] ** 2 / 2 > energy
 
 
 def test_barrier_is_inactive_on_mild_surfaces():
