@@ -194,7 +194,7 @@ def strip_flips(points, uv, triangles, l):
     flips end."""
     triangles = np.array(triangles, dtype=np.int64)
     found = length_classes(edge_lengths(points, unique_edges(triangles)), l, 0.005)
-    nominals = found.nominal[np.argsort(-found.count, kind="stable")[:TOP_CLASSES]]
+    nominals = found.nominal[found.largest(TOP_CLASSES)]
 
     def gap(a, b):
         return float(np.min(np.abs(nominals - np.linalg.norm(points[a] - points[b]))))

@@ -329,3 +329,13 @@ def test_the_union_of_sums_holds_an_interval_inside_another():
     one interval, [0, 10], and [12, 13] stays apart."""
     union = classes._merge(np.array([[0.0, 10.0], [1.0, 2.0], [5.0, 6.0], [12.0, 13.0]]))
     np.testing.assert_array_equal(union, [[0.0, 10.0], [12.0, 13.0]])
+
+
+def test_the_largest_classes_come_largest_first_and_of_equals_the_shorter():
+    """Counts 2, 3, 3, 1 (classes in increasing length): the largest are class 1, then 2 (as large, longer), then 0;
+    all four for k None; the share in the two largest is 6 of 9."""
+    found = length_classes([1.0, 1.0, 1.1, 1.1, 1.1, 1.2, 1.2, 1.2, 1.5], 1.0, 0.005)
+    np.testing.assert_array_equal(found.count, [2, 3, 3, 1])
+    np.testing.assert_array_equal(found.largest(3), [1, 2, 0])
+    np.testing.assert_array_equal(found.largest(None), [1, 2, 0, 3])
+    assert found.top_share(2) == 6 / 9

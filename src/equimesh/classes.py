@@ -113,10 +113,15 @@ class LengthClasses:
     def __len__(self):
         return len(self.count)
 
+    def largest(self, k=TOP_CLASSES):
+        """The indices of the ``k`` largest classes, largest first, of equal counts the shorter nominal length first
+        (all of them for ``k`` None)."""
+        return np.argsort(-self.count, kind="stable")[:k]
+
     def top_share(self, k=TOP_CLASSES):
-        """The share of the members in the ``k`` largest classes (``nan`` without members)."""
+        """The share of the members in the ``k`` largest classes (:meth:`largest`; ``nan`` without members)."""
         total = int(self.count.sum())
-        return float(np.sort(self.count)[::-1][:k].sum() / total) if total else float("nan")
+        return float(self.count[self.largest(k)].sum() / total) if total else float("nan")
 
     def off_catalogue(self):
         """Members in no stock length's class (0 without a catalogue)."""

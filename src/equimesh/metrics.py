@@ -317,8 +317,7 @@ def classes_by_kind(points, triangles, l, tolerance=DEFAULT_TOLERANCE, k=TOP_CLA
     along = np.isin(keys, edge_keys(outline, n)[0])
     kind = np.where(along, 0, np.where(np.isin(edges, outline).any(axis=1), 1, 2))
     classes = length_classes(lengths, l, tolerance)
-    # The k largest classes, ties to the shorter nominal length.
-    top = np.isin(classes.member_class, np.lexsort((np.arange(len(classes)), -classes.count))[:k])
+    top = np.isin(classes.member_class, classes.largest(k))
     out = {}
     for index, name in enumerate(MEMBER_KINDS):
         mine = kind == index

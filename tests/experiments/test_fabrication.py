@@ -104,7 +104,7 @@ def test_strip_flips_bring_members_nearer_the_largest_classes_and_keep_a_valid_m
     assert ((ratio >= 1.0 - 1e-9) & (ratio <= 2.0 + 1e-9)).all()
 
     sizes = length_classes(edge_lengths(mesh.points, mesh.edges), l, 0.005)
-    nominals = sizes.nominal[np.argsort(-sizes.count, kind="stable")[:TOP_CLASSES]]
+    nominals = sizes.nominal[sizes.largest(TOP_CLASSES)]
 
     def gaps(edges):
         return np.abs(edge_lengths(mesh.points, edges)[:, None] - nominals[None, :]).min(axis=1)

@@ -129,7 +129,7 @@ def class_groups(classes, max_drawn=MAX_DRAWN_CLASSES):
     if k <= max_drawn:
         drawn = np.arange(k)
     else:
-        drawn = np.sort(np.argsort(-classes.count, kind="stable")[: max_drawn - 1])
+        drawn = np.sort(classes.largest(max_drawn - 1))
     order = np.argsort(classes.member_class, kind="stable")
     starts = np.searchsorted(classes.member_class[order], np.arange(k + 1))
     members = [order[starts[c] : starts[c + 1]] for c in range(k)]

@@ -45,8 +45,8 @@ def class_rounds(problem, members, x, best, scale):
         nominal = np.asarray(catalogue, dtype=float)
     else:
         start = length_classes(members.ratio(x), 1.0, tolerance)
-        largest = np.argsort(-start.count, kind="stable")[:CLASSES_START]
-        nominal = np.unique(np.append(np.clip(start.nominal[largest], members.target, members.high), members.target))
+        largest = start.nominal[start.largest(CLASSES_START)]
+        nominal = np.unique(np.append(np.clip(largest, members.target, members.high), members.target))
     limit = problem.step_limit(BOUNDED_STEP * problem.length)
     closest = None  # the round end outside [l, 2l] with the fewest classes, if fewer than the best's
     for k in range(CLASSES_ROUNDS):
