@@ -339,3 +339,12 @@ def test_the_largest_classes_come_largest_first_and_of_equals_the_shorter():
     np.testing.assert_array_equal(found.largest(3), [1, 2, 0])
     np.testing.assert_array_equal(found.largest(None), [1, 2, 0, 3])
     assert found.top_share(2) == 6 / 9
+
+
+def test_the_largest_of_many_equal_classes_keep_their_order():
+    """83 classes, three of 2 members among 80 of one: the three first, in order of length, then the first of the
+    others; a sort that does not keep the order of equals (numpy's default) gives another."""
+    lengths = np.concatenate([1.0 + 0.02 * np.arange(40), np.repeat(1.9, 2), np.repeat(1.92, 2), np.repeat(1.94, 2)])
+    found = length_classes(np.concatenate([lengths, 2.0 + 0.02 * np.arange(40)]), 1.0, 0.005)
+    assert len(found) == 83 and list(found.count[40:43]) == [2, 2, 2]
+    np.testing.assert_array_equal(found.largest(8), [40, 41, 42, 0, 1, 2, 3, 4])
